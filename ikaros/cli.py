@@ -1,0 +1,140 @@
+"""The ``ikaros`` command: ``ikaros [options] [name=value ...] MODEL.ikg``."""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+import traceback
+
+from . import classes, load
+from .errors import ModelError, RunError
+from .module import DEBUG, PRINT, WARNING
+
+EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        print(f"ikaros: error: {message}", file=sys.stderr)
+        raise SystemExit(EXIT_USAGE)
+
+
+def _ticks(text: str) -> int:
+    if not text.lstrip("+").isdigit():
+        raise argparse.ArgumentTypeError(f'"{text}" is not a whole number of ticks >= 0')
+    return int(text)
+
+
+def _positive_int(text: str) -> int:
+    if not text.lstrip("+").isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f'"{text}" is not a whole number >= 1')
+    return int(text)
+
+
+def _port(text: str) -> int:
+    if not text.lstrip("+").isdigit() or int(text) > 65535:
+        raise argparse.ArgumentTypeError(f'"{text}" is not a port number (0-65535)')
+    return int(text)
+
+
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f'Invalid tick duration "{text}": give a finite '
+                                         f'number of seconds > 0')
+    return value
+
+
+def parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="ikaros", description="Run an Ikaros model (.ikg).",
+                epilog="name=value pairs set attributes of the top group and win over the "
+                       "file. Exit status: 0 success, 1 model or run error, 2 bad usage.")
+    p.add_argument("args", nargs="*", metavar="[name=value ...] MODEL.ikg")
+    p.add_argument("-b", "--batch", action="store_true",
+                   help="run as fast as possible and exit when the run ends")
+    p.add_argument("-s", "--stop", type=_ticks, metavar="N",
+                   help="run N ticks (ticks 0 to N-1), then stop")
+    p.add_argument("-r", "--real-time", action="store_true",
+                   help="run in real time on the tick_duration time base")
+    p.add_argument("-d", "--tick-duration", type=_seconds, metavar="SECONDS",
+                   help="the real-time tick duration in seconds")
+    p.add_argument("-t", "--threads", type=_positive_int, metavar="N",
+                   help="size of the worker thread pool")
+    p.add_argument("-S", "--start", action="store_true", help="start running at once")
+    p.add_argument("-i", "--info", action="store_true",
+                   help="print modules, connections, buffers with shapes, and the schedule")
+    p.add_argument("-w", "--port", type=_port, metavar="PORT", help="web UI port")
+    p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
+    p.add_argument("-v", "--verbose", action="store_true",
+                   help="print debug messages and full tracebacks")
+    p.add_argument("--classes", action="store_true", help="list every class found")
+    p.add_argument("--class", dest="class_name", metavar="NAME",
+                   help="print one class's description")
+    return p
+
+
+def _split_args(p, args: list[str]) -> tuple[str | None, dict]:
+    model, overrides = None, {}
+    for arg in args:
+        name, eq, value = arg.partition("=")
+        if eq and name.isidentifier():
+            overrides[name] = value
+        elif model is None:
+            model = arg
+        else:
+            p.error(f'more than one model file given: "{model}" and "{arg}"')
+    return model, overrides
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = parser()
+    opts = p.parse_args(argv)
+    model, overrides = _split_args(p, opts.args)
+    folders = [os.path.dirname(os.path.abspath(model))] if model else []
+    try:
+        if opts.classes:
+            for name, desc in classes(*folders).items():
+                first = desc.description.split(". ")[0]
+                print(f"{name:24} {first}")
+            return EXIT_OK
+        if opts.class_name:
+            found = classes(*folders).get(opts.class_name)
+            if found is None:
+                print(f'ikaros: error: no class named "{opts.class_name}"', file=sys.stderr)
+                return EXIT_ERROR
+            print(found.to_text())
+            return EXIT_OK
+        if model is None:
+            p.error("no model file given")
+        if opts.tick_duration is not None:
+            overrides["tick_duration"] = str(opts.tick_duration)
+        if opts.threads is not None:
+            overrides["threads"] = str(opts.threads)
+        net = load(model, **overrides)
+        net.log_level = WARNING if opts.quiet else DEBUG if opts.verbose else PRINT
+        if opts.info:
+            print(net.info())
+        ok = getattr(net, "checksum_ok", True)
+        try:
+            net.run(ticks=opts.stop, real_time=opts.real_time)
+        finally:
+            net.close()
+        return EXIT_OK if ok or not opts.batch else EXIT_ERROR
+    except ModelError as e:
+        print(f"ikaros: error: {e}", file=sys.stderr)
+        if opts.verbose:
+            traceback.print_exc()
+        return EXIT_ERROR
+    except RunError as e:
+        print(f"ikaros: run stopped: {e}", file=sys.stderr)
+        if opts.verbose:
+            traceback.print_exc()
+        return EXIT_ERROR
+    except KeyboardInterrupt:
+        print("ikaros: interrupted", file=sys.stderr)
+        return EXIT_OK

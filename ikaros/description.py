@@ -1,0 +1,152 @@
+"""Class descriptions: what a module class declares (parameters, inputs, outputs).
+
+A description is produced either from a Python module class or from an ``.ikc`` file; both
+give the same structure, which the kernel, the command line, the editor and the docs read.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+PARAMETER_TYPES = ("number", "int", "bool", "string", "list", "array", "matrix")
+
+# Spellings found in existing .ikc files, mapped onto the types above.
+TYPE_ALIASES = {
+    "float": "number", "double": "number", "rate": "number", "number": "number",
+    "int": "int", "integer": "int",
+    "bool": "bool", "boolean": "bool",
+    "string": "string", "text": "string", "str": "string",
+    "list": "list", "options": "list",
+    "array": "array", "matrix": "matrix",
+}
+
+
+def canonical_type(name: str | None) -> str | None:
+    """The canonical parameter type for a spelling found in a class file, or None."""
+    if name is None or name == "":
+        return None
+    return TYPE_ALIASES.get(name.strip().lower())
+
+
+@dataclass
+class ParameterSpec:
+    """One parameter of a class."""
+    name: str
+    type: str = "number"
+    default: Any = None          # the default as written (a string), or a Python value
+    description: str = ""
+    options: list[str] = field(default_factory=list)
+    control: str | None = None   # a UI hint: menu, checkbox, slider, textedit
+
+    def to_dict(self) -> dict:
+        d = {"name": self.name, "type": self.type, "default": _plain(self.default),
+             "description": self.description}
+        if self.options:
+            d["options"] = list(self.options)
+        if self.control:
+            d["control"] = self.control
+        return d
+
+
+@dataclass
+class InputSpec:
+    """One input of a class."""
+    name: str
+    description: str = ""
+    optional: bool = False
+    flatten: bool = False
+    stack: bool = False
+    size: str | None = None      # a fixed shape expression (Ikaros 3 ``size``)
+
+    def to_dict(self) -> dict:
+        d = {"name": self.name, "description": self.description, "optional": self.optional}
+        for key in ("flatten", "stack"):
+            if getattr(self, key):
+                d[key] = True
+        if self.size:
+            d["size"] = self.size
+        return d
+
+
+# The Ikaros 2 size attributes of an output, in the order they are tried.
+SIZE_RULE_KEYS = ("size_param_x", "size_param_y", "size_param", "size_x", "size_y", "size",
+                  "size_set", "size_set_x", "size_set_y", "shape")
+
+
+@dataclass
+class OutputSpec:
+    """One output of a class with its size rule (Ikaros 2 ``size_*`` or Ikaros 3 ``shape``)."""
+    name: str
+    description: str = ""
+    rule: dict[str, str] = field(default_factory=dict)
+    optional: bool = False
+
+    def to_dict(self) -> dict:
+        d = {"name": self.name, "description": self.description}
+        d.update(self.rule)
+        if self.optional:
+            d["optional"] = True
+        return d
+
+    def rule_text(self) -> str:
+        """A short human-readable form of the size rule."""
+        return ", ".join(f"{k}={v}" for k, v in self.rule.items()) or "set by the module"
+
+
+@dataclass
+class ClassDescription:
+    """Everything a class declares; the same whether it comes from Python or an .ikc file."""
+    name: str
+    description: str = ""
+    parameters: list[ParameterSpec] = field(default_factory=list)
+    inputs: list[InputSpec] = field(default_factory=list)
+    outputs: list[OutputSpec] = field(default_factory=list)
+    source: str = ""             # the file the description was read from
+    view: Any = None             # a default view (a Node) carried by the class, if any
+    internal: bool = False
+
+    def parameter(self, name: str) -> ParameterSpec | None:
+        return next((p for p in self.parameters if p.name == name), None)
+
+    def input(self, name: str) -> InputSpec | None:
+        return next((p for p in self.inputs if p.name == name), None)
+
+    def output(self, name: str) -> OutputSpec | None:
+        return next((p for p in self.outputs if p.name == name), None)
+
+    def to_dict(self) -> dict:
+        return {
+            "name": self.name,
+            "description": self.description,
+            "parameters": [p.to_dict() for p in self.parameters],
+            "inputs": [p.to_dict() for p in self.inputs],
+            "outputs": [p.to_dict() for p in self.outputs],
+            "source": self.source,
+        }
+
+    def to_text(self) -> str:
+        """The description as readable text, for ``ikaros --class NAME``."""
+        lines = [self.name, "=" * len(self.name), self.description or "(no description)", ""]
+        lines.append("Parameters:" if self.parameters else "Parameters: none")
+        for p in self.parameters:
+            opts = f" options={'/'.join(p.options)}" if p.options else ""
+            lines.append(f"  {p.name} ({p.type}, default {_plain(p.default)!r}{opts}): "
+                         f"{p.description}")
+        lines.append("Inputs:" if self.inputs else "Inputs: none")
+        for i in self.inputs:
+            flags = [f for f in ("optional", "flatten", "stack") if getattr(i, f)]
+            lines.append(f"  {i.name}{' (' + ', '.join(flags) + ')' if flags else ''}: "
+                         f"{i.description}")
+        lines.append("Outputs:" if self.outputs else "Outputs: none")
+        for o in self.outputs:
+            lines.append(f"  {o.name} [{o.rule_text()}]: {o.description}")
+        if self.source:
+            lines.append(f"Source: {self.source}")
+        return "\n".join(lines)
+
+
+def _plain(value: Any) -> Any:
+    """A JSON-friendly form of a default value."""
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    return value

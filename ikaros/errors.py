@@ -1,0 +1,33 @@
+"""The errors the public API raises."""
+from __future__ import annotations
+
+
+class ModelError(Exception):
+    """A model cannot be read or built. The message names the file, the line and the element.
+
+    ``filename`` and ``line`` say where (either may be None when no file is involved).
+    """
+
+    def __init__(self, message: str, filename: str | None = None, line: int | None = None,
+                 element: str | None = None):
+        self.reason = message
+        self.filename = filename
+        self.line = line
+        self.element = element
+        super().__init__(self._format())
+
+    def _format(self) -> str:
+        where = ""
+        if self.filename:
+            where = f"{self.filename}"
+            if self.line:
+                where += f":{self.line}"
+            where += ": "
+        elif self.line:
+            where = f"line {self.line}: "
+        what = f"{self.element}: " if self.element else ""
+        return f"{where}{what}{self.reason}"
+
+
+class RunError(Exception):
+    """A run stopped because of a module's fatal error or exception."""

@@ -1,0 +1,95 @@
+"""Buffers (module inputs and outputs, group ports) and the links between them."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..language.node import Node
+
+
+class Buffer:
+    """A module output, a module input, or a group port (an Ikaros 3 group input/output).
+
+    Inputs and ports are filled by incoming links; outputs are written by their module.
+    """
+
+    def __init__(self, kind: str, owner, name: str, *, optional: bool = False,
+                 flatten: bool = False, stack: bool = False, fixed: str | None = None,
+                 node: Node | None = None):
+        self.kind = kind                  # "output", "input" or "port"
+        self.owner = owner                # a ModuleInstance or a Group
+        self.name = name
+        self.optional = optional
+        self.flatten = flatten
+        self.stack = stack
+        self.fixed = fixed                # a fixed shape expression for an input
+        self.node = node
+        self.shape: tuple | None = None
+        self.incoming: list[Link] = []
+        self.outgoing: list[Link] = []
+        self.array: np.ndarray | None = None
+
+    @property
+    def path(self) -> str:
+        owner = self.owner.path
+        return f"{owner}.{self.name}" if owner else self.name
+
+    @property
+    def size(self) -> int:
+        return int(np.prod(self.shape)) if self.shape is not None else 0
+
+    def __repr__(self):
+        return f"<{self.kind} {self.path} {self.shape}>"
+
+
+@dataclass(eq=False)
+class Link:
+    """One connection between two buffers, after group aliases are followed.
+
+    ``src_sel`` is None, ("offset", start, count) or ("selector", dims); ``dst_sel`` is None,
+    ("offset", start) or ("selector", dims).
+    """
+    source: Buffer
+    target: Buffer
+    delays: list[int]
+    node: Node
+    order: int
+    src_sel: tuple | None = None
+    dst_sel: tuple | None = None
+    # Set by the layout: flat source indices of one lane, and flat target indices of all
+    # lanes (lane-major).
+    piece_shape: tuple = ()
+    src_index: np.ndarray | None = None
+    dst_index: np.ndarray | None = None
+
+    @property
+    def window(self) -> bool:
+        return len(self.delays) > 1
+
+    def describe(self) -> str:
+        d = ",".join(map(str, self.delays))
+        return f"{self.source.path} -> {self.target.path} (delay {d})"
+
+
+@dataclass(eq=False)
+class Run:
+    """Resolved data flow into a module input: elements ``src_index`` of module output
+    ``source`` at ``delay`` go to elements ``dst_index`` of the input."""
+    source: Buffer
+    target: Buffer
+    delay: int
+    src_index: np.ndarray
+    dst_index: np.ndarray
+    node: Node
+    window: bool = False
+    links: list = field(default_factory=list)
+
+    @property
+    def whole(self) -> bool:
+        """Whether the run copies the whole source onto the whole target, in order."""
+        n = self.source.size
+        return (n == self.target.size and len(self.src_index) == n
+                and len(self.dst_index) == n
+                and bool(np.all(self.src_index == np.arange(n)))
+                and bool(np.all(self.dst_index == np.arange(n))))

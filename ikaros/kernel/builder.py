@@ -1,0 +1,464 @@
+"""The builder: a model tree -> groups and modules -> buffers and links -> sizes -> a
+schedule and the element maps a Network runs."""
+from __future__ import annotations
+
+import os
+import re
+
+from ..errors import ModelError
+from ..language.node import Node
+from ..language.reader import read_file
+from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
+                               split_selectors, value_text)
+from ..module import RESERVED, WARNING, Clock, Module
+from .buffers import Buffer, Link
+from .classes import ClassRegistry
+from .layout import layout, runs_into
+from .schedule import schedule
+from .scope import VariableError, convert, from_python, lookup_parameter, substitute
+from .sizes import SizeError, WAIT, rule_shape, shape_expression
+from .tree import Component, Group, ModuleInstance, Scope, find_component
+
+_NAME = re.compile(r"[A-Za-z_][\w\-]*$")
+
+# Attributes of <module> that belong to the kernel, not to the class's parameters.
+MODULE_ATTRIBUTES = {"class", "name", "path", "period", "phase", "active", "async",
+                     "high_priority", "log_level", "description", "title"}
+
+
+class Builder:
+    """Builds one model file. ``notify`` receives build-time warnings."""
+
+    def __init__(self, filename: str, overrides: dict | None = None, text: str | None = None,
+                 notify=None, registry: ClassRegistry | None = None):
+        self.filename = os.path.abspath(filename)
+        self.model = read_file(self.filename, text, root_tag="group")
+        self.overrides = {k: value_text(v) for k, v in (overrides or {}).items()}
+        self.registry = registry or ClassRegistry([os.path.dirname(self.filename)])
+        self.notify = notify or _print_warning
+        self.clock = Clock()
+        self.connections: list[tuple[Node, Group]] = []
+        self.ports: dict[tuple, Buffer] = {}
+        self.instances: list[ModuleInstance] = []
+        self.buffers: dict[ModuleInstance, tuple[dict, dict]] = {}
+
+    # --- the tree ------------------------------------------------------------------------
+    def build_tree(self) -> Group:
+        attrs = dict(self.model.attrs)
+        attrs.update(self.overrides)
+        name = attrs.get("name") or "Main"
+        return self._group(self.model, None, name, attrs, (self.filename,))
+
+    def _group(self, node: Node, parent: Group | None, name: str, attrs: dict,
+               files: tuple) -> Group:
+        group = Group(name, node, parent, dict(attrs))
+        anonymous = 0
+        for child in node.elements():
+            tag = child.tag
+            if tag in ("module", "group"):
+                child_name = child.get("name")
+                if child_name is None and tag == "group":
+                    anonymous += 1
+                    child_name = f"Group-{anonymous}"
+                if not child_name:
+                    raise child.error(f"a <{tag}> needs a name")
+                child_name = self._substitute(child_name, Scope(child, group), child, "name")
+                if not _NAME.match(child_name):
+                    raise child.error(f'"{child_name}" is not a valid name (letters, digits, _ '
+                                      f'and -, not starting with a digit)')
+                if child_name in group.children:
+                    raise child.error(f'duplicate name "{child_name}" in group '
+                                      f'"{group.path or group.name}"')
+                if tag == "group":
+                    group.children[child_name] = self._subgroup(child, group, child_name, files)
+                else:
+                    group.children[child_name] = self._module(child, group, child_name, files)
+            elif tag == "connection":
+                self.connections.append((child, group))
+            elif tag == "input":
+                group.inputs.append(child)
+            elif tag == "output":
+                if not child.get("name"):
+                    raise child.error("a group <output> needs a name")
+                if child.get("shape") or child.get("size"):
+                    raise child.error("a group output can not have a shape or size: it is "
+                                      "sized from its connection")
+                group.outputs.append(child)
+            elif tag == "parameter":
+                if child.get("target"):
+                    group.renamings.append(child)
+                elif child.get("name") and child.get("default") is not None:
+                    group.attrs.setdefault(child.get("name"), child.get("default"))
+            elif tag in ("view", "widget"):
+                group.views.append(child)
+        return group
+
+    def _subgroup(self, node: Node, parent: Group, name: str, files: tuple) -> Group:
+        external = node.get("external")
+        if not external:
+            return self._group(node, parent, name, node.attrs, files)
+        path = self._substitute(external, Scope(node, parent), node, "external")
+        merged, file = self._merge_file(node, path, files)
+        merged.attrs.pop("external", None)
+        return self._group(merged, parent, name, merged.attrs, files + (file,))
+
+    def _merge_file(self, node: Node, path: str, files: tuple) -> tuple[Node, str]:
+        """A group file's root with the referring element's attributes (which win) and
+        children added."""
+        file = os.path.normpath(os.path.join(os.path.dirname(node.file or self.filename),
+                                             path))
+        if file in files:
+            raise node.error(f'"{os.path.basename(file)}" includes itself')
+        if not os.path.isfile(file):
+            raise node.error(f'group file "{path}" not found')
+        root = read_file(file, root_tag="group")
+        attrs = dict(root.attrs)
+        attrs.update({k: v for k, v in node.attrs.items() if k != "class"})
+        merged = Node("group", attrs, list(root.children) + list(node.children), root.file,
+                      root.line, root.text)
+        return merged, file
+
+    def _module(self, node: Node, group: Group, name: str, files: tuple) -> Component:
+        class_name = node.get("class")
+        if not class_name:
+            raise node.error("a <module> needs a class")
+        class_name = self._substitute(class_name, Scope(node, group), node, "class")
+        folders = [os.path.dirname(node.file or self.filename)]
+        if node.get("path"):
+            folders.insert(0, os.path.join(folders[0], self._substitute(
+                node.get("path"), Scope(node, group), node, "path")))
+        entry = self.registry.find(class_name, folders)
+        if entry is None:
+            raise node.error(f'unknown class "{class_name}"')
+        if entry.is_group:
+            merged, file = self._merge_file(node, entry.group, files)
+            merged.attrs["name"] = name
+            return self._group(merged, group, name, merged.attrs, files + (file,))
+        inst = ModuleInstance(name, node, group, entry, len(self.instances))
+        self.instances.append(inst)
+        return inst
+
+    def _substitute(self, text: str, scope, node: Node, what: str) -> str:
+        try:
+            return substitute(text, scope)
+        except VariableError as e:
+            raise node.error(f"{what}: {e}") from None
+
+    # --- modules -------------------------------------------------------------------------
+    def instantiate(self, inst: ModuleInstance) -> None:
+        """Create the Python module object, set its parameters, and run its configure()."""
+        try:
+            cls = inst.entry.module_class()
+        except ModelError as e:
+            raise inst.node.error(f'class "{inst.entry.name}": {e}') from None
+        for warning in inst.entry.warnings:
+            self.notify(WARNING, inst.path, warning)
+        inst.entry.warnings.clear()
+        desc = cls.description
+        for spec in desc.parameters:
+            if spec.name in RESERVED:
+                raise inst.node.error(f'class "{desc.name}" has a parameter named '
+                                      f'"{spec.name}", a reserved name in the module API')
+            inst.values[spec.name], inst.has_value[spec.name] = self._parameter(inst, spec)
+        try:
+            module = cls()
+        except Exception as e:
+            raise inst.node.error(f"creating the module failed: {type(e).__name__}: {e}") \
+                from None
+        module.name, module.path, module.element = inst.name, inst.path, inst.node
+        module.clock = self.clock
+        for name, value in inst.values.items():
+            setattr(module, name, value)
+        inst.module = module
+        try:
+            module.configure()
+        except Exception as e:
+            raise inst.node.error(f"configure failed: {type(e).__name__}: {e}") from None
+
+    def _parameter(self, inst: ModuleInstance, spec) -> tuple[object, bool]:
+        try:
+            found = lookup_parameter(inst, spec.name)
+        except VariableError as e:
+            raise inst.node.error(f'parameter "{spec.name}": {e}') from None
+        where = inst
+        try:
+            if found is not None:
+                text, where, _ = found
+                return convert(text, spec, where), True
+            if spec.default is not None and spec.default != "":
+                if isinstance(spec.default, str):
+                    return convert(spec.default, spec, inst), True
+                return from_python(spec.default, spec), True
+            return from_python(None, spec), False
+        except (ValueError_, VariableError, ValueError) as e:
+            node = where.node if hasattr(where, "node") else inst.node
+            raise node.error(f'parameter "{spec.name}" of {inst.path}: {e}') from None
+
+    def make_buffers(self, inst: ModuleInstance) -> None:
+        module: Module = inst.module
+        inputs, outputs = {}, {}
+        for spec in module._inputs.values():
+            flags = {}
+            for key in ("flatten", "stack"):
+                value = inst.attrs.get(f"{spec.name}.{key}")
+                flags[key] = self._flag(inst, value, key) if value else getattr(spec, key)
+            inputs[spec.name] = Buffer("input", inst, spec.name, optional=spec.optional,
+                                       fixed=spec.size, node=inst.node, **flags)
+        for spec in module._outputs.values():
+            buf = Buffer("output", inst, spec.name, optional=spec.optional, node=inst.node)
+            buf.shape = module._output_shapes.get(spec.name)
+            outputs[spec.name] = buf
+        self.buffers[inst] = (inputs, outputs)
+
+    def _flag(self, inst, text, what) -> bool:
+        try:
+            return parse_bool(substitute(text, inst))
+        except (ValueError_, VariableError) as e:
+            raise inst.node.error(f"{what}: {e}") from None
+
+    # --- connections ---------------------------------------------------------------------
+    def connect(self, order: int, node: Node, group: Group) -> None:
+        scope = Scope(node, group)
+
+        def attr(key):
+            value = node.get(key)
+            return None if value is None else self._substitute(value, scope, node, key).strip()
+
+        source, target = attr("source"), attr("target")
+        if not source:
+            raise node.error("a connection needs a source")
+        if not target:
+            raise node.error("a connection needs a target")
+        try:
+            src_path, src_sel = split_selectors(source)
+            dst_path, dst_sel = split_selectors(target)
+            delays = parse_delays(attr("delay") or "1")
+            offsets = {k: parse_int(attr(k)) for k in ("sourceoffset", "targetoffset", "size")
+                       if attr(k) not in (None, "")}
+        except ValueError_ as e:
+            raise node.error(str(e)) from None
+        if any(v < 0 for v in offsets.values()):
+            raise node.error("sourceoffset, targetoffset and size must not be negative")
+        if src_sel is not None and ("sourceoffset" in offsets or "size" in offsets):
+            raise node.error("a source selector cannot be combined with sourceoffset or size")
+        if dst_sel is not None and "targetoffset" in offsets:
+            raise node.error("a target selector cannot be combined with targetoffset")
+        if src_sel is None and ("sourceoffset" in offsets or "size" in offsets):
+            src_sel = ("offset", offsets.get("sourceoffset", 0), offsets.get("size"))
+        elif src_sel is not None:
+            src_sel = ("selector", src_sel)
+        if "targetoffset" in offsets:
+            dst_sel = ("offset", offsets["targetoffset"])
+        elif dst_sel is not None:
+            dst_sel = ("selector", dst_sel)
+        src = self._source(group, src_path, node)
+        for dst in self._targets(group, dst_path, node):
+            link = Link(src, dst, delays, node, order, src_sel, dst_sel)
+            src.outgoing.append(link)
+            dst.incoming.append(link)
+
+    def _split(self, group: Group, path: str, node: Node, role: str):
+        if "." not in path:
+            return group, path
+        comp_path, port = path.rsplit(".", 1)
+        comp = group.top() if comp_path == "" else find_component(group, comp_path)
+        if comp is None:
+            raise node.error(f'connection {role} "{path}" not found: there is no '
+                             f'"{comp_path}" seen from group "{group.path or group.name}"')
+        return comp, port
+
+    def _port(self, group: Group, direction: str, name: str, decl: Node) -> Buffer:
+        key = (group, direction, name)
+        if key not in self.ports:
+            flags = {k: self._flag(group, decl.get(k), k) for k in ("flatten", "stack")
+                     if decl.get(k)}
+            self.ports[key] = Buffer("port", group, name, node=decl, **flags)
+        return self.ports[key]
+
+    def _source(self, group: Group, path: str, node: Node) -> Buffer:
+        comp, port = self._split(group, path, node, "source")
+        if isinstance(comp, ModuleInstance):
+            inputs, outputs = self.buffers[comp]
+            if port not in outputs:
+                raise node.error(f'connection source "{path}" not found: module '
+                                 f'{comp.path} has no output named "{port}" '
+                                 f'(outputs: {", ".join(outputs) or "none"})')
+            return outputs[port]
+        inside = comp is group or comp in set(group.chain())
+        decls = [d for d in (comp.inputs if inside else comp.outputs) if d.get("name") == port]
+        if not decls:
+            kind = "input" if inside else "output"
+            raise node.error(f'connection source "{path}" not found: group '
+                             f'"{comp.path or comp.name}" has no {kind} named "{port}"')
+        decl = decls[0]
+        alias = _alias(decl, "source", "sourcemodule")
+        if alias and not inside:
+            if decl.get("sourcemodule"):
+                self.notify(WARNING, comp.path, f'{decl.file}:{decl.line}: sourcemodule is '
+                            f'deprecated; write source="{alias}"')
+            return self._source(comp, alias, decl)
+        return self._port(comp, "in" if inside else "out", port, decl)
+
+    def _targets(self, group: Group, path: str, node: Node) -> list[Buffer]:
+        comp, port = self._split(group, path, node, "target")
+        if isinstance(comp, ModuleInstance):
+            inputs, outputs = self.buffers[comp]
+            if port not in inputs:
+                raise node.error(f'connection target "{path}" not found: module '
+                                 f'{comp.path} has no input named "{port}" '
+                                 f'(inputs: {", ".join(inputs) or "none"})')
+            return [inputs[port]]
+        inside = comp is group or comp in set(group.chain())
+        decls = [d for d in (comp.outputs if inside else comp.inputs) if d.get("name") == port]
+        if not decls:
+            kind = "output" if inside else "input"
+            raise node.error(f'connection target "{path}" not found: group '
+                             f'"{comp.path or comp.name}" has no {kind} named "{port}"')
+        targets = []
+        for decl in decls:
+            alias = _alias(decl, "target", "targetmodule")
+            if alias and not inside:
+                if decl.get("targetmodule"):
+                    self.notify(WARNING, comp.path, f'{decl.file}:{decl.line}: targetmodule '
+                                f'is deprecated; write target="{alias}"')
+                elif "." not in alias:
+                    raise decl.error(f'target="{alias}" must name a module input '
+                                     f'(Module.INPUT)')
+                targets.extend(self._targets(comp, alias, decl))
+            else:
+                targets.append(self._port(comp, "out" if inside else "in", port, decl))
+        return targets
+
+    # --- sizes ---------------------------------------------------------------------------
+    def resolve_sizes(self) -> None:
+        self._drop_links_from_unconnected_ports()
+        for inst in self.instances:
+            inputs, _ = self.buffers[inst]
+            for buf in inputs.values():
+                if not buf.incoming and not buf.optional:
+                    raise inst.node.error(f'required input "{buf.name}" of {inst.path} is not '
+                                          f'connected')
+        pending = [b for inst in self.instances for b in self.buffers[inst][0].values()
+                   if b.incoming] + [p for p in self.ports.values() if p.incoming]
+        progress = True
+        while progress:
+            progress = False
+            for buf in list(pending):
+                if all(link.source.shape is not None for link in buf.incoming):
+                    fixed = self._fixed_shape(buf)
+                    if fixed is WAIT and buf.fixed:
+                        continue
+                    layout(buf, fixed)
+                    pending.remove(buf)
+                    progress = True
+            for inst in self.instances:
+                progress |= self._size_outputs(inst)
+        self._check_sizes(pending)
+
+    def _drop_links_from_unconnected_ports(self) -> None:
+        changed = True
+        while changed:
+            changed = False
+            for port in self.ports.values():
+                if port.incoming or not port.outgoing:
+                    continue
+                for link in port.outgoing:
+                    link.target.incoming.remove(link)
+                port.outgoing = []
+                changed = True
+
+    def _fixed_shape(self, buf: Buffer):
+        if not buf.fixed:
+            return None
+        inst = buf.owner
+        try:
+            return shape_expression(inst, buf.fixed, self._input_shapes(inst))
+        except SizeError as e:
+            raise inst.node.error(f'size of input "{buf.name}": {e}') from None
+
+    def _input_shapes(self, inst: ModuleInstance) -> dict:
+        inputs, _ = self.buffers[inst]
+        return {name: (buf.shape if buf.incoming else ()) for name, buf in inputs.items()}
+
+    def _size_outputs(self, inst: ModuleInstance) -> bool:
+        module = inst.module
+        inputs, outputs = self.buffers[inst]
+        shapes = self._input_shapes(inst)
+        module._input_shapes = shapes
+        module._connected = {n for n, b in inputs.items() if b.incoming}
+        progress = False
+        for name, buf in outputs.items():
+            if buf.shape is not None:
+                continue
+            spec = module._outputs[name]
+            try:
+                shape = rule_shape(inst, spec, shapes) if spec.rule else WAIT
+            except SizeError as e:
+                raise inst.node.error(f'size of output "{name}": {e}') from None
+            if shape is not WAIT:
+                buf.shape = shape
+                module._output_shapes[name] = shape
+                progress = True
+        if any(b.shape is None for b in outputs.values()):
+            try:
+                module.set_sizes()
+            except Exception as e:
+                raise inst.node.error(f"set_sizes failed: {type(e).__name__}: {e}") from None
+            for name, buf in outputs.items():
+                if buf.shape is None and module._output_shapes.get(name) is not None:
+                    buf.shape = module._output_shapes[name]
+                    progress = True
+        return progress
+
+    def _check_sizes(self, pending: list[Buffer]) -> None:
+        for inst in self.instances:
+            _, outputs = self.buffers[inst]
+            for name, buf in outputs.items():
+                if buf.shape is None:
+                    if buf.optional or not buf.outgoing:
+                        buf.shape = (0,) if buf.optional else buf.shape
+                    if buf.shape is None:
+                        rule = inst.module._outputs[name].rule_text()
+                        raise inst.node.error(f'the size of output "{name}" of {inst.path} '
+                                              f'could not be resolved (rule: {rule}); check '
+                                              f'that its inputs are connected')
+        for buf in pending:
+            waiting = [lk.source.path for lk in buf.incoming if lk.source.shape is None]
+            owner = buf.owner
+            raise owner.node.error(f'the size of {buf.kind} "{buf.path}" could not be resolved:'
+                                   f' it waits for {", ".join(waiting)}')
+
+    # --- everything ----------------------------------------------------------------------
+    def build(self):
+        """Build the network; raises ModelError naming the file, line and element."""
+        from .network import Network
+        top = self.build_tree()
+        for inst in self.instances:
+            self.instantiate(inst)
+            self.make_buffers(inst)
+        for order, (node, group) in enumerate(self.connections):
+            self.connect(order, node, group)
+        self.resolve_sizes()
+        memo: dict = {}
+        runs = []
+        edges: dict = {}
+        for inst in self.instances:
+            for buf in self.buffers[inst][0].values():
+                if buf.incoming:
+                    for run in runs_into(buf, memo):
+                        runs.append(run)
+                        if run.delay == 0:
+                            edges.setdefault((run.source.owner, run.target.owner), run.node)
+        order = schedule(self.instances, edges)
+        return Network(self, top, order, runs, edges)
+
+
+def _alias(decl: Node, key: str, legacy: str) -> str | None:
+    if decl.get(legacy):
+        return f"{decl.get(legacy)}.{decl.get(key)}"
+    return decl.get(key)
+
+
+def _print_warning(level: int, where: str, message: str) -> None:
+    import sys
+    print(f"warning: {where + ': ' if where else ''}{message}", file=sys.stderr)

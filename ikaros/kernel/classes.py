@@ -1,0 +1,226 @@
+"""Finding classes: the standard library, folders beside the model, ``path`` attributes, and
+installed packages (entry point group ``ikaros.modules``)."""
+from __future__ import annotations
+
+import hashlib
+import importlib
+import importlib.util
+import os
+import sys
+from dataclasses import dataclass, field
+from importlib.metadata import entry_points
+
+from ..description import ClassDescription
+from ..errors import ModelError
+from ..language.classfile import read_class_file
+from ..module import Module
+
+STDLIB = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "modules")
+ENTRY_POINT_GROUP = "ikaros.modules"
+
+
+@dataclass
+class ClassEntry:
+    """Where a class is declared. ``python`` and ``ikc`` are files; ``group`` is an .ikg file
+    used as a class; ``loaded`` is a class object from an entry point."""
+    name: str
+    python: str | None = None
+    ikc: str | None = None
+    group: str | None = None
+    package: str | None = None        # the import name of a standard-library module file
+    loaded: type | None = None
+    warnings: list[str] = field(default_factory=list)
+    _cls: type | None = None
+    _desc: ClassDescription | None = None
+
+    @property
+    def is_group(self) -> bool:
+        return self.group is not None and self.python is None and self.ikc is None \
+            and self.loaded is None
+
+    def module_class(self) -> type[Module]:
+        """The Python class that runs instances (a do-nothing class for an .ikc without code)."""
+        if self._cls is None:
+            self._cls = self._load()
+        return self._cls
+
+    def description(self) -> ClassDescription:
+        if self._desc is None:
+            self.module_class()
+        return self._desc
+
+    def _load(self) -> type[Module]:
+        cls = self.loaded
+        if cls is None and self.python:
+            module = _import_file(self.python, self.package)
+            cls = getattr(module, self.name, None)
+            if not (isinstance(cls, type) and issubclass(cls, Module)):
+                raise ModelError(f'file does not define a Module subclass named "{self.name}"',
+                                 self.python)
+        if self.ikc:
+            desc, warnings = read_class_file(self.ikc)
+            self.warnings.extend(warnings)
+            if cls is None:
+                cls = type(self.name, (Module,), {"__doc__": desc.description})
+            elif _declares_anything(cls):
+                raise ModelError(f'class "{self.name}" is declared twice: in Python '
+                                 f'({self.python}) and in its .ikc file; keep one', self.ikc)
+            cls = type(self.name, (cls,), {"__module__": cls.__module__})
+            cls.description = desc
+            cls.ikc_description = True
+        if cls is None:
+            raise ModelError(f'class "{self.name}" has no code and no .ikc file')
+        self._desc = cls.description
+        if not self._desc.source:
+            self._desc.source = self.python or self.ikc or getattr(cls, "__module__", "")
+        return cls
+
+
+def _declares_anything(cls: type[Module]) -> bool:
+    d = cls.description
+    return bool(d.parameters or d.inputs or d.outputs)
+
+
+def _import_file(path: str, package: str | None):
+    if package:
+        try:
+            return importlib.import_module(package)
+        except Exception as e:  # a broken module file is a model error that names the file
+            raise ModelError(f"cannot import: {type(e).__name__}: {e}", path) from None
+    key = "ikaros_user_" + hashlib.sha1(os.path.abspath(path).encode()).hexdigest()[:12] + \
+        "_" + os.path.splitext(os.path.basename(path))[0]
+    if key in sys.modules:
+        return sys.modules[key]
+    spec = importlib.util.spec_from_file_location(key, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[key] = module
+    try:
+        spec.loader.exec_module(module)
+    except Exception as e:
+        del sys.modules[key]
+        raise ModelError(f"cannot import: {type(e).__name__}: {e}", path) from None
+    return module
+
+
+def _scan(folder: str, recursive: bool, package_root: str | None = None) -> dict[str, ClassEntry]:
+    """Class files in a folder: ``Name.py``, ``Name.ikc`` and ``Name.ikg``, keyed by name."""
+    found: dict[str, ClassEntry] = {}
+    if not os.path.isdir(folder):
+        return found
+    walker = os.walk(folder) if recursive else [(folder, [], os.listdir(folder))]
+    for dirpath, dirnames, files in walker:
+        dirnames[:] = sorted(d for d in dirnames
+                             if not d.startswith(("_", ".")) and d != "tests")
+        for file in sorted(files):
+            stem, ext = os.path.splitext(file)
+            if ext not in (".py", ".ikc", ".ikg") or stem.startswith(("_", "test_", ".")):
+                continue
+            full = os.path.join(dirpath, file)
+            entry = found.setdefault(stem, ClassEntry(stem))
+            kind = {"py": "python", "ikc": "ikc", "ikg": "group"}[ext[1:]]
+            existing = getattr(entry, kind)
+            if existing and os.path.dirname(existing) != dirpath:
+                raise ModelError(f'class "{stem}" is found in more than one place: {existing} '
+                                 f'and {full}', full)
+            if kind == "python":
+                entry.python = full
+                if package_root:
+                    rel = os.path.relpath(full, package_root)[:-3].replace(os.sep, ".")
+                    entry.package = "ikaros.modules." + rel
+            elif kind == "ikc":
+                entry.ikc = full
+            else:
+                entry.group = full
+    # A Python file that is not next to a class's .ikc and does not define the class is a
+    # helper, not a class; such files are filtered when loaded.
+    return found
+
+
+_stdlib_cache: dict[str, ClassEntry] | None = None
+_entry_point_cache: dict[str, ClassEntry] | None = None
+
+
+def stdlib_classes() -> dict[str, ClassEntry]:
+    global _stdlib_cache
+    if _stdlib_cache is None:
+        _stdlib_cache = _scan(STDLIB, recursive=True, package_root=STDLIB)
+    return _stdlib_cache
+
+
+def entry_point_classes() -> dict[str, ClassEntry]:
+    """Classes installed by other packages under the ``ikaros.modules`` entry point group.
+
+    An entry point names a Module subclass (``Name = "pkg.mod:Name"``) or a package whose
+    folder holds class files (``anything = "pkg.modules"``).
+    """
+    global _entry_point_cache
+    if _entry_point_cache is None:
+        _entry_point_cache = {}
+        for ep in entry_points(group=ENTRY_POINT_GROUP):
+            try:
+                obj = ep.load()
+            except Exception as e:
+                print(f"ikaros: warning: entry point {ep.name} = {ep.value} failed to load: {e}",
+                      file=sys.stderr)
+                continue
+            if isinstance(obj, type) and issubclass(obj, Module):
+                _entry_point_cache[ep.name] = ClassEntry(ep.name, loaded=obj)
+            elif hasattr(obj, "__path__"):
+                for folder in obj.__path__:
+                    _entry_point_cache.update(_scan(folder, recursive=True))
+    return _entry_point_cache
+
+
+class ClassRegistry:
+    """Looks classes up: first the model's own folders, then installed packages, then the
+    standard library."""
+
+    def __init__(self, folders: list[str] = ()):
+        self.folders = [os.path.abspath(f) for f in folders]
+        self._folder_cache: dict[str, dict[str, ClassEntry]] = {}
+
+    def _in_folder(self, folder: str) -> dict[str, ClassEntry]:
+        folder = os.path.abspath(folder)
+        if folder not in self._folder_cache:
+            self._folder_cache[folder] = _scan(folder, recursive=False)
+        return self._folder_cache[folder]
+
+    def find(self, name: str, extra_folders: list[str] = ()) -> ClassEntry | None:
+        """The class called ``name``; ``extra_folders`` (a module's ``path``) are searched
+        first."""
+        for folder in list(extra_folders) + self.folders:
+            entry = self._in_folder(folder).get(name)
+            if entry is not None and (entry.python is None or entry.ikc or entry.group
+                                      or _defines_class(entry)):
+                return entry
+        return entry_point_classes().get(name) or stdlib_classes().get(name)
+
+    def all(self) -> dict[str, ClassEntry]:
+        merged = dict(stdlib_classes())
+        merged.update(entry_point_classes())
+        for folder in self.folders:
+            merged.update({k: v for k, v in self._in_folder(folder).items()
+                           if v.ikc or v.group or _defines_class(v)})
+        return merged
+
+
+def _defines_class(entry: ClassEntry) -> bool:
+    """Whether a user folder's Python file defines a Module class of its own name (a cheap
+    text check, so helper scripts beside a model are not imported)."""
+    try:
+        with open(entry.python, encoding="utf-8") as f:
+            return f"class {entry.name}(" in f.read()
+    except OSError:
+        return False
+
+
+def classes(folders: list[str] = ()) -> dict[str, ClassDescription]:
+    """{class name: class description} of every class found (group files are left out)."""
+    out = {}
+    for name, entry in sorted(ClassRegistry(folders).all().items()):
+        if entry.is_group:
+            continue
+        desc = entry.description()
+        if not desc.internal:
+            out[name] = desc
+    return out

@@ -1,0 +1,210 @@
+"""Where each connection's data lands: the shape of inputs and ports, and the element maps
+from module outputs to module inputs (through group ports)."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ModelError
+from ..language.values import selector_indices
+from .buffers import Buffer, Link, Run
+
+
+def _link_error(link: Link, message: str) -> ModelError:
+    return link.node.error(f"{message} ({link.describe()})")
+
+
+def _piece(link: Link) -> None:
+    """The source elements one lane of a link reads, and their shape."""
+    shape = link.source.shape
+    size = int(np.prod(shape))
+    sel = link.src_sel
+    if sel is None:
+        link.src_index = np.arange(size)
+        link.piece_shape = tuple(shape)
+    elif sel[0] == "offset":
+        start, count = sel[1], sel[2]
+        if count is None:
+            count = size - start
+        if start < 0 or count < 0 or start + count > size:
+            raise _link_error(link, f"sourceoffset {start} and size {count} reach outside the "
+                                    f"source, which has {size} elements")
+        link.src_index = np.arange(start, start + count)
+        link.piece_shape = (count,)
+    else:
+        dims = sel[1]
+        if len(dims) > len(shape):
+            raise _link_error(link, f"Cannot fill a rank-{len(dims)} range from a "
+                                    f"rank-{len(shape)} range")
+        dims = list(dims) + [("all",)] * (len(shape) - len(dims))
+        lists = []
+        for dim, extent in zip(dims, shape):
+            idx = selector_indices(dim, extent)
+            if any(i < 0 or i >= extent for i in idx):
+                raise _link_error(link, f"the source selector is outside its output bounds "
+                                        f"(shape {shape})")
+            lists.append(idx)
+        grids = np.meshgrid(*[np.array(i, dtype=np.intp) for i in lists], indexing="ij")
+        link.src_index = np.ravel_multi_index([g.ravel() for g in grids], shape) \
+            if all(len(i) for i in lists) else np.zeros((0,), dtype=np.intp)
+        link.piece_shape = tuple(len(i) for d, i in zip(dims, lists) if d[0] != "index")
+    if link.window:
+        link.piece_shape = (len(link.delays),) + link.piece_shape
+
+
+def _lane_count(link: Link) -> int:
+    return len(link.delays)
+
+
+def layout(buffer: Buffer, fixed_shape: tuple | None = None) -> None:
+    """Size an input or port from its incoming links and give each link its target indices.
+
+    Whole connections without a target position are laid end to end in declaration order
+    (flattened to a vector when there are several, or when the input says ``flatten``); a
+    single one keeps its shape; ``stack`` adds a leading axis with one slice per
+    connection. Connections with ``targetoffset`` or a target selector write where they say.
+    """
+    links = sorted(buffer.incoming, key=lambda lk: lk.order)
+    for link in links:
+        _piece(link)
+    placed = [lk for lk in links if lk.dst_sel is not None]
+    if placed and len(placed) != len(links):
+        raise _link_error(placed[0], f"connections into {buffer.path} mix explicit target "
+                                     f"positions with end-to-end placement")
+    if placed:
+        shape = _place_explicitly(buffer, links, fixed_shape)
+    elif buffer.stack:
+        shape = _stack(buffer, links)
+    elif buffer.flatten or len(links) > 1:
+        offset = 0
+        for link in links:
+            n = int(np.prod(link.piece_shape))
+            link.dst_index = np.arange(offset, offset + n)
+            offset += n
+        shape = (offset,)
+    else:
+        link = links[0]
+        link.dst_index = np.arange(int(np.prod(link.piece_shape)))
+        shape = link.piece_shape
+    if fixed_shape is not None:
+        total = int(np.prod(fixed_shape))
+        for link in links:
+            if len(link.dst_index) and int(link.dst_index.max()) >= total:
+                raise _link_error(link, f'writes outside fixed size of input "{buffer.name}" '
+                                        f"{fixed_shape}")
+        shape = tuple(fixed_shape)
+    buffer.shape = tuple(int(s) for s in shape)
+
+
+def _stack(buffer: Buffer, links: list[Link]) -> tuple:
+    ranks = {len(lk.piece_shape) for lk in links}
+    if len(ranks) != 1:
+        raise _link_error(links[-1], f"stacked input {buffer.path} gets connections of "
+                                     f"different ranks")
+    extents = tuple(max(lk.piece_shape[d] for lk in links) for d in range(ranks.pop()))
+    shape = (len(links),) + extents
+    for k, link in enumerate(links):
+        grids = np.meshgrid(*[np.arange(n) for n in link.piece_shape], indexing="ij")
+        coords = [np.full(grids[0].size if grids else 1, k)] + [g.ravel() for g in grids]
+        link.dst_index = np.ravel_multi_index(coords, shape)
+    return shape
+
+
+def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
+    offsets = [lk for lk in links if lk.dst_sel[0] == "offset"]
+    if offsets and len(offsets) != len(links):
+        raise _link_error(links[0], f"connections into {buffer.path} mix targetoffset with "
+                                    f"target selectors")
+    if offsets:
+        end = 0
+        for link in links:
+            n = int(np.prod(link.piece_shape))
+            start = link.dst_sel[1]
+            if start < 0:
+                raise _link_error(link, "targetoffset must not be negative")
+            link.dst_index = np.arange(start, start + n)
+            end = max(end, start + n)
+        return (end,)
+    rank = None
+    coords_per_link = []
+    for link in links:
+        dims = list(link.dst_sel[1])
+        if link.window:
+            dims = [("range", 0, len(link.delays), 1)] + dims
+        piece = list(link.piece_shape)
+        lists = []
+        holes = [i for i, d in enumerate(dims) if d[0] == "all"]
+        for i, d in enumerate(dims):
+            if d[0] == "all":
+                if not piece:
+                    raise _link_error(link, "Connection could not be resolved: more target "
+                                            "placeholders than source dimensions")
+                if i == holes[-1]:
+                    n = int(np.prod(piece))
+                    piece = []
+                else:
+                    n = piece.pop(0)
+                lists.append(list(range(n)))
+            else:
+                lists.append(selector_indices(d, 0))
+        if rank is None:
+            rank = len(lists)
+        elif rank != len(lists):
+            raise _link_error(link, f"Cannot extend a rank-{rank} range with a "
+                                    f"rank-{len(lists)} range")
+        count = int(np.prod([len(i) for i in lists])) if lists else 0
+        if count != int(np.prod(link.piece_shape)) or count == 0:
+            raise _link_error(link, f"Connection could not be resolved: the target selects "
+                                    f"{count} elements but the source gives "
+                                    f"{int(np.prod(link.piece_shape))}")
+        coords_per_link.append(lists)
+    shape = tuple(max(max(lists[d]) + 1 for lists in coords_per_link) for d in range(rank))
+    if fixed_shape is not None:
+        if len(fixed_shape) != rank or any(s > f for s, f in zip(shape, fixed_shape)):
+            raise _link_error(links[0], f'writes outside fixed size of input "{buffer.name}" '
+                                        f"{tuple(fixed_shape)}")
+        shape = tuple(fixed_shape)
+    for link, lists in zip(links, coords_per_link):
+        grids = np.meshgrid(*[np.array(i, dtype=np.intp) for i in lists], indexing="ij")
+        link.dst_index = np.ravel_multi_index([g.ravel() for g in grids], shape)
+    return shape
+
+
+def runs_into(buffer: Buffer, memo: dict, stack: tuple = ()) -> list[Run]:
+    """The runs from module outputs that fill an input or port, following ports upstream.
+
+    Delays add along the hops; a window on one hop shifts by the single delays of the others;
+    two windows on one path are an error.
+    """
+    if buffer in memo:
+        return memo[buffer]
+    if buffer in stack:
+        raise ModelError(f"group ports form a loop at {buffer.path}")
+    runs: list[Run] = []
+    for link in sorted(buffer.incoming, key=lambda lk: lk.order):
+        n = len(link.src_index)
+        lanes = [(d, link.dst_index[k * n:(k + 1) * n]) for k, d in enumerate(link.delays)]
+        if link.source.kind == "output":
+            for d, dst in lanes:
+                runs.append(Run(link.source, buffer, d, link.src_index, dst, link.node,
+                                link.window, [link]))
+            continue
+        upstream = runs_into(link.source, memo, stack + (buffer,))
+        size = link.source.size
+        owner = np.full(size, -1, dtype=np.intp)
+        where = np.zeros(size, dtype=np.intp)
+        for r, run in enumerate(upstream):
+            owner[run.dst_index] = r
+            where[run.dst_index] = run.src_index
+        for d, dst in lanes:
+            src_owner = owner[link.src_index]
+            for r in np.unique(src_owner[src_owner >= 0]):
+                up = upstream[r]
+                if up.window and link.window:
+                    raise _link_error(link, "two delay windows on one path through group "
+                                            "ports are not allowed")
+                mask = src_owner == r
+                runs.append(Run(up.source, buffer, up.delay + d, where[link.src_index[mask]],
+                                dst[mask], link.node, up.window or link.window,
+                                up.links + [link]))
+    memo[buffer] = runs
+    return runs

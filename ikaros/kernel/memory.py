@@ -1,0 +1,103 @@
+"""Buffer memory: one float32 arena for all buffers, history rings, and compiled copies."""
+from __future__ import annotations
+
+from functools import partial
+
+import numpy as np
+
+ALIGN = 16    # elements (64 bytes), so every buffer starts on a cache line
+
+
+class Arena:
+    """Hands out views into one zero-filled float32 block, allocated once."""
+
+    def __init__(self):
+        self._requests: list[tuple[tuple, list]] = []
+        self.block: np.ndarray | None = None
+
+    def request(self, shape: tuple) -> list:
+        """Reserve room for an array; the returned holder gets the view at ``allocate``."""
+        holder: list = []
+        self._requests.append((tuple(shape), holder))
+        return holder
+
+    def allocate(self) -> None:
+        offsets, total = [], 0
+        for shape, _ in self._requests:
+            offsets.append(total)
+            n = int(np.prod(shape)) if shape else 1
+            total += -(-n // ALIGN) * ALIGN if n else 0
+        self.block = np.zeros(max(total, 1), dtype=np.float32)
+        for (shape, holder), start in zip(self._requests, offsets):
+            n = int(np.prod(shape)) if shape else 1
+            holder.append(self.block[start:start + n].reshape(shape))
+
+    @property
+    def nbytes(self) -> int:
+        return 0 if self.block is None else self.block.nbytes
+
+
+class Ring:
+    """The history of one output beyond its current value: row k of ``rows`` after ``push``
+    holds older values; ``row(d)`` is the value from d ticks before the current one."""
+
+    def __init__(self, output: np.ndarray, depth: int, arena: Arena):
+        self.output = output.reshape(-1)
+        self.depth = depth               # values kept: x(n-2) ... x(n-1-depth)
+        self._holder = arena.request((depth, self.output.size))
+        self.rows: list[np.ndarray] = []
+        self.pos = 0
+
+    def bind(self) -> None:
+        block = self._holder[0]
+        self.rows = [block[k] for k in range(self.depth)]
+        self.pos = self.depth - 1
+
+    def push(self) -> None:
+        """Store the output's value (the previous tick's, before modules run)."""
+        self.pos = (self.pos + 1) % self.depth
+        np.copyto(self.rows[self.pos], self.output)
+
+    def row(self, delay: int) -> np.ndarray:
+        """Before ``push``: the value from ``delay`` >= 2 ticks before the coming tick."""
+        return self.rows[(self.pos - (delay - 2)) % self.depth]
+
+
+def _contiguous(index: np.ndarray) -> slice | None:
+    if len(index) == 0:
+        return None
+    start = int(index[0])
+    if np.array_equal(index, np.arange(start, start + len(index))):
+        return slice(start, start + len(index))
+    return None
+
+
+def compile_copy(dst: np.ndarray, dst_index: np.ndarray, src: np.ndarray,
+                 src_index: np.ndarray):
+    """A no-argument function that copies src[src_index] to dst[dst_index] (flat indices);
+    a plain slice copy when both sides are contiguous."""
+    dst_flat, src_flat = dst.reshape(-1), src.reshape(-1)
+    ds, ss = _contiguous(dst_index), _contiguous(src_index)
+    if ds is not None and ss is not None:
+        return partial(np.copyto, dst_flat[ds], src_flat[ss])
+    scratch = np.zeros(len(src_index), dtype=np.float32)
+    src_index = np.ascontiguousarray(src_index, dtype=np.intp)
+    dst_index = np.ascontiguousarray(dst_index, dtype=np.intp)
+
+    def copy():
+        np.take(src_flat, src_index, out=scratch)
+        dst_flat[dst_index] = scratch
+    return copy
+
+
+def compile_ring_copy(dst: np.ndarray, dst_index: np.ndarray, ring: Ring, delay: int,
+                      src_index: np.ndarray):
+    """Like compile_copy, reading the ring's value from ``delay`` ticks back."""
+    copies = []
+    for k in range(ring.depth):
+        copies.append(compile_copy(dst, dst_index, ring.rows[k], src_index))
+    depth, offset = ring.depth, delay - 2
+
+    def copy():
+        copies[(ring.pos - offset) % depth]()
+    return copy

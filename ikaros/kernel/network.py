@@ -1,0 +1,356 @@
+"""A built network: buffers allocated once, a schedule, and the tick loop."""
+from __future__ import annotations
+
+import collections
+import sys
+import time
+from typing import Any
+
+import numpy as np
+
+from ..errors import RunError
+from ..language.values import ValueError_, format_number, value_text
+from ..language.writer import write_file
+from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
+                      attribute_name)
+from .buffers import Run
+from .memory import Arena, Ring, compile_copy, compile_ring_copy
+from .scope import VariableError, from_python
+from .tree import Group, ModuleInstance, find_component
+
+DEFAULT_TICK_DURATION = 0.01   # seconds, when a model sets none
+
+
+class Network:
+    """A runnable model. Build one with ``ikaros.load``.
+
+    ``tick`` is the number of ticks completed; the first tick is tick 0.
+    """
+
+    def __init__(self, builder, top: Group, order: list[ModuleInstance], runs: list[Run],
+                 edges: dict):
+        self.filename = builder.filename
+        self.model = builder.model             # the model tree as read (saved by save())
+        self.top = top
+        self.clock = builder.clock
+        self.schedule = order
+        self.runs = runs
+        self.zero_delay_edges = edges
+        self.log: collections.deque = collections.deque(maxlen=1000)
+        self.log_level = PRINT
+        self.tick = 0
+        self.stop_reason: tuple[int, str] | None = None
+        self._stopped = False
+        self._buffers = builder.buffers
+        self.modules = {inst.path: inst for inst in order}
+        builder.notify = self.notify
+        for inst in order:
+            inst.module._notify = self.notify
+        self.clock.tick_duration = self._tick_duration()
+        self._allocate()
+        self._compile()
+        self._init_modules()
+        self._check_checksum()
+
+    # --- setup ---------------------------------------------------------------------------
+    def _tick_duration(self) -> float:
+        text = self.top.attrs.get("tick_duration")
+        if text in (None, ""):
+            return DEFAULT_TICK_DURATION
+        try:
+            value = float(text)
+        except ValueError:
+            value = float("nan")
+        if not np.isfinite(value) or value <= 0:
+            raise self.model.error(f'tick_duration "{text}" must be a finite number of '
+                                   f'seconds > 0')
+        return value
+
+    def _allocate(self) -> None:
+        arena = Arena()
+        self.arena = arena
+        holders = []
+        runs_by_target: dict = collections.defaultdict(list)
+        for run in self.runs:
+            runs_by_target[run.target].append(run)
+        self._shared = {}
+        for inst in self.schedule:
+            inputs, outputs = self._buffers[inst]
+            for buf in outputs.values():
+                holders.append((buf, arena.request(buf.shape)))
+        for inst in self.schedule:
+            inputs, _ = self._buffers[inst]
+            for buf in inputs.values():
+                if not buf.incoming:
+                    continue
+                runs = runs_by_target[buf]
+                if len(runs) == 1 and runs[0].delay == 0 and runs[0].whole:
+                    self._shared[buf] = runs[0].source
+                else:
+                    holders.append((buf, arena.request(buf.shape)))
+        deepest: dict = {}
+        for run in self.runs:
+            deepest[run.source] = max(deepest.get(run.source, 0), run.delay)
+        arena.allocate()
+        for buf, holder in holders:
+            buf.array = holder[0]
+        for buf, source in self._shared.items():
+            buf.array = source.array.reshape(buf.shape)
+        ring_arena = Arena()
+        self.rings = {src: Ring(src.array, d - 1, ring_arena) for src, d in deepest.items()
+                      if d >= 2}
+        ring_arena.allocate()
+        for ring in self.rings.values():
+            ring.bind()
+        self.ring_arena = ring_arena
+        for inst in self.schedule:
+            inputs, outputs = self._buffers[inst]
+            for name, buf in list(inputs.items()) + list(outputs.items()):
+                setattr(inst.module, attribute_name(name), buf.array)
+
+    def _compile(self) -> None:
+        self._delayed = []
+        pre_tick: dict = collections.defaultdict(list)
+        for run in self.runs:
+            if run.target in self._shared:
+                continue
+            dst = run.target.array
+            if run.delay == 0:
+                pre_tick[run.target.owner].append(
+                    compile_copy(dst, run.dst_index, run.source.array, run.src_index))
+            elif run.delay == 1:
+                self._delayed.append(
+                    compile_copy(dst, run.dst_index, run.source.array, run.src_index))
+            else:
+                self._delayed.append(compile_ring_copy(dst, run.dst_index,
+                                                       self.rings[run.source], run.delay,
+                                                       run.src_index))
+        self._pre_tick = pre_tick
+        self._ring_list = list(self.rings.values())
+        self._sequence = []
+        self._owner = {}
+        for inst in self.schedule:
+            for copy in pre_tick[inst]:
+                self._sequence.append(copy)
+                self._owner[copy] = inst
+            tick = inst.module.tick
+            self._sequence.append(tick)
+            self._owner[tick] = inst
+
+    def _init_modules(self) -> None:
+        self.clock.tick = -1
+        for inst in self.schedule:
+            for copy in self._pre_tick[inst]:
+                copy()
+            try:
+                inst.module.init()
+            except Exception as e:
+                raise inst.node.error(f"init failed: {type(e).__name__}: {e}") from None
+            if self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
+                raise inst.node.error(f"While initializing module {inst.path}: "
+                                      f"{self.stop_reason[1]}")
+
+    def _check_checksum(self) -> None:
+        text = self.top.attrs.get("checksum")
+        if text in (None, ""):
+            return
+        product = 1
+        for inst in self.schedule:
+            for buf in self._buffers[inst][1].values():
+                product *= buf.size
+        if str(product) == text.strip():
+            self.notify(PRINT, None, f"Checksum match ({product}).")
+            self.checksum_ok = True
+        else:
+            self.notify(EXCEPTION, None, f"Checksum mismatch: got {product} != {text}")
+            self.checksum_ok = False
+
+    # --- notifications -------------------------------------------------------------------
+    def notify(self, level: int, module, message: str) -> None:
+        """Receive a notification from a module (or the kernel when ``module`` is None)."""
+        where = module if isinstance(module, str) else getattr(module, "path", "") or ""
+        self.log.append((self.tick, level, where, message))
+        if level in (FATAL_ERROR, END_OF_FILE, TERMINATE) and self.stop_reason is None:
+            self.stop_reason = (level, message)
+        if level <= self.log_level:
+            text = f"{where}: {message}" if where else message
+            if level == PRINT:
+                print(text, flush=True)
+            else:
+                print(f"{LEVEL_NAMES[level].replace('_', ' ')}: {text}", file=sys.stderr,
+                      flush=True)
+
+    # --- running -------------------------------------------------------------------------
+    @property
+    def stopped(self) -> bool:
+        """True once the run has ended (end of file, a fatal error, or close)."""
+        return self._stopped
+
+    def _tick(self) -> None:
+        for copy in self._delayed:
+            copy()
+        for ring in self._ring_list:
+            ring.push()
+        clock = self.clock
+        clock.tick = self.tick
+        clock.time = self.tick * clock.tick_duration
+        step = None
+        try:
+            for step in self._sequence:
+                step()
+        except Exception as e:
+            inst = self._owner.get(step)
+            where = inst.path if inst else "kernel"
+            self.notify(FATAL_ERROR, where, f"{type(e).__name__}: {e}")
+            self._exception = sys.exc_info()
+        self.tick += 1
+        if self.stop_reason is not None:
+            self._end()
+
+    def _end(self) -> None:
+        """End the run after the current tick: call every module's stop once."""
+        if not self._stopped:
+            self._stopped = True
+            for inst in self.schedule:
+                try:
+                    inst.module.stop()
+                except Exception as e:
+                    self.notify(EXCEPTION, inst.path, f"stop failed: {type(e).__name__}: {e}")
+        level, message = self.stop_reason or (TERMINATE, "closed")
+        if level == FATAL_ERROR:
+            raise RunError(message)
+
+    def _check_running(self) -> None:
+        if self._stopped:
+            level, message = self.stop_reason or (TERMINATE, "closed")
+            raise RunError(f"the run has ended ({LEVEL_NAMES.get(level, level)}: {message})")
+
+    def step(self) -> None:
+        """Run exactly one tick."""
+        self._check_running()
+        self._tick()
+
+    def run(self, ticks: int | None = None, real_time: bool = False) -> int:
+        """Run ``ticks`` more ticks (as fast as possible, or on the tick_duration time base
+        with ``real_time``). Without ``ticks``, run until the model's ``stop`` tick, end of
+        file or an error. Returns the number of ticks completed."""
+        self._check_running()
+        end = None if ticks is None else self.tick + int(ticks)
+        if end is None and self.top.attrs.get("stop") not in (None, "", "-1"):
+            end = int(self.top.attrs["stop"])
+        start_tick, start_time = self.tick, time.perf_counter()
+        dt = self.clock.tick_duration
+        while (end is None or self.tick < end) and not self._stopped:
+            if real_time:
+                deadline = start_time + (self.tick - start_tick) * dt
+                wait = deadline - time.perf_counter()
+                if wait > 0:
+                    time.sleep(wait)
+            self._tick()
+        return self.tick
+
+    def close(self) -> None:
+        """End the run: every module's stop() is called once."""
+        if not self._stopped:
+            self.stop_reason = self.stop_reason or (TERMINATE, "closed")
+            try:
+                self._end()
+            except RunError:
+                pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    # --- access by path ------------------------------------------------------------------
+    def _component(self, path: str, what: str):
+        comp_path, _, name = path.rpartition(".")
+        comp = self.top if comp_path == "" else find_component(self.top, comp_path)
+        if comp is None or not name:
+            raise KeyError(f'no {what} "{path}" in {self.top.name}')
+        return comp, name
+
+    def buffer_array(self, path: str) -> np.ndarray:
+        """The live array of a module output or input (not a copy; do not write to it)."""
+        comp, name = self._component(path, "output or input")
+        if isinstance(comp, ModuleInstance):
+            inputs, outputs = self._buffers[comp]
+            buf = outputs.get(name) or inputs.get(name)
+            if buf is not None:
+                return buf.array if buf.array is not None else np.zeros((0,), np.float32)
+        raise KeyError(f'no output or input "{path}" in {self.top.name}')
+
+    def output(self, path: str) -> np.ndarray:
+        """A copy of a module output (or input) as computed in the last completed tick."""
+        return self.buffer_array(path).copy()
+
+    def parameter(self, path: str) -> Any:
+        """The current value of a module parameter (or a group attribute, as text)."""
+        comp, name = self._component(path, "parameter")
+        if isinstance(comp, ModuleInstance) and name in comp.values:
+            value = getattr(comp.module, name)
+            return value.copy() if isinstance(value, np.ndarray) else value
+        if isinstance(comp, Group) and name in comp.attrs:
+            return comp.attrs[name]
+        raise KeyError(f'no parameter "{path}" in {self.top.name}')
+
+    def set_parameter(self, path: str, value: Any) -> None:
+        """Set a module parameter; it takes effect from the next tick. Text is read as in a
+        model file; a bad value raises ValueError and changes nothing."""
+        comp, name = self._component(path, "parameter")
+        if not isinstance(comp, ModuleInstance) or name not in comp.values:
+            raise KeyError(f'no parameter "{path}" in {self.top.name}')
+        spec = comp.module.description.parameter(name)
+        try:
+            new = from_python(value, spec)
+        except (ValueError_, VariableError, ValueError, TypeError) as e:
+            raise ValueError(f'bad value for parameter "{path}": {e}') from None
+        old = getattr(comp.module, name)
+        if isinstance(old, np.ndarray) and isinstance(new, np.ndarray) and \
+                old.shape == new.shape:
+            old[...] = new
+        else:
+            setattr(comp.module, name, new)
+        comp.values[name] = new
+        comp.has_value[name] = True
+        comp.node.attrs[name] = value if isinstance(value, str) else value_text(new)
+
+    def command(self, path: str, name: str, x: float = 0, y: float = 0,
+                value: Any = None) -> None:
+        """Call a module's command(name, x, y, value)."""
+        comp = find_component(self.top, path)
+        if not isinstance(comp, ModuleInstance):
+            raise KeyError(f'no module "{path}" in {self.top.name}')
+        comp.module.command(name, x, y, value)
+
+    def save(self, filename: str) -> None:
+        """Write the model back as .ikg; loading it gives the same network."""
+        write_file(self.model, filename)
+
+    # --- description ---------------------------------------------------------------------
+    def info(self) -> str:
+        """Modules, connections, buffers with shapes, and the schedule, as text."""
+        lines = [f"Model: {self.filename}", f"Top group: {self.top.name}", "", "Modules:"]
+        for inst in sorted(self.schedule, key=lambda m: m.order):
+            lines.append(f"  {inst.path} ({inst.entry.name})")
+            inputs, outputs = self._buffers[inst]
+            for kind, bufs in (("input", inputs), ("output", outputs)):
+                for name, buf in bufs.items():
+                    shape = "unconnected" if kind == "input" and not buf.incoming else \
+                        "x".join(map(str, buf.shape)) or "scalar"
+                    shared = " (shares its source's memory)" if buf in self._shared else ""
+                    lines.append(f"    {kind} {name}: {shape}{shared}")
+        lines += ["", "Connections:"]
+        for run in self.runs:
+            lines.append(f"  {run.source.path} -> {run.target.path} delay {run.delay} "
+                         f"({len(run.src_index)} elements)")
+        lines += ["", "Schedule:"]
+        for i, inst in enumerate(self.schedule):
+            lines.append(f"  {i + 1}. {inst.path}")
+        lines.append("")
+        lines.append(f"Memory: {format_number(self.arena.nbytes + self.ring_arena.nbytes)} "
+                     f"bytes of buffers")
+        return "\n".join(lines)
+

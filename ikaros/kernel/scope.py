@@ -1,0 +1,203 @@
+"""Variables (``@name``, ``{expr}``) and parameter lookup in the instance tree."""
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+from ..description import ParameterSpec
+from ..language.expressions import ExpressionError, evaluate_arithmetic, is_arithmetic
+from ..language.values import (ValueError_, format_number, parse_bool, parse_int,
+                               parse_matrix, parse_number)
+from .tree import Group, ModuleInstance, find_component, group_of
+
+MAX_DEPTH = 64
+_VAR = re.compile(r"@([A-Za-z_]\w*)")
+_BRACES = re.compile(r"\{([^{}]*)\}")
+_PATH_CHARS = re.compile(r"[\w.\-]*$")
+
+
+class VariableError(Exception):
+    """A variable that cannot be resolved; the caller names the element."""
+
+
+def lookup_variable(name: str, scope, depth: int = 0) -> str:
+    """The value of ``@name`` seen from a scope: its own attributes, then enclosing groups.
+    A value that itself holds variables is resolved where it is defined."""
+    for s in scope.chain():
+        if name in s.attrs:
+            return substitute(s.attrs[name], s, depth + 1)
+    raise VariableError(f'Variable "@{name}" not defined.')
+
+
+def substitute(text: str, scope, depth: int = 0) -> str:
+    """Replace ``{expr}`` and ``@name`` in a value, resolving each in ``scope``.
+
+    ``Path.@name`` at the end of a value reads attribute ``name`` of the component at
+    ``Path`` when that component has it (Ikaros 3 data blocks); otherwise ``@name`` is looked
+    up from ``scope`` and the path is kept (Ikaros 2 path variables).
+    """
+    if "@" not in text and "{" not in text:
+        return text
+    if depth > MAX_DEPTH:
+        raise VariableError(f'variables nest deeper than {MAX_DEPTH} levels in "{text}"')
+    while True:
+        m = _BRACES.search(text)
+        if not m:
+            break
+        inner = substitute(m.group(1), scope, depth + 1).strip()
+        if is_arithmetic(inner):
+            try:
+                inner = format_number(evaluate_arithmetic(inner))
+            except ExpressionError as e:
+                raise VariableError(str(e)) from None
+        text = text[:m.start()] + inner + text[m.end():]
+    if "}" in text or "{" in text:
+        raise VariableError(f'unmatched brace in "{text}"')
+    out = ""
+    pos = 0
+    for m in _VAR.finditer(text):
+        out += text[pos:m.start()]
+        pos = m.end()
+        name = m.group(1)
+        at_end = pos == len(text) or not re.match(r"[\w.]", text[pos])
+        prefix = _PATH_CHARS.search(out).group(0) if out.endswith(".") else ""
+        if prefix and at_end:
+            start = group_of(scope)
+            target = find_component(start, prefix[:-1]) if start and prefix[:-1] else None
+            if target is not None and name in target.attrs:
+                out = out[:len(out) - len(prefix)] + substitute(target.attrs[name], target,
+                                                                depth + 1)
+                continue
+        out += lookup_variable(name, scope, depth)
+    return out + text[pos:]
+
+
+def _has_operator(text: str) -> bool:
+    return bool(re.search(r"[+*/]|(?<=[\w)])\s*-", text))
+
+
+def lookup_parameter(inst: ModuleInstance, name: str):
+    """Find the raw value of a module's parameter.
+
+    Returns (text, scope, from_default) or None. The module's own attribute first; then each
+    enclosing group outward, where a renaming ``<parameter target=...>`` (for this module,
+    then for all), a qualified attribute ``Module.p`` and a plain attribute ``p`` are looked
+    at in that order; then a renaming's default.
+    """
+    if name in inst.attrs:
+        return inst.attrs[name], inst, False
+    renamed_default = None
+    seen = set()
+    group = inst.parent
+    while group is not None:
+        relative = inst.path[len(group.path) + 1:] if group.path else inst.path
+        key = (id(group), name)
+        if key in seen:
+            raise VariableError(f'parameter renaming loops on "{name}"')
+        seen.add(key)
+        rename = _renaming(group, f"{relative}.{name}") or _renaming(group, name)
+        if rename is not None:
+            new = rename.get("name")
+            if not new or new == name:
+                raise VariableError(f'<parameter target="{rename.get("target")}"> maps '
+                                    f'"{name}" onto itself')
+            if renamed_default is None and rename.get("default") is not None:
+                renamed_default = (rename.get("default"), group)
+            name = new
+            continue                       # look the new name up, starting at this group
+        qualified = f"{relative}.{name}"
+        if qualified in group.attrs:
+            return group.attrs[qualified], group, False
+        if name in group.attrs:
+            return group.attrs[name], group, False
+        group = group.parent
+    if renamed_default is not None:
+        return renamed_default[0], renamed_default[1], True
+    return None
+
+
+def _renaming(group: Group, target: str):
+    return next((p for p in group.renamings if p.get("target") == target), None)
+
+
+ZERO = {"number": 0.0, "int": 0, "bool": False, "string": ""}
+
+
+def convert(text, spec: ParameterSpec, scope) -> object:
+    """A parameter value of the spec's type from text found in ``scope`` (or a Python value).
+
+    Raises ValueError_ or VariableError with the reason.
+    """
+    if not isinstance(text, str):
+        return from_python(text, spec)
+    raw = text
+    text = substitute(text, scope)
+    t = spec.type
+    if t == "number":
+        return parse_number(text)
+    if t == "int":
+        return parse_int(text)
+    if t == "bool":
+        if spec.options:
+            return option_index(text, spec) != 0
+        return parse_bool(text)
+    if t == "list":
+        return spec.options[option_index(text, spec)] if spec.options else text
+    if t in ("array", "matrix"):
+        arr = parse_matrix(text)
+        return arr.reshape(-1) if t == "array" else arr
+    if "@" in raw and _has_operator(text) and is_arithmetic(text):
+        return format_number(evaluate_arithmetic(text))
+    return text
+
+
+def option_index(text: str, spec: ParameterSpec) -> int:
+    """The index of an option given by its label or its number."""
+    s = str(text).strip()
+    if s in spec.options:
+        return spec.options.index(s)
+    if re.fullmatch(r"\d+", s) and int(s) < len(spec.options):
+        return int(s)
+    raise ValueError_(f'"{text}" is not one of {"/".join(spec.options)}')
+
+
+def from_python(value, spec: ParameterSpec):
+    """A Python value (a default written in Python, or a value set from code) as the spec's
+    type."""
+    t = spec.type
+    if value is None:
+        if t in ("array", "matrix"):
+            return np.zeros((0,), dtype=np.float32)
+        if t == "list":
+            return spec.options[0] if spec.options else ""
+        return ZERO[t]
+    if isinstance(value, str):
+        return convert(value, spec, _EMPTY)
+    if t == "number":
+        return float(value)
+    if t == "int":
+        if float(value) != int(value):
+            raise ValueError_(f"{value!r} is not an integer")
+        return int(value)
+    if t == "bool":
+        if isinstance(value, (bool, np.bool_)) or value in (0, 1):
+            return bool(value)
+        raise ValueError_(f"{value!r} is not a boolean")
+    if t == "list":
+        return spec.options[option_index(str(value), spec)] if spec.options else str(value)
+    if t in ("array", "matrix"):
+        arr = np.array(value, dtype=np.float32)
+        return arr.reshape(-1) if t == "array" else arr
+    return str(value)
+
+
+class _EmptyScope:
+    attrs: dict = {}
+    parent = None
+
+    def chain(self):
+        yield self
+
+
+_EMPTY = _EmptyScope()

@@ -1,0 +1,188 @@
+"""Output size rules: the Ikaros 2 ``size_*`` attributes and Ikaros 3 ``shape`` expressions."""
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+from ..description import OutputSpec
+from ..language.expressions import ExpressionError, evaluate_arithmetic
+from ..language.values import format_number
+from .scope import VariableError, substitute
+from .tree import ModuleInstance
+
+_REFERENCE = re.compile(
+    r"([A-Za-z_][\w\-]*)\.(shape|rows|cols|size_x|size_y|size_z|size|rank)(\[[^\]]*\])?")
+_PARAM = re.compile(r"@([A-Za-z_]\w*)")
+
+WAIT = None   # a rule that cannot be evaluated yet
+
+
+class SizeError(Exception):
+    """A size rule that can never give a shape; the caller names the output."""
+
+
+def _param_number(inst: ModuleInstance, name: str):
+    value = inst.values.get(name)
+    spec = inst.module.description.parameter(name) if inst.module else None
+    if spec is not None and spec.type == "list" and spec.options:
+        return spec.options.index(value)
+    return value
+
+
+def _int_param(inst: ModuleInstance, name: str):
+    """A parameter that gives a size, or None when it has no value."""
+    if not inst.has_value.get(name):
+        return None
+    value = _param_number(inst, name)
+    try:
+        return int(value)
+    except (TypeError, ValueError):
+        raise SizeError(f'parameter "{name}" = {value!r} is not a size') from None
+
+
+def _literal(inst: ModuleInstance, text: str) -> int:
+    try:
+        return int(evaluate_arithmetic(_substitute(inst, text)))
+    except (ExpressionError, VariableError) as e:
+        raise SizeError(str(e)) from None
+
+
+def _substitute(inst: ModuleInstance, text: str) -> str:
+    """Replace @p by the module's parameter values (else by variables in scope)."""
+    def one(m):
+        name = m.group(1)
+        if name in inst.values and not isinstance(inst.values[name], str):
+            value = _param_number(inst, name)
+            if isinstance(value, np.ndarray):
+                return ",".join(format_number(v) for v in value.reshape(-1))
+            return format_number(float(value))
+        return substitute("@" + name, inst)
+    return _PARAM.sub(one, text)
+
+
+def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict) -> tuple | None:
+    """The shape an output's rule gives now, or None (WAIT) when its inputs are not sized yet.
+
+    Rules are tried in the Ikaros 2 order; the first that applies wins.
+    """
+    rule = spec.rule
+    if "size_param_x" in rule or "size_param_y" in rule:
+        x = _int_param(inst, rule["size_param_x"]) if "size_param_x" in rule else None
+        y = _int_param(inst, rule["size_param_y"]) if "size_param_y" in rule else None
+        if x is not None and y is not None:
+            return (y, x)
+        if x is not None and "size_param_y" not in rule:
+            return (x,)
+    if "size_param" in rule:
+        n = _int_param(inst, rule["size_param"])
+        if n is not None:
+            return (n,)
+    if "size_x" in rule or "size_y" in rule:
+        x = _literal(inst, rule["size_x"]) if "size_x" in rule else 1
+        y = _literal(inst, rule["size_y"]) if "size_y" in rule else None
+        return (y, x) if y is not None else (x,)
+    if "size" in rule:
+        return shape_expression(inst, rule["size"], input_shapes)
+    if "size_set" in rule:
+        names = [n.strip() for n in rule["size_set"].split(",") if n.strip()]
+        shapes = []
+        for name in names:
+            if name not in input_shapes:
+                raise SizeError(f'size_set names "{name}", which is not an input')
+            shape = input_shapes[name]
+            if shape is None:
+                return WAIT
+            if shape != ():
+                shapes.append(shape)
+        if not shapes:
+            raise SizeError(f"none of the inputs {', '.join(names)} is connected")
+        return max(shapes, key=lambda s: (int(np.prod(s)), len(s)))
+    if "size_set_x" in rule or "size_set_y" in rule:
+        totals = {}
+        for key in ("size_set_x", "size_set_y"):
+            if key in rule:
+                shape = input_shapes.get(rule[key].strip())
+                if shape is None:
+                    return WAIT
+                totals[key] = int(np.prod(shape)) if shape != () else 0
+        x, y = totals.get("size_set_x"), totals.get("size_set_y")
+        if x is not None and y is not None:
+            return (y, x)
+        return (x,) if x is not None else (y, 1)
+    if "shape" in rule:
+        return shape_expression(inst, rule["shape"], input_shapes)
+    return WAIT
+
+
+def shape_expression(inst: ModuleInstance, text: str, input_shapes: dict) -> tuple | None:
+    """Evaluate an Ikaros 3 shape expression such as ``INPUT.shape`` or
+    ``optional(INPUT.size_z), INPUT.rows-@k+1, 3``."""
+    waiting = False
+
+    def reference(m):
+        nonlocal waiting
+        name, what, index = m.group(1), m.group(2), m.group(3)
+        if name in input_shapes:
+            shape = input_shapes[name]
+            if shape is None:
+                waiting = True
+                return "0"
+        elif name in inst.values and isinstance(inst.values[name], np.ndarray):
+            shape = inst.values[name].shape
+        else:
+            raise SizeError(f'"{name}" is neither an input nor a matrix parameter')
+        shape = list(shape)
+        if what == "shape":
+            if index:
+                body = index[1:-1]
+                parts = body.split(":")
+                picked = shape[int(parts[0])] if len(parts) == 1 else \
+                    shape[int(parts[0] or 0):int(parts[1]) if parts[1] else None]
+                shape = picked if isinstance(picked, list) else [picked]
+            return ",".join(str(s) for s in shape) if shape else "0"
+        if what == "rank":
+            return str(len(shape))
+        if what == "size":
+            return str(int(np.prod(shape)) if shape else 0)
+        from_end = {"cols": 1, "size_x": 1, "rows": 2, "size_y": 2, "size_z": 3}[what]
+        return str(shape[-from_end]) if len(shape) >= from_end else "1"
+
+    text = _REFERENCE.sub(reference, text)
+    if waiting:
+        return WAIT
+    text = _substitute(inst, text)
+    dims: list[int] = []
+    for item in _split_top_level(text):
+        optional = False
+        m = re.fullmatch(r"\s*optional\((.*)\)\s*", item)
+        if m:
+            item, optional = m.group(1), True
+        parts = [p for p in item.split(",")] if "," in item else [item]
+        for part in parts:
+            try:
+                value = int(evaluate_arithmetic(part))
+            except ExpressionError as e:
+                raise SizeError(f'shape "{text}": {e}') from None
+            if value == 0 and optional:
+                continue
+            if value <= 0:
+                raise SizeError(f'shape "{text}" gives a dimension of {value}')
+            dims.append(value)
+    return tuple(dims)
+
+
+def _split_top_level(text: str) -> list[str]:
+    items, depth, current = [], 0, ""
+    for ch in text:
+        if ch == "(":
+            depth += 1
+        elif ch == ")":
+            depth -= 1
+        if ch == "," and depth == 0:
+            items.append(current)
+            current = ""
+        else:
+            current += ch
+    items.append(current)
+    return [i for i in items if i.strip()]

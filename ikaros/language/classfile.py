@@ -1,0 +1,98 @@
+"""Reading an .ikc class file into a ClassDescription."""
+from __future__ import annotations
+
+import os
+import re
+
+from ..description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
+                           SIZE_RULE_KEYS, canonical_type)
+from .node import Node
+from .reader import read_file
+from .values import ValueError_, parse_bool
+
+
+def _flag(node: Node, key: str) -> bool:
+    value = node.get(key)
+    if value is None or value == "":
+        return False
+    try:
+        return parse_bool(value)
+    except ValueError_ as e:
+        raise node.error(f"{key}: {e}") from None
+
+
+def options_of(node: Node) -> list[str]:
+    """Options from ``options="a,b"`` (Ikaros 3) or ``values="a/b"`` (Ikaros 2)."""
+    if node.get("options"):
+        return [o.strip() for o in node.get("options").split(",") if o.strip()]
+    if node.get("values"):
+        return [o.strip() for o in node.get("values").split("/") if o.strip()]
+    return []
+
+
+def parameter_spec(node: Node) -> ParameterSpec:
+    """A <parameter> element of a class (or of a group) as a ParameterSpec."""
+    name = node.get("name")
+    if not name:
+        raise node.error("a parameter needs a name")
+    options = options_of(node)
+    declared = node.get("type")
+    ptype = canonical_type(declared)
+    if declared and ptype is None:
+        raise node.error(f'unknown parameter type "{declared}"')
+    if ptype is None:
+        ptype = "list" if options else "number"
+    if options and ptype == "int":
+        ptype = "list"
+    return ParameterSpec(name, ptype, node.get("default"), node.get("description", ""),
+                         options, node.get("control"))
+
+
+def description_from_node(root: Node, expected_name: str | None = None) -> ClassDescription:
+    """The ClassDescription declared by a <class> element."""
+    name = root.get("name") or expected_name
+    if not name:
+        raise root.error("a class needs a name")
+    text = root.get("description", "")
+    for d in root.elements("description"):
+        if d.text:
+            text = d.text
+    desc = ClassDescription(name, " ".join(text.split()), source=root.file or "")
+    desc.internal = _flag(root, "internal")
+    for p in root.elements("parameter"):
+        desc.parameters.append(parameter_spec(p))
+    for i in root.elements("input"):
+        if not i.get("name"):
+            raise i.error("an input needs a name")
+        desc.inputs.append(InputSpec(i.get("name"), i.get("description", ""),
+                                     _flag(i, "optional"), _flag(i, "flatten"),
+                                     _flag(i, "stack"), i.get("size")))
+    for o in root.elements("output"):
+        if not o.get("name"):
+            raise o.error("an output needs a name")
+        rule = {k: o.get(k) for k in SIZE_RULE_KEYS if o.get(k) not in (None, "")}
+        desc.outputs.append(OutputSpec(o.get("name"), o.get("description", ""), rule,
+                                       _flag(o, "optional")))
+    views = list(root.elements("view"))
+    if views:
+        desc.view = views[0]
+    return desc
+
+
+def read_class_file(path: str) -> tuple[ClassDescription, list[str]]:
+    """Read an .ikc file. Returns the description and warnings (a name that differs from the
+    file name is reported, not fatal)."""
+    root = read_file(path, root_tag="class")
+    stem = os.path.splitext(os.path.basename(path))[0]
+    warnings = []
+    declared = root.get("name")
+    if declared and declared != stem:
+        warnings.append(f'{path}: declared class name "{declared}" does not match the file '
+                        f'name "{stem}"; using "{stem}"')
+    desc = description_from_node(root, stem)
+    desc.name = stem
+    return desc, warnings
+
+
+def is_identifier(name: str) -> bool:
+    return bool(re.fullmatch(r"[A-Za-z_][\w\-]*", name or ""))

@@ -1,0 +1,47 @@
+"""Writing a model tree back to .ikg text, keeping every attribute, comment and include."""
+from __future__ import annotations
+
+import os
+import tempfile
+
+from lxml import etree
+
+from .node import COMMENT, INCLUDE, Node
+
+
+def _element(node: Node):
+    if node.tag == COMMENT:
+        return etree.Comment(node.text or "")
+    if node.tag == INCLUDE:
+        return etree.ProcessingInstruction("include", f'file="{node.attrs.get("file", "")}"')
+    el = etree.Element(node.tag)
+    for key, value in node.attrs.items():
+        el.set(key, value)
+    if node.text:
+        el.text = node.text
+    for child in node.children:      # an include is written as itself, not its contents
+        el.append(_element(child))
+    return el
+
+
+def to_text(root: Node) -> str:
+    """The tree as XML text with an XML declaration."""
+    el = _element(root)
+    etree.indent(el, space="    ")
+    body = etree.tostring(el, encoding="unicode")
+    return '<?xml version="1.0"?>\n' + body + "\n"
+
+
+def write_file(root: Node, filename: str) -> None:
+    """Write the tree to a file (written whole, then renamed, so a failure loses nothing)."""
+    text = to_text(root)
+    folder = os.path.dirname(os.path.abspath(filename))
+    fd, tmp = tempfile.mkstemp(dir=folder, suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(tmp, filename)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise

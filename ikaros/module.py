@@ -1,0 +1,260 @@
+"""The one API a module sees: the ``Module`` base class and its declarations.
+
+A module is a Python class::
+
+    class Scale(Module):
+        \"\"\"Multiplies its input by a factor.\"\"\"
+        factor = Parameter(1.0, "the gain")
+        INPUT = Input("the signal")
+        OUTPUT = Output("the scaled signal", shape="INPUT.shape")
+
+        def tick(self):
+            np.multiply(self.INPUT, self.factor, out=self.OUTPUT)
+
+Inside ``init`` and ``tick`` inputs and outputs are NumPy arrays (float32) whose identity never
+changes, and parameters are plain values. A module never writes to its inputs. An optional input
+that is not connected is ``None``. The current tick and time are on ``self.clock``.
+"""
+from __future__ import annotations
+
+import re
+from typing import Any, Callable
+
+import numpy as np
+
+from .description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
+                          SIZE_RULE_KEYS, canonical_type)
+
+# Notification levels (lower is more severe), as in Ikaros.
+EXCEPTION, END_OF_FILE, TERMINATE, FATAL_ERROR, WARNING, PRINT, DEBUG, TRACE = range(1, 9)
+LEVEL_NAMES = {EXCEPTION: "exception", END_OF_FILE: "end_of_file", TERMINATE: "terminate",
+               FATAL_ERROR: "fatal_error", WARNING: "warning", PRINT: "print", DEBUG: "debug",
+               TRACE: "trace"}
+
+
+def attribute_name(port_name: str) -> str:
+    """The Python attribute that holds a port: ``T-INPUT`` is ``self.T_INPUT``."""
+    name = re.sub(r"\W", "_", port_name)
+    return "_" + name if name[:1].isdigit() else name
+
+
+class Parameter:
+    """Declares a parameter. The type follows the default unless given.
+
+    Types: number, int, bool, string, list (one of ``options``), array, matrix.
+    """
+
+    def __init__(self, default: Any = None, description: str = "", *, type: str | None = None,
+                 options: list[str] | str | None = None, control: str | None = None,
+                 name: str | None = None):
+        if isinstance(options, str):
+            options = [o.strip() for o in re.split(r"[,/]", options) if o.strip()]
+        self.options = list(options or [])
+        self.type = canonical_type(type) if type else _infer_type(default, self.options)
+        if self.type is None:
+            raise ValueError(f"unknown parameter type {type!r}")
+        self.default = default
+        self.description = description
+        self.control = control
+        self.name = name
+
+    def __set_name__(self, owner, name):
+        self.name = self.name or name
+
+    def spec(self) -> ParameterSpec:
+        return ParameterSpec(self.name, self.type, self.default, self.description,
+                             self.options, self.control)
+
+
+class Input:
+    """Declares an input. ``optional`` inputs may stay unconnected (then they are None)."""
+
+    def __init__(self, description: str = "", *, optional: bool = False, flatten: bool = False,
+                 stack: bool = False, size: str | None = None, name: str | None = None):
+        self.spec_ = InputSpec(name or "", description, optional, flatten, stack, size)
+
+    def __set_name__(self, owner, name):
+        self.spec_.name = self.spec_.name or name
+
+    def spec(self) -> InputSpec:
+        return self.spec_
+
+
+class Output:
+    """Declares an output and its size rule.
+
+    ``shape`` is an Ikaros 3 shape expression (``"INPUT.shape"``, ``"@rows, @cols"``,
+    ``"3"``); the Ikaros 2 rules ``size``, ``size_x``, ``size_y``, ``size_param``,
+    ``size_param_x``, ``size_param_y``, ``size_set``, ``size_set_x`` and ``size_set_y`` are
+    accepted as keywords too. Without a rule the module sets the size in ``set_sizes``.
+    """
+
+    def __init__(self, description: str = "", *, shape: str | None = None,
+                 optional: bool = False, name: str | None = None, **size_rule: str):
+        unknown = set(size_rule) - set(SIZE_RULE_KEYS)
+        if unknown:
+            raise TypeError(f"unknown output size rule {sorted(unknown)}")
+        rule = {k: str(v) for k, v in size_rule.items()}
+        if shape is not None:
+            rule["shape"] = str(shape)
+        self.spec_ = OutputSpec(name or "", description, rule, optional)
+
+    def __set_name__(self, owner, name):
+        self.spec_.name = self.spec_.name or name
+
+    def spec(self) -> OutputSpec:
+        return self.spec_
+
+
+def _infer_type(default: Any, options: list[str]) -> str:
+    if options:
+        return "list"
+    if isinstance(default, bool):
+        return "bool"
+    if isinstance(default, (int, np.integer)):
+        return "int"
+    if isinstance(default, (float, np.floating)):
+        return "number"
+    if isinstance(default, np.ndarray):
+        return "matrix" if default.ndim >= 2 else "array"
+    if isinstance(default, (list, tuple)):
+        return "matrix" if default and isinstance(default[0], (list, tuple)) else "array"
+    return "string"
+
+
+class Clock:
+    """The kernel's clock as modules see it: read ``tick`` and ``time`` inside ``tick()``."""
+    __slots__ = ("tick", "tick_duration", "time", "real_time")
+
+    def __init__(self, tick_duration: float = 0.0):
+        self.tick = -1                  # -1 during init; the first tick is 0
+        self.tick_duration = tick_duration
+        self.time = 0.0                 # nominal time: tick * tick_duration
+        self.real_time = 0.0            # seconds since the run started
+
+
+# Names a parameter or port may not take, because the module API uses them.
+RESERVED = {"name", "path", "clock", "element", "init", "tick", "command", "stop", "configure",
+            "set_sizes", "add_input", "add_output", "input_shape", "output_shape",
+            "set_output_shape", "connected", "notify", "print", "warning", "error",
+            "fatal_error", "end_of_file", "description", "parameter_names"}
+
+
+class Module:
+    """Base class of every module. Override ``tick`` (and ``init``, ``command``, ``stop``)."""
+
+    description: ClassDescription   # set for every subclass by __init_subclass__
+    ikc_description: bool = False   # True when the description came from an .ikc file
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        params, inputs, outputs = {}, {}, {}
+        for klass in reversed(cls.__mro__):
+            for value in vars(klass).values():
+                if isinstance(value, Parameter):
+                    params[value.name] = value.spec()
+                elif isinstance(value, Input):
+                    inputs[value.spec().name] = value.spec()
+                elif isinstance(value, Output):
+                    outputs[value.spec().name] = value.spec()
+        for name in list(params) + [attribute_name(n) for n in list(inputs) + list(outputs)]:
+            if name in RESERVED:
+                raise TypeError(f"{cls.__name__}: '{name}' is a reserved name in the module API")
+        doc = " ".join((cls.__doc__ or "").split())
+        cls.description = ClassDescription(cls.__name__, doc, list(params.values()),
+                                           list(inputs.values()), list(outputs.values()))
+        cls.ikc_description = False
+
+    # --- set by the kernel before configure() --------------------------------------------
+    name: str = ""
+    path: str = ""
+    element: Any = None             # the model-file element of this module (a language Node)
+    clock: Clock
+
+    def __init__(self):
+        self.clock = Clock()
+        self._notify: Callable[[int, "Module", str], None] = _print_notification
+        self._inputs: dict[str, InputSpec] = {s.name: s for s in self.description.inputs}
+        self._outputs: dict[str, OutputSpec] = {s.name: s for s in self.description.outputs}
+        self._input_shapes: dict[str, tuple | None] = {}
+        self._output_shapes: dict[str, tuple | None] = {}
+        self._connected: set[str] = set()
+
+    # --- life cycle: override these ------------------------------------------------------
+    def configure(self) -> None:
+        """Build time, after parameters are set: add inputs or outputs that depend on them."""
+
+    def set_sizes(self) -> None:
+        """Build time, repeated until sizes settle: set output shapes the rules cannot give."""
+
+    def init(self) -> None:
+        """Called once before the first tick, in schedule order. Values written to outputs
+        here are the value of tick -1: a delay-1 connection delivers them on tick 0."""
+
+    def tick(self) -> None:
+        """Called once per tick."""
+
+    def command(self, name: str, x: float = 0, y: float = 0, value: Any = None) -> None:
+        """A command from the user interface, called between ticks."""
+
+    def stop(self) -> None:
+        """Called once when the run ends."""
+
+    # --- build-time API ------------------------------------------------------------------
+    def add_input(self, name: str, *, optional: bool = False, flatten: bool = False,
+                  stack: bool = False, description: str = "") -> None:
+        """Add an input in ``configure`` (for inputs that depend on parameters)."""
+        self._inputs[name] = InputSpec(name, description, optional, flatten, stack)
+
+    def add_output(self, name: str, shape: tuple | int | str | None = None,
+                   description: str = "") -> None:
+        """Add an output in ``configure``; a tuple shape fixes its size now."""
+        rule = {"shape": shape} if isinstance(shape, str) else {}
+        self._outputs[name] = OutputSpec(name, description, rule)
+        if shape is not None and not isinstance(shape, str):
+            self.set_output_shape(name, shape)
+
+    def input_shape(self, name: str) -> tuple | None:
+        """The shape of an input once known (None before; () for an unconnected one)."""
+        return self._input_shapes.get(name)
+
+    def output_shape(self, name: str) -> tuple | None:
+        return self._output_shapes.get(name)
+
+    def set_output_shape(self, name: str, shape: tuple | int) -> None:
+        """Set an output's shape (in ``configure`` or ``set_sizes``)."""
+        if name not in self._outputs:
+            raise KeyError(f"{self.path or self.name} has no output named {name}")
+        self._output_shapes[name] = (int(shape),) if np.isscalar(shape) else tuple(
+            int(s) for s in shape)
+
+    def connected(self, name: str) -> bool:
+        """Whether an input has at least one connection."""
+        return name in self._connected
+
+    # --- notifications -------------------------------------------------------------------
+    def notify(self, level: int, message: str) -> None:
+        self._notify(level, self, message)
+
+    def print(self, message: str) -> None:
+        """Print a message through the kernel's log."""
+        self._notify(PRINT, self, str(message))
+
+    def warning(self, message: str) -> None:
+        self._notify(WARNING, self, str(message))
+
+    def error(self, message: str) -> None:
+        """Report an error; the run goes on."""
+        self._notify(EXCEPTION, self, str(message))
+
+    def fatal_error(self, message: str) -> None:
+        """Report an error that stops the run after the current tick (exit status 1)."""
+        self._notify(FATAL_ERROR, self, str(message))
+
+    def end_of_file(self, message: str = "end of file") -> None:
+        """Stop the run cleanly after the current tick (exit status 0)."""
+        self._notify(END_OF_FILE, self, str(message))
+
+
+def _print_notification(level: int, module: Module, message: str) -> None:
+    print(f"{LEVEL_NAMES.get(level, level)}: {message} ({module.path or module.name})")
