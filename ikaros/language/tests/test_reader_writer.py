@@ -1,0 +1,66 @@
+import pytest
+
+from ikaros.errors import ModelError
+from ikaros.language.node import INCLUDE
+from ikaros.language.reader import read_file
+from ikaros.language.writer import to_text
+
+MODEL = """<?xml version="1.0"?>
+<group name="G" a="1">
+    <!-- a comment -->
+    <module class="Constant" name="C" data="1 2" _x="10" unknown="kept"/>
+    <?include file="part.ikg"?>
+    <view name="V"><plot source="C.OUTPUT" x="1"/></view>
+</group>
+"""
+
+PART = """<module class="Scale" name="S"/>
+<connection source="C.OUTPUT" target="S.INPUT"/>
+"""
+
+
+def test_lines_files_and_includes(tmp_path):
+    (tmp_path / "part.ikg").write_text(PART)
+    root = read_file(str(tmp_path / "m.ikg"), MODEL)
+    assert root.tag == "group" and root.line == 2 and root.attrs == {"name": "G", "a": "1"}
+    tags = [n.tag for n in root.elements()]
+    assert tags == ["module", "module", "connection", "view"]
+    scale = list(root.elements("module"))[1]
+    assert scale.file == str(tmp_path / "part.ikg") and scale.line == 1
+    assert list(root.elements("connection"))[0].line == 2
+    assert any(c.tag == INCLUDE for c in root.children)
+
+
+def test_writer_keeps_attributes_comments_and_includes(tmp_path):
+    (tmp_path / "part.ikg").write_text(PART)
+    root = read_file(str(tmp_path / "m.ikg"), MODEL)
+    text = to_text(root)
+    assert '<module class="Constant" name="C" data="1 2" _x="10" unknown="kept"/>' in text
+    assert "<!-- a comment -->" in text
+    assert '<?include file="part.ikg"?>' in text
+    assert 'class="Scale"' not in text        # the include is written, not its contents
+    again = read_file(str(tmp_path / "m.ikg"), text)
+    assert [n.attrs for n in again.elements()] == [n.attrs for n in root.elements()]
+
+
+def test_malformed_xml_names_file_and_line(tmp_path):
+    with pytest.raises(ModelError) as e:
+        read_file(str(tmp_path / "bad.ikg"), '<group name="G">\n  <module name="A"\n</group>')
+    assert e.value.filename == str(tmp_path / "bad.ikg")
+    assert e.value.line == 3
+    assert "malformed XML" in str(e.value)
+
+
+def test_include_errors(tmp_path):
+    with pytest.raises(ModelError, match='included file "missing.ikg" not found') as e:
+        read_file(str(tmp_path / "m.ikg"), '<group>\n<?include file="missing.ikg"?>\n</group>')
+    assert e.value.line == 2
+    (tmp_path / "self.ikg").write_text('<?include file="self.ikg"?>')
+    with pytest.raises(ModelError, match="includes itself"):
+        read_file(str(tmp_path / "m.ikg"), '<group><?include file="self.ikg"?></group>')
+
+
+def test_root_must_be_the_expected_kind(tmp_path):
+    with pytest.raises(ModelError, match="must be <group>") as e:
+        read_file(str(tmp_path / "m.ikg"), "<class name='X'/>", root_tag="group")
+    assert e.value.line == 1

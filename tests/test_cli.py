@@ -1,0 +1,79 @@
+"""The ikaros command: options, exit statuses, messages."""
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+MODELS = os.path.join(ROOT, "tests", "cli_models")
+
+
+def ikaros(*args, timeout=60):
+    return subprocess.run([sys.executable, "-m", "ikaros", *args], capture_output=True,
+                          text=True, timeout=timeout, cwd=ROOT)
+
+
+def test_hello_runs_100_ticks_in_batch_mode():
+    r = ikaros("-b", "-s", "100", "examples/hello.ikg")
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == ["Show: 0.5"] * 5
+    r = ikaros("-b", "-s", "21", "examples/hello.ikg", "gain=3")
+    assert r.stdout.splitlines() == ["Show: 0.75"] * 2
+
+
+def test_info_prints_the_schedule_of_nested_groups():
+    r = ikaros("-b", "-s", "1", "-i", os.path.join(MODELS, "nested.ikg"))
+    assert r.returncode == 0, r.stderr
+    schedule = r.stdout.split("Schedule:\n")[1].split("\n\n")[0].splitlines()
+    assert schedule == ["  1. Arm.Inner.A", "  2. Arm.B", "  3. Last"]
+    assert "    output OUTPUT: 2" in r.stdout
+    assert "input INPUT: 2 (shares its source's memory)" in r.stdout
+
+
+def test_model_errors_exit_1_with_one_message_naming_file_and_line():
+    path = os.path.join(MODELS, "broken.ikg")
+    r = ikaros("-b", "-s", "1", path)
+    assert r.returncode == 1
+    assert r.stderr.strip().splitlines() == [
+        f'ikaros: error: {path}:4: <connection>: connection target "S.NOPE" not found: '
+        f'module S has no input named "NOPE" (inputs: INPUT, SCALE)']
+    assert "Traceback" not in r.stderr
+    assert "Traceback" in ikaros("-v", "-b", "-s", "1", path).stderr
+
+
+def test_bad_usage_exits_2():
+    assert ikaros("-s", "1.5", "examples/hello.ikg").returncode == 2
+    assert ikaros("-d", "nan", "examples/hello.ikg").returncode == 2
+    assert ikaros("-t", "0", "examples/hello.ikg").returncode == 2
+    assert ikaros("-b").returncode == 2
+    assert ikaros("--no-such-option").returncode == 2
+
+
+def test_fatal_error_stops_after_the_tick_calls_stop_and_exits_1():
+    r = ikaros("-b", "-s", "10", os.path.join(MODELS, "fail.ikg"))
+    assert r.returncode == 1
+    assert r.stdout.splitlines() == ["F: stopped at tick 2"]
+    assert "fatal error: F: broken at tick 2" in r.stderr
+
+
+def test_exception_in_tick_is_a_fatal_error_naming_the_module():
+    r = ikaros("-b", "-s", "10", os.path.join(MODELS, "fail.ikg"), "how=raise")
+    assert r.returncode == 1
+    assert "fatal error: F: RuntimeError: boom" in r.stderr
+
+
+def test_end_of_file_stops_cleanly_with_exit_0():
+    r = ikaros("-b", "-s", "10", os.path.join(MODELS, "fail.ikg"), "how=eof", "at=4")
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == ["F: stopped at tick 4"]
+
+
+def test_classes_and_class():
+    r = ikaros("--classes")
+    assert r.returncode == 0
+    names = [line.split()[0] for line in r.stdout.splitlines()]
+    for name in ("Constant", "Scale", "Add", "Sweep", "Print", "InputFile", "OutputFile"):
+        assert name in names
+    r = ikaros("--class", "Scale")
+    assert r.returncode == 0
+    assert "  factor (number, default 1.0): the factor the input is multiplied by" in r.stdout
+    assert ikaros("--class", "NoSuchClass").returncode == 1
