@@ -2,6 +2,7 @@
 schedule and the element maps a Network runs."""
 from __future__ import annotations
 
+import collections
 import os
 import re
 
@@ -127,7 +128,7 @@ class Builder:
         if node.get("path"):
             folders.insert(0, os.path.join(folders[0], self._substitute(
                 node.get("path"), Scope(node, group), node, "path")))
-        entry = self.registry.find(class_name, folders)
+        entry = self.registry.find(class_name, folders, files)
         if entry is None:
             raise node.error(f'unknown class "{class_name}"')
         if entry.is_group:
@@ -338,22 +339,42 @@ class Builder:
                 if not buf.incoming and not buf.optional:
                     raise inst.node.error(f'required input "{buf.name}" of {inst.path} is not '
                                           f'connected')
+        # A worklist: whenever a buffer gets its size, the owners of what it feeds are
+        # looked at again, so sizing is linear in the size of the model.
+        queue = collections.deque(self.instances + list(self.ports.values()))
+        queued = set(queue)
+        while queue:
+            item = queue.popleft()
+            queued.discard(item)
+            for buf in self._advance(item):
+                for link in buf.outgoing:
+                    owner = link.target if link.target.kind == "port" else link.target.owner
+                    if owner not in queued:
+                        queue.append(owner)
+                        queued.add(owner)
         pending = [b for inst in self.instances for b in self.buffers[inst][0].values()
-                   if b.incoming] + [p for p in self.ports.values() if p.incoming]
-        progress = True
-        while progress:
-            progress = False
-            for buf in list(pending):
-                if all(link.source.shape is not None for link in buf.incoming):
-                    fixed = self._fixed_shape(buf)
-                    if fixed is WAIT and buf.fixed:
-                        continue
-                    layout(buf, fixed)
-                    pending.remove(buf)
-                    progress = True
-            for inst in self.instances:
-                progress |= self._size_outputs(inst)
+                   if b.incoming and b.shape is None] + \
+            [p for p in self.ports.values() if p.incoming and p.shape is None]
         self._check_sizes(pending)
+
+    def _ready(self, buf: Buffer) -> bool:
+        return buf.shape is None and bool(buf.incoming) and \
+            all(link.source.shape is not None for link in buf.incoming)
+
+    def _advance(self, item) -> list[Buffer]:
+        """Size what can be sized now in a module or port; return the buffers newly sized."""
+        if isinstance(item, Buffer):
+            if self._ready(item):
+                layout(item, None)
+                return [item]
+            return []
+        for buf in self.buffers[item][0].values():
+            if self._ready(buf):
+                fixed = self._fixed_shape(buf)
+                if fixed is WAIT and buf.fixed:
+                    continue
+                layout(buf, fixed)
+        return self._size_outputs(item)
 
     def _drop_links_from_unconnected_ports(self) -> None:
         changed = True
@@ -380,13 +401,13 @@ class Builder:
         inputs, _ = self.buffers[inst]
         return {name: (buf.shape if buf.incoming else ()) for name, buf in inputs.items()}
 
-    def _size_outputs(self, inst: ModuleInstance) -> bool:
+    def _size_outputs(self, inst: ModuleInstance) -> list[Buffer]:
         module = inst.module
         inputs, outputs = self.buffers[inst]
         shapes = self._input_shapes(inst)
         module._input_shapes = shapes
         module._connected = {n for n, b in inputs.items() if b.incoming}
-        progress = False
+        sized = []
         for name, buf in outputs.items():
             if buf.shape is not None:
                 continue
@@ -398,7 +419,7 @@ class Builder:
             if shape is not WAIT:
                 buf.shape = shape
                 module._output_shapes[name] = shape
-                progress = True
+                sized.append(buf)
         if any(b.shape is None for b in outputs.values()):
             try:
                 module.set_sizes()
@@ -407,8 +428,8 @@ class Builder:
             for name, buf in outputs.items():
                 if buf.shape is None and module._output_shapes.get(name) is not None:
                     buf.shape = module._output_shapes[name]
-                    progress = True
-        return progress
+                    sized.append(buf)
+        return sized
 
     def _check_sizes(self, pending: list[Buffer]) -> None:
         for inst in self.instances:

@@ -185,13 +185,16 @@ class ClassRegistry:
             self._folder_cache[folder] = _scan(folder, recursive=False)
         return self._folder_cache[folder]
 
-    def find(self, name: str, extra_folders: list[str] = ()) -> ClassEntry | None:
+    def find(self, name: str, extra_folders: list[str] = (),
+             skip_files: tuple = ()) -> ClassEntry | None:
         """The class called ``name``; ``extra_folders`` (a module's ``path``) are searched
-        first."""
+        first. Group files in ``skip_files`` (the files being built) are passed over, so a
+        model named after a class can use that class."""
         for folder in list(extra_folders) + self.folders:
             entry = self._in_folder(folder).get(name)
-            if entry is not None and (entry.python is None or entry.ikc or entry.group
-                                      or _defines_class(entry)):
+            if entry is None or (entry.is_group and entry.group in skip_files):
+                continue
+            if entry.python is None or entry.ikc or entry.group or _defines_class(entry):
                 return entry
         return entry_point_classes().get(name) or stdlib_classes().get(name)
 
