@@ -1,0 +1,26 @@
+"""Print: prints its input."""
+import numpy as np
+
+from ikaros.module import Input, Module, Parameter
+
+
+class Print(Module):
+    """Prints the values of its input through the kernel's log (which shows them as
+    ``NAME: values``) on every tick that is a multiple of ``interval``. Each value is
+    formatted with ``format`` (printf style); the values of a row are separated by spaces and
+    rows by ``;``; higher ranks are printed as their flattened rows."""
+
+    format = Parameter("%.4g", "printf-style format of each value")
+    interval = Parameter(1, "ticks between printouts", type="int")
+    INPUT = Input("the values to print")
+
+    def tick(self):
+        if self.clock.tick % max(1, self.interval) != 0:
+            return
+        data = self.INPUT
+        rows = data.reshape(-1, data.shape[-1]) if data.ndim >= 2 else data.reshape(1, -1)
+        try:
+            text = np.char.mod(self.format, rows)
+        except (TypeError, ValueError):
+            text = np.char.mod("%.4g", rows)
+        self.print("; ".join(" ".join(row) for row in text.tolist()))

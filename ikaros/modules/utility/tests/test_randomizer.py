@@ -1,0 +1,98 @@
+"""Tests of the Randomizer module."""
+import shutil
+from pathlib import Path
+
+import numpy as np
+
+import ikaros
+
+EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Randomizer_example.ikg"
+
+
+def load(tmp_path, body, **overrides):
+    path = tmp_path / "model.ikg"
+    path.write_text(f'<group name="Test">\n{body}\n</group>\n')
+    return ikaros.load(str(path), **overrides)
+
+
+def draws(seed, shape, low, high, n):
+    """What the module should produce: n draws (init first) from default_rng(seed)."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        a = np.empty(shape, np.float32)
+        rng.random(out=a, dtype=np.float32)
+        a *= np.float32(high - low)
+        a += np.float32(low)
+        out.append(a)
+    return out
+
+
+def test_seeded_values_every_tick(tmp_path):
+    net = load(tmp_path, '<module class="Randomizer" name="R" seed="42" outputsize="5" '
+                         'min="-1" max="3"/>')
+    try:
+        expected = draws(42, (5,), -1, 3, 6)
+        assert np.array_equal(net.output("R.OUTPUT"), expected[0])     # init
+        for tick in range(5):
+            net.step()
+            out = net.output("R.OUTPUT")
+            assert out.dtype == np.float32
+            assert np.array_equal(out, expected[tick + 1]), tick
+            assert np.all(out >= -1) and np.all(out < 3)
+    finally:
+        net.close()
+
+
+def test_interval_keeps_values_between_draws(tmp_path):
+    net = load(tmp_path, '<module class="Randomizer" name="R" seed="7" outputsize_x="3" '
+                         'outputsize_y="2" interval="3"/>')
+    try:
+        expected = draws(7, (2, 3), 0, 1, 4)
+        assert net.output("R.OUTPUT").shape == (2, 3)
+        # draws: init, tick 0, tick 3, tick 6
+        which = [1, 1, 1, 2, 2, 2, 3]
+        for tick in range(7):
+            net.step()
+            assert np.array_equal(net.output("R.OUTPUT"), expected[which[tick]]), tick
+    finally:
+        net.close()
+
+
+def test_same_seed_same_run_other_seed_other_run(tmp_path):
+    runs = []
+    for seed in ("5", "5", "6"):
+        net = load(tmp_path, '<module class="Randomizer" name="R" outputsize="20"/>', seed=seed)
+        try:
+            net.run(ticks=3)
+            runs.append(net.output("R.OUTPUT"))
+        finally:
+            net.close()
+    assert np.array_equal(runs[0], runs[1])
+    assert not np.array_equal(runs[0], runs[2])
+
+
+def test_unseeded_default_size_and_range(tmp_path):
+    net = load(tmp_path, '<module class="Randomizer" name="R"/>')
+    try:
+        values = []
+        for _ in range(50):
+            net.step()
+            out = net.output("R.OUTPUT")
+            assert out.shape == (1,)
+            values.append(out[0])
+        values = np.array(values)
+        assert np.all(values >= 0) and np.all(values < 1)
+        assert len(np.unique(values)) > 40
+    finally:
+        net.close()
+
+
+def test_example_runs(tmp_path):
+    shutil.copy(EXAMPLE, tmp_path / "example.ikg")
+    net = ikaros.load(str(tmp_path / "example.ikg"))
+    try:
+        net.run(ticks=5)
+        assert net.tick == 5
+    finally:
+        net.close()
