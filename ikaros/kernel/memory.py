@@ -101,3 +101,42 @@ def compile_ring_copy(dst: np.ndarray, dst_index: np.ndarray, ring: Ring, delay:
     def copy():
         copies[(ring.pos - offset) % depth]()
     return copy
+
+
+BULK_LIMIT = 256   # runs up to this many elements are gathered into one bulk copy
+
+
+class BulkCopy:
+    """Many small copies within one arena done as one gather and one scatter."""
+
+    def __init__(self, block: np.ndarray):
+        self.block = block
+        self._src: list[np.ndarray] = []
+        self._dst: list[np.ndarray] = []
+
+    def offset(self, array: np.ndarray) -> int:
+        return (array.ctypes.data - self.block.ctypes.data) // self.block.itemsize
+
+    def accepts(self, dst: np.ndarray, src: np.ndarray, count: int) -> bool:
+        """Whether a copy between these arrays can join (both in the arena, and small)."""
+        return count <= BULK_LIMIT and all(
+            a.base is not None and np.shares_memory(a, self.block) for a in (dst, src))
+
+    def add(self, dst: np.ndarray, dst_index: np.ndarray, src: np.ndarray,
+            src_index: np.ndarray) -> None:
+        self._dst.append(self.offset(dst) + np.asarray(dst_index, dtype=np.intp))
+        self._src.append(self.offset(src) + np.asarray(src_index, dtype=np.intp))
+
+    def compile(self):
+        """The copy as a no-argument function, or None when nothing was added."""
+        if not self._src:
+            return None
+        src = np.ascontiguousarray(np.concatenate(self._src))
+        dst = np.ascontiguousarray(np.concatenate(self._dst))
+        scratch = np.zeros(len(src), dtype=np.float32)
+        block = self.block
+
+        def copy():
+            np.take(block, src, out=scratch)
+            block[dst] = scratch
+        return copy

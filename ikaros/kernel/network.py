@@ -14,7 +14,7 @@ from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
                       attribute_name)
 from .buffers import Run
-from .memory import Arena, Ring, compile_copy, compile_ring_copy
+from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .scope import VariableError, from_python
 from .tree import Group, ModuleInstance, find_component
 
@@ -110,6 +110,7 @@ class Network:
 
     def _compile(self) -> None:
         self._delayed = []
+        bulk = BulkCopy(self.arena.block)
         pre_tick: dict = collections.defaultdict(list)
         for run in self.runs:
             if run.target in self._shared:
@@ -119,12 +120,18 @@ class Network:
                 pre_tick[run.target.owner].append(
                     compile_copy(dst, run.dst_index, run.source.array, run.src_index))
             elif run.delay == 1:
-                self._delayed.append(
-                    compile_copy(dst, run.dst_index, run.source.array, run.src_index))
+                if bulk.accepts(dst, run.source.array, len(run.src_index)):
+                    bulk.add(dst, run.dst_index, run.source.array, run.src_index)
+                else:
+                    self._delayed.append(
+                        compile_copy(dst, run.dst_index, run.source.array, run.src_index))
             else:
                 self._delayed.append(compile_ring_copy(dst, run.dst_index,
                                                        self.rings[run.source], run.delay,
                                                        run.src_index))
+        bulk_copy = bulk.compile()
+        if bulk_copy is not None:
+            self._delayed.insert(0, bulk_copy)
         self._pre_tick = pre_tick
         self._ring_list = list(self.rings.values())
         self._sequence = []
