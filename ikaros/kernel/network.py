@@ -47,6 +47,8 @@ class Network:
         for inst in order:
             inst.module._notify = self.notify
         self.clock.tick_duration = self._tick_duration()
+        self.stop_tick = self._whole_number("stop", minimum=-1)
+        self.threads = self._whole_number("threads", minimum=1)
         self._allocate()
         self._compile()
         self._init_modules()
@@ -65,6 +67,16 @@ class Network:
             raise self.model.error(f'tick_duration "{text}" must be a finite number of '
                                    f'seconds > 0')
         return value
+
+    def _whole_number(self, key: str, minimum: int) -> int | None:
+        """A top-group setting that must be a whole number >= minimum (None when unset)."""
+        text = self.top.attrs.get(key)
+        if text in (None, ""):
+            return None
+        stripped = text.strip().lstrip("+")
+        if not (stripped.lstrip("-").isdigit() and int(stripped) >= minimum):
+            raise self.model.error(f'{key}="{text}" must be a whole number >= {minimum}')
+        return int(stripped)
 
     def _allocate(self) -> None:
         arena = Arena()
@@ -243,8 +255,8 @@ class Network:
         file or an error. Returns the number of ticks completed."""
         self._check_running()
         end = None if ticks is None else self.tick + int(ticks)
-        if end is None and self.top.attrs.get("stop") not in (None, "", "-1"):
-            end = int(self.top.attrs["stop"])
+        if end is None and self.stop_tick is not None and self.stop_tick >= 0:
+            end = self.stop_tick
         start_tick, start_time = self.tick, time.perf_counter()
         dt = self.clock.tick_duration
         while (end is None or self.tick < end) and not self._stopped:
