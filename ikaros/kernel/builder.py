@@ -233,7 +233,8 @@ class Builder:
         try:
             src_path, src_sel = split_selectors(source)
             dst_path, dst_sel = split_selectors(target)
-            delays = parse_delays(attr("delay") or "1")
+            delay = attr("delay")
+            delays = parse_delays("1" if delay is None else delay)
             offsets = {k: parse_int(attr(k)) for k in ("sourceoffset", "targetoffset", "size")
                        if attr(k) not in (None, "")}
         except ValueError_ as e:

@@ -46,7 +46,9 @@ def _piece(link: Link) -> None:
         grids = np.meshgrid(*[np.array(i, dtype=np.intp) for i in lists], indexing="ij")
         link.src_index = np.ravel_multi_index([g.ravel() for g in grids], shape) \
             if all(len(i) for i in lists) else np.zeros((0,), dtype=np.intp)
-        link.piece_shape = tuple(len(i) for d, i in zip(dims, lists) if d[0] != "index")
+        # Dimensions picked by a single index are dropped; one element is still a vector.
+        link.piece_shape = tuple(len(i) for d, i in zip(dims, lists) if d[0] != "index") \
+            or (1,)
     if link.window:
         link.piece_shape = (len(link.delays),) + link.piece_shape
 
@@ -131,7 +133,7 @@ def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
         if link.window:
             dims = [("range", 0, len(link.delays), 1)] + dims
         piece = list(link.piece_shape)
-        lists = []
+        lists, extents = [], []
         holes = [i for i, d in enumerate(dims) if d[0] == "all"]
         for i, d in enumerate(dims):
             if d[0] == "all":
@@ -144,8 +146,11 @@ def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
                 else:
                     n = piece.pop(0)
                 lists.append(list(range(n)))
+                extents.append(n)
             else:
                 lists.append(selector_indices(d, 0))
+                # a range reaches to its end, so [0:6:2] spans 6 elements
+                extents.append(d[1] + 1 if d[0] == "index" else max(d[2], 1))
         if rank is None:
             rank = len(lists)
         elif rank != len(lists):
@@ -156,14 +161,14 @@ def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
             raise _link_error(link, f"Connection could not be resolved: the target selects "
                                     f"{count} elements but the source gives "
                                     f"{int(np.prod(link.piece_shape))}")
-        coords_per_link.append(lists)
-    shape = tuple(max(max(lists[d]) + 1 for lists in coords_per_link) for d in range(rank))
+        coords_per_link.append((lists, extents))
+    shape = tuple(max(extents[d] for _, extents in coords_per_link) for d in range(rank))
     if fixed_shape is not None:
         if len(fixed_shape) != rank or any(s > f for s, f in zip(shape, fixed_shape)):
             raise _link_error(links[0], f'writes outside fixed size of input "{buffer.name}" '
                                         f"{tuple(fixed_shape)}")
         shape = tuple(fixed_shape)
-    for link, lists in zip(links, coords_per_link):
+    for link, (lists, _) in zip(links, coords_per_link):
         grids = np.meshgrid(*[np.array(i, dtype=np.intp) for i in lists], indexing="ij")
         link.dst_index = np.ravel_multi_index([g.ravel() for g in grids], shape)
     return shape

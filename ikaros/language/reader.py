@@ -21,6 +21,19 @@ def _parser() -> etree.XMLParser:
                            remove_blank_text=False, huge_tree=False)
 
 
+# XML turns newlines in attribute values into spaces; a multi-line matrix literal with
+# '#' comments needs them. Such values get character references (the newline stays too, so
+# line numbers do not move, and becomes a harmless space).
+_ATTRIBUTE_WITH_COMMENT = re.compile(r"""(=\s*)(["'])([^"'<>]*#[^"'<>]*)\2""")
+
+
+def _keep_newlines(match: re.Match) -> str:
+    if "\n" not in match.group(3):
+        return match.group(0)
+    value = match.group(3).replace("\n", "&#10;\n")
+    return f"{match.group(1)}{match.group(2)}{value}{match.group(2)}"
+
+
 def _keep_lines(match: re.Match) -> str:
     return "\n" * match.group(0).count("\n")
 
@@ -41,6 +54,7 @@ def _parse_elements(path: str, text: str | None = None) -> list:
         except UnicodeDecodeError as e:
             raise ModelError(f"file is not UTF-8 text ({e.reason} at byte {e.start})",
                              path) from None
+    text = _ATTRIBUTE_WITH_COMMENT.sub(_keep_newlines, text)
     text = _DECLARATION.sub(_keep_lines, text, count=1)
     text = _DOCTYPE.sub(_keep_lines, text, count=1)
     wrapped = f"<{_WRAPPER}>{text}</{_WRAPPER}>"

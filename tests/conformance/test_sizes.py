@@ -1,0 +1,74 @@
+"""DESIGN §3: Ikaros 2 size_* rules, Ikaros 3 shape expressions with fixed-point iteration,
+.ikc classes, and the checksum."""
+import pytest
+
+from conformance_util import load, same, trace
+
+SHAPES = {
+    "Z.LIT": (3,),
+    "Z.LITXY": (2, 4),            # size_x=4 size_y=2 -> (rows, cols)
+    "Z.PARAM": (7,),
+    "Z.PARAMXY": (3, 4),          # size_param_x=w(4) size_param_y=h(3)
+    "Z.SET": (2, 3),
+    "Z.SETXY": (4, 6),            # width = size of INPUT (6), height = size of INPUT2 (4)
+    "Z.SHAPE": (2, 3),
+    "Z.EXPR": (3, 13),            # "@h, INPUT.size*2+1"
+    "Z.TRANS": (3, 2),            # "INPUT.cols, INPUT.rows"
+    "R1.OUTPUT": (3, 13),         # a cascade declared backwards
+    "R2.OUTPUT": (3, 13),
+    "R3.OUTPUT": (3, 13),
+    "R3.INPUT": (3, 13),
+    "L1.OUTPUT": (3, 2),          # a loop closed through a delayed connection
+    "L2.OUTPUT": (3, 2),
+    "L3.OUTPUT": (3, 2),
+    "L1.INPUT2": (3, 2),
+    "I.OUTPUT": (4,),             # .ikc: size_set="INPUT"
+    "I.DOUBLE": (8,),             # .ikc: shape="INPUT.size*2"
+    "J.A": (4,),                  # .ikc without code: size_param="n"
+    "J.B": (6, 6),                # size_set_x / size_set_y
+    "J.C": (2, 4),                # "INPUT.rows, @n"
+}
+
+
+@pytest.mark.parametrize("path", sorted(SHAPES))
+def test_output_shapes(path):
+    net = load("sizes.ikg")
+    assert net.output(path).shape == SHAPES[path]
+
+
+def test_ikc_class_with_python_code_runs():
+    net = load("sizes.ikg")
+    assert net.parameter("I.gain") == 3
+    net.step()
+    same(net.output("I.OUTPUT"), [3, 6, 9, 12])
+    same(net.output("I.DOUBLE"), [3] * 8)
+
+
+def test_ikc_class_without_code_builds_and_ticks():
+    net = load("sizes.ikg")
+    assert net.parameter("J.n") == 4
+    net.run(ticks=2)
+    same(net.output("J.A"), [0, 0, 0, 0])
+
+
+def test_cascade_values():
+    net = load("sizes.ikg")
+    rows = trace(net, ["R1.OUTPUT", "R3.OUTPUT"], 3)
+    same(rows[0]["R1.OUTPUT"], [[0] * 13] * 3)      # Z's outputs are zero
+    same(rows[0]["R3.OUTPUT"], [[-5] * 13] * 3)     # R2's init value, delay 1
+
+
+def test_checksum_match(capsys):
+    net = load("checksum.ikg")
+    captured = capsys.readouterr()
+    text = captured.out + captured.err
+    assert "Checksum match (144)" in text
+    assert net.checksum_ok is True
+
+
+def test_checksum_mismatch_is_reported(capsys):
+    net = load("checksum.ikg", checksum=145)
+    captured = capsys.readouterr()
+    text = captured.out + captured.err
+    assert "mismatch" in text.lower() and "144" in text and "145" in text
+    assert net.checksum_ok is False
