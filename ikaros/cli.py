@@ -93,7 +93,7 @@ def _split_args(p, args: list[str]) -> tuple[str | None, dict]:
 
 def main(argv: list[str] | None = None) -> int:
     p = parser()
-    opts = p.parse_args(argv)
+    opts = p.parse_intermixed_args(argv)
     model, overrides = _split_args(p, opts.args)
     folders = [os.path.dirname(os.path.abspath(model))] if model else []
     try:

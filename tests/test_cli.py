@@ -77,3 +77,9 @@ def test_classes_and_class():
     assert r.returncode == 0
     assert "  factor (number, default 1.0): the factor the input is multiplied by" in r.stdout
     assert ikaros("--class", "NoSuchClass").returncode == 1
+
+
+def test_options_may_stand_between_overrides_and_the_model():
+    r = ikaros("gain=3", "-b", "-s", "21", "examples/hello.ikg", "-q")
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == ""          # -q hides prints

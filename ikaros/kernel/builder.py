@@ -185,7 +185,7 @@ class Builder:
         try:
             if found is not None:
                 text, where, _ = found
-                return convert(text, spec, where), True
+                return convert(text, spec, where, own=spec.name), True
             if spec.default is not None and spec.default != "":
                 if isinstance(spec.default, str):
                     return convert(spec.default, spec, inst), True
@@ -332,8 +332,27 @@ class Builder:
         return targets
 
     # --- sizes ---------------------------------------------------------------------------
+    def check_zero_delay_cycles(self) -> None:
+        """Report a zero-delay cycle before sizing (whose errors would hide it)."""
+        def feeders(buf: Buffer, seen: frozenset):
+            for link in buf.incoming:
+                if 0 not in link.delays or link.source in seen:
+                    continue
+                if link.source.kind == "output":
+                    yield link.source.owner, link.node
+                else:
+                    yield from feeders(link.source, seen | {link.source})
+
+        edges: dict = {}
+        for inst in self.instances:
+            for buf in self.buffers[inst][0].values():
+                for source, node in feeders(buf, frozenset()):
+                    edges.setdefault((source, inst), node)
+        schedule(self.instances, edges)
+
     def resolve_sizes(self) -> None:
         self._drop_links_from_unconnected_ports()
+        self.check_zero_delay_cycles()
         for inst in self.instances:
             inputs, _ = self.buffers[inst]
             for buf in inputs.values():
@@ -342,17 +361,30 @@ class Builder:
                                           f'connected')
         # A worklist: whenever a buffer gets its size, the owners of what it feeds are
         # looked at again, so sizing is linear in the size of the model.
+        # When the worklist runs dry with outputs unsized (a loop through a delay), size_set
+        # rules take the inputs that are sized, and the worklist goes on.
         queue = collections.deque(self.instances + list(self.ports.values()))
         queued = set(queue)
-        while queue:
-            item = queue.popleft()
-            queued.discard(item)
-            for buf in self._advance(item):
+
+        def feed(sized):
+            for buf in sized:
                 for link in buf.outgoing:
                     owner = link.target if link.target.kind == "port" else link.target.owner
                     if owner not in queued:
                         queue.append(owner)
                         queued.add(owner)
+
+        while queue:
+            while queue:
+                item = queue.popleft()
+                queued.discard(item)
+                feed(self._advance(item))
+            for inst in self.instances:
+                if any(b.shape is None for b in self.buffers[inst][1].values()):
+                    sized = self._size_outputs(inst, partial=True)
+                    if sized:
+                        feed(sized)
+                        break
         pending = [b for inst in self.instances for b in self.buffers[inst][0].values()
                    if b.incoming and b.shape is None] + \
             [p for p in self.ports.values() if p.incoming and p.shape is None]
@@ -402,7 +434,7 @@ class Builder:
         inputs, _ = self.buffers[inst]
         return {name: (buf.shape if buf.incoming else ()) for name, buf in inputs.items()}
 
-    def _size_outputs(self, inst: ModuleInstance) -> list[Buffer]:
+    def _size_outputs(self, inst: ModuleInstance, partial: bool = False) -> list[Buffer]:
         module = inst.module
         inputs, outputs = self.buffers[inst]
         shapes = self._input_shapes(inst)
@@ -414,7 +446,7 @@ class Builder:
                 continue
             spec = module._outputs[name]
             try:
-                shape = rule_shape(inst, spec, shapes) if spec.rule else WAIT
+                shape = rule_shape(inst, spec, shapes, partial) if spec.rule else WAIT
             except SizeError as e:
                 raise inst.node.error(f'size of output "{name}": {e}') from None
             if shape is not WAIT:

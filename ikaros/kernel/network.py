@@ -39,6 +39,7 @@ class Network:
         self.log: collections.deque = collections.deque(maxlen=1000)
         self.log_level = PRINT
         self.tick = 0
+        self._started = time.perf_counter()
         self.stop_reason: tuple[int, str] | None = None
         self._stopped = False
         self._buffers = builder.buffers
@@ -213,6 +214,7 @@ class Network:
         clock = self.clock
         clock.tick = self.tick
         clock.time = self.tick * clock.tick_duration
+        clock.real_time = time.perf_counter() - self._started
         step = None
         try:
             for step in self._sequence:

@@ -21,16 +21,17 @@ class VariableError(Exception):
     """A variable that cannot be resolved; the caller names the element."""
 
 
-def lookup_variable(name: str, scope, depth: int = 0) -> str:
+def lookup_variable(name: str, scope, depth: int = 0, own: str | None = None) -> str:
     """The value of ``@name`` seen from a scope: its own attributes, then enclosing groups.
-    A value that itself holds variables is resolved where it is defined."""
+    A value that itself holds variables is resolved where it is defined. In the value of
+    attribute ``own``, ``@own`` means the same name further out (``factor="@factor"``)."""
     for s in scope.chain():
-        if name in s.attrs:
-            return substitute(s.attrs[name], s, depth + 1)
+        if name in s.attrs and not (name == own and s is scope):
+            return substitute(s.attrs[name], s, depth + 1, own=name)
     raise VariableError(f'Variable "@{name}" not defined.')
 
 
-def substitute(text: str, scope, depth: int = 0) -> str:
+def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
     """Replace ``{expr}`` and ``@name`` in a value, resolving each in ``scope``.
 
     ``Path.@name`` at the end of a value reads attribute ``name`` of the component at
@@ -45,7 +46,7 @@ def substitute(text: str, scope, depth: int = 0) -> str:
         m = _BRACES.search(text)
         if not m:
             break
-        inner = substitute(m.group(1), scope, depth + 1).strip()
+        inner = substitute(m.group(1), scope, depth + 1, own).strip()
         if is_arithmetic(inner):
             try:
                 inner = format_number(evaluate_arithmetic(inner))
@@ -69,7 +70,7 @@ def substitute(text: str, scope, depth: int = 0) -> str:
                 out = out[:len(out) - len(prefix)] + substitute(target.attrs[name], target,
                                                                 depth + 1)
                 continue
-        out += lookup_variable(name, scope, depth)
+        out += lookup_variable(name, scope, depth, own)
     return out + text[pos:]
 
 
@@ -124,7 +125,7 @@ def _renaming(group: Group, target: str):
 ZERO = {"number": 0.0, "int": 0, "bool": False, "string": ""}
 
 
-def convert(text, spec: ParameterSpec, scope) -> object:
+def convert(text, spec: ParameterSpec, scope, own: str | None = None) -> object:
     """A parameter value of the spec's type from text found in ``scope`` (or a Python value).
 
     Raises ValueError_ or VariableError with the reason.
@@ -132,7 +133,7 @@ def convert(text, spec: ParameterSpec, scope) -> object:
     if not isinstance(text, str):
         return from_python(text, spec)
     raw = text
-    text = substitute(text, scope)
+    text = substitute(text, scope, own=own)
     t = spec.type
     if t == "number":
         return parse_number(text)

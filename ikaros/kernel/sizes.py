@@ -61,10 +61,13 @@ def _substitute(inst: ModuleInstance, text: str) -> str:
     return _PARAM.sub(one, text)
 
 
-def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict) -> tuple | None:
+def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
+               partial: bool = False) -> tuple | None:
     """The shape an output's rule gives now, or None (WAIT) when its inputs are not sized yet.
 
-    Rules are tried in the Ikaros 2 order; the first that applies wins.
+    Rules are tried in the Ikaros 2 order; the first that applies wins. With ``partial``, a
+    ``size_set`` rule uses the inputs that are sized (how a loop through a delay gets its
+    size from the one input that comes from outside the loop).
     """
     rule = spec.rule
     if "size_param_x" in rule or "size_param_y" in rule:
@@ -92,10 +95,14 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict) -> tu
                 raise SizeError(f'size_set names "{name}", which is not an input')
             shape = input_shapes[name]
             if shape is None:
+                if partial:
+                    continue
                 return WAIT
             if shape != ():
                 shapes.append(shape)
         if not shapes:
+            if partial:
+                return WAIT
             raise SizeError(f"none of the inputs {', '.join(names)} is connected")
         return max(shapes, key=lambda s: (int(np.prod(s)), len(s)))
     if "size_set_x" in rule or "size_set_y" in rule:

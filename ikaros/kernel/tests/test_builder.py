@@ -1,0 +1,64 @@
+"""Builder cases beyond the conformance suite: size loops, cycle reports, self-reference."""
+import pytest
+
+import ikaros
+
+LEAKY = '''<group name="Osc" gain="0.9">
+    <group name="Leaky">
+        <input  name="IN"  target="Sum.INPUT1" />
+        <output name="OUT" source="Sum.OUTPUT" />
+        <module class="Add"   name="Sum" />
+        <module class="Scale" name="Decay" factor="@gain" />
+        <connection source="Sum.OUTPUT"   target="Decay.INPUT" delay="0" />
+        <connection source="Decay.OUTPUT" target="Sum.INPUT2" />
+    </group>
+    <module class="Constant" name="Kick" data="1 1" />
+    <connection source="Kick.OUTPUT" target="Leaky.IN" />
+</group>
+'''
+
+
+def _load(tmp_path, text, **overrides):
+    (tmp_path / "m.ikg").write_text(text)
+    return ikaros.load(str(tmp_path / "m.ikg"), **overrides)
+
+
+def test_a_size_loop_through_a_delay_takes_its_size_from_outside(tmp_path):
+    net = _load(tmp_path, LEAKY)
+    values = []
+    for _ in range(4):
+        net.step()
+        values.append(net.output("Leaky.Sum.OUTPUT").tolist())
+    assert [v[0] for v in values] == pytest.approx([1, 1.9, 2.71, 3.439])
+    assert net.output("Leaky.Decay.OUTPUT").shape == (2,)
+
+
+def test_a_zero_delay_cycle_is_reported_before_sizes(tmp_path):
+    text = '''<group name="C">
+  <module class="Scale" name="A"/>
+  <module class="Scale" name="B"/>
+  <connection source="A.OUTPUT" target="B.INPUT" delay="0"/>
+  <connection source="B.OUTPUT" target="A.INPUT" delay="0"/>
+</group>'''
+    with pytest.raises(ikaros.ModelError, match="zero-delay cycle: B -> A -> B") as e:
+        _load(tmp_path, text)
+    assert e.value.line == 5
+
+
+def test_an_attribute_naming_itself_reads_the_enclosing_value(tmp_path):
+    text = '''<group name="G" factor="3">
+  <module class="Constant" name="K" data="2"/>
+  <module class="Scale" name="S" factor="@factor"/>
+  <connection source="K.OUTPUT" target="S.INPUT" delay="0"/>
+</group>'''
+    net = _load(tmp_path, text)
+    net.step()
+    assert net.output("S.OUTPUT").tolist() == [6]
+
+
+def test_bad_top_settings_are_model_errors(tmp_path):
+    text = '<group name="G" stop="1.5"><module class="Constant" name="K"/></group>'
+    with pytest.raises(ikaros.ModelError, match='stop="1.5" must be a whole number'):
+        _load(tmp_path, text)
+    with pytest.raises(ikaros.ModelError, match="tick_duration"):
+        _load(tmp_path, text.replace('stop="1.5"', 'tick_duration="0"'))
