@@ -6,14 +6,9 @@ import numpy as np
 import pytest
 
 import ikaros
+from ikaros.testing import load_body as load
 
 EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Add_example.ikg"
-
-
-def load(tmp_path, body, **overrides):
-    path = tmp_path / "model.ikg"
-    path.write_text(f'<group name="Test">\n{body}\n</group>\n')
-    return ikaros.load(str(path), **overrides)
 
 
 def test_adds_1d(tmp_path):

@@ -6,14 +6,9 @@ import numpy as np
 import pytest
 
 import ikaros
+from ikaros.testing import load_body as load
 
 EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Gate_example.ikg"
-
-
-def load(tmp_path, body, **overrides):
-    path = tmp_path / "model.ikg"
-    path.write_text(f'<group name="Test">\n{body}\n</group>\n')
-    return ikaros.load(str(path), **overrides)
 
 
 SIGNAL = ('<module class="Constant" name="C" data="1 -2; 3 4"/>\n'
