@@ -14,6 +14,7 @@ A module is a Python class::
 Inside ``init`` and ``tick`` inputs and outputs are NumPy arrays (float32) whose identity never
 changes, and parameters are plain values. A module never writes to its inputs. An optional input
 that is not connected is ``None``. The current tick and time are on ``self.clock``.
+Attributes whose names start with ``_ik_`` belong to the kernel; other names are free.
 """
 from __future__ import annotations
 
@@ -173,12 +174,12 @@ class Module:
 
     def __init__(self):
         self.clock = Clock()
-        self._notify: Callable[[int, "Module", str], None] = _print_notification
-        self._inputs: dict[str, InputSpec] = {s.name: s for s in self.description.inputs}
-        self._outputs: dict[str, OutputSpec] = {s.name: s for s in self.description.outputs}
-        self._input_shapes: dict[str, tuple | None] = {}
-        self._output_shapes: dict[str, tuple | None] = {}
-        self._connected: set[str] = set()
+        self._ik_notify: Callable[[int, "Module", str], None] = _print_notification
+        self._ik_inputs: dict[str, InputSpec] = {s.name: s for s in self.description.inputs}
+        self._ik_outputs: dict[str, OutputSpec] = {s.name: s for s in self.description.outputs}
+        self._ik_input_shapes: dict[str, tuple | None] = {}
+        self._ik_output_shapes: dict[str, tuple | None] = {}
+        self._ik_connected: set[str] = set()
 
     # --- life cycle: override these ------------------------------------------------------
     def configure(self) -> None:
@@ -204,56 +205,56 @@ class Module:
     def add_input(self, name: str, *, optional: bool = False, flatten: bool = False,
                   stack: bool = False, description: str = "") -> None:
         """Add an input in ``configure`` (for inputs that depend on parameters)."""
-        self._inputs[name] = InputSpec(name, description, optional, flatten, stack)
+        self._ik_inputs[name] = InputSpec(name, description, optional, flatten, stack)
 
     def add_output(self, name: str, shape: tuple | int | str | None = None,
                    description: str = "") -> None:
         """Add an output in ``configure``; a tuple shape fixes its size now."""
         rule = {"shape": shape} if isinstance(shape, str) else {}
-        self._outputs[name] = OutputSpec(name, description, rule)
+        self._ik_outputs[name] = OutputSpec(name, description, rule)
         if shape is not None and not isinstance(shape, str):
             self.set_output_shape(name, shape)
 
     def input_shape(self, name: str) -> tuple | None:
         """The shape of an input once known (None before; () for an unconnected one)."""
-        return self._input_shapes.get(name)
+        return self._ik_input_shapes.get(name)
 
     def output_shape(self, name: str) -> tuple | None:
-        return self._output_shapes.get(name)
+        return self._ik_output_shapes.get(name)
 
     def set_output_shape(self, name: str, shape: tuple | int) -> None:
         """Set an output's shape (in ``configure`` or ``set_sizes``)."""
-        if name not in self._outputs:
+        if name not in self._ik_outputs:
             raise KeyError(f"{self.path or self.name} has no output named {name}")
-        self._output_shapes[name] = (int(shape),) if np.isscalar(shape) else tuple(
+        self._ik_output_shapes[name] = (int(shape),) if np.isscalar(shape) else tuple(
             int(s) for s in shape)
 
     def connected(self, name: str) -> bool:
         """Whether an input has at least one connection."""
-        return name in self._connected
+        return name in self._ik_connected
 
     # --- notifications -------------------------------------------------------------------
     def notify(self, level: int, message: str) -> None:
-        self._notify(level, self, message)
+        self._ik_notify(level, self, message)
 
     def print(self, message: str) -> None:
         """Print a message through the kernel's log."""
-        self._notify(PRINT, self, str(message))
+        self._ik_notify(PRINT, self, str(message))
 
     def warning(self, message: str) -> None:
-        self._notify(WARNING, self, str(message))
+        self._ik_notify(WARNING, self, str(message))
 
     def error(self, message: str) -> None:
         """Report an error; the run goes on."""
-        self._notify(EXCEPTION, self, str(message))
+        self._ik_notify(EXCEPTION, self, str(message))
 
     def fatal_error(self, message: str) -> None:
         """Report an error that stops the run after the current tick (exit status 1)."""
-        self._notify(FATAL_ERROR, self, str(message))
+        self._ik_notify(FATAL_ERROR, self, str(message))
 
     def end_of_file(self, message: str = "end of file") -> None:
         """Stop the run cleanly after the current tick (exit status 0)."""
-        self._notify(END_OF_FILE, self, str(message))
+        self._ik_notify(END_OF_FILE, self, str(message))
 
 
 def _print_notification(level: int, module: Module, message: str) -> None:

@@ -198,16 +198,16 @@ class Builder:
     def make_buffers(self, inst: ModuleInstance) -> None:
         module: Module = inst.module
         inputs, outputs = {}, {}
-        for spec in module._inputs.values():
+        for spec in module._ik_inputs.values():
             flags = {}
             for key in ("flatten", "stack"):
                 value = inst.attrs.get(f"{spec.name}.{key}")
                 flags[key] = self._flag(inst, value, key) if value else getattr(spec, key)
             inputs[spec.name] = Buffer("input", inst, spec.name, optional=spec.optional,
                                        fixed=spec.size, node=inst.node, **flags)
-        for spec in module._outputs.values():
+        for spec in module._ik_outputs.values():
             buf = Buffer("output", inst, spec.name, optional=spec.optional, node=inst.node)
-            buf.shape = module._output_shapes.get(spec.name)
+            buf.shape = module._ik_output_shapes.get(spec.name)
             outputs[spec.name] = buf
         self.buffers[inst] = (inputs, outputs)
 
@@ -438,20 +438,20 @@ class Builder:
         module = inst.module
         inputs, outputs = self.buffers[inst]
         shapes = self._input_shapes(inst)
-        module._input_shapes = shapes
-        module._connected = {n for n, b in inputs.items() if b.incoming}
+        module._ik_input_shapes = shapes
+        module._ik_connected = {n for n, b in inputs.items() if b.incoming}
         sized = []
         for name, buf in outputs.items():
             if buf.shape is not None:
                 continue
-            spec = module._outputs[name]
+            spec = module._ik_outputs[name]
             try:
                 shape = rule_shape(inst, spec, shapes, partial) if spec.rule else WAIT
             except SizeError as e:
                 raise inst.node.error(f'size of output "{name}": {e}') from None
             if shape is not WAIT:
                 buf.shape = shape
-                module._output_shapes[name] = shape
+                module._ik_output_shapes[name] = shape
                 sized.append(buf)
         if any(b.shape is None for b in outputs.values()):
             try:
@@ -459,8 +459,8 @@ class Builder:
             except Exception as e:
                 raise inst.node.error(f"set_sizes failed: {type(e).__name__}: {e}") from None
             for name, buf in outputs.items():
-                if buf.shape is None and module._output_shapes.get(name) is not None:
-                    buf.shape = module._output_shapes[name]
+                if buf.shape is None and module._ik_output_shapes.get(name) is not None:
+                    buf.shape = module._ik_output_shapes[name]
                     sized.append(buf)
         return sized
 
@@ -472,7 +472,7 @@ class Builder:
                     if buf.optional or not buf.outgoing:
                         buf.shape = (0,) if buf.optional else buf.shape
                     if buf.shape is None:
-                        rule = inst.module._outputs[name].rule_text()
+                        rule = inst.module._ik_outputs[name].rule_text()
                         raise inst.node.error(f'the size of output "{name}" of {inst.path} '
                                               f'could not be resolved (rule: {rule}); check '
                                               f'that its inputs are connected')

@@ -46,7 +46,7 @@ class Network:
         self.modules = {inst.path: inst for inst in order}
         builder.notify = self.notify
         for inst in order:
-            inst.module._notify = self.notify
+            inst.module._ik_notify = self.notify
         self.clock.tick_duration = self._tick_duration()
         self.stop_tick = self._whole_number("stop", minimum=-1)
         self.threads = self._whole_number("threads", minimum=1)

@@ -1,6 +1,4 @@
 """Tests of the Add module."""
-import shutil
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -8,7 +6,6 @@ import pytest
 import ikaros
 from ikaros.testing import load_body as load
 
-EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Add_example.ikg"
 
 
 def test_adds_1d(tmp_path):
@@ -69,13 +66,3 @@ def test_inputs_of_different_sizes_are_an_error(tmp_path):
              '<module class="Add" name="S"/>\n'
              '<connection source="A.OUTPUT" target="S.INPUT1"/>\n'
              '<connection source="B.OUTPUT" target="S.INPUT2"/>')
-
-
-def test_example_runs(tmp_path):
-    shutil.copy(EXAMPLE, tmp_path / "example.ikg")
-    net = ikaros.load(str(tmp_path / "example.ikg"))
-    try:
-        net.run(ticks=5)
-        assert net.tick == 5
-    finally:
-        net.close()

@@ -1,13 +1,9 @@
 """Tests of the Counter module."""
-import shutil
-from pathlib import Path
 
 import pytest
 
-import ikaros
 from ikaros.testing import load_body as load
 
-EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Counter_example.ikg"
 
 
 # Sweep 0..3 step 1 gives 1, 2, 3, 0, 1, 2, 3, 0 on ticks 0..7.
@@ -72,15 +68,5 @@ def test_prints_every_print_interval(tmp_path):
         printed = [(tick, message) for tick, _level, where, message in net.log
                    if where.split(".")[-1] == "N"]
         assert printed == [(2, "count 2 (66.67%) at tick 2"), (5, "count 3 (50.00%) at tick 5")]
-    finally:
-        net.close()
-
-
-def test_example_runs(tmp_path):
-    shutil.copy(EXAMPLE, tmp_path / "example.ikg")
-    net = ikaros.load(str(tmp_path / "example.ikg"))
-    try:
-        net.run(ticks=5)
-        assert net.tick == 5
     finally:
         net.close()

@@ -1,6 +1,4 @@
 """Tests of the Gate module."""
-import shutil
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -8,7 +6,6 @@ import pytest
 import ikaros
 from ikaros.testing import load_body as load
 
-EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Gate_example.ikg"
 
 
 SIGNAL = ('<module class="Constant" name="C" data="1 -2; 3 4"/>\n'
@@ -76,13 +73,3 @@ def test_gate_of_another_size_is_an_error(tmp_path):
              '<module class="Constant" name="K" data="1 0"/>\n'
              '<module class="Gate" name="G"/>\n'
              '<connection source="K.OUTPUT" target="G.INPUT_GATE"/>')
-
-
-def test_example_runs(tmp_path):
-    shutil.copy(EXAMPLE, tmp_path / "example.ikg")
-    net = ikaros.load(str(tmp_path / "example.ikg"))
-    try:
-        net.run(ticks=5)
-        assert net.tick == 5
-    finally:
-        net.close()

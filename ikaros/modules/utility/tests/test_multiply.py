@@ -1,13 +1,9 @@
 """Tests of the Multiply module."""
-import shutil
-from pathlib import Path
 
 import numpy as np
 
-import ikaros
 from ikaros.testing import load_body as load
 
-EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Multiply_example.ikg"
 
 
 def test_multiplies_1d_and_2d(tmp_path):
@@ -43,15 +39,5 @@ def test_squares_a_ramp(tmp_path):
             net.step()
             got.append(float(net.output("M.OUTPUT")[0]))
         assert got == [1, 4, 9, 0, 1, 4]
-    finally:
-        net.close()
-
-
-def test_example_runs(tmp_path):
-    shutil.copy(EXAMPLE, tmp_path / "example.ikg")
-    net = ikaros.load(str(tmp_path / "example.ikg"))
-    try:
-        net.run(ticks=5)
-        assert net.tick == 5
     finally:
         net.close()

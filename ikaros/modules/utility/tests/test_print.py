@@ -1,11 +1,7 @@
 """Tests of the Print module."""
-import shutil
-from pathlib import Path
 
-import ikaros
 from ikaros.testing import load_body as load
 
-EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Print_example.ikg"
 
 
 def messages(net, name):
@@ -42,15 +38,5 @@ def test_interval_format_and_rows(tmp_path):
         # P prints on ticks 0, 2, 4, when W is 1, 3, 5
         assert messages(net, "P") == [(0, "1.00"), (2, "3.00"), (4, "5.00")]
         assert messages(net, "M") == [(t, "1 2; 3 4") for t in range(5)]
-    finally:
-        net.close()
-
-
-def test_example_runs(tmp_path):
-    shutil.copy(EXAMPLE, tmp_path / "example.ikg")
-    net = ikaros.load(str(tmp_path / "example.ikg"))
-    try:
-        net.run(ticks=5)
-        assert net.tick == 5
     finally:
         net.close()

@@ -1,13 +1,9 @@
 """Tests of the Randomizer module."""
-import shutil
-from pathlib import Path
 
 import numpy as np
 
-import ikaros
 from ikaros.testing import load_body as load
 
-EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Randomizer_example.ikg"
 
 
 def draws(seed, shape, low, high, n):
@@ -79,15 +75,5 @@ def test_unseeded_default_size_and_range(tmp_path):
         values = np.array(values)
         assert np.all(values >= 0) and np.all(values < 1)
         assert len(np.unique(values)) > 40
-    finally:
-        net.close()
-
-
-def test_example_runs(tmp_path):
-    shutil.copy(EXAMPLE, tmp_path / "example.ikg")
-    net = ikaros.load(str(tmp_path / "example.ikg"))
-    try:
-        net.run(ticks=5)
-        assert net.tick == 5
     finally:
         net.close()

@@ -1,13 +1,9 @@
 """Tests of the Subtract module."""
-import shutil
-from pathlib import Path
 
 import numpy as np
 
-import ikaros
 from ikaros.testing import load_body as load
 
-EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Subtract_example.ikg"
 
 
 def test_subtracts(tmp_path):
@@ -52,15 +48,5 @@ def test_changing_inputs(tmp_path):
         for tick in range(4):
             net.step()
             assert net.output("D.OUTPUT")[0] == 2 * (tick + 1) - (tick + 1)
-    finally:
-        net.close()
-
-
-def test_example_runs(tmp_path):
-    shutil.copy(EXAMPLE, tmp_path / "example.ikg")
-    net = ikaros.load(str(tmp_path / "example.ikg"))
-    try:
-        net.run(ticks=5)
-        assert net.tick == 5
     finally:
         net.close()

@@ -1,13 +1,9 @@
 """Tests of the Sum module."""
-import shutil
-from pathlib import Path
 
 import numpy as np
 
-import ikaros
 from ikaros.testing import load_body as load
 
-EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Sum_example.ikg"
 
 
 def test_sums_1d_and_2d(tmp_path):
@@ -39,15 +35,5 @@ def test_sums_a_changing_input(tmp_path):
             got.append(float(net.output("S.OUTPUT")[0]))
         # delay 1: W's values one tick late: -2 (init), -1, 0, 1, 2, -2
         assert got == [-6, -3, 0, 3, 6, -6]
-    finally:
-        net.close()
-
-
-def test_example_runs(tmp_path):
-    shutil.copy(EXAMPLE, tmp_path / "example.ikg")
-    net = ikaros.load(str(tmp_path / "example.ikg"))
-    try:
-        net.run(ticks=5)
-        assert net.tick == 5
     finally:
         net.close()

@@ -1,13 +1,9 @@
 """Tests of the Sweep module."""
-import shutil
-from pathlib import Path
 
 import numpy as np
 
-import ikaros
 from ikaros.testing import load_body as load
 
-EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "Sweep_example.ikg"
 
 
 def test_wraps_to_min_past_max(tmp_path):
@@ -75,15 +71,5 @@ def test_delay_one_sees_the_init_value_on_tick_0(tmp_path):
         for tick in range(4):
             net.step()
             assert net.output("D.OUTPUT")[0] == tick      # S had tick on tick-1
-    finally:
-        net.close()
-
-
-def test_example_runs(tmp_path):
-    shutil.copy(EXAMPLE, tmp_path / "example.ikg")
-    net = ikaros.load(str(tmp_path / "example.ikg"))
-    try:
-        net.run(ticks=5)
-        assert net.tick == 5
     finally:
         net.close()
