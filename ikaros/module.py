@@ -33,6 +33,26 @@ LEVEL_NAMES = {EXCEPTION: "exception", END_OF_FILE: "end_of_file", TERMINATE: "t
                TRACE: "trace"}
 
 
+class MissingDependency(ImportError):
+    """A module needs an optional package that is not installed."""
+
+
+def require(module_name: str, package: str, extra: str | None = None):
+    """Import an optional dependency, or fail with the ``pip install`` that fixes it.
+
+    Call it in ``configure`` (so a model that needs a missing package fails at load)::
+
+        Image = require("PIL.Image", "Pillow", extra="image")
+    """
+    import importlib
+    try:
+        return importlib.import_module(module_name)
+    except ImportError:
+        fix = f"pip install 'ikaros[{extra}]'" if extra else f"pip install {package}"
+        raise MissingDependency(f"this module needs the package {package}: {fix} "
+                                f"(or pip install {package})") from None
+
+
 def attribute_name(port_name: str) -> str:
     """The Python attribute that holds a port: ``T-INPUT`` is ``self.T_INPUT``."""
     name = re.sub(r"\W", "_", port_name)
