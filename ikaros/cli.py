@@ -69,12 +69,17 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("-i", "--info", action="store_true",
                    help="print modules, connections, buffers with shapes, and the schedule")
     p.add_argument("-w", "--port", type=_port, metavar="PORT", help="web UI port")
+    p.add_argument("-p", "--profile", action="store_true",
+                   help="measure per-module time and print the timing figures at exit")
     p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
     p.add_argument("-v", "--verbose", action="store_true",
                    help="print debug messages and full tracebacks")
     p.add_argument("--classes", action="store_true", help="list every class found")
     p.add_argument("--class", dest="class_name", metavar="NAME",
                    help="print one class's description")
+    p.add_argument("--modules-doc", nargs="?", const="docs/modules.md", metavar="FILE",
+                   help="write the standard module reference (Markdown) to FILE "
+                        "(default docs/modules.md); - prints it")
     return p
 
 
@@ -97,6 +102,22 @@ def main(argv: list[str] | None = None) -> int:
     model, overrides = _split_args(p, opts.args)
     folders = [os.path.dirname(os.path.abspath(model))] if model else []
     try:
+        if opts.modules_doc is not None:
+            from .docgen import module_reference
+            text = module_reference()
+            if opts.modules_doc == "-":
+                sys.stdout.write(text)
+                return EXIT_OK
+            try:
+                with open(opts.modules_doc, "w", encoding="utf-8", newline="\n") as f:
+                    f.write(text)
+            except OSError as e:
+                print(f"ikaros: error: cannot write {opts.modules_doc}: {e.strerror or e}",
+                      file=sys.stderr)
+                return EXIT_ERROR
+            if not opts.quiet:
+                print(f"wrote {opts.modules_doc}")
+            return EXIT_OK
         if opts.classes:
             for name, desc in classes(*folders).items():
                 first = desc.description.split(". ")[0]
@@ -121,9 +142,12 @@ def main(argv: list[str] | None = None) -> int:
             print(net.info())
         ok = getattr(net, "checksum_ok", True)
         try:
+            net.profiling = opts.profile
             net.run(ticks=opts.stop, real_time=opts.real_time)
         finally:
             net.close()
+            if opts.profile:
+                print(net.profile_text())
         return EXIT_OK if ok or not opts.batch else EXIT_ERROR
     except ModelError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)

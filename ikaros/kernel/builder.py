@@ -171,10 +171,29 @@ class Builder:
         for name, value in inst.values.items():
             setattr(module, name, value)
         inst.module = module
+        self._run_settings(inst)
         try:
             module.configure()
         except Exception as e:
             raise inst.node.error(f"configure failed: {type(e).__name__}: {e}") from None
+
+    def _run_settings(self, inst: ModuleInstance) -> None:
+        """``period``, ``phase`` and ``async`` of a module element."""
+        def setting(key, default, parse):
+            text = inst.attrs.get(key)
+            if text in (None, ""):
+                return default
+            try:
+                return parse(substitute(text, inst, own=key))
+            except (ValueError_, VariableError) as e:
+                raise inst.node.error(f"{key}: {e}") from None
+
+        inst.period = setting("period", 1, parse_int)
+        inst.phase = setting("phase", 0, parse_int)
+        inst.asynchronous = setting("async", False, parse_bool)
+        if inst.period < 1 or not 0 <= inst.phase < inst.period:
+            raise inst.node.error(f"period must be >= 1 and phase in 0..period-1 (period "
+                                  f"{inst.period}, phase {inst.phase})")
 
     def _parameter(self, inst: ModuleInstance, spec) -> tuple[object, bool]:
         try:

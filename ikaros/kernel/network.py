@@ -14,7 +14,10 @@ from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
                       attribute_name)
 from .buffers import Run
+from .control import PLAY, REALTIME, Controller
+from .execution import AsyncModule, Plan, module_tick
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
+from .timing import Timing
 from .scope import VariableError, from_python
 from .tree import Group, ModuleInstance, find_component
 
@@ -40,6 +43,8 @@ class Network:
         self.log_level = PRINT
         self.tick = 0
         self._started = time.perf_counter()
+        self.timing = Timing()
+        self._controller: Controller | None = None
         self.stop_reason: tuple[int, str] | None = None
         self._stopped = False
         self._buffers = builder.buffers
@@ -116,8 +121,15 @@ class Network:
         for ring in self.rings.values():
             ring.bind()
         self.ring_arena = ring_arena
+        self.async_modules: dict = {}
         for inst in self.schedule:
             inputs, outputs = self._buffers[inst]
+            if inst.asynchronous:
+                job = AsyncModule(inst, inputs, outputs, self.clock)
+                self.async_modules[inst] = job
+                for name, buf in list(inputs.items()) + list(outputs.items()):
+                    setattr(inst.module, attribute_name(name), job.private.get(name))
+                continue
             for name, buf in list(inputs.items()) + list(outputs.items()):
                 setattr(inst.module, attribute_name(name), buf.array)
 
@@ -147,23 +159,25 @@ class Network:
             self._delayed.insert(0, bulk_copy)
         self._pre_tick = pre_tick
         self._ring_list = list(self.rings.values())
-        self._sequence = []
-        self._owner = {}
-        for inst in self.schedule:
-            for copy in pre_tick[inst]:
-                self._sequence.append(copy)
-                self._owner[copy] = inst
-            tick = inst.module.tick
-            self._sequence.append(tick)
-            self._owner[tick] = inst
+        tick_of = {inst: module_tick(inst, self.clock) if inst not in self.async_modules
+                   else self.async_modules[inst] for inst in self.schedule}
+        cost = {inst: 1 + sum(b.size for b in self._buffers[inst][1].values())
+                for inst in self.schedule}
+        self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
+                         self.threads or 1, cost)
 
     def _init_modules(self) -> None:
         self.clock.tick = -1
         for inst in self.schedule:
             for copy in self._pre_tick[inst]:
                 copy()
+            job = self.async_modules.get(inst)
+            if job is not None:
+                job.take_inputs()
             try:
                 inst.module.init()
+                if job is not None:
+                    job.publish_init()
             except Exception as e:
                 raise inst.node.error(f"init failed: {type(e).__name__}: {e}") from None
             if self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
@@ -214,17 +228,15 @@ class Network:
         clock = self.clock
         clock.tick = self.tick
         clock.time = self.tick * clock.tick_duration
-        clock.real_time = time.perf_counter() - self._started
-        step = None
-        try:
-            for step in self._sequence:
-                step()
-        except Exception as e:
-            inst = self._owner.get(step)
-            where = inst.path if inst else "kernel"
-            self.notify(FATAL_ERROR, where, f"{type(e).__name__}: {e}")
-            self._exception = sys.exc_info()
+        start = time.perf_counter()
+        clock.real_time = start - self._started
+        failure = self.plan.run()
+        if failure is not None:
+            inst, error = failure
+            self.notify(FATAL_ERROR, inst.path if inst else "kernel",
+                        f"{type(error).__name__}: {error}")
         self.tick += 1
+        self.timing.tick_done(time.perf_counter() - start)
         if self.stop_reason is not None:
             self._end()
 
@@ -232,6 +244,9 @@ class Network:
         """End the run after the current tick: call every module's stop once."""
         if not self._stopped:
             self._stopped = True
+            for job in self.async_modules.values():
+                job.finish()
+            self.plan.close()
             for inst in self.schedule:
                 try:
                     inst.module.stop()
@@ -254,21 +269,50 @@ class Network:
     def run(self, ticks: int | None = None, real_time: bool = False) -> int:
         """Run ``ticks`` more ticks (as fast as possible, or on the tick_duration time base
         with ``real_time``). Without ``ticks``, run until the model's ``stop`` tick, end of
-        file or an error. Returns the number of ticks completed."""
+        file or an error. Returns ``tick``, the ticks completed so far."""
         self._check_running()
-        end = None if ticks is None else self.tick + int(ticks)
-        if end is None and self.stop_tick is not None and self.stop_tick >= 0:
-            end = self.stop_tick
-        start_tick, start_time = self.tick, time.perf_counter()
-        dt = self.clock.tick_duration
-        while (end is None or self.tick < end) and not self._stopped:
-            if real_time:
-                deadline = start_time + (self.tick - start_tick) * dt
-                wait = deadline - time.perf_counter()
-                if wait > 0:
-                    time.sleep(wait)
-            self._tick()
-        return self.tick
+        return self.controller.run(REALTIME if real_time else PLAY, ticks)
+
+    @property
+    def controller(self) -> Controller:
+        """The run modes and requests between ticks (shared by the CLI and the web UI)."""
+        if self._controller is None:
+            self._controller = Controller(self)
+        return self._controller
+
+    @property
+    def profiling(self) -> bool:
+        """Whether per-module times are measured (off by default: it costs a little)."""
+        return self.plan.profiling
+
+    @profiling.setter
+    def profiling(self, on: bool) -> None:
+        self.plan.profiling = bool(on)
+
+    def figures(self) -> dict:
+        """Timing figures: state, tick, elapsed time, ticks per second, actual tick
+        duration, lag now/max/99th percentile, CPU usage, idle fraction."""
+        return self.controller.figures()
+
+    def module_figures(self) -> list[dict]:
+        """Per-module time (count, mean, max in seconds) measured while profiling."""
+        return self.plan.module_figures()
+
+    def profile_text(self) -> str:
+        """The timing figures and the per-module table, as printed by ``ikaros -p``."""
+        f = self.figures()
+        ms = 1000.0
+        lines = [f"Ticks: {f['tick']} in {f['elapsed']:.3f} s ({f['ticks_per_second']:.1f} "
+                 f"ticks/s); tick duration {f['tick_duration'] * ms:.3f} ms, actual "
+                 f"{f['actual_tick_duration'] * ms:.3f} ms",
+                 f"Lag: now {f['lag'] * ms:.3f} ms, max {f['lag_max'] * ms:.3f} ms, 99th "
+                 f"percentile {f['lag_p99'] * ms:.3f} ms; resynchronised {f['resyncs']} times",
+                 f"CPU usage: {f['cpu_usage'] * 100:.1f} %; idle: {f['idle'] * 100:.1f} %",
+                 "", f"{'module':32} {'class':16} {'count':>8} {'mean ms':>10} {'max ms':>10}"]
+        for m in sorted(self.module_figures(), key=lambda m: -m["mean"]):
+            lines.append(f"{m['module']:32} {m['class']:16} {m['count']:>8} "
+                         f"{m['mean'] * ms:>10.4f} {m['max'] * ms:>10.4f}")
+        return "\n".join(lines)
 
     def close(self) -> None:
         """End the run: every module's stop() is called once."""
@@ -328,12 +372,14 @@ class Network:
             new = from_python(value, spec)
         except (ValueError_, VariableError, ValueError, TypeError) as e:
             raise ValueError(f'bad value for parameter "{path}": {e}') from None
-        old = getattr(comp.module, name)
-        if isinstance(old, np.ndarray) and isinstance(new, np.ndarray) and \
-                old.shape == new.shape:
-            old[...] = new
-        else:
-            setattr(comp.module, name, new)
+        def change():
+            old = getattr(comp.module, name)
+            if isinstance(old, np.ndarray) and isinstance(new, np.ndarray) and \
+                    old.shape == new.shape:
+                old[...] = new
+            else:
+                setattr(comp.module, name, new)
+        self._apply(comp, change)
         comp.values[name] = new
         comp.has_value[name] = True
         comp.node.attrs[name] = value if isinstance(value, str) else value_text(new)
@@ -344,7 +390,15 @@ class Network:
         comp = find_component(self.top, path)
         if not isinstance(comp, ModuleInstance):
             raise KeyError(f'no module "{path}" in {self.top.name}')
-        comp.module.command(name, x, y, value)
+        self._apply(comp, lambda: comp.module.command(name, x, y, value))
+
+    def _apply(self, inst: ModuleInstance, change) -> None:
+        """Change a module now, or after its running asynchronous job."""
+        job = self.async_modules.get(inst)
+        if job is None:
+            change()
+        else:
+            job.apply(change)
 
     def save(self, filename: str) -> None:
         """Write the model back as .ikg; loading it gives the same network."""

@@ -71,7 +71,9 @@ class ModuleInstance(Component):
         self.module = None                 # the Python Module object
         self.values: dict[str, object] = {}       # resolved parameter values
         self.has_value: dict[str, bool] = {}      # whether a parameter had a value at all
-        self.param_scope: dict[str, Component] = {}
+        self.period = 1                    # ticks only when tick % period == phase
+        self.phase = 0
+        self.asynchronous = False          # tick runs in the background
 
 
 class Scope:

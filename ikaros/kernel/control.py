@@ -1,0 +1,160 @@
+"""The control API: run modes (stop, pause, step, play, real time) shared by the command
+line and the web UI, with requests applied between ticks."""
+from __future__ import annotations
+
+import queue
+import threading
+import time
+from concurrent.futures import Future
+
+from ..module import WARNING
+from .timing import wait_until
+
+STOP, PAUSE, STEP, PLAY, REALTIME = "stop", "pause", "step", "play", "realtime"
+STATES = (STOP, PAUSE, STEP, PLAY, REALTIME)
+DEFAULT_RESYNC_LAG = 0.1   # seconds late before real time resynchronises instead of catching up
+
+
+class Controller:
+    """Runs a network in one of the run modes.
+
+    ``run`` drives the loop in the calling thread; ``start`` drives it in a background
+    thread, and then ``call`` runs a function between two ticks (parameter changes,
+    commands, reading outputs) from any thread.
+    """
+
+    def __init__(self, net):
+        self.net = net
+        self.state = PAUSE
+        self.end_tick: int | None = None
+        self._requests: queue.SimpleQueue = queue.SimpleQueue()
+        self._wake = threading.Event()
+        self._thread: threading.Thread | None = None
+        self._base: tuple[float, int] | None = None
+        self._last_warning = 0.0
+        text = net.top.attrs.get("real_time_resync_lag")
+        self.resync_lag = float(text) if text not in (None, "") else DEFAULT_RESYNC_LAG
+
+    # --- modes ---------------------------------------------------------------------------
+    def set_state(self, state: str) -> None:
+        if state not in STATES:
+            raise ValueError(f'unknown run mode "{state}" (one of {", ".join(STATES)})')
+        if state == REALTIME and self.state != REALTIME:
+            self._base = None          # time spent paused is not owed
+        self.state = state
+        self._wake.set()
+
+    def pause(self) -> None:
+        self.set_state(PAUSE)
+
+    def step(self) -> None:
+        """Run exactly one tick, then pause."""
+        self.set_state(STEP)
+
+    def play(self) -> None:
+        self.set_state(PLAY)
+
+    def realtime(self) -> None:
+        self.set_state(REALTIME)
+
+    def stop(self) -> None:
+        self.set_state(STOP)
+
+    # --- requests between ticks ----------------------------------------------------------
+    def call(self, fn, *args, **kwargs):
+        """Run ``fn`` between two ticks and return its result (directly when no loop runs
+        in another thread)."""
+        if self._thread is None or threading.current_thread() is self._thread:
+            return fn(*args, **kwargs)
+        done: Future = Future()
+        self._requests.put((fn, args, kwargs, done))
+        self._wake.set()
+        return done.result(timeout=30)
+
+    def _drain(self) -> None:
+        while True:
+            try:
+                fn, args, kwargs, done = self._requests.get_nowait()
+            except queue.Empty:
+                return
+            try:
+                done.set_result(fn(*args, **kwargs))
+            except Exception as e:
+                done.set_exception(e)
+
+    # --- the loop ------------------------------------------------------------------------
+    def run(self, state: str = PLAY, ticks: int | None = None) -> int:
+        """Run in this thread until ``ticks`` more ticks, the stop tick, the end of the run,
+        or ``stop()``. Returns the ticks completed."""
+        net = self.net
+        self.end_tick = None if ticks is None else net.tick + int(ticks)
+        if self.end_tick is None and net.stop_tick is not None and net.stop_tick >= 0:
+            self.end_tick = net.stop_tick
+        self.set_state(state)
+        self._loop()
+        return net.tick
+
+    def start(self, state: str = PAUSE) -> None:
+        """Run the loop in a background thread."""
+        self.end_tick = self.net.stop_tick if (self.net.stop_tick or -1) >= 0 else None
+        self.set_state(state)
+        self._thread = threading.Thread(target=self._loop, name="ikaros-run", daemon=True)
+        self._thread.start()
+
+    def join(self, timeout: float | None = None) -> None:
+        if self._thread is not None:
+            self._thread.join(timeout)
+
+    def _loop(self) -> None:
+        net, timing = self.net, self.net.timing
+        perf = time.perf_counter
+        while True:
+            self._drain()
+            state = self.state
+            if state == STOP or net.stopped:
+                break
+            if self.end_tick is not None and net.tick >= self.end_tick:
+                if self._thread is None:
+                    break
+                self.state = PAUSE
+                state = PAUSE
+            if state == PAUSE:
+                self._wake.wait(0.05)
+                self._wake.clear()
+                continue
+            lag = None
+            now = perf()
+            if state == REALTIME:
+                dt = net.clock.tick_duration
+                if self._base is None:
+                    self._base = (now, net.tick)
+                t0, n0 = self._base
+                deadline = t0 + (net.tick - n0) * dt
+                if now < deadline:
+                    timing.idle += wait_until(deadline)
+                    now = perf()
+                lag = now - deadline
+                if lag > self.resync_lag:
+                    self._resync(now, lag)
+            timing.tick_started(now, lag)
+            net._tick()
+            if state == STEP:
+                self.state = PAUSE
+        self._drain()
+
+    def _resync(self, now: float, lag: float) -> None:
+        """A long stall: start the time base again instead of catching up in a burst."""
+        self._base = (now, self.net.tick)
+        self.net.timing.resyncs += 1
+        if now - self._last_warning > 1.0:
+            self._last_warning = now
+            self.net.notify(WARNING, None, f"real time lagged {lag * 1000:.1f} ms at tick "
+                                           f"{self.net.tick}; resynchronising the clock")
+
+    def figures(self) -> dict:
+        """State, tick and timing figures of the run."""
+        net = self.net
+        out = {"state": self.state, "tick": net.tick,
+               "tick_duration": net.clock.tick_duration, "time": net.clock.time}
+        out.update(net.timing.figures())
+        return out

@@ -1,0 +1,193 @@
+"""What runs in one tick: module steps in schedule order, optionally in parallel thread groups,
+with period/phase, asynchronous modules and per-module timing."""
+from __future__ import annotations
+
+import collections
+import time
+from concurrent.futures import ThreadPoolExecutor, wait
+
+import numpy as np
+
+from ..module import Clock
+from .schedule import thread_groups
+
+
+class AsyncModule:
+    """Runs a module's tick in the background, at most one job at a time.
+
+    The module works on private copies of its inputs (taken when a job starts) and outputs
+    (published when the job has finished); while a job runs, the outputs keep their last
+    finished values, and parameter changes and commands wait in a queue.
+    """
+
+    def __init__(self, inst, inputs: dict, outputs: dict, clock: Clock):
+        self.inst = inst
+        self.module = inst.module
+        self.shared_clock = clock
+        self.module.clock = Clock(clock.tick_duration)
+        self.inputs = [(buf.array, buf.array.copy()) for buf in inputs.values()
+                       if buf.array is not None]
+        self.outputs = [(buf.array, buf.array.copy()) for buf in outputs.values()]
+        self.private = {name: priv for name, (_, priv) in
+                        zip([n for n, b in inputs.items() if b.array is not None],
+                            self.inputs)}
+        self.private.update({name: priv for name, (_, priv) in zip(outputs, self.outputs)})
+        self.executor = ThreadPoolExecutor(1, thread_name_prefix=f"ikaros-async-{inst.path}")
+        self.future = None
+        self.pending: collections.deque = collections.deque()
+        self.completed = 0
+
+    @property
+    def running(self) -> bool:
+        return self.future is not None and not self.future.done()
+
+    def _publish(self) -> None:
+        future, self.future = self.future, None
+        error = future.exception()
+        if error is not None:
+            raise error
+        for public, private in self.outputs:
+            np.copyto(public, private)
+        self.completed += 1
+        while self.pending:
+            self.pending.popleft()()
+
+    def publish_init(self) -> None:
+        for public, private in self.outputs:
+            np.copyto(public, private)
+
+    def take_inputs(self) -> None:
+        for public, private in self.inputs:
+            np.copyto(private, public)
+
+    def __call__(self) -> None:
+        if self.future is not None:
+            if not self.future.done():
+                return
+            self._publish()
+        self.take_inputs()
+        clock, mine = self.shared_clock, self.module.clock
+        mine.tick, mine.time, mine.real_time = clock.tick, clock.time, clock.real_time
+        self.future = self.executor.submit(self.module.tick)
+
+    def apply(self, change) -> None:
+        """Apply a parameter change or command now, or after the running job."""
+        if self.running:
+            self.pending.append(change)
+        else:
+            change()
+
+    def finish(self) -> None:
+        """Wait for the running job and publish it (before stop)."""
+        if self.future is not None:
+            try:
+                self.future.result()
+                self._publish()
+            except Exception:
+                self.future = None
+        self.executor.shutdown(wait=True)
+
+
+def _every(tick, period: int, phase: int, clock: Clock):
+    def step():
+        if clock.tick % period == phase:
+            tick()
+    return step
+
+
+class Plan:
+    """The calls of one tick, in schedule order, grouped per module.
+
+    ``threads`` > 1 runs thread groups (modules joined by zero-delay connections) in
+    parallel lanes; results are the same as with one thread, since lanes share no
+    zero-delay data.
+    """
+
+    def __init__(self, schedule: list, pre_tick: dict, tick_of: dict, edges: dict,
+                 threads: int, cost: dict):
+        self.schedule = schedule
+        self.index = {inst: i for i, inst in enumerate(schedule)}
+        self.calls = {inst: list(pre_tick.get(inst, ())) + [tick_of[inst]] for inst in schedule}
+        self.sequence = [c for inst in schedule for c in self.calls[inst]]
+        self.owner = {c: inst for inst in schedule for c in self.calls[inst]}
+        n = len(schedule)
+        self.count = np.zeros(n, dtype=np.int64)
+        self.total = np.zeros(n)
+        self.max = np.zeros(n)
+        self.profiling = False
+        self.lanes: list[list] = []
+        self.pool = None
+        if threads > 1:
+            groups = thread_groups(schedule, edges)
+            if len(groups) > 1:
+                lanes = [[] for _ in range(min(threads, len(groups)))]
+                load = [0.0] * len(lanes)
+                for group in sorted(groups, key=lambda g: -sum(cost[m] for m in g)):
+                    k = load.index(min(load))
+                    lanes[k].append(group)
+                    load[k] += sum(cost[m] for m in group)
+                self.lanes = [[m for group in lane for m in group] for lane in lanes]
+                self.pool = ThreadPoolExecutor(len(self.lanes) - 1,
+                                               thread_name_prefix="ikaros-lane")
+
+    def run(self) -> tuple | None:
+        """Run one tick's calls. Returns (module, exception) for a failure, else None."""
+        if self.pool is not None:
+            return self._run_lanes()
+        if self.profiling:
+            return self._run_modules(self.schedule)
+        step = None
+        try:
+            for step in self.sequence:
+                step()
+        except Exception as e:
+            return self.owner.get(step), e
+        return None
+
+    def _run_modules(self, modules: list) -> tuple | None:
+        perf = time.perf_counter
+        for inst in modules:
+            i = self.index[inst]
+            start = perf()
+            try:
+                for call in self.calls[inst]:
+                    call()
+            except Exception as e:
+                return inst, e
+            if self.profiling:
+                spent = perf() - start
+                self.count[i] += 1
+                self.total[i] += spent
+                if spent > self.max[i]:
+                    self.max[i] = spent
+        return None
+
+    def _run_lanes(self) -> tuple | None:
+        futures = [self.pool.submit(self._run_modules, lane) for lane in self.lanes[1:]]
+        failure = self._run_modules(self.lanes[0])
+        wait(futures)
+        for f in futures:
+            failure = failure or f.result()
+        return failure
+
+    def module_figures(self) -> list[dict]:
+        """Per-module time: count, mean and max in seconds (while profiling was on)."""
+        out = []
+        for inst, i in self.index.items():
+            c = int(self.count[i])
+            out.append({"module": inst.path, "class": inst.entry.name, "count": c,
+                        "mean": float(self.total[i] / c) if c else 0.0,
+                        "max": float(self.max[i])})
+        return out
+
+    def close(self) -> None:
+        if self.pool is not None:
+            self.pool.shutdown(wait=True)
+            self.pool = None
+
+
+def module_tick(inst, clock: Clock):
+    """A module's tick as the plan calls it: with period/phase when they are set."""
+    period, phase = inst.period, inst.phase
+    tick = inst.module.tick
+    return tick if period == 1 else _every(tick, period, phase, clock)
