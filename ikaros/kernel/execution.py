@@ -104,12 +104,17 @@ class Plan:
     """
 
     def __init__(self, schedule: list, pre_tick: dict, tick_of: dict, edges: dict,
-                 threads: int, cost: dict):
+                 threads: int, cost: dict, fuser=None):
         self.schedule = schedule
         self.index = {inst: i for i, inst in enumerate(schedule)}
         self.calls = {inst: list(pre_tick.get(inst, ())) + [tick_of[inst]] for inst in schedule}
         self.sequence = [c for inst in schedule for c in self.calls[inst]]
         self.owner = {c: inst for inst in schedule for c in self.calls[inst]}
+        self.fused: dict = {}
+        if fuser is not None and threads <= 1:
+            result = fuser(self.calls)
+            if result is not None:
+                self.sequence, self.owner, self.fused = result
         n = len(schedule)
         self.count = np.zeros(n, dtype=np.int64)
         self.total = np.zeros(n)
@@ -169,6 +174,12 @@ class Plan:
         for f in futures:
             failure = failure or f.result()
         return failure
+
+    def refresh(self, inst) -> None:
+        """A module's parameters changed: update a fused operation that holds them."""
+        op = self.fused.get(inst)
+        if op is not None:
+            op.refresh(inst)
 
     def module_figures(self) -> list[dict]:
         """Per-module time: count, mean and max in seconds (while profiling was on)."""

@@ -16,6 +16,7 @@ from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, T
 from .buffers import Run
 from .control import PLAY, REALTIME, Controller
 from .execution import AsyncModule, Plan, module_tick
+from .fusion import fuse
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .timing import Timing
 from .scope import VariableError, from_python
@@ -163,8 +164,13 @@ class Network:
                    else self.async_modules[inst] for inst in self.schedule}
         cost = {inst: 1 + sum(b.size for b in self._buffers[inst][1].values())
                 for inst in self.schedule}
+        block = self.arena.block
+
+        def fuser(calls):
+            return fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
+                        pre_tick)
         self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
-                         self.threads or 1, cost)
+                         self.threads or 1, cost, fuser)
 
     def _init_modules(self) -> None:
         self.clock.tick = -1
@@ -380,6 +386,7 @@ class Network:
             else:
                 setattr(comp.module, name, new)
         self._apply(comp, change)
+        self._apply(comp, lambda: self.plan.refresh(comp))
         comp.values[name] = new
         comp.has_value[name] = True
         comp.node.attrs[name] = value if isinstance(value, str) else value_text(new)

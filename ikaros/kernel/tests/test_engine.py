@@ -193,3 +193,51 @@ def test_period_and_phase(tmp_path):
     with pytest.raises(ikaros.ModelError, match="period must be >= 1"):
         _model(tmp_path, '<group name="G"><module class="Sweep" name="S" period="2" '
                          'phase="2"/></group>')
+
+
+FUSABLE = '''<group name="F">
+    <module class="Sweep" name="Ramp" min="0" max="50" step="0.5" outputsize="3"/>
+    <module class="Constant" name="K" data="1 2 3"/>
+    <module class="Scale" name="S1" factor="2"/>
+    <module class="Scale" name="S2" factor="-1.5"/>
+    <module class="Scale" name="S3" factor="0.25"/>
+    <module class="Add" name="A1"/>
+    <module class="Add" name="A2"/>
+    <module class="Multiply" name="M"/>
+    <module class="Subtract" name="D"/>
+    <module class="Scale" name="G1" factor="0.3"/>
+    <module class="Scale" name="G2" factor="-0.7"/>
+    <connection source="Ramp.OUTPUT" target="G1.INPUT"/>
+    <connection source="K.OUTPUT" target="G1.SCALE"/>
+    <connection source="K.OUTPUT" target="G2.INPUT"/>
+    <connection source="Ramp.OUTPUT" target="G2.SCALE" sourceoffset="2" size="1"/>
+    <connection source="Ramp.OUTPUT" target="S1.INPUT" delay="0"/>
+    <connection source="K.OUTPUT" target="S2.INPUT" delay="0"/>
+    <connection source="Ramp.OUTPUT" target="S3.INPUT"/>
+    <connection source="S1.OUTPUT" target="A1.INPUT1" delay="0"/>
+    <connection source="S2.OUTPUT" target="A1.INPUT2" delay="0"/>
+    <connection source="S3.OUTPUT" target="A2.INPUT1" delay="0"/>
+    <connection source="A1.OUTPUT" target="A2.INPUT2"/>
+    <connection source="A1.OUTPUT" target="M.INPUT1" delay="0"/>
+    <connection source="A2.OUTPUT" target="M.INPUT2" delay="0"/>
+    <connection source="M.OUTPUT" target="D.INPUT1" delay="0"/>
+    <connection source="K.OUTPUT" target="D.INPUT2" delay="2"/>
+</group>'''
+
+
+def test_fused_element_wise_modules_compute_what_their_ticks_compute(tmp_path):
+    fused = _model(tmp_path, FUSABLE)
+    assert {i.path for i in fused.plan.fused} == {"S1", "S2", "G1", "G2"}
+    plain = ikaros.load(str(tmp_path / "m.ikg"))
+    plain.profiling = True                       # measuring per module: no fusion
+    for tick in range(12):
+        if tick == 5:
+            for net in (fused, plain):
+                net.set_parameter("S2.factor", 4)
+        fused.step()
+        plain.step()
+        for path in ("S1", "S2", "S3", "A1", "A2", "M", "D", "G1", "G2"):
+            assert np.array_equal(fused.output(path + ".OUTPUT"),
+                                  plain.output(path + ".OUTPUT")), (tick, path)
+    # tick 11: ramp 6, S1 12, S2 4*[1,2,3], A1 = [16, 20, 24]
+    assert fused.output("A1.OUTPUT").tolist() == [16, 20, 24]

@@ -14,5 +14,8 @@ class Add(ElementWise):
     INPUT2 = Input("the second term")
     OUTPUT = Output("the element-wise sum", size_set="INPUT1,INPUT2")
 
+    # many instances run as one NumPy operation (see ikaros/kernel/fusion.py)
+    elementwise = ("add", "INPUT1", "INPUT2")
+
     def tick(self):
         np.add(self._a, self._b, out=self.OUTPUT)

@@ -14,5 +14,8 @@ class Multiply(ElementWise):
     INPUT2 = Input("the second factor")
     OUTPUT = Output("the element-wise product", size_set="INPUT1,INPUT2")
 
+    # many instances run as one NumPy operation (see ikaros/kernel/fusion.py)
+    elementwise = ("multiply", "INPUT1", "INPUT2")
+
     def tick(self):
         np.multiply(self._a, self._b, out=self.OUTPUT)

@@ -13,8 +13,13 @@ class Scale(Module):
     SCALE = Input("an extra factor: its first element multiplies the output", optional=True)
     OUTPUT = Output("the scaled signal", size_set="INPUT")
 
+    # many instances run as one NumPy operation (see ikaros/kernel/fusion.py)
+    elementwise = [("multiply", "INPUT", "@factor"), ("multiply", "INPUT", "@factor", "SCALE[0]")]
+
+    def init(self):
+        self._scale = None if self.SCALE is None else self.SCALE.reshape(-1)[:1]
+
     def tick(self):
-        if self.SCALE is None:
-            np.multiply(self.INPUT, self.factor, out=self.OUTPUT)
-        else:
-            np.multiply(self.INPUT, self.factor * float(self.SCALE.flat[0]), out=self.OUTPUT)
+        np.multiply(self.INPUT, self.factor, out=self.OUTPUT)
+        if self._scale is not None:
+            np.multiply(self.OUTPUT, self._scale, out=self.OUTPUT)

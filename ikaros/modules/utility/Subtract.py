@@ -14,6 +14,9 @@ class Subtract(ElementWise):
     INPUT2 = Input("the value subtracted; unconnected means 0", optional=True)
     OUTPUT = Output("the element-wise difference", size_set="INPUT1,INPUT2")
 
+    # many instances run as one NumPy operation (see ikaros/kernel/fusion.py)
+    elementwise = ("subtract", "INPUT1", "INPUT2")
+
     def tick(self):
         if self._b is None:
             self.OUTPUT[...] = self._a

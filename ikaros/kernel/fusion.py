@@ -1,0 +1,156 @@
+"""Fusion: many instances of an element-wise class, at the same depth of the zero-delay
+graph, computed as one NumPy operation over the buffer arena.
+
+A class opts in with ``elementwise = (ufunc, operand, operand, ...)`` (the ufunc applied
+left to right), or a list of such forms, the first whose inputs are exactly the connected
+ones being used. An operand is an input name, ``"NAME[0]"`` (that input's first element, for
+all elements) or ``"@parameter"`` (a number parameter, for all of the module's elements). The
+result is the same as the module's tick when the tick applies the same ufuncs in the same
+order on float32 values.
+"""
+from __future__ import annotations
+
+import collections
+
+import numpy as np
+
+
+def _offset(block: np.ndarray, array: np.ndarray) -> int:
+    return (array.ctypes.data - block.ctypes.data) // block.itemsize
+
+
+def _in_block(block: np.ndarray, array) -> bool:
+    return array is not None and array.flags.c_contiguous and np.shares_memory(array, block)
+
+
+def _input_name(operand: str) -> str:
+    return operand[:-3] if operand.endswith("[0]") else operand
+
+
+def fused_form(inst, inputs: dict, outputs: dict, block: np.ndarray) -> tuple | None:
+    """The element-wise form an instance can be fused with, or None."""
+    forms = getattr(type(inst.module), "elementwise", None)
+    if forms is None or inst.asynchronous or inst.period != 1 or len(outputs) != 1:
+        return None
+    out = next(iter(outputs.values())).array
+    if not _in_block(block, out):
+        return None
+    connected = {name for name, buf in inputs.items() if buf.incoming}
+    for form in (forms if isinstance(forms, list) else [forms]):
+        operands = [o for o in form[1:] if not o.startswith("@")]
+        if {_input_name(o) for o in operands} != connected:
+            continue
+        for o in operands:
+            arr = inputs[_input_name(o)].array
+            if not _in_block(block, arr) or (arr.size != out.size and not o.endswith("[0]")):
+                return None
+        return form
+    return None
+
+
+class FusedOp:
+    """One ufunc over the elements of several modules: gather, compute, scatter."""
+
+    def __init__(self, block: np.ndarray, spec: tuple, members: list):
+        self.block = block
+        self.ufunc = getattr(np, spec[0])
+        self.members = members                     # (inst, inputs, outputs)
+        self.operands = spec[1:]
+        sizes = [next(iter(out.values())).array.size for _, _, out in members]
+        self.starts = np.cumsum([0] + sizes)
+        total = int(self.starts[-1])
+        out_idx = np.concatenate([
+            _offset(block, next(iter(out.values())).array) + np.arange(n)
+            for (_, _, out), n in zip(members, sizes)])
+        first = int(out_idx[0])
+        if np.array_equal(out_idx, np.arange(first, first + total)):
+            self.out_view, self.out_idx = block[first:first + total], None
+        else:
+            self.out_view, self.out_idx = np.zeros(total, np.float32), out_idx
+        self.gathers = []
+        self.args = []
+        self.params: dict[str, np.ndarray] = {}
+        for operand in self.operands:
+            if operand.startswith("@"):
+                vec = np.zeros(total, np.float32)
+                self.params[operand[1:]] = vec
+                self.args.append(vec)
+            else:
+                name, first = _input_name(operand), operand.endswith("[0]")
+                idx = np.concatenate([_offset(block, ins[name].array) +
+                                      (np.zeros(n, np.intp) if first else np.arange(n))
+                                      for (_, ins, _), n in zip(members, sizes)])
+                scratch = np.zeros(total, np.float32)
+                self.gathers.append((idx.astype(np.intp), scratch))
+                self.args.append(scratch)
+        for k in range(len(members)):
+            self._load(k)
+
+    def _load(self, k: int) -> None:
+        module = self.members[k][0].module
+        a, b = self.starts[k], self.starts[k + 1]
+        for name, vec in self.params.items():
+            vec[a:b] = getattr(module, name)
+
+    def refresh(self, inst) -> None:
+        """Read a member's parameters again after they changed."""
+        for k, (member, _, _) in enumerate(self.members):
+            if member is inst:
+                self._load(k)
+
+    def __call__(self) -> None:
+        block = self.block
+        for idx, scratch in self.gathers:
+            np.take(block, idx, out=scratch)
+        args, out, ufunc = self.args, self.out_view, self.ufunc
+        ufunc(args[0], args[1], out=out)
+        for arg in args[2:]:
+            ufunc(out, arg, out=out)
+        if self.out_idx is not None:
+            block[self.out_idx] = self.out_view
+
+
+def fuse(schedule: list, edges: dict, buffers: dict, block: np.ndarray, calls: dict,
+         pre_tick: dict):
+    """A tick's calls with fusable modules merged level by level.
+
+    Returns (sequence, owner, fused) where ``fused`` maps each fused module to its
+    operation, or None when nothing can be fused.
+    """
+    preds = collections.defaultdict(list)
+    for (a, b) in edges:
+        preds[b].append(a)
+    level = {}
+    for inst in schedule:
+        level[inst] = 1 + max((level[p] for p in preds[inst]), default=-1)
+    groups: dict = collections.defaultdict(list)
+    for inst in schedule:
+        inputs, outputs = buffers[inst]
+        form = fused_form(inst, inputs, outputs, block)
+        if form is not None:
+            groups[(level[inst], form)].append((inst, inputs, outputs))
+    groups = {k: v for k, v in groups.items() if len(v) > 1}
+    if not groups:
+        return None
+    fused, sequence, owner = {}, [], {}
+    by_level = collections.defaultdict(list)
+    for (lvl, spec), members in groups.items():
+        op = FusedOp(block, spec, members)
+        by_level[lvl].append(op)
+        for inst, _, _ in members:
+            fused[inst] = op
+    for lvl in range(max(level.values()) + 1):
+        for inst in schedule:
+            if level[inst] == lvl and inst not in fused:
+                for call in calls[inst]:
+                    sequence.append(call)
+                    owner[call] = inst
+        for op in by_level[lvl]:
+            for inst, _, _ in op.members:
+                for copy in pre_tick.get(inst, ()):
+                    sequence.append(copy)
+                    owner[copy] = inst
+            sequence.append(op)
+            owner[op] = op.members[0][0]
+    return sequence, owner, fused
+
