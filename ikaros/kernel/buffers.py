@@ -1,6 +1,7 @@
 """Buffers (module inputs and outputs, group ports) and the links between them."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -37,7 +38,7 @@ class Buffer:
 
     @property
     def size(self) -> int:
-        return int(np.prod(self.shape)) if self.shape is not None else 0
+        return math.prod(self.shape) if self.shape is not None else 0
 
     def __repr__(self):
         return f"<{self.kind} {self.path} {self.shape}>"

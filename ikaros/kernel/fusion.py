@@ -16,11 +16,13 @@ import numpy as np
 
 
 def _offset(block: np.ndarray, array: np.ndarray) -> int:
-    return (array.ctypes.data - block.ctypes.data) // block.itemsize
+    return (array.__array_interface__["data"][0] - block.__array_interface__["data"][0]) \
+        // block.itemsize
 
 
 def _in_block(block: np.ndarray, array) -> bool:
-    return array is not None and array.flags.c_contiguous and np.shares_memory(array, block)
+    # arena buffers are views of the block (NumPy keeps the owner as every view's base)
+    return array is not None and array.base is block and array.flags.c_contiguous
 
 
 def _input_name(operand: str) -> str:

@@ -2,6 +2,7 @@
 from module outputs to module inputs (through group ports)."""
 from __future__ import annotations
 
+import math
 import numpy as np
 
 from ..errors import ModelError
@@ -16,7 +17,7 @@ def _link_error(link: Link, message: str) -> ModelError:
 def _piece(link: Link) -> None:
     """The source elements one lane of a link reads, and their shape."""
     shape = link.source.shape
-    size = int(np.prod(shape))
+    size = math.prod(shape)
     sel = link.src_sel
     if sel is None:
         link.src_index = np.arange(size)
@@ -79,16 +80,16 @@ def layout(buffer: Buffer, fixed_shape: tuple | None = None) -> None:
     elif buffer.flatten or len(links) > 1:
         offset = 0
         for link in links:
-            n = int(np.prod(link.piece_shape))
+            n = math.prod(link.piece_shape)
             link.dst_index = np.arange(offset, offset + n)
             offset += n
         shape = (offset,)
     else:
         link = links[0]
-        link.dst_index = np.arange(int(np.prod(link.piece_shape)))
+        link.dst_index = np.arange(math.prod(link.piece_shape))
         shape = link.piece_shape
     if fixed_shape is not None:
-        total = int(np.prod(fixed_shape))
+        total = math.prod(fixed_shape)
         for link in links:
             if len(link.dst_index) and int(link.dst_index.max()) >= total:
                 raise _link_error(link, f'writes outside fixed size of input "{buffer.name}" '
@@ -119,7 +120,7 @@ def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
     if offsets:
         end = 0
         for link in links:
-            n = int(np.prod(link.piece_shape))
+            n = math.prod(link.piece_shape)
             start = link.dst_sel[1]
             if start < 0:
                 raise _link_error(link, "targetoffset must not be negative")
@@ -141,7 +142,7 @@ def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
                     raise _link_error(link, "Connection could not be resolved: more target "
                                             "placeholders than source dimensions")
                 if i == holes[-1]:
-                    n = int(np.prod(piece))
+                    n = math.prod(piece)
                     piece = []
                 else:
                     n = piece.pop(0)
@@ -156,11 +157,11 @@ def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
         elif rank != len(lists):
             raise _link_error(link, f"Cannot extend a rank-{rank} range with a "
                                     f"rank-{len(lists)} range")
-        count = int(np.prod([len(i) for i in lists])) if lists else 0
-        if count != int(np.prod(link.piece_shape)) or count == 0:
+        count = math.prod([len(i) for i in lists]) if lists else 0
+        if count != math.prod(link.piece_shape) or count == 0:
             raise _link_error(link, f"Connection could not be resolved: the target selects "
                                     f"{count} elements but the source gives "
-                                    f"{int(np.prod(link.piece_shape))}")
+                                    f"{math.prod(link.piece_shape)}")
         coords_per_link.append((lists, extents))
     shape = tuple(max(extents[d] for _, extents in coords_per_link) for d in range(rank))
     if fixed_shape is not None:

@@ -1,6 +1,7 @@
 """Buffer memory: one float32 arena for all buffers, history rings, and compiled copies."""
 from __future__ import annotations
 
+import math
 from functools import partial
 
 import numpy as np
@@ -25,11 +26,11 @@ class Arena:
         offsets, total = [], 0
         for shape, _ in self._requests:
             offsets.append(total)
-            n = int(np.prod(shape)) if shape else 1
+            n = math.prod(shape) if shape else 1
             total += -(-n // ALIGN) * ALIGN if n else 0
         self.block = np.zeros(max(total, 1), dtype=np.float32)
         for (shape, holder), start in zip(self._requests, offsets):
-            n = int(np.prod(shape)) if shape else 1
+            n = math.prod(shape) if shape else 1
             holder.append(self.block[start:start + n].reshape(shape))
 
     @property
@@ -115,12 +116,12 @@ class BulkCopy:
         self._dst: list[np.ndarray] = []
 
     def offset(self, array: np.ndarray) -> int:
-        return (array.ctypes.data - self.block.ctypes.data) // self.block.itemsize
+        return (array.__array_interface__["data"][0] -
+                self.block.__array_interface__["data"][0]) // self.block.itemsize
 
     def accepts(self, dst: np.ndarray, src: np.ndarray, count: int) -> bool:
         """Whether a copy between these arrays can join (both in the arena, and small)."""
-        return count <= BULK_LIMIT and all(
-            a.base is not None and np.shares_memory(a, self.block) for a in (dst, src))
+        return count <= BULK_LIMIT and dst.base is self.block and src.base is self.block
 
     def add(self, dst: np.ndarray, dst_index: np.ndarray, src: np.ndarray,
             src_index: np.ndarray) -> None:

@@ -1,6 +1,7 @@
 """Output size rules: the Ikaros 2 ``size_*`` attributes and Ikaros 3 ``shape`` expressions."""
 from __future__ import annotations
 
+import math
 import re
 
 import numpy as np
@@ -104,7 +105,7 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
             if partial:
                 return WAIT
             raise SizeError(f"none of the inputs {', '.join(names)} is connected")
-        return max(shapes, key=lambda s: (int(np.prod(s)), len(s)))
+        return max(shapes, key=lambda s: (math.prod(s), len(s)))
     if "size_set_x" in rule or "size_set_y" in rule:
         totals = {}
         for key in ("size_set_x", "size_set_y"):
@@ -112,7 +113,7 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
                 shape = input_shapes.get(rule[key].strip())
                 if shape is None:
                     return WAIT
-                totals[key] = int(np.prod(shape)) if shape != () else 0
+                totals[key] = math.prod(shape) if shape != () else 0
         x, y = totals.get("size_set_x"), totals.get("size_set_y")
         if x is not None and y is not None:
             return (y, x)
@@ -151,7 +152,7 @@ def shape_expression(inst: ModuleInstance, text: str, input_shapes: dict) -> tup
         if what == "rank":
             return str(len(shape))
         if what == "size":
-            return str(int(np.prod(shape)) if shape else 0)
+            return str(math.prod(shape) if shape else 0)
         from_end = {"cols": 1, "size_x": 1, "rows": 2, "size_y": 2, "size_z": 3}[what]
         return str(shape[-from_end]) if len(shape) >= from_end else "1"
 
