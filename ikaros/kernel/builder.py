@@ -3,6 +3,7 @@ schedule and the element maps a Network runs."""
 from __future__ import annotations
 
 import collections
+import gc
 import os
 import re
 
@@ -504,6 +505,17 @@ class Builder:
     # --- everything ----------------------------------------------------------------------
     def build(self):
         """Build the network; raises ModelError naming the file, line and element."""
+        # The build makes many long-lived objects; collecting garbage while it runs only
+        # costs time (the collector runs again as usual afterwards).
+        enabled = gc.isenabled()
+        gc.disable()
+        try:
+            return self._build()
+        finally:
+            if enabled:
+                gc.enable()
+
+    def _build(self):
         from .network import Network
         top = self.build_tree()
         for inst in self.instances:

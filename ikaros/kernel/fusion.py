@@ -15,6 +15,9 @@ import collections
 import numpy as np
 
 
+FUSE_LIMIT = 4096   # elements; larger arrays gain nothing from a gather and a scatter
+
+
 def _offset(block: np.ndarray, array: np.ndarray) -> int:
     return (array.__array_interface__["data"][0] - block.__array_interface__["data"][0]) \
         // block.itemsize
@@ -35,7 +38,7 @@ def fused_form(inst, inputs: dict, outputs: dict, block: np.ndarray) -> tuple | 
     if forms is None or inst.asynchronous or inst.period != 1 or len(outputs) != 1:
         return None
     out = next(iter(outputs.values())).array
-    if not _in_block(block, out):
+    if not _in_block(block, out) or out.size > FUSE_LIMIT:
         return None
     connected = {name for name, buf in inputs.items() if buf.incoming}
     for form in (forms if isinstance(forms, list) else [forms]):
