@@ -366,6 +366,28 @@ def matrix_chain(folder: str, delay: int = 1, n: int = 10, size: int = 1000) -> 
     return w.save(folder, f"matrix_chain_d{delay}.ikg")
 
 
+def image_pipelines(folder: str, threads: int, pipelines: int = 4, stages: int = 6,
+                    size: int = 1000) -> str:
+    """``pipelines`` independent image pipelines (a ``size`` x ``size`` Constant, then
+    ``stages`` Scale and Add modules joined by zero-delay connections), run with
+    ``threads`` threads. Writes pipelines_t{threads}.ikg."""
+    w = ModelWriter("Pipelines", {"threads": str(threads)},
+                    comment=f"{pipelines} image pipelines of {size}x{size}, {threads} threads")
+    for p in range(pipelines):
+        prev = w.module("Constant", f"Camera{p}", data="0.5", outputsize_x=size,
+                        outputsize_y=size)
+        for k in range(stages):
+            cls = "Scale" if k % 2 == 0 else "Add"
+            cur = w.module(cls, f"P{p}Stage{k}", **({"factor": 0.5} if cls == "Scale" else {}))
+            if cls == "Scale":
+                w.connect(prev, f"{cur}.INPUT", 0)
+            else:
+                w.connect(prev, f"{cur}.INPUT1", 0)
+                w.connect(f"Camera{p}.OUTPUT", f"{cur}.INPUT2", 0)
+            prev = cur
+    return w.save(folder, f"pipelines_t{threads}.ikg")
+
+
 CHAIN_SIZES = (10, 100, 1000, 10000)
 
 
@@ -377,6 +399,8 @@ def write_all(folder: str) -> dict[str, str]:
             paths[f"chain_{n}_d{d}"] = chain(folder, n, d)
     for d in (0, 1):
         paths[f"matrix_chain_d{d}"] = matrix_chain(folder, d)
+    for t in (1, 2):
+        paths[f"pipelines_t{t}"] = image_pipelines(folder, t)
     return paths
 
 

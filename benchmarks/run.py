@@ -4,7 +4,7 @@
     python benchmarks/run.py --quick    # short run (about 1-2 minutes)
     python benchmarks/run.py --only robot_320 --only 'chain_1000_*' --only jitter
 
-Selectable names: robot_320, chain_{10,100,1000,10000}_d{0,1}, matrix_chain_d{0,1},
+Selectable names: robot_320, chain_{10,100,1000,10000}_d{0,1}, matrix_chain_d{0,1}, pipelines_t{1,2},
 jitter, soak (shell-style patterns allowed; a name also selects what starts with NAME_).
 See benchmarks/README.md for what each figure means.
 """
