@@ -1,0 +1,149 @@
+"""Arbiter: selects between, or blends, several inputs."""
+import numpy as np
+
+from ikaros.module import Module, Output, Parameter
+
+
+class Arbiter(Module):
+    """Selects among ``no_of_inputs`` inputs INPUT_1, INPUT_2, ... of the same size, or
+    blends them. Each input gets an amplitude: the value on VALUE_k when the VALUE inputs are
+    connected (all or none of them), otherwise the norm of INPUT_k (``metric`` 1: the sum of
+    absolute values; 2: the euclidean norm). The amplitudes are then arbitrated: WTA keeps
+    only the largest (INPUT_1 wins ties); hysteresis keeps the current winner until another
+    amplitude exceeds it by more than ``hysteresis_threshold`` (or the winner's amplitude is
+    0); softmax keeps all, each raised to ``softmax_exponent`` (negative amplitudes count as
+    0); hierarchy keeps the input with the highest index whose amplitude is above 0
+    (subsumption), else INPUT_1. The arbitration state is smoothed over time, SMOOTHED <-
+    (1-a) SMOOTHED + a ARBITRATION with a = 1/switch_time when switch_time is set and
+    ``alpha`` otherwise (a = 1: no smoothing), then divided by the sum of its absolute values
+    to give NORMALIZED, the weights of the convex combination of the inputs on OUTPUT. VALUE
+    is the sum of the absolute values of SMOOTHED, which without smoothing is the winner's
+    amplitude. With ``by_row`` every row of the inputs is arbitrated on its own, as if there
+    were one arbiter per row: the state outputs get one row per input row and VALUE_k gives
+    one value per row (a single value is used for every row)."""
+
+    no_of_inputs = Parameter(2, "the number of inputs (INPUT_1, INPUT_2, ...)", type="int")
+    metric = Parameter("1", "the norm used as amplitude when the VALUE inputs are not "
+                       "connected: 1 city block, 2 euclidean", options="1/2")
+    arbitration = Parameter("WTA", "how the amplitudes are arbitrated",
+                            options="WTA/hysteresis/softmax/hierarchy")
+    by_row = Parameter(False, "arbitrate every row of the inputs on its own")
+    softmax_exponent = Parameter(2.0, "the exponent of the amplitudes for softmax")
+    hysteresis_threshold = Parameter(5.0, "how much a new amplitude must exceed the current "
+                                     "winner's to take over, for hysteresis")
+    switch_time = Parameter(0, "ticks over which a switch is smoothed (sets alpha to "
+                            "1/switch_time); 0 uses alpha", type="int")
+    alpha = Parameter(1.0, "the smoothing constant: the weight of the new arbitration state; "
+                      "1 means no smoothing")
+    debug = Parameter(False, "print the state on every tick")
+
+    AMPLITUDES = Output("the amplitude of each input (its value or its norm)")
+    ARBITRATION = Output("the amplitudes after arbitration")
+    SMOOTHED = Output("the arbitration state smoothed over time")
+    NORMALIZED = Output("the smoothed state divided by its sum: the weights of the inputs")
+    OUTPUT = Output("the weighted combination of the inputs")
+    VALUE = Output("the strength of the output: the sum of the absolute smoothed state")
+
+    def configure(self):
+        if self.no_of_inputs < 1:
+            raise ValueError(f"no_of_inputs must be at least 1, not {self.no_of_inputs}")
+        for k in range(1, self.no_of_inputs + 1):
+            self.add_input(f"INPUT_{k}", description=f"input number {k}")
+            self.add_input(f"VALUE_{k}", optional=True,
+                           description=f"the value of INPUT_{k}; without it the input's norm "
+                           f"is used")
+
+    def set_sizes(self):
+        n = self.no_of_inputs
+        shapes = [self.input_shape(f"INPUT_{k}") for k in range(1, n + 1)]
+        if any(s is None for s in shapes):
+            return
+        sizes = [int(np.prod(s)) if s else 0 for s in shapes]
+        if len(set(sizes)) != 1:
+            raise ValueError(f"the inputs must have the same size; their shapes are {shapes}")
+        shape = shapes[0]
+        rows = (int(np.prod(shape[:-1])) if len(shape) >= 2 else 1) if self.by_row else None
+        self.set_output_shape("OUTPUT", shape)
+        for name in ("AMPLITUDES", "ARBITRATION", "SMOOTHED", "NORMALIZED"):
+            self.set_output_shape(name, (rows, n) if rows is not None else (n,))
+        self.set_output_shape("VALUE", (rows,) if rows is not None else (1,))
+
+    def init(self):
+        n = self.no_of_inputs
+        self._rows = self.VALUE.size
+        rows = self._rows
+        cols = self.OUTPUT.size // rows
+        self._inputs = [getattr(self, f"INPUT_{k}").reshape(rows, cols) for k in range(1, n + 1)]
+        values = [getattr(self, f"VALUE_{k}") for k in range(1, n + 1)]
+        connected = sum(v is not None for v in values)
+        if connected not in (0, n):
+            self.fatal_error("connect all VALUE inputs or none of them")
+            return
+        self._values = [v.reshape(-1) for v in values] if connected else None
+        if self._values is not None:
+            for k, v in enumerate(self._values, 1):
+                if v.size != 1 and v.size < rows:
+                    self.fatal_error(f"VALUE_{k} has {v.size} elements; it needs 1 or {rows}")
+                    return
+        self._x = np.zeros((n, rows, cols), np.float32)
+        self._amp = self.AMPLITUDES.reshape(rows, n)
+        self._arb = self.ARBITRATION.reshape(rows, n)
+        self._smooth = self.SMOOTHED.reshape(rows, n)
+        self._norm = self.NORMALIZED.reshape(rows, n)
+        self._out = self.OUTPUT.reshape(rows, cols)
+        self._winner = np.zeros(rows, np.intp)
+        self._row_index = np.arange(rows)
+
+    def _keep_only(self, index):
+        """Arbitration state with only the amplitude at ``index`` (per row) kept."""
+        self._arb.fill(0)
+        r = self._row_index
+        self._arb[r, index] = self._amp[r, index]
+
+    def tick(self):
+        n, rows = self.no_of_inputs, self._rows
+        for k in range(n):
+            self._x[k] = self._inputs[k]
+        # amplitudes
+        if self._values is not None:
+            for k, v in enumerate(self._values):
+                self._amp[:, k] = v[:rows] if v.size >= rows else v[0]
+        elif self.metric == "2":
+            self._amp[...] = np.sqrt(np.sum(self._x * self._x, axis=2)).T
+        else:
+            self._amp[...] = np.sum(np.abs(self._x), axis=2).T
+        # arbitration
+        method = self.arbitration
+        if method == "hysteresis":
+            best = np.argmax(self._amp, axis=1)
+            r = self._row_index
+            current = self._amp[r, self._winner]
+            switch = (self._amp[r, best] > current + self.hysteresis_threshold) | (current == 0)
+            self._winner = np.where(switch, best, self._winner)
+            self._keep_only(self._winner)
+        else:
+            self._winner[...] = 0
+            if method == "softmax":
+                np.power(np.maximum(self._amp, 0), self.softmax_exponent, out=self._arb)
+            elif method == "hierarchy":
+                positive = self._amp > 0
+                last = n - 1 - np.argmax(positive[:, ::-1], axis=1)
+                self._keep_only(np.where(positive.any(axis=1), last, 0))
+            else:
+                self._keep_only(np.argmax(self._amp, axis=1))
+        # smoothing
+        a = 1.0 / self.switch_time if self.switch_time > 0 else self.alpha
+        if a != 1.0:
+            self._smooth *= np.float32(1.0 - a)
+            self._smooth += np.float32(a) * self._arb
+        else:
+            self._smooth[...] = self._arb
+        # normalization and the convex combination
+        total = np.sum(np.abs(self._smooth), axis=1, keepdims=True)
+        np.divide(self._smooth, total, out=self._norm, where=total != 0)
+        self._norm[(total == 0)[:, 0]] = 0
+        np.einsum("rk,krc->rc", self._norm, self._x, out=self._out)
+        self.VALUE[...] = total[:, 0]
+        if self.debug:
+            self.print(f"amplitudes {self.AMPLITUDES.tolist()} normalized "
+                       f"{self.NORMALIZED.tolist()} output {self.OUTPUT.tolist()}")

@@ -1,0 +1,173 @@
+"""Tests of the Arbiter module."""
+import numpy as np
+import pytest
+
+import ikaros
+from ikaros.testing import load_body as load
+
+
+def _body(inputs, values=None, attrs="", by_row=False):
+    """Constants I1.. (and V1..) connected to Arbiter A."""
+    row = ' by_row="yes"' if by_row else ""
+    lines = [f'<module class="Arbiter" name="A" no_of_inputs="{len(inputs)}" {attrs}{row}/>']
+    for k, data in enumerate(inputs, 1):
+        lines.append(f'<module class="Constant" name="I{k}" data="{data}"/>')
+        lines.append(f'<connection source="I{k}.OUTPUT" target="A.INPUT_{k}" delay="0"/>')
+    for k, data in enumerate(values or [], 1):
+        lines.append(f'<module class="Constant" name="V{k}" data="{data}"/>')
+        lines.append(f'<connection source="V{k}.OUTPUT" target="A.VALUE_{k}" delay="0"/>')
+    return "\n".join(lines)
+
+
+def _outputs(net):
+    return {n: net.output(f"A.{n}").copy() for n in
+            ("AMPLITUDES", "ARBITRATION", "SMOOTHED", "NORMALIZED", "OUTPUT", "VALUE")}
+
+
+def test_wta_on_city_block_norms(tmp_path):
+    net = load(tmp_path, _body(["1 -2", "0.5 0.5", "-3 0"]))
+    try:
+        net.step()
+        o = _outputs(net)
+        assert np.array_equal(o["AMPLITUDES"], [3, 1, 3])
+        assert np.array_equal(o["ARBITRATION"], [3, 0, 0])        # a tie: INPUT_1 wins
+        assert np.array_equal(o["NORMALIZED"], [1, 0, 0])
+        assert np.array_equal(o["OUTPUT"], [1, -2])
+        assert o["VALUE"].shape == (1,) and o["VALUE"][0] == 3
+    finally:
+        net.close()
+
+
+def test_euclidean_metric(tmp_path):
+    net = load(tmp_path, _body(["3 4", "1 6", "0 0"], attrs='metric="2"'))
+    try:
+        net.step()
+        o = _outputs(net)
+        assert np.allclose(o["AMPLITUDES"], [5, np.sqrt(37), 0])
+        assert np.array_equal(o["OUTPUT"], [1, 6])
+    finally:
+        net.close()
+
+
+def test_values_override_norms_and_softmax_blends(tmp_path):
+    net = load(tmp_path, _body(["10 0", "0 10"], values=["1", "3"],
+                               attrs='arbitration="softmax" softmax_exponent="2"'))
+    try:
+        net.step()
+        o = _outputs(net)
+        assert np.array_equal(o["AMPLITUDES"], [1, 3])
+        assert np.array_equal(o["ARBITRATION"], [1, 9])
+        assert np.allclose(o["NORMALIZED"], [0.1, 0.9])
+        assert np.allclose(o["OUTPUT"], [1, 9])
+        assert np.isclose(o["VALUE"][0], 10)
+    finally:
+        net.close()
+
+
+def test_hierarchy_picks_the_highest_active_input(tmp_path):
+    net = load(tmp_path, _body(["1", "2", "3", "4"], values=["5", "0.1", "7", "0"],
+                               attrs='arbitration="hierarchy"'))
+    try:
+        net.step()
+        o = _outputs(net)
+        assert np.allclose(o["ARBITRATION"], [0, 0, 7, 0])
+        assert np.array_equal(o["OUTPUT"], [3])
+    finally:
+        net.close()
+    (tmp_path / "b").mkdir()
+    net = load(tmp_path / "b", _body(["1", "2"], values=["0", "0"],
+                                     attrs='arbitration="hierarchy"'))
+    try:
+        net.step()
+        assert np.array_equal(net.output("A.ARBITRATION"), [0, 0])
+        assert np.array_equal(net.output("A.OUTPUT"), [0])     # nothing active: weights 0
+    finally:
+        net.close()
+
+
+def test_hysteresis_keeps_the_winner_until_clearly_beaten(tmp_path):
+    # VALUE_1 is 5; VALUE_2 ramps 0, 1, 2, ... (Sweep, delay 0: k+1 on tick k).
+    net = load(tmp_path,
+               '<module class="Arbiter" name="A" arbitration="hysteresis" '
+               'hysteresis_threshold="3"/>\n'
+               '<module class="Constant" name="I1" data="1"/>\n'
+               '<module class="Constant" name="I2" data="2"/>\n'
+               '<module class="Constant" name="V1" data="5"/>\n'
+               '<module class="Sweep" name="V2" min="0" max="100" step="1"/>\n'
+               '<connection source="I1.OUTPUT" target="A.INPUT_1" delay="0"/>\n'
+               '<connection source="I2.OUTPUT" target="A.INPUT_2" delay="0"/>\n'
+               '<connection source="V1.OUTPUT" target="A.VALUE_1" delay="0"/>\n'
+               '<connection source="V2.OUTPUT" target="A.VALUE_2" delay="0"/>')
+    try:
+        chosen = []
+        for _ in range(10):
+            net.step()
+            chosen.append(float(net.output("A.OUTPUT")[0]))
+        # V2 = 1..10; the switch needs V2 > 5 + 3, i.e. from V2 = 9 (tick 8).
+        assert chosen == [1] * 8 + [2] * 2
+    finally:
+        net.close()
+
+
+def test_smoothing_with_switch_time(tmp_path):
+    net = load(tmp_path, _body(["1 1", "0 4"], attrs='switch_time="4"'))
+    try:
+        s = np.zeros(2)
+        arbitration = np.array([0, 4.0])
+        for _ in range(6):
+            net.step()
+            s = 0.75 * s + 0.25 * arbitration
+            w = s / np.abs(s).sum()
+            assert np.allclose(net.output("A.SMOOTHED"), s)
+            assert np.allclose(net.output("A.NORMALIZED"), w)
+            assert np.allclose(net.output("A.OUTPUT"), w[0] * np.array([1, 1])
+                               + w[1] * np.array([0, 4]))
+            assert np.isclose(net.output("A.VALUE")[0], s.sum())
+    finally:
+        net.close()
+
+
+def test_alpha_smoothing(tmp_path):
+    net = load(tmp_path, _body(["2", "1"], attrs='alpha="0.5"'))
+    try:
+        for expected in (1.0, 1.5, 1.75):
+            net.step()
+            assert np.allclose(net.output("A.SMOOTHED"), [expected, 0])
+            assert np.allclose(net.output("A.OUTPUT"), [2])
+    finally:
+        net.close()
+
+
+def test_by_row(tmp_path):
+    net = load(tmp_path, _body(["1 1; 0 0; 5 5", "0 3; 1 0; 5 5"], by_row=True))
+    try:
+        net.step()
+        o = _outputs(net)
+        assert o["AMPLITUDES"].shape == (3, 2) and o["VALUE"].shape == (3,)
+        assert np.array_equal(o["AMPLITUDES"], [[2, 3], [0, 1], [10, 10]])
+        assert np.array_equal(o["NORMALIZED"], [[0, 1], [0, 1], [1, 0]])
+        assert np.array_equal(o["OUTPUT"], [[0, 3], [1, 0], [5, 5]])
+        assert np.array_equal(o["VALUE"], [3, 1, 10])
+    finally:
+        net.close()
+
+
+def test_by_row_with_one_value_per_row(tmp_path):
+    net = load(tmp_path, _body(["1 1; 2 2", "3 3; 4 4"], values=["1 0", "0 1"], by_row=True))
+    try:
+        net.step()
+        assert np.array_equal(net.output("A.OUTPUT"), [[1, 1], [4, 4]])
+    finally:
+        net.close()
+
+
+def test_some_values_connected_is_an_error(tmp_path):
+    body = _body(["1", "2"]) + ('\n<module class="Constant" name="V" data="1"/>'
+                                '\n<connection source="V.OUTPUT" target="A.VALUE_1" delay="0"/>')
+    with pytest.raises(ikaros.ModelError, match="all VALUE inputs"):
+        load(tmp_path, body)
+
+
+def test_different_sizes_are_an_error(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="same size"):
+        load(tmp_path, _body(["1 2", "1 2 3"]))
