@@ -32,6 +32,9 @@ class Controller:
         self._thread: threading.Thread | None = None
         self._base: tuple[float, int] | None = None
         self._last_warning = 0.0
+        # Called in the run thread after every tick (the web UI copies what its clients
+        # subscribed to here); each must be quick and must not raise.
+        self.tick_hooks: list = []
         text = net.top.attrs.get("real_time_resync_lag")
         self.resync_lag = float(text) if text not in (None, "") else DEFAULT_RESYNC_LAG
 
@@ -138,6 +141,8 @@ class Controller:
                     self._resync(now, lag)
             timing.tick_started(now, lag)
             net._tick()
+            for hook in self.tick_hooks:
+                hook()
             if state == STEP:
                 self.state = PAUSE
         self._drain()
