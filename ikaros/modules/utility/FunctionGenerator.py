@@ -1,0 +1,60 @@
+"""FunctionGenerator: a periodic function of time."""
+import math
+
+from ikaros.module import Module, Output, Parameter
+
+
+class FunctionGenerator(Module):
+    """Outputs a function of the tick t (0 on the first tick): offset + amplitude * f(p) with
+    p = frequency * (t + shift), where f is ``sin`` (sin p), ``triangle`` (rises from 0 to 1
+    and falls back to 0 over each period of 2 pi), ``ramp`` (rises from 0 towards 1 over each
+    period, then drops to 0), ``square`` (1 for the first ``duty`` fraction of each period,
+    otherwise 0) or ``ticksquare`` (1 on the first ``tickduty`` ticks of every ``basetime``
+    ticks, otherwise 0; it ignores frequency and shift). The phase within a period is taken
+    with floor, so a negative t + shift continues the same periodic wave (Ikaros 2 truncated
+    towards zero, which mirrored it). Every element of the output has the value (Ikaros 2
+    wrote only the first); the output is 0 in init. A ``basetime`` below 1 gives f = 0 and a
+    warning. An inverted ramp comes from offset = 1 and amplitude = -1."""
+
+    size = Parameter(1, "number of elements of the output (all get the same value)",
+                     type="int")
+    type = Parameter("sin", "the function", options="sin/triangle/ramp/square/ticksquare")
+    offset = Parameter(0.0, "a constant added to the output")
+    amplitude = Parameter(1.0, "the factor f is multiplied by")
+    frequency = Parameter(0.15707963267949, "radians per tick; the period is 2 pi / frequency "
+                          "ticks (the default gives 40 ticks)")
+    shift = Parameter(0.0, "a shift of the time, in ticks, added before multiplying by the "
+                      "frequency")
+    duty = Parameter(0.5, "the fraction of each period the square wave is 1")
+    basetime = Parameter(2, "the period of ticksquare, in ticks", type="int")
+    tickduty = Parameter(1, "the number of ticks of each period ticksquare is 1", type="int")
+    OUTPUT = Output("the value of the function, in every element", size_param="size")
+
+    def init(self):
+        self._warned = False
+        self.OUTPUT.fill(0)
+
+    def _value(self, t):
+        kind = self.type
+        if kind == "ticksquare":
+            if self.basetime < 1:
+                if not self._warned:
+                    self._warned = True
+                    self.warning(f"basetime must be at least 1, not {self.basetime}; "
+                                 "ticksquare is 0")
+                return 0.0
+            return 1.0 if t % self.basetime < self.tickduty else 0.0
+        p = self.frequency * (t + self.shift)
+        if kind == "sin":
+            return math.sin(p)
+        phase = p / (2 * math.pi)
+        phase -= math.floor(phase)          # 0 <= phase < 1
+        if kind == "triangle":
+            v = 2 * phase
+            return v if v < 1 else 2 - v
+        if kind == "ramp":
+            return phase
+        return 1.0 if phase < self.duty else 0.0      # square
+
+    def tick(self):
+        self.OUTPUT.fill(self.offset + self.amplitude * self._value(self.clock.tick))

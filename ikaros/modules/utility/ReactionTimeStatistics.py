@@ -1,0 +1,93 @@
+"""ReactionTimeStatistics: reaction-time histograms and choice statistics."""
+import numpy as np
+
+from ikaros.module import Input, Module, Output, Parameter
+
+
+class ReactionTimeStatistics(Module):
+    """Collects reaction-time statistics for several response channels. A trial starts on a
+    tick when any element of START is above 0: the reaction-time counter is set to 0, and it
+    grows by 1 at the end of every tick, so it counts ticks. On a tick when any element of
+    STOP is above 0, a response is recorded for the channel with the largest STOP value (the
+    first one on ties), with the current count as its reaction time (REACTIONTIME): it is
+    added to bin floor(rt * bins / max_rt) of that channel's column of RT-HISTOGRAM, or to
+    RT-OUTLIER when it falls outside the bins; CHOICE-COUNT, CHOICE-PROBABILITY (the counts
+    divided by their total) and RT-MEAN (the mean reaction time per channel, 0 before its
+    first response) are updated. STOP is checked before START, so the same signal can go to
+    both to time the intervals between events; the counter keeps running after a response,
+    so several responses per trial are possible. STARTBALANCE is the number of starts minus
+    the number of responses. Reaction times and ``max_rt`` are in ticks. Responses before
+    the first start are ignored (Ikaros 2 timed them from an undefined origin), and outliers
+    go to RT-OUTLIER (Ikaros 2 added them to CHOICE-COUNT). The command ``reset`` clears the
+    statistics."""
+
+    bins = Parameter(40, "number of bins of the reaction-time histogram", type="int")
+    max_rt = Parameter(1.0, "the reaction time, in ticks, at the upper end of the last bin")
+    START = Input("a trial starts when any element is above 0")
+    STOP = Input("one element per response channel; a response is recorded for the channel "
+                 "that is above 0 (the largest one)")
+    RT_HISTOGRAM = Output("reaction-time histogram: one row per bin, one column per channel",
+                          name="RT-HISTOGRAM", shape="@bins, STOP.size")
+    RT_OUTLIER = Output("per channel, the number of reaction times outside the histogram",
+                        name="RT-OUTLIER", size_set="STOP")
+    RT_MEAN = Output("per channel, the mean reaction time in ticks", name="RT-MEAN",
+                     size_set="STOP")
+    CHOICE_COUNT = Output("per channel, the number of responses", name="CHOICE-COUNT",
+                          size_set="STOP")
+    CHOICE_PROBABILITY = Output("per channel, the fraction of all responses",
+                                name="CHOICE-PROBABILITY", size_set="STOP")
+    STARTBALANCE = Output("starts minus responses", size="1")
+    REACTIONTIME = Output("the reaction time of the latest response, in ticks", size="1")
+
+    def init(self):
+        self._stop = self.STOP.reshape(-1)
+        self._outlier = self.RT_OUTLIER.reshape(-1)
+        self._mean = self.RT_MEAN.reshape(-1)
+        self._count = self.CHOICE_COUNT.reshape(-1)
+        self._prob = self.CHOICE_PROBABILITY.reshape(-1)
+        self._sum = np.zeros(self._stop.size, dtype=np.float64)
+        self._rt = 0
+        self._started = False
+        self._balance = 0
+        self._warned = False
+        self._clear()
+
+    def _clear(self):
+        for out in (self.RT_HISTOGRAM, self.RT_OUTLIER, self.RT_MEAN, self.CHOICE_COUNT,
+                    self.CHOICE_PROBABILITY):
+            out.fill(0)
+        self._sum[:] = 0
+
+    def tick(self):
+        if self._started and self._stop.size and self._stop.max() > 0:
+            c = int(np.argmax(self._stop))
+            rt = self._rt
+            self.REACTIONTIME[0] = rt
+            bins = self.RT_HISTOGRAM.shape[0]
+            if self.max_rt > 0:
+                b = int(np.floor(rt * bins / self.max_rt))
+            else:
+                b = -1
+                if not self._warned:
+                    self._warned = True
+                    self.warning("max_rt must be above 0; every reaction time is an outlier")
+            if 0 <= b < bins:
+                self.RT_HISTOGRAM[b, c] += 1
+            else:
+                self._outlier[c] += 1
+            self._count[c] += 1
+            self._sum[c] += rt
+            np.divide(self._count, self._count.sum(), out=self._prob)
+            np.divide(self._sum, np.maximum(self._count, 1), out=self._mean,
+                      casting="unsafe")
+            self._balance -= 1
+        if self.START.size and self.START.max() > 0:
+            self._rt = 0
+            self._started = True
+            self._balance += 1
+        self.STARTBALANCE[0] = self._balance
+        self._rt += 1
+
+    def command(self, name, x=0, y=0, value=None):
+        if name == "reset":
+            self._clear()
