@@ -112,12 +112,12 @@ class BulkCopy:
 
     def __init__(self, block: np.ndarray):
         self.block = block
+        self._base = block.__array_interface__["data"][0]
         self._src: list[np.ndarray] = []
         self._dst: list[np.ndarray] = []
 
     def offset(self, array: np.ndarray) -> int:
-        return (array.__array_interface__["data"][0] -
-                self.block.__array_interface__["data"][0]) // self.block.itemsize
+        return (array.__array_interface__["data"][0] - self._base) // self.block.itemsize
 
     def accepts(self, dst: np.ndarray, src: np.ndarray, count: int) -> bool:
         """Whether a copy between these arrays can join (both in the arena, and small)."""
