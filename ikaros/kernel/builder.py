@@ -29,12 +29,19 @@ MODULE_ATTRIBUTES = {"class", "name", "path", "period", "phase", "active", "asyn
 
 
 class Builder:
-    """Builds one model file. ``notify`` receives build-time warnings."""
+    """Builds one model: a file, the text of one (``text``), or a model tree already read
+    (``model``, as the editor holds it). ``notify`` receives build-time warnings."""
 
     def __init__(self, filename: str, overrides: dict | None = None, text: str | None = None,
-                 notify=None, registry: ClassRegistry | None = None):
+                 notify=None, registry: ClassRegistry | None = None,
+                 model: Node | None = None):
         self.filename = os.path.abspath(filename)
-        self.model = read_file(self.filename, text, root_tag="group")
+        if model is not None:
+            if model.tag != "group":
+                raise model.error(f"the root element is <{model.tag}> but must be <group>")
+            self.model = model
+        else:
+            self.model = read_file(self.filename, text, root_tag="group")
         self.overrides = {k: value_text(v) for k, v in (overrides or {}).items()}
         self.registry = registry or ClassRegistry([os.path.dirname(self.filename)])
         self.notify = notify or _print_warning
