@@ -1,0 +1,107 @@
+"""KalmanFilter: a linear Kalman filter."""
+import numpy as np
+
+from ikaros.module import Input, Module, Output, Parameter
+
+
+class KalmanFilter(Module):
+    """A standard linear Kalman filter for the process x(t+1) = A·x(t) + B·u(t) observed
+    as z = H·x. Every tick it predicts x' = A·x + B·u (u is INPUT; no term when INPUT is
+    not connected) and P' = A·P·Aᵀ + Q, then corrects with the OBSERVATION z: INNOVATION
+    y = z − H·x', S = H·P'·Hᵀ + R, KALMAN_GAIN K = P'·Hᵀ·S⁻¹, STATE x = x' + K·y and
+    P = (I − K·H)·P'. Q is ``process_noise`` times the identity and R is
+    ``observation_noise`` times the identity; the state starts at 0 with P = I. A is
+    ``state_size`` × ``state_size``, B is ``state_size`` × (elements of INPUT) and H is
+    ``observation_size`` × ``state_size``; a matrix given as one row of the right number of
+    elements is read row by row. An empty A or H is the identity (H: ones on its diagonal)
+    and an empty B is zero, where the Ikaros 2 class used all-zero matrices, which keep the
+    state at 0. OBSERVATION must have ``observation_size`` elements (the Ikaros 2 class read
+    past it otherwise). If S cannot be inverted the correction is skipped for that tick and
+    a warning is given once."""
+
+    A = Parameter(None, "the state transition matrix, state_size × state_size; empty: the "
+                  "identity", type="matrix")
+    B = Parameter(None, "the control input matrix, state_size × (elements of INPUT); empty: "
+                  "zero", type="matrix")
+    H = Parameter(None, "the observation matrix, observation_size × state_size; empty: ones "
+                  "on the diagonal", type="matrix")
+    state_size = Parameter(1, "number of elements of the state", type="int")
+    observation_size = Parameter(1, "number of elements of the observation", type="int")
+    process_noise = Parameter(1.0, "the variance of the process noise (Q = process_noise·I)")
+    observation_noise = Parameter(1.0, "the variance of the observation noise "
+                                  "(R = observation_noise·I)")
+
+    INPUT = Input("the control input u", optional=True)
+    OBSERVATION = Input("the observation z, of observation_size elements")
+
+    STATE = Output("the state estimate x", size_param="state_size")
+    INNOVATION = Output("the observation minus the predicted observation, z − H·x'",
+                        size_set="OBSERVATION")
+    KALMAN_GAIN = Output("the Kalman gain K, state_size × observation_size",
+                         size_param_x="observation_size", size_param_y="state_size")
+
+    def init(self):
+        n, m = self.state_size, self.observation_size
+        if n < 1 or m < 1:
+            raise ValueError("state_size and observation_size must be at least 1")
+        if self.OBSERVATION.size != m:
+            raise ValueError(f"OBSERVATION has {self.OBSERVATION.size} elements but "
+                             f"observation_size is {m}")
+        self._u = 0 if self.INPUT is None else self.INPUT.size
+        self._matrices()            # checks the shapes now, so a bad model fails at load
+        if self.INPUT is not None and self.B.size == 0:
+            self.warning("INPUT is connected but B is empty, so the input has no effect")
+        self._x = np.zeros(n)
+        self._P = np.eye(n)
+        self._warned = False
+        self.STATE.fill(0)
+        self.INNOVATION.fill(0)
+        self.KALMAN_GAIN.fill(0)
+
+    def _matrix(self, name, rows, cols, empty):
+        value = np.asarray(getattr(self, name), dtype=np.float64)
+        if value.size == 0:
+            return empty
+        if value.shape == (rows, cols):
+            return value
+        if value.size == rows * cols and (value.ndim == 1 or value.shape[0] == 1):
+            return value.reshape(rows, cols)
+        raise ValueError(f"{name} has shape {value.shape}; it must be {rows} × {cols}")
+
+    def _matrices(self):
+        n, m, u = self.state_size, self.observation_size, self._u
+        return (self._matrix("A", n, n, np.eye(n)),
+                self._matrix("B", n, u, np.zeros((n, u))) if u else None,
+                self._matrix("H", m, n, np.eye(m, n)))
+
+    def tick(self):
+        n, m = self.state_size, self.observation_size
+        A, B, H = self._matrices()
+        Q = self.process_noise * np.eye(n)
+        R = self.observation_noise * np.eye(m)
+
+        x = A @ self._x
+        if B is not None:
+            x += B @ self.INPUT.reshape(-1).astype(np.float64)
+        P = A @ self._P @ A.T + Q
+        y = self.OBSERVATION.reshape(-1).astype(np.float64) - H @ x
+        S = H @ P @ H.T + R
+        try:
+            # K = P Hᵀ S⁻¹, computed as the solution of Sᵀ Kᵀ = H Pᵀ
+            K = np.linalg.solve(S.T, H @ P.T).T
+            if not np.all(np.isfinite(K)):
+                raise np.linalg.LinAlgError("non-finite gain")
+        except np.linalg.LinAlgError:
+            if not self._warned:
+                self.warning("the innovation covariance S is singular; the observation is "
+                             "not used on such ticks")
+                self._warned = True
+            K = np.zeros((n, m))
+        else:
+            x = x + K @ y
+            P = (np.eye(n) - K @ H) @ P
+            P = 0.5 * (P + P.T)
+        self._x, self._P = x, P
+        self.STATE[...] = x.reshape(self.STATE.shape)
+        self.INNOVATION[...] = y.reshape(self.INNOVATION.shape)
+        self.KALMAN_GAIN[...] = K.reshape(self.KALMAN_GAIN.shape)

@@ -1,0 +1,134 @@
+"""Tests of the KalmanFilter module."""
+import numpy as np
+import pytest
+
+from ikaros.errors import ModelError
+from ikaros.module import WARNING
+from ikaros.testing import load_body as load
+
+
+def reference(A, B, H, q, r, us, zs):
+    """The textbook filter in float64: (state, innovation, gain) after each observation."""
+    n, m = A.shape[0], H.shape[0]
+    x, P = np.zeros(n), np.eye(n)
+    out = []
+    for u, z in zip(us, zs):
+        x = A @ x + (B @ u if B is not None else 0)
+        P = A @ P @ A.T + q * np.eye(n)
+        y = z - H @ x
+        S = H @ P @ H.T + r * np.eye(m)
+        K = P @ H.T @ np.linalg.inv(S)
+        x = x + K @ y
+        P = (np.eye(n) - K @ H) @ P
+        out.append((x, y, K))
+    return out
+
+
+def data_file(tmp_path, columns, rows):
+    header = " ".join(f"{name}/{n}" for name, n in columns)
+    body = "\n".join(" ".join(str(v) for v in row) for row in rows)
+    (tmp_path / "d.txt").write_text(header + "\n" + body + "\n")
+
+
+def test_scalar_defaults_hand_worked(tmp_path):
+    data_file(tmp_path, [("Z", 1)], [[3], [3]])
+    net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                         '<module class="KalmanFilter" name="K"/>\n'
+                         '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
+    try:
+        assert net.output("K.STATE").shape == (1,)
+        assert net.output("K.KALMAN_GAIN").shape == (1, 1)
+        net.step()
+        # A = H = 1, Q = R = 1, P = 1: P' = 2, S = 3, K = 2/3, x = 2/3 * 3 = 2, P = 2/3
+        assert np.allclose(net.output("K.KALMAN_GAIN"), [[2 / 3]])
+        assert np.allclose(net.output("K.STATE"), [2])
+        assert np.allclose(net.output("K.INNOVATION"), [3])
+        net.step()
+        # P' = 5/3, S = 8/3, K = 5/8, y = 3 - 2 = 1, x = 2 + 5/8
+        assert np.allclose(net.output("K.KALMAN_GAIN"), [[5 / 8]])
+        assert np.allclose(net.output("K.INNOVATION"), [1])
+        assert np.allclose(net.output("K.STATE"), [2.625])
+    finally:
+        net.close()
+
+
+def test_constant_velocity_with_control_input(tmp_path):
+    rng = np.random.default_rng(3)
+    us = rng.normal(size=(10, 1)).round(3)
+    zs = (np.arange(10) * 0.5 + rng.normal(scale=0.2, size=10)).round(3).reshape(10, 1)
+    data_file(tmp_path, [("U", 1), ("Z", 1)], np.hstack([us, zs]))
+    net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                         '<module class="KalmanFilter" name="K" state_size="2" '
+                         'A="1 1; 0 1" B="0.5; 1" H="1 0" process_noise="0.01" '
+                         'observation_noise="0.04"/>\n'
+                         '<connection source="D.U" target="K.INPUT" delay="0"/>\n'
+                         '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
+    A = np.array([[1.0, 1], [0, 1]])
+    B = np.array([[0.5], [1.0]])
+    H = np.array([[1.0, 0]])
+    try:
+        assert net.output("K.KALMAN_GAIN").shape == (2, 1)
+        for x, y, K in reference(A, B, H, 0.01, 0.04, us, zs):
+            net.step()
+            assert np.allclose(net.output("K.STATE"), x, atol=1e-4)
+            assert np.allclose(net.output("K.INNOVATION"), y, atol=1e-4)
+            assert np.allclose(net.output("K.KALMAN_GAIN"), K, atol=1e-5)
+    finally:
+        net.close()
+
+
+def test_two_observations_flat_matrices_and_no_input(tmp_path):
+    zs = np.array([[1, 2], [1.5, 1], [0.5, -1], [2, 2]])
+    data_file(tmp_path, [("Z", 2)], zs)
+    net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                         '<module class="KalmanFilter" name="K" state_size="3" '
+                         'observation_size="2" A="0.9 0 0 0 1 0 0.1 0 0.5" '
+                         'H="1 0 0 0 1 1" process_noise="0.5" observation_noise="2"/>\n'
+                         '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
+    A = np.array([[0.9, 0, 0], [0, 1, 0], [0.1, 0, 0.5]])
+    H = np.array([[1.0, 0, 0], [0, 1, 1]])
+    try:
+        assert net.output("K.KALMAN_GAIN").shape == (3, 2)
+        for x, y, K in reference(A, None, H, 0.5, 2, [None] * 4, zs):
+            net.step()
+            assert np.allclose(net.output("K.STATE"), x, atol=1e-5)
+            assert np.allclose(net.output("K.INNOVATION"), y, atol=1e-5)
+            assert np.allclose(net.output("K.KALMAN_GAIN"), K, atol=1e-5)
+    finally:
+        net.close()
+
+
+def test_singular_innovation_covariance_keeps_the_prediction(tmp_path):
+    data_file(tmp_path, [("Z", 1)], [[1], [2], [3]])
+    net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                         '<module class="Constant" name="U" data="1"/>\n'
+                         '<module class="KalmanFilter" name="K" H="0" B="1" '
+                         'observation_noise="0"/>\n'
+                         '<connection source="U.OUTPUT" target="K.INPUT" delay="0"/>\n'
+                         '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
+    try:
+        for tick in range(3):
+            net.step()
+            assert np.all(np.isfinite(net.output("K.STATE")))
+            assert net.output("K.STATE")[0] == tick + 1          # x' = x + u, no correction
+            assert net.output("K.KALMAN_GAIN")[0, 0] == 0
+        warnings = [e for e in net.log if e[1] == WARNING and "singular" in e[3]]
+        assert len(warnings) == 1
+    finally:
+        net.close()
+
+
+def test_observation_size_must_match(tmp_path):
+    data_file(tmp_path, [("Z", 2)], [[1, 2]])
+    with pytest.raises(ModelError, match="observation_size is 1"):
+        load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                       '<module class="KalmanFilter" name="K"/>\n'
+                       '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
+
+
+def test_bad_matrix_shape_is_a_build_error(tmp_path):
+    data_file(tmp_path, [("Z", 1)], [[1]])
+    with pytest.raises(ModelError, match="A has shape"):
+        load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                       '<module class="KalmanFilter" name="K" state_size="2" A="1 2 3"/>\n'
+                       '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')

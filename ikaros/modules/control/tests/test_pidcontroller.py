@@ -1,0 +1,138 @@
+"""Tests of the PIDController module."""
+import numpy as np
+import pytest
+
+from ikaros.errors import ModelError
+from ikaros.testing import load_body as load
+
+
+def reference(inputs, setpoints, Kb=0.0, Kp=0.1, Ki=0.0, Kd=0.0, Fs=0.0, Fm=0.0, Fp=0.0,
+              Fi=0.0, Fd=0.0, Fc=0.0, Cmin=-1000.0, Cmax=1000.0):
+    """The documented PID computation, one tick at a time, in float64."""
+    n = max(np.size(inputs[0]), np.size(setpoints[0]))
+    fs = fm = ep = ei = ed = integral = out = np.zeros(n)
+    last_d = None
+    rows = []
+    for x, s in zip(inputs, setpoints):
+        fs = Fs * fs + (1 - Fs) * np.asarray(s, float)
+        fm = Fm * fm + (1 - Fm) * np.asarray(x, float)
+        delta = fs - fm
+        ep = Fp * ep + (1 - Fp) * delta
+        ei = Fi * ei + (1 - Fi) * delta
+        ed = Fd * ed + (1 - Fd) * delta
+        if last_d is None:
+            last_d = ed
+        integral = integral + ei
+        c = Kb + Kp * ep + Ki * integral + Kd * (ed - last_d)
+        last_d = ed
+        clipped = (c > Cmax) | (c < Cmin)
+        integral = np.where(clipped, integral - ei, integral)
+        c = np.clip(c, Cmin, Cmax)
+        out = Fc * out + (1 - Fc) * c
+        rows.append(dict(OUTPUT=out, DELTA=delta, FILTERED_SETPOINT=fs, FILTERED_INPUT=fm,
+                         FILTERED_ERROR_P=ep, FILTERED_ERROR_I=ei, FILTERED_ERROR_D=ed,
+                         INTEGRAL=integral))
+    return rows
+
+
+def body(params, setpoint="1 -2", data="0 0; 0.5 -1; 1 -1.5; 2 0; 1.5 -3; 0 0; 1 1; -1 2"):
+    return (f'<module class="Constant" name="S" data="{setpoint}"/>\n'
+            f'<module class="InputFile" name="X" filename="x.txt"/>\n'
+            f'<module class="PIDController" name="P" {params}/>\n'
+            '<connection source="S.OUTPUT" target="P.SETPOINT" delay="0"/>\n'
+            '<connection source="X.X" target="P.INPUT" delay="0"/>\n')
+
+
+def write_inputs(tmp_path, rows):
+    cols = len(rows[0])
+    text = f"X/{cols}\n" + "\n".join(" ".join(str(v) for v in r) for r in rows) + "\n"
+    (tmp_path / "x.txt").write_text(text)
+
+
+ROWS = [[0, 0], [0.5, -1], [1, -1.5], [2, 0], [1.5, -3], [0, 0], [1, 1], [-1, 2]]
+
+
+def run_and_compare(tmp_path, params, setpoint=(1, -2), rows=ROWS):
+    write_inputs(tmp_path, rows)
+    attrs = " ".join(f'{k}="{v}"' for k, v in params.items())
+    net = load(tmp_path, body(attrs, " ".join(map(str, setpoint))))
+    try:
+        expected = reference(rows, [setpoint] * len(rows), **params)
+        for tick, want in enumerate(expected):
+            net.step()
+            for name, value in want.items():
+                assert np.allclose(net.output(f"P.{name}"), value, atol=1e-5), (tick, name)
+    finally:
+        net.close()
+
+
+def test_default_is_proportional_with_gain_0_1(tmp_path):
+    write_inputs(tmp_path, ROWS)
+    net = load(tmp_path, body(""))
+    try:
+        assert net.output("P.OUTPUT").shape == (2,)
+        net.step()
+        assert np.allclose(net.output("P.OUTPUT"), [0.1, -0.2])       # 0.1 * (s - x)
+        net.step()
+        assert np.allclose(net.output("P.OUTPUT"), [0.05, -0.1])
+        assert np.allclose(net.output("P.DELTA"), [0.5, -1])
+    finally:
+        net.close()
+
+
+def test_full_pid_against_reference(tmp_path):
+    run_and_compare(tmp_path, dict(Kb=0.2, Kp=0.5, Ki=0.1, Kd=0.3))
+
+
+def test_filters_against_reference(tmp_path):
+    run_and_compare(tmp_path, dict(Kp=0.7, Ki=0.2, Kd=0.4, Fs=0.5, Fm=0.25, Fp=0.1,
+                                   Fi=0.3, Fd=0.6, Fc=0.2))
+
+
+def test_clipping_stops_integration(tmp_path):
+    # error [1, -2] for four ticks: the integral saturates the output and stops growing;
+    # then the error flips to [-1, 1] and the output leaves saturation at once
+    rows = [[0, 0]] * 4 + [[2, -3]] * 2
+    run_and_compare(tmp_path, dict(Kp=0.0, Ki=1.0, Cmin=-3, Cmax=2.5), rows=rows)
+    net = load(tmp_path, body('Kp="0" Ki="1" Cmin="-3" Cmax="2.5"'))
+    try:
+        got = []
+        for _ in range(6):
+            net.step()
+            got.append((net.output("P.OUTPUT").tolist(), net.output("P.INTEGRAL").tolist()))
+        assert got == [([1, -2], [1, -2]), ([2, -3], [2, -2]), ([2.5, -3], [2, -2]),
+                       ([2.5, -3], [2, -2]), ([1, -1], [1, -1]), ([0, 0], [0, 0])]
+    finally:
+        net.close()
+
+
+def test_derivative_is_zero_on_the_first_tick(tmp_path):
+    rows = [[0, 0], [0.5, 0], [0.5, 0]]
+    write_inputs(tmp_path, rows)
+    net = load(tmp_path, body('Kp="0" Kd="2"'))
+    try:
+        net.step()
+        assert np.allclose(net.output("P.OUTPUT"), [0, 0])
+        net.step()                    # error falls from 1 to 0.5: derivative -0.5, times 2
+        assert np.allclose(net.output("P.OUTPUT"), [-1, 0])
+        net.step()
+        assert np.allclose(net.output("P.OUTPUT"), [0, 0])
+    finally:
+        net.close()
+
+
+def test_one_setpoint_serves_every_element(tmp_path):
+    write_inputs(tmp_path, ROWS)
+    net = load(tmp_path, body('Kp="1"', setpoint="0.5"))
+    try:
+        for row in ROWS:
+            net.step()
+            assert np.allclose(net.output("P.OUTPUT"), 0.5 - np.array(row))
+    finally:
+        net.close()
+
+
+def test_mismatched_sizes_are_a_build_error(tmp_path):
+    write_inputs(tmp_path, ROWS)
+    with pytest.raises(ModelError, match="INPUT has 2 elements and SETPOINT 3"):
+        load(tmp_path, body("", setpoint="1 2 3"))

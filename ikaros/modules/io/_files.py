@@ -1,0 +1,35 @@
+"""Helpers shared by the file modules: paths, numbered file names, build errors."""
+import os
+import re
+
+from ikaros.errors import ModelError
+
+_COUNTER = re.compile(r"%(0?\d*)d")
+
+
+def model_folder(module) -> str:
+    """The folder of the model file that holds the module (the working folder if none)."""
+    model_file = getattr(module.element, "file", None)
+    return os.path.dirname(os.path.abspath(model_file)) if model_file else os.getcwd()
+
+
+def resolve(module, filename: str) -> str:
+    """A file name relative to the model file's folder, as an absolute path."""
+    return filename if os.path.isabs(filename) else os.path.join(model_folder(module), filename)
+
+
+def numbered(pattern: str, number: int) -> str:
+    """The file name with ``%d`` (or ``%03d`` and so on) replaced by ``number``."""
+    return _COUNTER.sub(lambda m: ("%" + m.group(1) + "d") % number, pattern)
+
+
+def has_counter(pattern: str) -> bool:
+    return _COUNTER.search(pattern) is not None
+
+
+def build_error(module, message: str) -> ModelError:
+    """A ModelError located at the module's element."""
+    element = module.element
+    if element is not None and hasattr(element, "error"):
+        return element.error(message)
+    return ModelError(message)
