@@ -119,7 +119,6 @@ MAZE = np.array([[1, 1, 1, 1, 1, 1, 1, 1, 1, 1],
 
 
 def test_finds_the_shortest_path_in_gridworld(tmp_path):
-    pytest.importorskip("ikaros.modules.environment.GridWorld")
     walls = "; ".join(" ".join(str(int(v == 1)) for v in row) for row in MAZE)
     goals = "; ".join(" ".join(str(int(v == 2)) for v in row) for row in MAZE)
     net = load_body(tmp_path,

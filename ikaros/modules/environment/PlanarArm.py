@@ -1,0 +1,150 @@
+"""PlanarArm: a three-joint arm in the unit square, and a target for it to reach."""
+import math
+
+import numpy as np
+
+from ikaros.module import Input, Module, Output, Parameter
+
+_LIMITS_LOW = np.array([-math.pi / 1.5, 0.0, 0.0])
+_LIMITS_HIGH = np.array([math.pi / 1.5, math.pi, math.pi])
+_RANDOM_INTERVAL = 100          # ticks between new random targets
+
+
+def arm_joints(angles, segment_length, base=(0.5, 0.0)):
+    """Forward kinematics: the (4, 2) joint positions of the arm for three joint angles.
+
+    Angles are measured from the y axis (straight up), clockwise, each relative to the
+    previous segment: joint k+1 = joint k + L_k (sin(a_0+...+a_k), cos(a_0+...+a_k))."""
+    cumulative = np.cumsum(angles)
+    steps = np.stack([np.sin(cumulative), np.cos(cumulative)], axis=1) * \
+        np.asarray(segment_length, np.float64)[:, None]
+    return np.vstack([base, np.asarray(base) + np.cumsum(steps, axis=0)])
+
+
+def _outside(hand):
+    """How far the hand is outside the frame 0.01..0.99 (0 inside)."""
+    return float(np.sum(np.maximum(0.01 - hand, 0) + np.maximum(hand - 0.99, 0)))
+
+
+class PlanarArm(Module):
+    """A planar arm of three segments (lengths ``segment_length``, Ikaros 2: 0.35, 0.25,
+    0.20) standing at (0.5, 0) in the unit square, and a target. Joint angles are measured
+    clockwise from straight up, each relative to the previous segment, so joint k+1 =
+    joint k + L_k·(sin(a_0+...+a_k), cos(a_0+...+a_k)). The angles start at 0.4 and move
+    towards DESIRED_ANGLES (unconnected: the arm stays) at most ``speed`` radians per tick
+    (all joints scaled together so the largest change is ``speed``), within the limits
+    |a_0| <= 2π/3 and 0 <= a_1, a_2 <= π; a move that would take the hand outside
+    0.01..0.99 in x or y is refused (unless it brings an outside hand closer to the frame:
+    the start pose has the hand at x = 1.002, where Ikaros 2 could leave the arm stuck).
+    The TARGET is redrawn uniformly in 0.1..0.9 at the start, every 100 ticks and whenever the hand comes within ``grasp_limit`` of it
+    (``random``), or follows a path of radius ``target_range`` around (0.5, 0.5): ``linear``
+    (x = 0.5 + range·sin(speed·t)), ``circular``, ``lisajous`` (y at 0.3 times the
+    frequency) or ``square``; a grasp moves the time t of a path to a random point of its
+    first 100 ticks. ``target_noise`` adds Gaussian noise to the TARGET output on every
+    tick. DISTANCE is from the hand to the target of the same tick and CONTACT is 1 when it
+    is below ``target_size``. (Ikaros 2 reported the distance to the previous tick's
+    target, and with a random target let the noise accumulate as a random walk; here the
+    noise does not accumulate.)"""
+
+    target_behavior = Parameter("random", "how the target moves",
+                                options="random/linear/circular/lisajous/square")
+    target_speed = Parameter(0.05, "angular speed of a moving target, radians per tick")
+    target_size = Parameter(0.05, "CONTACT is 1 when the hand is closer than this")
+    target_range = Parameter(0.3, "radius of the target's path around (0.5, 0.5)")
+    target_noise = Parameter(0.0, "standard deviation of Gaussian noise added to TARGET")
+    speed = Parameter(0.1, "largest change of a joint angle per tick, radians")
+    grasp_limit = Parameter(0.0, "a hand closer than this to the target grasps it: a new "
+                            "random target, or a jump along the path (0: never)")
+    segment_length = Parameter("0.35 0.25 0.20", "lengths of the three segments",
+                               type="array")
+    seed = Parameter(None, "seed of the random generator; unset (or 0) gives a different "
+                     "run every time", type="int")
+
+    DESIRED_ANGLES = Input("the three joint angles the arm moves towards", optional=True)
+
+    TARGET = Output("the target position (x, y)", size="2")
+    JOINTS = Output("positions (x, y) of the base, the two inner joints and the hand, "
+                    "one row each", size_x="2", size_y="4")
+    ANGLES = Output("the three joint angles", size="3")
+    HAND_POSITION = Output("the hand position (x, y)", size="2")
+    DISTANCE = Output("distance from the hand to the target", size="1")
+    CONTACT = Output("1 when the hand touches the target (DISTANCE < target_size)",
+                     size="1")
+
+    def init(self):
+        if self.segment_length.size != 3:
+            raise ValueError("segment_length needs three values")
+        if self.DESIRED_ANGLES is not None and self.DESIRED_ANGLES.size < 3:
+            raise ValueError(f"DESIRED_ANGLES has {self.DESIRED_ANGLES.size} elements; it "
+                             f"needs 3")
+        self._rng = np.random.default_rng(self.seed or None)
+        self._angles = np.full(3, 0.4)
+        self._t = 0
+        self._target = np.array([0.5, 0.5])
+        self._new_random_target()
+        self._update_arm()
+        self._write_target()
+
+    def _joints(self, angles):
+        return arm_joints(angles, self.segment_length.astype(np.float64))
+
+    def _update_arm(self):
+        np.clip(self._angles, _LIMITS_LOW, _LIMITS_HIGH, out=self._angles)
+        joints = self._joints(self._angles)
+        self.JOINTS[...] = joints
+        self.HAND_POSITION[...] = joints[3]
+        self.ANGLES[...] = self._angles
+
+    def _new_random_target(self):
+        if self.target_behavior == "random":
+            self._target = self._rng.uniform(0.1, 0.9, 2)
+        self._since_new = 0
+
+    def tick(self):
+        if self.DESIRED_ANGLES is not None:
+            self._move_arm()
+        grasped = float(np.hypot(*(self.HAND_POSITION - self.TARGET))) < self.grasp_limit
+        self._since_new += 1
+        if self.target_behavior == "random":
+            if grasped or self._since_new >= _RANDOM_INTERVAL:
+                self._new_random_target()
+        else:
+            if grasped:
+                self._t = int(self._rng.integers(0, 100))
+            self._t += 1
+        self._write_target()
+
+    def _move_arm(self):
+        desired = np.asarray(self.DESIRED_ANGLES, np.float64).reshape(-1)[:3]
+        movement = desired - self._angles
+        largest = np.max(np.abs(movement))
+        if largest > self.speed:
+            movement *= self.speed / largest
+        new = np.clip(self._angles + movement, _LIMITS_LOW, _LIMITS_HIGH)
+        outside = _outside(self._joints(new)[3])
+        if outside == 0 or outside < _outside(self._joints(self._angles)[3]):
+            self._angles = new
+        self._update_arm()
+
+    def _path_target(self):
+        phase = self.target_speed * self._t
+        r = self.target_range
+        s, c = math.sin(phase), math.cos(phase)
+        kind = self.target_behavior
+        if kind == "linear":
+            return np.array([0.5 + r * s, 0.5])
+        if kind == "circular":
+            return np.array([0.5 + r * s, 0.5 + r * c])
+        if kind == "lisajous":
+            return np.array([0.5 + r * s, 0.5 + r * math.cos(0.3 * phase)])
+        norm = abs(s) + abs(c)                              # square
+        return np.array([0.5 + r * s / norm, 0.5 + r * c / norm])
+
+    def _write_target(self):
+        target = self._target if self.target_behavior == "random" else self._path_target()
+        if self.target_noise > 0:
+            target = target + self._rng.normal(0, self.target_noise, 2)
+        self.TARGET[...] = target
+        d = float(np.hypot(*(self.HAND_POSITION - self.TARGET)))
+        self.DISTANCE[0] = d
+        self.CONTACT[0] = 1.0 if d < self.target_size else 0.0

@@ -1,0 +1,105 @@
+"""Tests of the MazeGenerator module: perfect mazes are spanning trees of the rooms, the seed
+fixes the maze, regeneration happens on schedule, and the L- and T-mazes are as drawn."""
+import collections
+
+import numpy as np
+
+from ikaros.testing import load_body as load
+
+
+def rooms_reached(maze):
+    """Breadth-first search over floor cells from (1, 1)."""
+    seen = {(1, 1)}
+    queue = collections.deque(seen)
+    while queue:
+        y, x = queue.popleft()
+        for dy, dx in ((-1, 0), (1, 0), (0, -1), (0, 1)):
+            n = (y + dy, x + dx)
+            if maze[n] == 0 and n not in seen:
+                seen.add(n)
+                queue.append(n)
+    return seen
+
+
+def test_perfect_maze_is_a_spanning_tree(tmp_path):
+    for size, seed in ((1, 1), (4, 7), (8, 3)):
+        net = load(tmp_path, f'<module class="MazeGenerator" name="M" size="{size}" '
+                             f'seed="{seed}"/>')
+        try:
+            maze = net.output("M.OUTPUT")
+            n = 2 * size + 1
+            assert maze.shape == (n, n) and set(np.unique(maze)) <= {0, 1}
+            assert np.all(maze[0] == 1) and np.all(maze[-1] == 1)
+            assert np.all(maze[:, 0] == 1) and np.all(maze[:, -1] == 1)
+            assert np.all(maze[1::2, 1::2] == 0)            # every room is floor
+            assert np.all(maze[0::2, 0::2] == 1)            # every pillar is wall
+            # a tree over size^2 rooms has size^2 - 1 open doors, and reaches every room
+            doors = (maze[1::2, 2:-1:2] == 0).sum() + (maze[2:-1:2, 1::2] == 0).sum()
+            assert doors == size * size - 1
+            assert len(rooms_reached(maze)) == (maze == 0).sum() == size * size + doors
+        finally:
+            net.close()
+
+
+def test_the_seed_fixes_the_maze(tmp_path):
+    mazes = []
+    for seed in (5, 5, 6):
+        net = load(tmp_path, f'<module class="MazeGenerator" name="M" size="6" seed="{seed}"/>')
+        mazes.append(net.output("M.OUTPUT"))
+        net.close()
+    assert np.array_equal(mazes[0], mazes[1])
+    assert not np.array_equal(mazes[0], mazes[2])
+
+
+def test_regenerate_every_n_ticks(tmp_path):
+    net = load(tmp_path, '<module class="MazeGenerator" name="M" size="6" seed="2" '
+                         'regenerate="3"/>')
+    try:
+        outputs = [net.output("M.OUTPUT")]
+        for _ in range(7):
+            net.step()
+            outputs.append(net.output("M.OUTPUT"))
+        # init, ticks 0-2 share a maze; new ones on ticks 3 and 6
+        same = [np.array_equal(outputs[i], outputs[i + 1]) for i in range(7)]
+        assert same == [True, True, True, False, True, True, False]
+        net.command("M", "regenerate")
+        assert not np.array_equal(net.output("M.OUTPUT"), outputs[-1])
+    finally:
+        net.close()
+
+
+def test_no_regeneration_by_default(tmp_path):
+    net = load(tmp_path, '<module class="MazeGenerator" name="M" size="3" seed="4"/>')
+    try:
+        first = net.output("M.OUTPUT")
+        net.run(ticks=5)
+        assert np.array_equal(net.output("M.OUTPUT"), first)
+    finally:
+        net.close()
+
+
+def test_l_and_t_mazes(tmp_path):
+    net = load(tmp_path, '<module class="MazeGenerator" name="L" size="2" type="l-maze"/>'
+                         '<module class="MazeGenerator" name="T" size="2" type="t-maze"/>')
+    try:
+        assert np.array_equal(net.output("L.OUTPUT"), [[1, 1, 1, 1, 1],
+                                                        [1, 0, 1, 1, 1],
+                                                        [1, 0, 1, 1, 1],
+                                                        [1, 0, 0, 0, 1],
+                                                        [1, 1, 1, 1, 1]])
+        assert np.array_equal(net.output("T.OUTPUT"), [[1, 1, 1, 1, 1],
+                                                        [1, 0, 0, 0, 1],
+                                                        [1, 1, 1, 0, 1],
+                                                        [1, 1, 1, 0, 1],
+                                                        [1, 1, 1, 1, 1]])
+    finally:
+        net.close()
+    net = load(tmp_path, '<module class="MazeGenerator" name="T" size="3" type="t-maze"/>')
+    try:
+        t = net.output("T.OUTPUT")
+        expected = np.ones((7, 7))
+        expected[1, 1:6] = 0                 # the cross bar along the top room row
+        expected[1:6, 3] = 0                 # the stem up the middle room column
+        assert np.array_equal(t, expected)
+    finally:
+        net.close()
