@@ -210,8 +210,10 @@ class Network:
         """Receive a notification from a module (or the kernel when ``module`` is None)."""
         where = module if isinstance(module, str) else getattr(module, "path", "") or ""
         self.log.append((self.tick, level, where, message))
-        if level in (FATAL_ERROR, END_OF_FILE, TERMINATE) and self.stop_reason is None:
-            self.stop_reason = (level, message)
+        if level in (FATAL_ERROR, END_OF_FILE, TERMINATE) and (
+                self.stop_reason is None or
+                (level == FATAL_ERROR and self.stop_reason[0] != FATAL_ERROR)):
+            self.stop_reason = (level, message)      # a fatal error wins over a clean end
         if level <= self.log_level:
             text = f"{where}: {message}" if where else message
             if level == PRINT:

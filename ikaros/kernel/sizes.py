@@ -83,9 +83,7 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
         if n is not None:
             return (n,)
     if "size_x" in rule or "size_y" in rule:
-        x = _literal(inst, rule["size_x"]) if "size_x" in rule else 1
-        y = _literal(inst, rule["size_y"]) if "size_y" in rule else None
-        return (y, x) if y is not None else (x,)
+        return _axes(inst, rule, input_shapes)
     if "size" in rule:
         return shape_expression(inst, rule["size"], input_shapes)
     if "size_set" in rule:
@@ -107,20 +105,29 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
             raise SizeError(f"none of the inputs {', '.join(names)} is connected")
         return max(shapes, key=lambda s: (math.prod(s), len(s)))
     if "size_set_x" in rule or "size_set_y" in rule:
-        totals = {}
-        for key in ("size_set_x", "size_set_y"):
-            if key in rule:
-                shape = input_shapes.get(rule[key].strip())
-                if shape is None:
-                    return WAIT
-                totals[key] = math.prod(shape) if shape != () else 0
-        x, y = totals.get("size_set_x"), totals.get("size_set_y")
-        if x is not None and y is not None:
-            return (y, x)
-        return (x,) if x is not None else (y, 1)
+        return _axes(inst, rule, input_shapes)
     if "shape" in rule:
         return shape_expression(inst, rule["shape"], input_shapes)
     return WAIT
+
+
+def _axes(inst: ModuleInstance, rule: dict, input_shapes: dict) -> tuple | None:
+    """Width and height set separately: each from its literal (``size_x``) or else from the
+    number of elements of an input (``size_set_x``). One axis alone gives a vector for x and
+    a column for y."""
+    sizes = {}
+    for axis in ("x", "y"):
+        if f"size_{axis}" in rule:
+            sizes[axis] = _literal(inst, rule[f"size_{axis}"])
+        elif f"size_set_{axis}" in rule:
+            shape = input_shapes.get(rule[f"size_set_{axis}"].strip())
+            if shape is None:
+                return WAIT
+            sizes[axis] = math.prod(shape) if shape != () else 0
+    x, y = sizes.get("x"), sizes.get("y")
+    if x is not None and y is not None:
+        return (y, x)
+    return (x,) if x is not None else (y, 1)
 
 
 def shape_expression(inst: ModuleInstance, text: str, input_shapes: dict) -> tuple | None:

@@ -62,3 +62,40 @@ def test_bad_top_settings_are_model_errors(tmp_path):
         _load(tmp_path, text)
     with pytest.raises(ikaros.ModelError, match="tick_duration"):
         _load(tmp_path, text.replace('stop="1.5"', 'tick_duration="0"'))
+
+
+def test_width_and_height_rules_combine(tmp_path):
+    (tmp_path / "Hist.py").write_text('''
+from ikaros.module import Input, Module, Output
+
+
+class Hist(Module):
+    """Test class: rows from a literal, columns from an input."""
+    INDEX = Input("the options")
+    OUTPUT = Output("the table", size_y="40", size_set_x="INDEX")
+''')
+    net = _load(tmp_path, '''<group name="G">
+  <module class="Constant" name="K" data="1 2 3"/>
+  <module class="Hist" name="H"/>
+  <connection source="K.OUTPUT" target="H.INDEX"/>
+</group>''')
+    assert net.output("H.OUTPUT").shape == (40, 3)
+
+
+def test_a_fatal_error_wins_over_an_end_of_file_on_the_same_tick(tmp_path):
+    (tmp_path / "Both.py").write_text('''
+from ikaros.module import Module
+
+
+class Both(Module):
+    """Test class: ends the file and fails on tick 1."""
+
+    def tick(self):
+        if self.clock.tick == 1:
+            self.end_of_file()
+            self.fatal_error("broken")
+''')
+    net = _load(tmp_path, '<group name="G"><module class="Both" name="B"/></group>')
+    net.step()
+    with pytest.raises(ikaros.RunError, match="broken"):
+        net.step()
