@@ -56,7 +56,8 @@ def parser() -> argparse.ArgumentParser:
                        "file. Exit status: 0 success, 1 model or run error, 2 bad usage.")
     p.add_argument("args", nargs="*", metavar="[name=value ...] MODEL.ikg")
     p.add_argument("-b", "--batch", action="store_true",
-                   help="run as fast as possible and exit when the run ends")
+                   help="run as fast as possible and exit when the run ends; without -b "
+                        "the model is served in the web UI (paused unless -S)")
     p.add_argument("-s", "--stop", type=_ticks, metavar="N",
                    help="run N ticks (ticks 0 to N-1), then stop")
     p.add_argument("-r", "--real-time", action="store_true",
@@ -65,10 +66,18 @@ def parser() -> argparse.ArgumentParser:
                    help="the real-time tick duration in seconds")
     p.add_argument("-t", "--threads", type=_positive_int, metavar="N",
                    help="size of the worker thread pool")
-    p.add_argument("-S", "--start", action="store_true", help="start running at once")
+    p.add_argument("-S", "--start", action="store_true",
+                   help="web UI: start running at once (in real time with -r)")
     p.add_argument("-i", "--info", action="store_true",
                    help="print modules, connections, buffers with shapes, and the schedule")
-    p.add_argument("-w", "--port", type=_port, metavar="PORT", help="web UI port")
+    p.add_argument("-w", "--port", type=_port, metavar="PORT",
+                   help="web UI port (default 8000)")
+    p.add_argument("--bind", metavar="ADDRESS", default="127.0.0.1",
+                   help="address the web UI listens on (default 127.0.0.1, this machine "
+                        "only); any other address requires an access token")
+    p.add_argument("--token", metavar="TOKEN",
+                   help="the web UI's access token (one is made up when --bind serves "
+                        "other machines)")
     p.add_argument("-p", "--profile", action="store_true",
                    help="measure per-module time and print the timing figures at exit")
     p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
@@ -94,6 +103,39 @@ def _split_args(p, args: list[str]) -> tuple[str | None, dict]:
         else:
             p.error(f'more than one model file given: "{model}" and "{arg}"')
     return model, overrides
+
+
+def _serve(net, opts) -> int:
+    """Serve the model in the web UI until Ctrl-C; the kernel runs in a background thread."""
+    from .kernel.control import PAUSE, PLAY, REALTIME
+    from .webui.server import ServeError, is_loopback, new_token, serve
+    host = opts.bind
+    token = opts.token
+    if token is None and not is_loopback(host):
+        token = new_token()
+    state = (REALTIME if opts.real_time else PLAY) if opts.start else PAUSE
+    if opts.stop is not None:
+        net.stop_tick = opts.stop
+
+    def ready(url):
+        print(f"ikaros: serving {os.path.basename(net.filename)} at "
+              f"{url}{'?token=' + token if token else ''}  (Ctrl-C to quit)", flush=True)
+        if token:
+            print(f"ikaros: access token: {token}", flush=True)
+    try:
+        net.profiling = opts.profile
+        serve(net, host, 8000 if opts.port is None else opts.port, token, state,
+              on_ready=ready)
+    except ServeError as e:
+        print(f"ikaros: error: {e}", file=sys.stderr)
+        return EXIT_ERROR
+    except KeyboardInterrupt:
+        pass
+    finally:
+        net.close()
+        if opts.profile:
+            print(net.profile_text())
+    return EXIT_OK
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -136,11 +178,20 @@ def main(argv: list[str] | None = None) -> int:
             overrides["tick_duration"] = str(opts.tick_duration)
         if opts.threads is not None:
             overrides["threads"] = str(opts.threads)
+        if not opts.batch:
+            from . import webui
+            try:
+                webui._check()
+            except webui.MissingWebDependencies as e:
+                print(f"ikaros: error: {e} (or run in batch mode with -b)", file=sys.stderr)
+                return EXIT_ERROR
         net = load(model, **overrides)
         net.log_level = WARNING if opts.quiet else DEBUG if opts.verbose else PRINT
         if opts.info:
             print(net.info())
         ok = getattr(net, "checksum_ok", True)
+        if not opts.batch:
+            return _serve(net, opts)
         try:
             net.profiling = opts.profile
             net.run(ticks=opts.stop, real_time=opts.real_time)

@@ -35,6 +35,8 @@ class Controller:
         # Called in the run thread after every tick (the web UI copies what its clients
         # subscribed to here); each must be quick and must not raise.
         self.tick_hooks: list = []
+        self._steps = 0
+        self._step_lock = threading.Lock()
         text = net.top.attrs.get("real_time_resync_lag")
         self.resync_lag = float(text) if text not in (None, "") else DEFAULT_RESYNC_LAG
 
@@ -44,6 +46,9 @@ class Controller:
             raise ValueError(f'unknown run mode "{state}" (one of {", ".join(STATES)})')
         if state == REALTIME and self.state != REALTIME:
             self._base = None          # time spent paused is not owed
+        if state != STEP:
+            with self._step_lock:
+                self._steps = 0
         self.state = state
         self._wake.set()
 
@@ -51,7 +56,9 @@ class Controller:
         self.set_state(PAUSE)
 
     def step(self) -> None:
-        """Run exactly one tick, then pause."""
+        """Run exactly one tick, then pause (steps asked for in a row each run one tick)."""
+        with self._step_lock:
+            self._steps += 1
         self.set_state(STEP)
 
     def play(self) -> None:
@@ -121,6 +128,12 @@ class Controller:
                     break
                 self.state = PAUSE
                 state = PAUSE
+            if state == STEP:
+                with self._step_lock:
+                    if self._steps == 0:
+                        self.state = state = PAUSE
+                    else:
+                        self._steps -= 1
             if state == PAUSE:
                 self._wake.wait(0.05)
                 self._wake.clear()
@@ -143,8 +156,6 @@ class Controller:
             net._tick()
             for hook in self.tick_hooks:
                 hook()
-            if state == STEP:
-                self.state = PAUSE
         self._drain()
 
     def _resync(self, now: float, lag: float) -> None:

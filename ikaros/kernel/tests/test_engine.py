@@ -241,3 +241,20 @@ def test_fused_element_wise_modules_compute_what_their_ticks_compute(tmp_path):
                                   plain.output(path + ".OUTPUT")), (tick, path)
     # tick 11: ramp 6, S1 12, S2 4*[1,2,3], A1 = [16, 20, 24]
     assert fused.output("A1.OUTPUT").tolist() == [16, 20, 24]
+
+
+def test_steps_asked_for_in_a_row_each_run_one_tick(tmp_path):
+    net = _model(tmp_path, RAMP)
+    c = net.controller
+    c.start(PAUSE)
+    try:
+        for _ in range(5):
+            c.step()
+        deadline = time.time() + 5
+        while net.tick < 5 and time.time() < deadline:
+            time.sleep(0.01)
+        time.sleep(0.2)
+        assert net.tick == 5 and c.state == PAUSE
+    finally:
+        c.stop()
+        c.join(5)

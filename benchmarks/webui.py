@@ -1,0 +1,158 @@
+"""Web UI benchmark: does a client that polls as fast as it can slow the kernel down?
+
+    python benchmarks/webui.py                 # about 60 s
+    python benchmarks/webui.py --seconds 3 --rounds 2
+
+Runs robot_320 (benchmarks/models.py) in play mode (as fast as possible) in the
+controller's background thread, with the web UI server (uvicorn, on 127.0.0.1, a free port)
+in this process, and measures ticks per second:
+
+* kernel only: no server at all;
+* no client: the server is up, nobody is connected;
+* client: a real WebSocket client in another process subscribes to 20 buffers and polls
+  as fast as it can (sends "ready" again as soon as a data frame arrives).
+
+The "no client" and "client" phases alternate for ``--rounds`` rounds of ``--seconds``
+each (the client process connects at the start of each client phase and disconnects at its
+end); the medians are printed with the drop in percent (the goal: at most 5 %), and the
+frames per second the client received. On a busy machine the rounds vary a lot: compare
+the median of the rounds' drops, and run it on a quiet machine.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import multiprocessing as mp
+import os
+import statistics
+import sys
+import tempfile
+import threading
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+if ROOT not in sys.path:
+    sys.path.insert(0, ROOT)
+
+
+def client_process(url: str, paths: list[str], go, stop, quit_, frames, connected) -> None:
+    """Each time ``go`` is set: connect, subscribe to ``paths`` and poll as fast as
+    possible (a new "ready" as soon as a data frame arrives) until ``stop`` is set, then
+    disconnect. Ends when ``quit_`` is set."""
+    from websockets.sync.client import connect
+    while not quit_.is_set():
+        if not go.wait(0.2):
+            continue
+        go.clear()
+        with connect(url, max_size=None, compression=None) as ws:
+            ws.send(json.dumps({"type": "subscribe",
+                                "buffers": [{"path": p, "format": "raw"} for p in paths]}))
+            ws.send(json.dumps({"type": "ready"}))
+            connected.set()
+            while not stop.is_set():
+                try:
+                    msg = ws.recv(timeout=0.2)
+                except TimeoutError:
+                    continue
+                if isinstance(msg, bytes):
+                    with frames.get_lock():
+                        frames.value += 1
+                    ws.send(json.dumps({"type": "ready"}))
+        stop.clear()
+        connected.clear()
+
+
+def rate(net, seconds: float) -> float:
+    t0, n0 = time.perf_counter(), net.tick
+    time.sleep(seconds)
+    return (net.tick - n0) / (time.perf_counter() - t0)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--seconds", type=float, default=2.0, help="length of one phase")
+    ap.add_argument("--rounds", type=int, default=12, help="alternations of the two phases")
+    ap.add_argument("--buffers", type=int, default=20, help="buffers the client subscribes to")
+    ap.add_argument("--max-rate", type=float, default=None,
+                    help="the server's cap on data frames per second (default: the server's)")
+    args = ap.parse_args(argv)
+
+    import uvicorn
+
+    import ikaros
+    from benchmarks.models import robot_320
+    from ikaros.module import WARNING
+    from ikaros.webui.server import create_app, listen
+
+    folder = tempfile.mkdtemp(prefix="ikaros-webui-bench-")
+    net = ikaros.load(robot_320(folder))
+    net.log_level = WARNING
+    outputs = [p + ".OUTPUT" for p in net.modules]
+    step = max(1, len(outputs) // args.buffers)
+    paths = outputs[::step][:args.buffers]
+
+    ctrl = net.controller
+    ctrl.start("play")
+    time.sleep(1.0)                                   # warm up
+    alone = rate(net, args.seconds)
+
+    sock = listen("127.0.0.1", 0)
+    port = sock.getsockname()[1]
+    options = {} if args.max_rate is None else {"max_rate": args.max_rate}
+    server = uvicorn.Server(uvicorn.Config(create_app(net, **options), log_level="warning",
+                                           access_log=False, lifespan="off",
+                                           ws_per_message_deflate=False))
+    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
+    thread.start()
+    while not server.started:
+        time.sleep(0.05)
+
+    spawn = mp.get_context("spawn")
+    go, stop, quit_, connected = (spawn.Event() for _ in range(4))
+    frames = spawn.Value("l", 0)
+    proc = spawn.Process(target=client_process, daemon=True,
+                         args=(f"ws://127.0.0.1:{port}/api/ws", paths, go, stop, quit_, frames,
+                               connected))
+    proc.start()
+    idle, busy, fps = [], [], []
+    for _ in range(args.rounds):
+        idle.append(rate(net, args.seconds))
+        go.set()
+        if not connected.wait(30):
+            print("the client did not connect", file=sys.stderr)
+            return 1
+        time.sleep(0.2)
+        f0, t0 = frames.value, time.perf_counter()
+        busy.append(rate(net, args.seconds))
+        fps.append((frames.value - f0) / (time.perf_counter() - t0))
+        stop.set()
+        while connected.is_set():
+            time.sleep(0.01)
+        time.sleep(0.2)
+    quit_.set()
+    proc.join(10)
+
+    server.should_exit = True
+    thread.join(10)
+    ctrl.stop()
+    ctrl.join(10)
+    net.close()
+
+    no_client, client = statistics.median(idle), statistics.median(busy)
+    drop = (no_client - client) / no_client * 100
+    paired = statistics.median((a - b) / a * 100 for a, b in zip(idle, busy))
+    print(f"robot_320, play mode, {args.rounds} x {args.seconds:g} s per phase "
+          f"(medians; {os.cpu_count()} cores)")
+    print(f"  kernel only (no server):          {alone:10.1f} ticks/s")
+    print(f"  server, no client:                {no_client:10.1f} ticks/s   "
+          f"(rounds: {', '.join(f'{x:.0f}' for x in idle)})")
+    print(f"  server, client on {len(paths)} buffers:     {client:10.1f} ticks/s   "
+          f"(rounds: {', '.join(f'{x:.0f}' for x in busy)})")
+    print(f"  drop: {drop:.1f} % of the medians; {paired:.1f} % the median of the rounds' "
+          f"drops (client received {statistics.median(fps):.1f} frames/s)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

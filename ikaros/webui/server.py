@@ -1,0 +1,645 @@
+"""The web UI server: Starlette on uvicorn, over ``Network`` and its ``Controller``.
+
+``create_app(net)`` makes the ASGI app (the HTTP API, the WebSocket ``/api/ws``, the browser
+app and the model's files); ``serve(net, host, port, token)`` runs it with uvicorn in the
+calling thread while the kernel runs in the controller's background thread. The protocol
+is described in docs/webui-protocol.md; ``/api/openapi.json`` describes the HTTP part.
+"""
+from __future__ import annotations
+
+import asyncio
+import ipaddress
+import json
+import math
+import os
+import secrets
+import socket
+import threading
+from http.cookies import SimpleCookie
+from urllib.parse import parse_qs
+
+import numpy as np
+from starlette.applications import Starlette
+from starlette.concurrency import run_in_threadpool
+from starlette.exceptions import HTTPException
+from starlette.requests import Request
+from starlette.responses import FileResponse, JSONResponse
+from starlette.routing import Mount, Route, WebSocketRoute
+from starlette.staticfiles import StaticFiles
+from starlette.websockets import WebSocket, WebSocketDisconnect
+
+from ..errors import RunError
+from ..kernel.control import STATES
+from ..module import Module
+from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
+from .openapi import openapi
+from .snapshot import (DEFAULT_BUDGET, DEFAULT_MAX_RATE, STATUS_INTERVAL, Client, Hub,
+                       LogBook, between_ticks, kernel_thread_alive, plain)
+from .views import module_detail, network_json
+
+STATIC_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "static")
+TOKEN_COOKIE = "ikaros_token"
+MAX_SUBSCRIPTIONS = 1000
+# What /files/ serves from the model's folder: images for image widgets, nothing else.
+FILE_TYPES = (".png", ".jpg", ".jpeg", ".gif", ".bmp", ".webp", ".svg")
+
+
+class ImageFiles(StaticFiles):
+    """Static files limited to image types."""
+
+    def lookup_path(self, path: str):
+        if not path.lower().endswith(FILE_TYPES):
+            return "", None
+        return super().lookup_path(path)
+
+
+class ApiError(Exception):
+    """A request that can not be served: answered with ``{"error": message}``."""
+
+    def __init__(self, status: int, message: str):
+        super().__init__(message)
+        self.status = status
+        self.message = message
+
+
+class Json(JSONResponse):
+    def render(self, content) -> bytes:
+        return json.dumps(plain(content), ensure_ascii=False, allow_nan=False,
+                          separators=(",", ":")).encode("utf-8")
+
+
+def _error(status: int, message: str, headers: dict | None = None) -> Json:
+    return Json({"error": message}, status_code=status, headers=headers)
+
+
+def _reject_constant(name):
+    raise ValueError(f"{name} is not a JSON number")
+
+
+def _loads(text):
+    return json.loads(text, parse_constant=_reject_constant)
+
+
+# --- access ------------------------------------------------------------------------------
+
+def _token_of(scope) -> tuple[str | None, bool]:
+    """(token given, whether it came in the query string)."""
+    headers = {k.decode("latin-1").lower(): v.decode("latin-1")
+               for k, v in scope.get("headers", [])}
+    auth = headers.get("authorization", "")
+    if auth.lower().startswith("bearer "):
+        return auth[7:].strip(), False
+    query = parse_qs(scope.get("query_string", b"").decode("latin-1"))
+    if "token" in query:
+        return query["token"][-1], True
+    if "cookie" in headers:
+        cookie = SimpleCookie()
+        try:
+            cookie.load(headers["cookie"])
+        except Exception:
+            return None, False
+        if TOKEN_COOKIE in cookie:
+            return cookie[TOKEN_COOKIE].value, False
+    return None, False
+
+
+class AccessMiddleware:
+    """With a token, every HTTP request and WebSocket must carry it (``Authorization:
+    Bearer``, ``?token=`` or the cookie set when it came in the query); otherwise 401.
+    Cross-site requests that change something are refused in any case."""
+
+    def __init__(self, app, token: str | None, hosts: tuple | None = None):
+        self.app = app
+        self.token = token
+        self.hosts = {h.lower() for h in hosts} if hosts else None
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] not in ("http", "websocket"):
+            return await self.app(scope, receive, send)
+        if self.hosts is not None and _host_name(scope) not in self.hosts:
+            return await self._deny(scope, receive, send, 400,
+                                    "unknown Host: serve other names with --bind")
+        if scope["type"] == "websocket" or scope.get("method") not in ("GET", "HEAD"):
+            if not _same_origin(scope):
+                return await self._deny(scope, receive, send, 403,
+                                        "cross-origin request refused")
+        if self.token is None:
+            return await self.app(scope, receive, send)
+        given, in_query = _token_of(scope)
+        if given is None or not secrets.compare_digest(given.encode(), self.token.encode()):
+            msg = "a valid access token is required" if given else \
+                "an access token is required (Authorization: Bearer TOKEN or ?token=TOKEN)"
+            return await self._deny(scope, receive, send, 401, msg)
+        if in_query and scope["type"] == "http":
+            cookie = f"{TOKEN_COOKIE}={self.token}; Path=/; HttpOnly; SameSite=Strict"
+
+            async def send_with_cookie(message):
+                if message["type"] == "http.response.start":
+                    message = dict(message)
+                    message["headers"] = list(message.get("headers", [])) + [
+                        (b"set-cookie", cookie.encode("latin-1"))]
+                await send(message)
+            return await self.app(scope, receive, send_with_cookie)
+        return await self.app(scope, receive, send)
+
+    async def _deny(self, scope, receive, send, status, message):
+        headers = {"WWW-Authenticate": "Bearer"} if status == 401 else None
+        response = _error(status, message, headers)
+        if scope["type"] == "http":
+            return await response(scope, receive, send)
+        await receive()                                   # websocket.connect
+        if "websocket.http.response" in scope.get("extensions", {}):
+            await send({"type": "websocket.http.response.start", "status": status,
+                        "headers": response.raw_headers})
+            await send({"type": "websocket.http.response.body", "body": response.body})
+        else:
+            await send({"type": "websocket.close", "code": 1008, "reason": message})
+
+
+def _host_name(scope) -> str:
+    for k, v in scope.get("headers", []):
+        if k.lower() == b"host":
+            host = v.decode("latin-1").strip().lower()
+            if host.startswith("["):
+                return host[1:].split("]")[0]
+            return host.rsplit(":", 1)[0] if host.count(":") == 1 else host
+    return ""
+
+
+def _same_origin(scope) -> bool:
+    headers = {k.decode("latin-1").lower(): v.decode("latin-1")
+               for k, v in scope.get("headers", [])}
+    origin = headers.get("origin")
+    if origin is None or origin == "null" and scope["type"] == "http":
+        return origin is None
+    host = headers.get("host", "")
+    return origin.split("://", 1)[-1].rstrip("/") == host
+
+
+# --- validation helpers ------------------------------------------------------------------
+
+def _query(request: Request, allowed: tuple = ()) -> dict:
+    params = {}
+    for key, value in request.query_params.multi_items():
+        if key == "token":
+            continue
+        if key not in allowed:
+            raise ApiError(400, f'unknown query parameter "{key}"' +
+                           (f" (expected: {', '.join(allowed)})" if allowed else
+                            " (this endpoint takes none)"))
+        if key in params:
+            raise ApiError(400, f'query parameter "{key}" given more than once')
+        params[key] = value
+    return params
+
+
+async def _body(request: Request, required: tuple, optional: tuple = ()) -> dict:
+    _query(request)
+    ctype = request.headers.get("content-type", "").split(";")[0].strip().lower()
+    if ctype != "application/json":
+        raise ApiError(415, "the body must be JSON (Content-Type: application/json)")
+    raw = await request.body()
+    try:
+        body = _loads(raw.decode("utf-8"))
+    except (ValueError, UnicodeDecodeError) as e:
+        raise ApiError(400, f"the body is not valid JSON: {e}") from None
+    if not isinstance(body, dict):
+        raise ApiError(400, "the body must be a JSON object")
+    for key in body:
+        if key not in required and key not in optional:
+            raise ApiError(400, f'unknown field "{key}" (expected: '
+                                f'{", ".join(required + optional)})')
+    for key in required:
+        if key not in body:
+            raise ApiError(400, f'missing field "{key}"')
+    return body
+
+
+def _is_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _string(body: dict, key: str) -> str:
+    v = body.get(key)
+    if not isinstance(v, str) or not v.strip():
+        raise ApiError(400, f'"{key}" must be a non-empty string')
+    return v.strip()
+
+
+def _check_value(path: str, ptype: str, value) -> None:
+    """Refuse a value of the wrong JSON type for a parameter type (text is parsed by the
+    kernel as in a model file)."""
+    if value is None:
+        raise ApiError(400, f'"value" for parameter "{path}" must not be null')
+    if isinstance(value, str):
+        return
+    ok = {
+        "number": _is_number(value),
+        "int": _is_number(value) and float(value) == int(value),
+        "bool": isinstance(value, bool) or value in (0, 1) and _is_number(value),
+        "string": False,
+        "list": isinstance(value, int) and not isinstance(value, bool) and value >= 0,
+        "array": _numbers(value),
+        "matrix": _numbers(value),
+    }.get(ptype, False)
+    if not ok:
+        raise ApiError(400, f'bad value {json.dumps(value)[:80]} for {ptype} parameter '
+                            f'"{path}"')
+
+
+def _numbers(v) -> bool:
+    if _is_number(v):
+        return True
+    return isinstance(v, list) and all(_numbers(x) for x in v)
+
+
+# --- the app -----------------------------------------------------------------------------
+
+class WebUI:
+    """The state behind the routes of one app."""
+
+    def __init__(self, net, static_dir: str, budget: float, max_rate: float,
+                 status_interval: float):
+        self.net = net
+        self.static_dir = os.path.abspath(static_dir)
+        self.model_dir = os.path.dirname(os.path.abspath(net.filename)) if net.filename \
+            else None
+        self.logbook = LogBook(net)
+        self.hub = Hub(net, self.status, self.logbook, budget, max_rate, status_interval)
+        self._classes = None
+
+    # --- reads ---------------------------------------------------------------------------
+    def status(self) -> dict:
+        figures = plain(self.net.controller.figures())
+        figures["file"] = os.path.basename(self.net.filename or "")
+        if self.net.stopped:
+            figures["state"] = "stop"
+        return figures
+
+    def _module(self, path: str):
+        inst = self.net.modules.get(path)
+        if inst is None:
+            raise ApiError(404, f'no module "{path}" in {self.net.top.name}')
+        return inst
+
+    def _buffer_path(self, path: str) -> str:
+        try:
+            self.net.buffer_array(path)
+        except KeyError:
+            raise ApiError(404, f'no output or input "{path}" in {self.net.top.name}') \
+                from None
+        return path
+
+    def _parameter_spec(self, path: str):
+        comp, _, name = path.rpartition(".")
+        inst = self.net.modules.get(comp)
+        if inst is None or name not in inst.values:
+            raise ApiError(404, f'no parameter "{path}" in {self.net.top.name}')
+        return inst.module.description.parameter(name)
+
+    async def _call(self, fn, *args):
+        return await run_in_threadpool(between_ticks, self.net, fn, *args)
+
+    # --- HTTP endpoints ------------------------------------------------------------------
+    async def index(self, request: Request):
+        _query(request)
+        path = os.path.join(self.static_dir, "index.html")
+        if not os.path.isfile(path):
+            raise ApiError(404, "the browser app is not installed (no static/index.html)")
+        return FileResponse(path)
+
+    async def network(self, request: Request):
+        _query(request)
+        return Json(await self._call(network_json, self.net))
+
+    async def classes(self, request: Request):
+        _query(request)
+        if self._classes is None:
+            from .. import classes
+            folders = [self.model_dir] if self.model_dir else []
+            found = await run_in_threadpool(classes, *folders)
+            self._classes = {name: desc.to_dict() for name, desc in found.items()}
+        return Json(self._classes)
+
+    async def get_status(self, request: Request):
+        _query(request)
+        return Json(self.status())
+
+    async def control(self, request: Request):
+        body = await _body(request, ("state",))
+        state = body["state"]
+        if state not in STATES:
+            raise ApiError(400, f'"state" must be one of {", ".join(STATES)}, not '
+                                f'{json.dumps(state)[:40]}')
+        net, ctrl = self.net, self.net.controller
+        if net.stopped:
+            raise ApiError(409, "the run has ended; restart ikaros to run again")
+        if state in ("step", "play", "realtime") and not kernel_thread_alive(ctrl):
+            ctrl.start(state)
+        else:
+            ctrl.set_state(state)
+        return Json(self.status())
+
+    async def parameter(self, request: Request):
+        body = await _body(request, ("path", "value"), ("x", "y"))
+        path = _string(body, "path")
+        spec = self._parameter_spec(path)
+        value, x, y = body["value"], body.get("x"), body.get("y")
+        element = x is not None or y is not None
+        if element:
+            for key, v in (("x", x), ("y", y)):
+                if v is not None and not (isinstance(v, int) and not isinstance(v, bool)
+                                          and v >= 0):
+                    raise ApiError(400, f'"{key}" must be a whole number >= 0')
+            if spec.type not in ("array", "matrix"):
+                raise ApiError(400, f'"x"/"y" need an array or matrix parameter; "{path}" '
+                                    f'is a {spec.type}')
+            if not _is_number(value) and not isinstance(value, bool):
+                raise ApiError(400, f'"value" for one element of "{path}" must be a number')
+        else:
+            _check_value(path, spec.type, value)
+
+        def change():
+            net = self.net
+            if element:
+                arr = np.array(net.parameter(path), dtype=np.float32)
+                xi, yi = x or 0, y or 0
+                if arr.ndim == 1 and yi == 0 and xi < arr.shape[0]:
+                    arr[xi] = float(value)
+                elif arr.ndim == 2 and yi < arr.shape[0] and xi < arr.shape[1]:
+                    arr[yi, xi] = float(value)
+                else:
+                    raise ApiError(400, f'no element x={xi}, y={yi} in "{path}" of shape '
+                                        f'{list(arr.shape)}')
+                net.set_parameter(path, arr)
+            else:
+                net.set_parameter(path, value)
+            return net.parameter(path)
+        try:
+            new = await self._call(change)
+        except ValueError as e:
+            raise ApiError(400, str(e)) from None
+        except KeyError as e:
+            raise ApiError(404, str(e.args[0]) if e.args else str(e)) from None
+        return Json({"path": path, "value": new})
+
+    async def command(self, request: Request):
+        body = await _body(request, ("module", "name"), ("x", "y", "value"))
+        path, name = _string(body, "module"), _string(body, "name")
+        inst = self._module(path)
+        x, y = body.get("x", 0), body.get("y", 0)
+        for key, v in (("x", x), ("y", y)):
+            if not _is_number(v):
+                raise ApiError(400, f'"{key}" must be a number')
+        if type(inst.module).command is Module.command:
+            raise ApiError(400, f'module "{path}" ({inst.entry.name}) takes no commands')
+        try:
+            await self._call(self.net.command, path, name, float(x), float(y),
+                             body.get("value"))
+        except KeyError as e:
+            raise ApiError(404, str(e.args[0]) if e.args else str(e)) from None
+        except Exception as e:
+            raise ApiError(400, f'command "{name}" of "{path}" failed: '
+                                f'{type(e).__name__}: {e}') from None
+        return Json({"ok": True})
+
+    async def module(self, request: Request):
+        q = _query(request, ("path",))
+        if "path" not in q:
+            raise ApiError(400, 'missing query parameter "path"')
+        inst = self._module(q["path"])
+        return Json(await self._call(module_detail, self.net, inst))
+
+    async def data(self, request: Request):
+        q = _query(request, ("paths",))
+        if not q.get("paths", "").strip():
+            raise ApiError(400, 'missing query parameter "paths" (comma-separated paths)')
+        paths = [self._buffer_path(p.strip()) for p in q["paths"].split(",")]
+
+        def read():
+            return {"tick": self.net.tick,
+                    "data": {p: self.net.buffer_array(p).tolist() for p in paths}}
+        return Json(await self._call(read))
+
+    async def log(self, request: Request):
+        q = _query(request, ("since",))
+        text = q.get("since", "0")
+        if not text.isdigit():
+            raise ApiError(400, f'"since" must be a whole number >= 0, not "{text}"')
+        nxt, messages = self.logbook.since(int(text))
+        return Json({"next": nxt, "messages": messages})
+
+    async def openapi(self, request: Request):
+        _query(request)
+        return Json(openapi())
+
+    # --- the WebSocket -------------------------------------------------------------------
+    async def websocket(self, ws: WebSocket):
+        await ws.accept()
+        client = Client(ws)
+        self.hub.add(client)
+        sender = asyncio.get_running_loop().create_task(self._send(client))
+        try:
+            while True:
+                message = await ws.receive()
+                if message["type"] == "websocket.disconnect":
+                    break
+                text = message.get("text")
+                if text is None:
+                    client.send_text({"type": "error",
+                                      "error": "send JSON text frames, not binary"})
+                    continue
+                try:
+                    self._handle(client, text)
+                except ApiError as e:
+                    client.send_text({"type": "error", "error": e.message})
+        except WebSocketDisconnect:
+            pass
+        finally:
+            self.hub.remove(client)
+            sender.cancel()
+
+    async def _send(self, client: Client):
+        try:
+            await client.run_sender()
+        except asyncio.CancelledError:
+            raise
+        except Exception:             # the connection went away; the reader sees it too
+            pass
+
+    def _handle(self, client: Client, text: str) -> None:
+        try:
+            msg = _loads(text)
+        except ValueError as e:
+            raise ApiError(400, f"not valid JSON: {e}") from None
+        if not isinstance(msg, dict) or not isinstance(msg.get("type"), str):
+            raise ApiError(400, 'a message must be a JSON object with a "type"')
+        kind = msg["type"]
+        if kind == "ready":
+            self.hub.set_ready(client)
+        elif kind == "ping":
+            client.send_text({"type": "pong", "t": msg.get("t")})
+        elif kind == "subscribe":
+            self.hub.subscribe(client, self._subscriptions(msg))
+        else:
+            raise ApiError(400, f'unknown message type "{kind}" (subscribe, ready, ping)')
+
+    def _subscriptions(self, msg: dict) -> list[tuple[str, str]]:
+        for key in msg:
+            if key not in ("type", "buffers"):
+                raise ApiError(400, f'unknown field "{key}" in subscribe')
+        buffers = msg.get("buffers")
+        if not isinstance(buffers, list):
+            raise ApiError(400, 'subscribe needs "buffers": a list of {"path", "format"}')
+        if len(buffers) > MAX_SUBSCRIPTIONS:
+            raise ApiError(400, f"at most {MAX_SUBSCRIPTIONS} buffers")
+        subs = []
+        for b in buffers:
+            if not isinstance(b, dict) or not isinstance(b.get("path"), str):
+                raise ApiError(400, 'each buffer must be {"path": "A.OUTPUT", "format": '
+                                    '"raw"}')
+            for key in b:
+                if key not in ("path", "format"):
+                    raise ApiError(400, f'unknown field "{key}" in a buffer')
+            path, fmt = b["path"].strip(), b.get("format", "raw")
+            if fmt not in FORMATS:
+                raise ApiError(400, f'unknown format {json.dumps(fmt)[:40]} for "{path}" '
+                                    f'(one of {", ".join(FORMATS)})')
+            self._buffer_path(path)
+            if fmt in IMAGE_FORMATS:
+                shape = tuple(self.net.buffer_array(path).shape)
+                if not image_shape_ok(shape):
+                    raise ApiError(400, f'"{path}" of shape {list(shape)} is not an image: '
+                                        f'{fmt} needs (rows, cols) or (3, rows, cols)')
+            subs.append((path, fmt))
+        return subs
+
+
+def create_app(net, token: str | None = None, static_dir: str | None = None, *,
+               hosts: tuple | None = None, budget: float = DEFAULT_BUDGET,
+               max_rate: float = DEFAULT_MAX_RATE,
+               status_interval: float = STATUS_INTERVAL) -> Starlette:
+    """The ASGI app serving ``net``. With ``token``, every request must carry it. With
+    ``hosts``, requests whose ``Host`` names another host are refused (a guard against DNS
+    rebinding when no token is required). ``budget`` is the time in seconds the kernel may
+    spend copying data for clients after one tick; ``max_rate`` caps the data frames per
+    second."""
+    ui = WebUI(net, static_dir or STATIC_DIR, budget, max_rate, status_interval)
+    routes = [
+        Route("/", ui.index, methods=["GET"]),
+        Route("/api/network", ui.network, methods=["GET"]),
+        Route("/api/classes", ui.classes, methods=["GET"]),
+        Route("/api/status", ui.get_status, methods=["GET"]),
+        Route("/api/control", ui.control, methods=["POST"]),
+        Route("/api/parameter", ui.parameter, methods=["POST"]),
+        Route("/api/command", ui.command, methods=["POST"]),
+        Route("/api/module", ui.module, methods=["GET"]),
+        Route("/api/data", ui.data, methods=["GET"]),
+        Route("/api/log", ui.log, methods=["GET"]),
+        Route("/api/openapi.json", ui.openapi, methods=["GET"]),
+        WebSocketRoute("/api/ws", ui.websocket),
+        Mount("/static", app=StaticFiles(directory=ui.static_dir, check_dir=False),
+              name="static"),
+    ]
+    if ui.model_dir:
+        routes.append(Mount("/files", app=ImageFiles(directory=ui.model_dir,
+                                                      check_dir=False), name="files"))
+
+    async def api_error(request, exc: ApiError):
+        return _error(exc.status, exc.message)
+
+    async def http_error(request, exc: HTTPException):
+        if exc.status_code == 404:
+            message = f"not found: {request.url.path}"
+        elif exc.status_code == 405:
+            message = f"method {request.method} not allowed on {request.url.path}"
+        else:
+            message = str(exc.detail)
+        return _error(exc.status_code, message, getattr(exc, "headers", None))
+
+    async def server_error(request, exc: Exception):
+        return _error(500, f"internal error: {type(exc).__name__}: {exc}")
+
+    app = Starlette(routes=routes, exception_handlers={
+        ApiError: api_error, HTTPException: http_error, Exception: server_error})
+    app.state.ui = ui
+    app.add_middleware(AccessMiddleware, token=token, hosts=hosts)
+    return app
+
+
+# --- serving -----------------------------------------------------------------------------
+
+class ServeError(Exception):
+    """The server could not start (the address is in use, say)."""
+
+
+def is_loopback(host: str) -> bool:
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+def new_token() -> str:
+    return secrets.token_urlsafe(18)
+
+
+def listen(host: str, port: int) -> socket.socket:
+    """A listening socket on host:port (port 0 picks a free one)."""
+    try:
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
+    except socket.gaierror as e:
+        raise ServeError(f'cannot resolve "{host}": {e.strerror or e}') from None
+    family, _, _, _, address = infos[0]
+    sock = socket.socket(family, socket.SOCK_STREAM)
+    try:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        sock.bind(address)
+        sock.listen(128)
+    except OSError as e:
+        sock.close()
+        raise ServeError(f"cannot listen on {host}:{port}: {e.strerror or e}") from None
+    sock.set_inheritable(True)
+    return sock
+
+
+def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = None,
+          state: str = "pause", static_dir: str | None = None, sock=None,
+          on_ready=None, **app_options) -> None:
+    """Serve the web UI of ``net`` until Ctrl-C (or SIGTERM), with the kernel running in
+    the controller's background thread, starting in ``state``. Serving another machine
+    (a host that is not a loopback address) requires a token. ``on_ready(url)`` is called
+    once the socket listens. The kernel loop is stopped on return; the caller closes the
+    network."""
+    import uvicorn
+    if token is None and not is_loopback(host):
+        raise ServeError(f"serving {host} (not this machine only) requires an access token")
+    if token is None and "hosts" not in app_options:
+        app_options["hosts"] = ("127.0.0.1", "localhost", "::1", host)
+    app = create_app(net, token=token, static_dir=static_dir, **app_options)
+    sock = sock or listen(host, port)
+    port = sock.getsockname()[1]
+    config = uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off",
+                            timeout_graceful_shutdown=3, ws_per_message_deflate=False)
+    server = uvicorn.Server(config)
+    ctrl = net.controller
+    previous_hook = threading.excepthook
+
+    def quiet_run_errors(args):
+        # A fatal error ends the run; it has been reported already and the UI shows it.
+        if not issubclass(args.exc_type, RunError):
+            previous_hook(args)
+    threading.excepthook = quiet_run_errors
+    ctrl.start(state)
+    try:
+        if on_ready is not None:
+            shown = f"[{host}]" if ":" in host else host
+            on_ready(f"http://{shown}:{port}/")
+        server.run(sockets=[sock])
+    finally:
+        ctrl.stop()
+        ctrl.join(10)
+        sock.close()
+        threading.excepthook = previous_hook

@@ -1,0 +1,407 @@
+"""Live data for the web UI without slowing the kernel.
+
+``Snapshotter.hook`` runs in the kernel's thread after every tick (``Controller.tick_hooks``).
+It does nothing unless the server has asked for a snapshot (some client said ``ready`` and
+the previous snapshot has been taken); then it copies the subscribed buffers into arrays
+allocated when the subscriptions changed, stopping when its time budget is spent (the rest
+is copied after the next tick), and hands the finished snapshot to the asyncio loop with
+``call_soon_threadsafe``. ``Hub`` (in the loop) encodes the snapshot for each ready client
+and sends it; a slow or stalled client simply gets fewer frames.
+"""
+from __future__ import annotations
+
+import asyncio
+import collections
+import json
+import threading
+import time
+from typing import Callable
+
+import numpy as np
+
+from ..module import LEVEL_NAMES
+from .encoding import IMAGE_FORMATS, encode_array, encode_frame
+
+DEFAULT_BUDGET = 0.001        # seconds of copying per tick at most
+DEFAULT_MAX_RATE = 60.0       # snapshots per second at most (a screen's refresh rate)
+STATUS_INTERVAL = 0.2         # seconds between status messages
+
+
+def plain(value):
+    """A JSON-friendly copy: arrays and NumPy numbers to Python, non-finite floats to None."""
+    if isinstance(value, np.ndarray):
+        return plain(value.tolist())
+    if isinstance(value, (np.generic,)):
+        return plain(value.item())
+    if isinstance(value, float):
+        return value if np.isfinite(value) else None
+    if isinstance(value, dict):
+        return {str(k): plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    return value
+
+
+def kernel_thread_alive(controller) -> bool:
+    """Whether the controller's loop runs in its background thread."""
+    thread = getattr(controller, "_thread", None)
+    return thread is not None and thread.is_alive()
+
+
+def kernel_ticking(net) -> bool:
+    """Whether ticks are being run now (so the tick hook will be called soon)."""
+    ctrl = net.controller
+    return (not net.stopped and ctrl.state in ("play", "realtime", "step")
+            and kernel_thread_alive(ctrl))
+
+
+def between_ticks(net, fn, *args, **kwargs):
+    """Run ``fn`` in the kernel's thread between two ticks (directly when no loop runs)."""
+    ctrl = net.controller
+    if not kernel_thread_alive(ctrl):
+        return fn(*args, **kwargs)
+    return ctrl.call(fn, *args, **kwargs)
+
+
+# --- the kernel side ---------------------------------------------------------------------
+
+class Plan:
+    """The union of all subscriptions: live source arrays and their snapshot copies."""
+
+    def __init__(self, sources: dict[str, np.ndarray], version: int):
+        self.version = version
+        self.entries = tuple((path, src, np.empty(src.shape, dtype=np.float32))
+                             for path, src in sources.items())
+        self.arrays = {path: dst for path, _, dst in self.entries}
+
+
+class Snapshot:
+    def __init__(self, plan: Plan, tick: int, time_: float):
+        self.plan, self.tick, self.time = plan, tick, time_
+
+
+class _Job:
+    def __init__(self, plan: Plan, done: Callable[[Snapshot | None], None],
+                 not_before: float):
+        self.plan = plan
+        self.done = done
+        self.not_before = not_before
+        self.next = 0
+
+
+class Snapshotter:
+    """Copies subscribed buffers after a tick, on request, within a time budget."""
+
+    def __init__(self, net, budget: float = DEFAULT_BUDGET):
+        self.net = net
+        self.budget = budget
+        self.plan = Plan({}, 0)
+        self._job: _Job | None = None
+        self.copies = 0               # snapshots completed (for tests and figures)
+
+    def set_sources(self, sources: dict[str, np.ndarray]) -> None:
+        """Replace the plan (in the server's thread; a job in flight keeps its own)."""
+        self.plan = Plan(sources, self.plan.version + 1)
+
+    def request(self, done: Callable[[Snapshot | None], None],
+                not_before: float = 0.0) -> None:
+        """Ask for one snapshot of the current plan, taken after the first tick that ends
+        at ``not_before`` (a ``perf_counter`` time) or later; ``done`` is called in the
+        kernel's thread with it."""
+        self._job = _Job(self.plan, done, not_before)
+
+    @property
+    def pending(self) -> bool:
+        return self._job is not None
+
+    def hook(self, budget: float | None = None) -> None:
+        """The tick hook (kernel thread). Cheap when nothing is requested."""
+        job = self._job
+        if job is None:
+            return
+        perf = time.perf_counter
+        start = perf()
+        if budget is None and start < job.not_before:
+            return                          # the frame rate cap
+        try:
+            limit = self.budget if budget is None else budget
+            entries, i, n = job.plan.entries, job.next, len(job.plan.entries)
+            while i < n:
+                _, src, dst = entries[i]
+                np.copyto(dst, src, casting="unsafe")
+                i += 1
+                if perf() - start > limit:
+                    break
+            job.next = i
+            if i < n:
+                return                      # the rest after the next tick
+            self._job = None
+            self.copies += 1
+            snap = Snapshot(job.plan, self.net.tick, float(self.net.clock.time))
+        except Exception:                   # a hook must never raise into the kernel
+            self._job = None
+            snap = None
+        try:
+            job.done(snap)
+        except Exception:
+            pass
+
+    def take_now(self) -> None:
+        """Finish a pending snapshot at once (between ticks, when the kernel is not ticking)."""
+        self.hook(budget=float("inf"))
+
+
+# --- notifications -----------------------------------------------------------------------
+
+class LogBook:
+    """The kernel's notifications with sequence numbers, read from ``net.log``."""
+
+    def __init__(self, net, keep: int = 1000):
+        self.net = net
+        self.messages: collections.deque = collections.deque(maxlen=keep)
+        self.next_seq = 0
+        self._last = None
+        self._lock = threading.Lock()
+
+    def poll(self) -> list[dict]:
+        """New messages since the last poll."""
+        with self._lock:
+            for _ in range(10):
+                try:
+                    entries = list(self.net.log)
+                    break
+                except RuntimeError:        # appended to while copied
+                    continue
+            else:
+                return []
+            start = 0
+            if self._last is not None:
+                for i in range(len(entries) - 1, -1, -1):
+                    if entries[i] is self._last:
+                        start = i + 1
+                        break
+            new = entries[start:]
+            if not new:
+                return []
+            self._last = new[-1]
+            out = []
+            for tick, level, module, message in new:
+                m = {"seq": self.next_seq, "tick": int(tick),
+                     "level": LEVEL_NAMES.get(level, str(level)), "module": module or "",
+                     "message": str(message)}
+                self.next_seq += 1
+                self.messages.append(m)
+                out.append(m)
+            return out
+
+    def since(self, seq: int) -> tuple[int, list[dict]]:
+        self.poll()
+        with self._lock:
+            return self.next_seq, [m for m in self.messages if m["seq"] >= seq]
+
+
+# --- the server side ---------------------------------------------------------------------
+
+class Client:
+    """One WebSocket connection."""
+
+    def __init__(self, ws):
+        self.ws = ws
+        self.subs: list[tuple[str, str]] = []    # (path, format)
+        self.version = 0                          # bumped by every subscribe
+        self.ready = False
+        self.last: tuple | None = None            # (tick, version) of the last frame sent
+        self.frame: bytes | None = None           # the newest frame not yet sent
+        self.status: str | None = None            # the newest status not yet sent
+        self.texts: collections.deque = collections.deque(maxlen=256)
+        self.wake = asyncio.Event()
+        self.frames_sent = 0
+
+    def send_text(self, message: dict) -> None:
+        self.texts.append(json.dumps(message))
+        self.wake.set()
+
+    async def run_sender(self) -> None:
+        """Send what is queued, newest data only, until cancelled."""
+        ws = self.ws
+        while True:
+            await self.wake.wait()
+            self.wake.clear()
+            if self.status is not None:
+                text, self.status = self.status, None
+                await ws.send_text(text)
+            while self.texts:
+                await ws.send_text(self.texts.popleft())
+            if self.frame is not None:
+                frame, self.frame = self.frame, None
+                await ws.send_bytes(frame)
+                self.frames_sent += 1
+
+
+class Hub:
+    """The clients of one server: subscriptions, flow control, status and log messages."""
+
+    def __init__(self, net, status: Callable[[], dict], logbook: LogBook,
+                 budget: float = DEFAULT_BUDGET, max_rate: float = DEFAULT_MAX_RATE,
+                 status_interval: float = STATUS_INTERVAL):
+        self.net = net
+        self.status = status
+        self.logbook = logbook
+        self.snap = Snapshotter(net, budget)
+        self.min_interval = 1.0 / max_rate if max_rate and max_rate > 0 else 0.0
+        self.status_interval = status_interval
+        self.clients: set[Client] = set()
+        self.loop: asyncio.AbstractEventLoop | None = None
+        self.in_flight = False
+        self._requested_at = -1e9
+        self._ticker: asyncio.Task | None = None
+        self._hooked = False
+
+    # --- clients -------------------------------------------------------------------------
+    def add(self, client: Client) -> None:
+        loop = asyncio.get_running_loop()
+        if loop is not self.loop:           # a new loop (tests): forget the old one's state
+            self.loop = loop
+            self.in_flight = False
+            self._ticker = None
+        if not self._hooked:
+            self.net.controller.tick_hooks.append(self.snap.hook)
+            self._hooked = True
+        self.clients.add(client)
+        self.logbook.poll()                 # a new client gets messages from now on
+        client.status = json.dumps(self._status_message())
+        client.wake.set()
+        if self._ticker is None or self._ticker.done():
+            self._ticker = loop.create_task(self._tick_status())
+
+    def remove(self, client: Client) -> None:
+        self.clients.discard(client)
+        self._update_plan()
+
+    def subscribe(self, client: Client, subs: list[tuple[str, str]]) -> None:
+        client.subs = subs
+        client.version += 1
+        client.last = None
+        self._update_plan()
+        self.poke()
+
+    def set_ready(self, client: Client) -> None:
+        client.ready = True
+        self.poke()
+
+    def broadcast(self, message: dict) -> None:
+        for c in list(self.clients):
+            c.send_text(message)
+
+    def _update_plan(self) -> None:
+        paths: dict[str, None] = {}
+        for c in self.clients:
+            for path, _ in c.subs:
+                paths[path] = None
+        if list(paths) == [e[0] for e in self.snap.plan.entries]:
+            return
+        self.snap.set_sources({p: self.net.buffer_array(p) for p in paths})
+
+    # --- flow control --------------------------------------------------------------------
+    def _wanting(self) -> bool:
+        tick = self.net.tick
+        return any(c.ready and c.subs and c.last != (tick, c.version)
+                   for c in self.clients)
+
+    def poke(self) -> None:
+        """Ask the kernel for a snapshot if a ready client needs one (loop thread). The
+        kernel takes it after a tick, no sooner than the frame rate cap allows."""
+        if self.in_flight or self.loop is None or not self._wanting():
+            return
+        now = time.perf_counter()
+        not_before = self._requested_at + self.min_interval
+        self._requested_at = max(now, not_before)
+        self.in_flight = True
+        loop = self.loop
+
+        def done(snap):                     # kernel thread
+            try:
+                loop.call_soon_threadsafe(self._received, snap)
+            except RuntimeError:            # the loop has closed
+                pass
+        self.snap.request(done, not_before)
+        if not kernel_ticking(self.net):
+            loop.create_task(self._take_now())
+
+    async def _take_now(self) -> None:
+        try:
+            await asyncio.to_thread(between_ticks, self.net, self.snap.take_now)
+        except Exception:
+            pass
+
+    def _received(self, snap: Snapshot | None) -> None:
+        if snap is None:
+            self.in_flight = False
+            return
+        targets = [c for c in list(self.clients) if c.ready and c.subs
+                   and all(p in snap.plan.arrays for p, _ in c.subs)
+                   and c.last != (snap.tick, c.version)]
+        if any(fmt in IMAGE_FORMATS for c in targets for _, fmt in c.subs):
+            self.loop.create_task(self._distribute(snap, targets))
+            return
+        try:                                # raw only: at once, in this loop iteration
+            cache: dict = {}
+            for c in targets:
+                self._send_frame(c, snap, cache)
+        finally:
+            self.in_flight = False
+        self.poke()
+
+    async def _distribute(self, snap: Snapshot, targets: list[Client]) -> None:
+        try:
+            cache: dict[tuple[str, str], bytes] = {}
+            for c in targets:
+                for path, fmt in c.subs:
+                    if fmt in IMAGE_FORMATS and (path, fmt) not in cache:
+                        cache[(path, fmt)] = await asyncio.to_thread(
+                            encode_array, snap.plan.arrays[path], fmt)
+            for c in targets:
+                if c in self.clients:
+                    self._send_frame(c, snap, cache)
+        finally:
+            self.in_flight = False
+        self.poke()
+
+    @staticmethod
+    def _send_frame(c: Client, snap: Snapshot, cache: dict) -> None:
+        arrays = snap.plan.arrays
+        items = []
+        for path, fmt in c.subs:
+            key = (path, fmt)
+            if key not in cache:
+                cache[key] = encode_array(arrays[path], fmt)
+            items.append((path, fmt, arrays[path].shape, cache[key]))
+        c.frame = encode_frame(snap.tick, snap.time, items)
+        c.ready = False
+        c.last = (snap.tick, c.version)
+        c.wake.set()
+
+    # --- status and log ------------------------------------------------------------------
+    def _status_message(self) -> dict:
+        return {"type": "status", **self.status()}
+
+    async def _tick_status(self) -> None:
+        while self.clients:
+            await asyncio.sleep(self.status_interval)
+            if not self.clients:
+                break
+            try:
+                text = json.dumps(self._status_message())
+                new = self.logbook.poll()
+            except Exception:
+                continue
+            log = json.dumps({"type": "log", "messages": new}) if new else None
+            for c in list(self.clients):
+                c.status = text
+                if log:
+                    c.texts.append(log)
+                c.wake.set()
+            # A request made while ticking that the kernel will not take (it paused):
+            if self.in_flight and self.snap.pending and not kernel_ticking(self.net):
+                self.loop.create_task(self._take_now())
+            self.poke()

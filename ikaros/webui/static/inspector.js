@@ -1,0 +1,72 @@
+// The system inspector: the kernel's figures and the UI's own.
+const ms = (s) => (typeof s === "number" ? (s * 1000).toFixed(2) + " ms" : "-");
+const pct = (f) => (typeof f === "number" ? (f * 100).toFixed(1) + " %" : "-");
+const num = (v, d = 1) => (typeof v === "number" ? v.toFixed(d) : v ?? "-");
+
+const FIELDS = [
+    ["System", [
+        ["file", "file", (s) => s.file ?? "-"],
+        ["state", "state", (s) => s.state ?? "-"],
+        ["tick", "tick", (s) => String(s.tick ?? "-")],
+        ["time", "time", (s) => (typeof s.time === "number" ? s.time.toFixed(3) + " s" : "-")],
+        ["elapsed", "elapsed", (s) => (typeof s.elapsed === "number" ? s.elapsed.toFixed(1) + " s" : "-")],
+    ]],
+    ["Timing", [
+        ["ticks_per_second", "ticks/s", (s) => num(s.ticks_per_second, 1)],
+        ["tick_duration", "tick duration", (s) => ms(s.tick_duration)],
+        ["actual_tick_duration", "actual duration", (s) => ms(s.actual_tick_duration)],
+        ["lag", "lag", (s) => ms(s.lag)],
+        ["lag_max", "lag max", (s) => ms(s.lag_max)],
+        ["lag_p99", "lag 99%", (s) => ms(s.lag_p99)],
+        ["resyncs", "resyncs", (s) => String(s.resyncs ?? "-")],
+    ]],
+    ["CPU", [
+        ["cpu_usage", "usage", (s) => pct(s.cpu_usage)],
+        ["idle", "idle time", (s) => pct(s.idle)],
+    ]],
+    ["Web UI", [
+        ["ui_updates", "updates/s", (s, ui) => num(ui.updatesPerSecond, 1)],
+        ["ui_rtt", "round trip", (s, ui) => (ui.rtt === null ? "-" : ui.rtt.toFixed(1) + " ms")],
+        ["ui_lag", "data lag", (s, ui) => (ui.lagTicks === null ? "-" : `${ui.lagTicks} ticks (${(ui.lagSeconds * 1000).toFixed(0)} ms)`)],
+        ["ui_connection", "connection", (s, ui) => (ui.connected ? "connected" : "disconnected")],
+    ]],
+];
+
+export class SystemInspector {
+    constructor(el) {
+        this.el = el;
+        this.values = {};
+        const title = document.createElement("div");
+        title.className = "pane-title";
+        title.textContent = "System";
+        el.appendChild(title);
+        const table = document.createElement("table");
+        table.className = "inspector-table";
+        for (const [section, fields] of FIELDS) {
+            const head = table.insertRow();
+            const th = document.createElement("th");
+            th.colSpan = 2;
+            th.textContent = section;
+            head.appendChild(th);
+            for (const [key, label] of fields) {
+                const tr = table.insertRow();
+                tr.insertCell().textContent = label;
+                const td = tr.insertCell();
+                td.id = "sys-" + key;
+                td.className = "value";
+                this.values[key] = td;
+            }
+        }
+        el.appendChild(table);
+        this.status = {};
+        this.ui = { updatesPerSecond: 0, rtt: null, lagTicks: null, lagSeconds: 0, connected: false };
+    }
+
+    show(status = this.status, ui = this.ui) {
+        this.status = status;
+        this.ui = ui;
+        for (const [, fields] of FIELDS) {
+            for (const [key, , fmt] of fields) this.values[key].textContent = fmt(status, ui);
+        }
+    }
+}

@@ -1,0 +1,67 @@
+// A view: widgets placed at (x, y) with width x height as the model file says.
+import { widgetClass } from "./widgets/index.js";
+
+export class ViewRenderer {
+    /**
+     * @param container element to draw into
+     * @param view {name, widgets: [attrs...]}
+     * @param ctx {groupPath, selectModule, notify, shapeOf}
+     */
+    constructor(container, view, ctx) {
+        this.container = container;
+        this.view = view;
+        this.ctx = ctx;
+        this.widgets = [];
+        this.el = document.createElement("div");
+        this.el.className = "view";
+        this.el.dataset.view = view.name || "";
+        container.appendChild(this.el);
+    }
+
+    async build() {
+        let right = 0, bottom = 0;
+        for (const attrs of this.view.widgets || []) {
+            const x = parseFloat(attrs.x ?? attrs._x) || 0, y = parseFloat(attrs.y ?? attrs._y) || 0;
+            const w = parseFloat(attrs.width) || 200, h = parseFloat(attrs.height) || 200;
+            right = Math.max(right, x + w);
+            bottom = Math.max(bottom, y + h);
+            let widget;
+            const Cls = await widgetClass(attrs.class);
+            try {
+                if (!Cls) throw new Error(`unknown widget "${attrs.class}"`);
+                widget = new Cls(attrs, this.ctx);
+            } catch (e) {
+                widget = { el: document.createElement("div"), subscriptions: () => [], parameters: () => [], update() { }, setParameters() { }, destroy() { } };
+                widget.el.className = "widget widget-error";
+                widget.el.textContent = e.message;
+                this.ctx.notify?.("warning", `${attrs.class}: ${e.message}`);
+            }
+            Object.assign(widget.el.style, { left: x + "px", top: y + "px", width: w + "px", height: h + "px" });
+            this.el.appendChild(widget.el);
+            this.widgets.push(widget);
+        }
+        this.el.style.width = right + 20 + "px";
+        this.el.style.height = bottom + 20 + "px";
+        return this;
+    }
+
+    subscriptions() { return this.widgets.flatMap((w) => w.subscriptions()); }
+    parameters() { return this.widgets.flatMap((w) => w.parameters()); }
+
+    update(frame) {
+        for (const w of this.widgets) {
+            try { w.update(frame); } catch (e) { console.error(e); }
+        }
+    }
+
+    setParameters(values) {
+        for (const w of this.widgets) {
+            try { w.setParameters(values); } catch (e) { console.error(e); }
+        }
+    }
+
+    destroy() {
+        for (const w of this.widgets) { try { w.destroy(); } catch { } }
+        this.el.remove();
+    }
+}

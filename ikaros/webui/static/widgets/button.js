@@ -1,0 +1,76 @@
+// button: runs a command or sets a parameter.
+// Attributes: label, command (sent on press), commandUp|release_command (on release),
+// parameter with value (1, on press) and valueUp|release_value (0, on release),
+// type (push/toggle: a toggle flips the parameter between value and release_value),
+// xindex|select_x, yindex|select_y (the element), enableSource|enabled_source (disabled while
+// its [0][0] is 0), text_color, background_color, tooltip.
+import { Widget } from "./widget.js";
+
+export default class Button extends Widget {
+    constructor(attrs, ctx) {
+        super(attrs, ctx);
+        const b = document.createElement("button");
+        b.className = "button-control";
+        b.textContent = this.str(["label"], this.str(["title"], "Button"));
+        const tc = this.str(["text_color"]); if (tc) b.style.color = tc;
+        const bg = this.str(["background_color"]); if (bg) b.style.background = bg;
+        const tip = this.str(["tooltip"]); if (tip) b.title = tip;
+        this.button = b;
+        this.body.appendChild(b);
+        this.type = this.str(["type"], "push");
+        this.x = this.int(["xindex", "select_x", "x_index"], 0);
+        this.y = this.int(["yindex", "select_y", "y_index"], 0);
+        this.paramValue = null;
+        b.addEventListener("pointerdown", (e) => { if (e.button === 0) this.press(); });
+        b.addEventListener("pointerup", (e) => { if (e.button === 0) this.release(); });
+        b.addEventListener("keydown", (e) => { if (e.key === " " || e.key === "Enter") { e.preventDefault(); this.press(); this.release(); } });
+    }
+
+    onValue() { return this.num(["value"], 1); }
+    offValue() { return this.num(["valueUp", "release_value", "value_up"], 0); }
+    element(value) { return Array.isArray(value) ? [this.x, this.y] : [undefined, undefined]; }
+
+    async press() {
+        if (this.button.disabled) return;
+        this.button.classList.add("pressed");
+        const command = this.commandTarget("command");
+        if (command) await this.sendCommand(command, this.x, this.y, this.onValue());
+        const param = this.path("parameter");
+        if (param) {
+            let v = this.onValue();
+            if (this.type === "toggle") {
+                const cur = this.paramValue === null ? null : Widget.element(this.paramValue, this.x, this.y);
+                v = Number(cur) === this.onValue() ? this.offValue() : this.onValue();
+            }
+            const [x, y] = this.element(this.paramValue);
+            const a = await this.setParameter(param, v, x, y);
+            if (a) this.setParameters(new Map([[param, a.value]]));
+        }
+    }
+
+    async release() {
+        this.button.classList.remove("pressed");
+        if (this.button.disabled) return;
+        const up = this.commandTarget("commandUp", "release_command", "command_up");
+        if (up) await this.sendCommand(up, this.x, this.y, this.offValue());
+        const param = this.path("parameter");
+        if (param && this.type === "push") {
+            const [x, y] = this.element(this.paramValue);
+            await this.setParameter(param, this.offValue(), x, y);
+        }
+    }
+
+    subscriptions() { return this.enabledSubscription(); }
+    parameters() { const p = this.path("parameter"); return p && this.type === "toggle" ? [p] : []; }
+
+    setParameters(values) {
+        const p = this.path("parameter");
+        if (!values.has(p)) return;
+        this.paramValue = values.get(p);
+        const on = Number(Widget.element(this.paramValue, this.x, this.y)) === this.onValue();
+        this.button.classList.toggle("on", on);
+        this.button.setAttribute("aria-pressed", on ? "true" : "false");
+    }
+
+    update(frame) { this.button.disabled = !this.enabledFrom(frame); }
+}
