@@ -46,9 +46,8 @@ class Controller:
             raise ValueError(f'unknown run mode "{state}" (one of {", ".join(STATES)})')
         if state == REALTIME and self.state != REALTIME:
             self._base = None          # time spent paused is not owed
-        if state != STEP:
-            with self._step_lock:
-                self._steps = 0
+        with self._step_lock:
+            self._steps = self._steps + 1 if state == STEP else 0
         self.state = state
         self._wake.set()
 
@@ -57,8 +56,6 @@ class Controller:
 
     def step(self) -> None:
         """Run exactly one tick, then pause (steps asked for in a row each run one tick)."""
-        with self._step_lock:
-            self._steps += 1
         self.set_state(STEP)
 
     def play(self) -> None:
