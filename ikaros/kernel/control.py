@@ -108,6 +108,11 @@ class Controller:
         self._thread = threading.Thread(target=self._loop, name="ikaros-run", daemon=True)
         self._thread.start()
 
+    @property
+    def running(self) -> bool:
+        """Whether the loop runs in its background thread."""
+        return self._thread is not None and self._thread.is_alive()
+
     def join(self, timeout: float | None = None) -> None:
         if self._thread is not None:
             self._thread.join(timeout)

@@ -355,6 +355,14 @@ class Network:
                 return buf.array if buf.array is not None else np.zeros((0,), np.float32)
         raise KeyError(f'no output or input "{path}" in {self.top.name}')
 
+    def ports(self, module: str) -> tuple[list, list]:
+        """The input and output declarations (InputSpec, OutputSpec) of a module, including
+        ports it added in ``configure``."""
+        inst = self.modules.get(module) or find_component(self.top, module)
+        if not isinstance(inst, ModuleInstance):
+            raise KeyError(f'no module "{module}" in {self.top.name}')
+        return list(inst.module._ik_inputs.values()), list(inst.module._ik_outputs.values())
+
     def output(self, path: str) -> np.ndarray:
         """A copy of a module output (or input) as computed in the last completed tick."""
         return self.buffer_array(path).copy()

@@ -44,8 +44,7 @@ def plain(value):
 
 def kernel_thread_alive(controller) -> bool:
     """Whether the controller's loop runs in its background thread."""
-    thread = getattr(controller, "_thread", None)
-    return thread is not None and thread.is_alive()
+    return controller.running
 
 
 def kernel_ticking(net) -> bool:

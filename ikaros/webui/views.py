@@ -248,7 +248,7 @@ def default_view(net, group: Group) -> dict:
     for comp in group.children.values():
         if not isinstance(comp, ModuleInstance):
             continue
-        for name, _ in module_ports(comp)[1]:
+        for name, _ in module_ports(net, comp)[1]:
             i = len(widgets)
             source = f"{comp.name}.{name}"
             widgets.append({
@@ -262,13 +262,11 @@ def default_view(net, group: Group) -> dict:
 
 # --- modules and groups ------------------------------------------------------------------
 
-def module_ports(inst: ModuleInstance) -> tuple[list, list]:
+def module_ports(net, inst: ModuleInstance) -> tuple[list, list]:
     """([(input name, spec)], [(output name, spec)]) of a module, including ports added in
     ``configure``."""
-    mod = inst.module
-    ins = getattr(mod, "_ik_inputs", None) or {s.name: s for s in mod.description.inputs}
-    outs = getattr(mod, "_ik_outputs", None) or {s.name: s for s in mod.description.outputs}
-    return list(ins.items()), list(outs.items())
+    ins, outs = net.ports(inst.path)
+    return [(s.name, s) for s in ins], [(s.name, s) for s in outs]
 
 
 def _shape(net, path: str) -> list[int]:
@@ -286,7 +284,7 @@ def _value(net, inst: ModuleInstance, name: str):
 
 
 def module_json(net, inst: ModuleInstance) -> dict:
-    ins, outs = module_ports(inst)
+    ins, outs = module_ports(net, inst)
     params = []
     for spec in inst.module.description.parameters:
         if spec.name not in inst.values:
@@ -304,7 +302,7 @@ def module_json(net, inst: ModuleInstance) -> dict:
 def module_detail(net, inst: ModuleInstance) -> dict:
     """``GET /api/module``: a module with descriptions, defaults and its class's view."""
     desc = inst.module.description
-    ins, outs = module_ports(inst)
+    ins, outs = module_ports(net, inst)
     params = []
     for spec in desc.parameters:
         if spec.name not in inst.values:
