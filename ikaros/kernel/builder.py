@@ -83,6 +83,7 @@ class Builder:
                 else:
                     group.children[child_name] = self._module(child, group, child_name, files)
             elif tag == "connection":
+                group.connections.append(child)
                 self.connections.append((child, group))
             elif tag == "input":
                 group.inputs.append(child)
