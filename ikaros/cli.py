@@ -67,7 +67,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("-t", "--threads", type=_positive_int, metavar="N",
                    help="size of the worker thread pool")
     p.add_argument("-S", "--start", action="store_true",
-                   help="web UI: start running at once (in real time with -r)")
+                   help="web UI: start running at once (-r starts in real time)")
     p.add_argument("-i", "--info", action="store_true",
                    help="print modules, connections, buffers with shapes, and the schedule")
     p.add_argument("-w", "--port", type=_port, metavar="PORT",
@@ -113,7 +113,7 @@ def _serve(net, opts) -> int:
     token = opts.token
     if token is None and not is_loopback(host):
         token = new_token()
-    state = (REALTIME if opts.real_time else PLAY) if opts.start else PAUSE
+    state = REALTIME if opts.real_time else PLAY if opts.start else PAUSE
     if opts.stop is not None:
         net.stop_tick = opts.stop
 
