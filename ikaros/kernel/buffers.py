@@ -90,7 +90,12 @@ class Run:
     def whole(self) -> bool:
         """Whether the run copies the whole source onto the whole target, in order."""
         n = self.source.size
-        return (n == self.target.size and len(self.src_index) == n
-                and len(self.dst_index) == n
-                and bool(np.all(self.src_index == np.arange(n)))
-                and bool(np.all(self.dst_index == np.arange(n))))
+        return (n == self.target.size and _identity(self.src_index, n)
+                and _identity(self.dst_index, n))
+
+
+def _identity(index, n: int) -> bool:
+    """Whether an element map is 0, 1, ..., n-1."""
+    if isinstance(index, range):
+        return index == range(n)
+    return len(index) == n and bool(np.array_equal(index, np.arange(n)))

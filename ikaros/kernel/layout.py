@@ -1,5 +1,9 @@
 """Where each connection's data lands: the shape of inputs and ports, and the element maps
-from module outputs to module inputs (through group ports)."""
+from module outputs to module inputs (through group ports).
+
+An element map is a NumPy index array, or a ``range`` when it is contiguous (most are), so a
+connection of a million-element image costs no memory for its map.
+"""
 from __future__ import annotations
 
 import math
@@ -20,7 +24,7 @@ def _piece(link: Link) -> None:
     size = math.prod(shape)
     sel = link.src_sel
     if sel is None:
-        link.src_index = np.arange(size)
+        link.src_index = range(size)
         link.piece_shape = tuple(shape)
     elif sel[0] == "offset":
         start, count = sel[1], sel[2]
@@ -29,7 +33,7 @@ def _piece(link: Link) -> None:
         if start < 0 or count < 0 or start + count > size:
             raise _link_error(link, f"sourceoffset {start} and size {count} reach outside the "
                                     f"source, which has {size} elements")
-        link.src_index = np.arange(start, start + count)
+        link.src_index = range(start, start + count)
         link.piece_shape = (count,)
     else:
         dims = sel[1]
@@ -54,8 +58,8 @@ def _piece(link: Link) -> None:
         link.piece_shape = (len(link.delays),) + link.piece_shape
 
 
-def _lane_count(link: Link) -> int:
-    return len(link.delays)
+def _highest(index) -> int:
+    return index[-1] if isinstance(index, range) else int(np.max(index))
 
 
 def layout(buffer: Buffer, fixed_shape: tuple | None = None) -> None:
@@ -81,17 +85,17 @@ def layout(buffer: Buffer, fixed_shape: tuple | None = None) -> None:
         offset = 0
         for link in links:
             n = math.prod(link.piece_shape)
-            link.dst_index = np.arange(offset, offset + n)
+            link.dst_index = range(offset, offset + n)
             offset += n
         shape = (offset,)
     else:
         link = links[0]
-        link.dst_index = np.arange(math.prod(link.piece_shape))
+        link.dst_index = range(math.prod(link.piece_shape))
         shape = link.piece_shape
     if fixed_shape is not None:
         total = math.prod(fixed_shape)
         for link in links:
-            if len(link.dst_index) and int(link.dst_index.max()) >= total:
+            if len(link.dst_index) and _highest(link.dst_index) >= total:
                 raise _link_error(link, f'writes outside fixed size of input "{buffer.name}" '
                                         f"{fixed_shape}")
         shape = tuple(fixed_shape)
@@ -124,7 +128,7 @@ def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
             start = link.dst_sel[1]
             if start < 0:
                 raise _link_error(link, "targetoffset must not be negative")
-            link.dst_index = np.arange(start, start + n)
+            link.dst_index = range(start, start + n)
             end = max(end, start + n)
         return (end,)
     rank = None
@@ -201,15 +205,17 @@ def runs_into(buffer: Buffer, memo: dict, stack: tuple = ()) -> list[Run]:
         for r, run in enumerate(upstream):
             owner[run.dst_index] = r
             where[run.dst_index] = run.src_index
+        src_index = np.asarray(link.src_index)
         for d, dst in lanes:
-            src_owner = owner[link.src_index]
+            dst = np.asarray(dst)
+            src_owner = owner[src_index]
             for r in np.unique(src_owner[src_owner >= 0]):
                 up = upstream[r]
                 if up.window and link.window:
                     raise _link_error(link, "two delay windows on one path through group "
                                             "ports are not allowed")
                 mask = src_owner == r
-                runs.append(Run(up.source, buffer, up.delay + d, where[link.src_index[mask]],
+                runs.append(Run(up.source, buffer, up.delay + d, where[src_index[mask]],
                                 dst[mask], link.node, up.window or link.window,
                                 up.links + [link]))
     memo[buffer] = runs

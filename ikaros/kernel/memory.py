@@ -64,9 +64,11 @@ class Ring:
         return self.rows[(self.pos - (delay - 2)) % self.depth]
 
 
-def _contiguous(index: np.ndarray) -> slice | None:
+def _contiguous(index) -> slice | None:
     if len(index) == 0:
         return None
+    if isinstance(index, range):
+        return slice(index.start, index.stop) if index.step == 1 else None
     start = int(index[0])
     if np.array_equal(index, np.arange(start, start + len(index))):
         return slice(start, start + len(index))
