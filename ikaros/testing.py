@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import os
 
+import numpy as np
+
 from .kernel.network import Network
 
 
@@ -17,3 +19,15 @@ def load_body(folder, body: str, /, **overrides) -> Network:
     with open(path, "w", encoding="utf-8") as f:
         f.write(f'<group name="Test">\n{body}\n</group>\n')
     return load(path, **overrides)
+
+
+def matrix_text(a, spec: str = "") -> str:
+    """``a`` as the text of a data attribute: rows separated by "; " and the elements of a
+    row by spaces, each written as ``format(float(v), spec)`` (the default writes the float's
+    repr); a 1-D ``a`` is one row and each row is flattened::
+
+        matrix_text([[1, 2], [3, 4]]) == "1.0 2.0; 3.0 4.0"
+        matrix_text([0.5, 2], "g") == "0.5 2"
+    """
+    return "; ".join(" ".join(format(float(v), spec) for v in np.ravel(row))
+                     for row in np.atleast_2d(a))

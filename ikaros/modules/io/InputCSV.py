@@ -5,7 +5,7 @@ import numpy as np
 
 from ikaros.module import Module, Parameter, attribute_name
 
-from ._csvnames import parse_column, port_name
+from ._csvnames import csv_delimiter, parse_column, port_name
 from ._files import build_error, resolve
 
 
@@ -40,9 +40,7 @@ class InputCSV(Module):
         if not self.filename:
             raise build_error(self, "InputCSV needs a filename")
         path = resolve(self, self.filename)
-        delimiter = "\t" if self.delimiter.lower() in ("tab", "\\t", "\t") else self.delimiter
-        if len(delimiter) != 1:
-            raise build_error(self, f'delimiter "{self.delimiter}" must be one character')
+        delimiter = csv_delimiter(self)
         try:
             with open(path, encoding="utf-8-sig", newline="") as f:
                 rows = list(enumerate(csv.reader(f, delimiter=delimiter), 1))

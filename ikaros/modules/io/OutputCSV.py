@@ -1,15 +1,14 @@
 """OutputCSV: writes its inputs to a CSV table with a header row, one row per tick."""
 import csv
 
-import numpy as np
+from ikaros.module import Input, Parameter
 
-from ikaros.module import Input, Module, Parameter, attribute_name
-
-from ._csvnames import column_names
+from ._columns import ColumnWriter
+from ._csvnames import column_names, csv_delimiter
 from ._files import build_error, resolve
 
 
-class OutputCSV(Module):
+class OutputCSV(ColumnWriter):
     """Writes a CSV file that spreadsheets and InputCSV read. The columns are declared by
     ``<column name="X" decimals="2"/>`` child elements; each becomes an input X. The first
     row is a header: ``T`` (the tick number, left out when ``timestamp`` is no), then for
@@ -32,30 +31,10 @@ class OutputCSV(Module):
                   optional=True)
 
     def configure(self):
-        self._columns = []               # (name, decimals)
-        elements = list(self.element.elements("column")) if self.element is not None else []
-        for column in elements:
-            name = column.get("name")
-            if not name:
-                raise self._error(column, '<column> needs a name="..." attribute')
-            if name == "WRITE" or any(name == c[0] for c in self._columns):
-                raise self._error(column, f'column name "{name}" is used twice')
-            decimals = column.get("decimals")
-            try:
-                decimals = None if decimals in (None, "") else int(decimals)
-            except ValueError:
-                raise self._error(column, f'decimals="{decimals}" is not an integer') \
-                    from None
-            if decimals is not None and decimals < 0:
-                raise self._error(column, "decimals must not be negative")
-            self._columns.append((name, decimals))
-            self.add_input(name, description=f"the values of column group {name}")
+        self._read_columns(("WRITE",), "the values of column group", self._error)
         if not self._columns:
             raise build_error(self, 'OutputCSV needs at least one <column name="..."/>')
-        self._delimiter = "\t" if self.delimiter.lower() in ("tab", "\\t", "\t") \
-            else self.delimiter
-        if len(self._delimiter) != 1:
-            raise build_error(self, f'delimiter "{self.delimiter}" must be one character')
+        self._delimiter = csv_delimiter(self)
 
     def _error(self, element, message):
         return element.error(message) if hasattr(element, "error") else build_error(self,
@@ -63,19 +42,14 @@ class OutputCSV(Module):
 
     def init(self):
         self._file = None
-        header, formats, self._slices = [], [], []
+        header, formats = [], []
         if self.timestamp:
             header.append("T")
             formats.append("%d")
-        start = 0
-        for name, decimals in self._columns:
-            x = getattr(self, attribute_name(name))
-            d = self.decimals if decimals is None else decimals
+        inputs, value_formats = self._lay_out()
+        for (name, _), x in zip(self._columns, inputs):
             header.extend(column_names(name, x.shape))
-            formats.extend([f"%.{max(0, d)}f"] * x.size)
-            self._slices.append((x, start, start + x.size))
-            start += x.size
-        self._buffer = np.zeros(start, dtype=np.float64)
+        formats.extend(value_formats)
         self._format = self._delimiter.join(formats) + "\r\n"
         path = resolve(self, self.filename)
         try:
@@ -89,17 +63,7 @@ class OutputCSV(Module):
     def tick(self):
         if self.WRITE is not None and not self.WRITE.flat[0] > 0:
             return
-        if self._file is None:
-            return
-        for x, a, b in self._slices:
-            self._buffer[a:b] = x.reshape(-1)
-        values = self._buffer.tolist()
-        if self.timestamp:
-            values.insert(0, self.clock.tick)
-        self._file.write(self._format % tuple(values))
-        self._file.flush()
+        self._write_row()
 
     def stop(self):
-        if getattr(self, "_file", None) is not None:
-            self._file.close()
-            self._file = None
+        self._close()

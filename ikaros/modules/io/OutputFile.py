@@ -2,15 +2,15 @@
 import os
 import re
 
-import numpy as np
-
 from ikaros.errors import ModelError
-from ikaros.module import Input, Module, Parameter, attribute_name
+from ikaros.module import Input, Parameter
+
+from ._columns import ColumnWriter
 
 _COUNTER = re.compile(r"%(0?\d*)d")
 
 
-class OutputFile(Module):
+class OutputFile(ColumnWriter):
     """Writes a tab-separated text file in the Ikaros 2 format that InputFile reads. The
     columns are declared by ``<column name="X" decimals="2"/>`` child elements; each column
     becomes an input X, written flattened as one group of values. The header line is
@@ -46,24 +46,7 @@ class OutputFile(Module):
 
     # --- build time -----------------------------------------------------------------------
     def configure(self):
-        self._columns = []               # (name, decimals)
-        elements = list(self.element.elements("column")) if self.element is not None else []
-        for column in elements:
-            name = column.get("name")
-            if not name:
-                raise self._build_error(column, '<column> needs a name="..." attribute')
-            if name in ("NEWFILE", "WRITE") or any(name == c[0] for c in self._columns):
-                raise self._build_error(column, f'column name "{name}" is used twice')
-            decimals = column.get("decimals")
-            try:
-                decimals = None if decimals in (None, "") else int(decimals)
-            except ValueError:
-                raise self._build_error(column, f'decimals="{decimals}" is not an '
-                                        'integer') from None
-            if decimals is not None and decimals < 0:
-                raise self._build_error(column, "decimals must not be negative")
-            self._columns.append((name, decimals))
-            self.add_input(name, description=f"the values of column {name}")
+        self._read_columns(("NEWFILE", "WRITE"), "the values of column", self._build_error)
 
     def _build_error(self, element, message):
         if element is not None and hasattr(element, "error"):
@@ -76,22 +59,14 @@ class OutputFile(Module):
         self._number = 0
         self._last_newfile = False
         self._last_write = False
-        self._inputs = [getattr(self, attribute_name(name)) for name, _ in self._columns]
-        sizes = [x.size for x in self._inputs]
-        self._buffer = np.zeros(sum(sizes), dtype=np.float64)
-        self._slices = []
-        start = 0
-        for x in self._inputs:
-            self._slices.append((x, start, start + x.size))
-            start += x.size
+        self._inputs, value_formats = self._lay_out()
         header, formats = [], []
         if self.timestamp:
             header.append("T/1")
             formats.append("%d")
-        for (name, decimals), n in zip(self._columns, sizes):
-            d = self.decimals if decimals is None else decimals
-            header.append(f"{name}/{n}")
-            formats.extend([f"%.{max(0, d)}f"] * n)
+        for (name, _), x in zip(self._columns, self._inputs):
+            header.append(f"{name}/{x.size}")
+        formats.extend(value_formats)
         self._header = "\t".join(header) + "\n"
         self._format = "\t".join(formats) + "\n"
         self._folder = self._make_folder()
@@ -134,11 +109,6 @@ class OutputFile(Module):
             self._file = None
             self.fatal_error(f'cannot write output file "{path}": {e.strerror}')
 
-    def _close(self):
-        if getattr(self, "_file", None) is not None:
-            self._file.close()
-            self._file = None
-
     def tick(self):
         if self.NEWFILE is not None:
             rise = bool(self.NEWFILE.flat[0] > 0)
@@ -152,15 +122,7 @@ class OutputFile(Module):
             self._last_write = on
             if not write:
                 return
-        if self._file is None:
-            return
-        for x, a, b in self._slices:
-            self._buffer[a:b] = x.reshape(-1)
-        values = self._buffer.tolist()
-        if self.timestamp:
-            values.insert(0, self.clock.tick)
-        self._file.write(self._format % tuple(values))
-        self._file.flush()
+        self._write_row()
 
     def stop(self):
         self._close()

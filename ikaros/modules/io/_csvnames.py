@@ -1,4 +1,4 @@
-"""The column-name convention shared by InputCSV and OutputCSV.
+"""The column-name convention and the delimiter parameter shared by InputCSV and OutputCSV.
 
 A column is named NAME for a one-element value, NAME[i] for element i of a vector and
 NAME[i][j] (or NAME[i,j]) for element (i, j) of a matrix, and so on for higher ranks.
@@ -7,6 +7,8 @@ import itertools
 import re
 
 import numpy as np
+
+from ._files import build_error
 
 _COLUMN = re.compile(r"^(?P<name>[^\[\]]*?)\s*(?P<index>(?:\[[\d\s,]+\])*)$")
 _INDEX = re.compile(r"\[([\d\s,]+)\]")
@@ -43,3 +45,12 @@ def column_names(name: str, shape: tuple) -> list[str]:
         return [name]
     return [name + "".join(f"[{i}]" for i in idx)
             for idx in itertools.product(*(range(n) for n in shape))]
+
+
+def csv_delimiter(module) -> str:
+    """The module's ``delimiter`` parameter as one character ("tab" is a tab)."""
+    text = module.delimiter
+    result = "\t" if text.lower() in ("tab", "\\t", "\t") else text
+    if len(result) != 1:
+        raise build_error(module, f'delimiter "{text}" must be one character')
+    return result

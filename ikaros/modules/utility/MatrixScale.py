@@ -3,18 +3,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-
-def _resample(x, out, src_x, src_y):
-    """out[..., i, j] = x[..., src_y[i, j], src_x[i, j]] with the coordinates rounded to the
-    nearest element (halves away from zero); 0 where the source falls outside."""
-    sx = np.where(src_x >= 0, np.floor(src_x + 0.5), np.ceil(src_x - 0.5))
-    sy = np.where(src_y >= 0, np.floor(src_y + 0.5), np.ceil(src_y - 0.5))
-    m = x if x.ndim > 1 else x.reshape(1, -1)
-    o = out if out.ndim > 1 else out.reshape(1, -1)
-    rows, cols = m.shape[-2], m.shape[-1]
-    inside = (sx >= 0) & (sx < cols) & (sy >= 0) & (sy < rows)
-    o.fill(0)
-    o[..., inside] = m[..., sy[inside].astype(np.intp), sx[inside].astype(np.intp)]
+from ._resample import centre_offsets, resample
 
 
 class MatrixScale(Module):
@@ -36,11 +25,7 @@ class MatrixScale(Module):
     OUTPUT = Output("the scaled matrix", size_set="INPUT")
 
     def init(self):
-        rows, cols = (self.INPUT.shape[-2], self.INPUT.shape[-1]) if self.INPUT.ndim > 1 \
-            else (1, self.INPUT.shape[0])
-        y, x = np.mgrid[0:rows, 0:cols].astype(np.float64)
-        self._cx, self._cy = (cols - 1) / 2, (rows - 1) / 2
-        self._dx, self._dy = x - self._cx, y - self._cy
+        self._cx, self._cy, self._dx, self._dy = centre_offsets(self.INPUT)
         self._warned = False
 
     def tick(self):
@@ -53,4 +38,4 @@ class MatrixScale(Module):
                 self.warning(f"cannot scale by {fx:g} x {fy:g}; the output is 0")
             self.OUTPUT.fill(0)
             return
-        _resample(self.INPUT, self.OUTPUT, self._cx + self._dx / fx, self._cy + self._dy / fy)
+        resample(self.INPUT, self.OUTPUT, self._cx + self._dx / fx, self._cy + self._dy / fy)

@@ -3,6 +3,8 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
+from ._resample import round_half_away
+
 
 class MatrixTranslation(Module):
     """Shifts the content of INPUT (an image, say) by X (first element) columns to the right
@@ -18,10 +20,6 @@ class MatrixTranslation(Module):
     Y = Input("the shift down, in rows; its first element is used")
     OUTPUT = Output("the shifted matrix", size_set="INPUT")
 
-    @staticmethod
-    def _round(v):
-        return int(np.floor(v + 0.5)) if v >= 0 else int(np.ceil(v - 0.5))
-
     def tick(self):
         tx, ty = float(self.X.flat[0]), float(self.Y.flat[0])
         if self.debug:
@@ -33,7 +31,7 @@ class MatrixTranslation(Module):
             return
         rows, cols = x.shape[-2], x.shape[-1]
         # output element (i, j) reads source (i - dy, j - dx)
-        dx, dy = self._round(tx), self._round(ty)
+        dx, dy = int(round_half_away(tx)), int(round_half_away(ty))
         if abs(dx) >= cols or abs(dy) >= rows:
             return
         out[..., max(dy, 0):rows + min(dy, 0), max(dx, 0):cols + min(dx, 0)] = \

@@ -3,10 +3,7 @@ import numpy as np
 from PIL import Image
 
 from ikaros.testing import load_body as load
-
-
-def matrix_text(a):
-    return "; ".join(" ".join(repr(float(v)) for v in row) for row in a)
+from ikaros.testing import matrix_text
 
 
 def test_gray_levels_round_to_nearest(tmp_path):

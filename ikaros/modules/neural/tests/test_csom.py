@@ -3,14 +3,7 @@ import numpy as np
 import pytest
 
 from ikaros.testing import load_body as load
-
-
-def row(v):
-    return " ".join(f"{x:.9g}" for x in np.ravel(v))
-
-
-def matrix(a):
-    return "; ".join(row(r) for r in np.atleast_2d(a))
+from ikaros.testing import matrix_text
 
 
 def unit_weights(weights, sy, sx, ry, rx):
@@ -82,7 +75,7 @@ IMAGE = np.arange(30, dtype=float).reshape(5, 6) % 7 / 7
 @pytest.mark.parametrize("output_type", ["combined", "separate"])
 def test_activity_layout_colours_and_reconstruction(tmp_path, output_type):
     net = load(tmp_path,
-               f'<module class="Constant" name="I" data="{matrix(IMAGE)}"/>'
+               f'<module class="Constant" name="I" data="{matrix_text(IMAGE, ".9g")}"/>'
                '<module class="CSOM" name="S" rf_size_x="3" rf_size_y="2" rf_inc_x="2" '
                'rf_inc_y="1" som_size_x="3" som_size_y="2" use_arbor="no" alpha="0" '
                f'alpha_min="0" output_type="{output_type}" seed="4"/>'
@@ -142,7 +135,7 @@ def test_learning_step_matches_numpy(tmp_path, topology):
     write_state(tmp_path / "start.dat", W)
     x = np.array([0.9, 0.2])
     net = load(tmp_path,
-               f'<module class="Constant" name="I" data="{row(x)}"/>'
+               f'<module class="Constant" name="I" data="{matrix_text(x, ".9g")}"/>'
                '<module class="CSOM" name="S" rf_size_x="2" rf_size_y="1" som_size_x="4" '
                'som_size_y="3" use_arbor="no" alpha="0.5" alpha_max="1" alpha_decay="0.5" '
                'alpha_min="0.1" '
@@ -174,7 +167,7 @@ def test_blocks_and_spans_and_arbor(tmp_path):
     W = np.array([[0.2, 0.4, 0.6, 0.8], [0.9, 0.1, 0.5, 0.5]])
     write_state(tmp_path / "w.dat", W)
     net = load(tmp_path,
-               f'<module class="Constant" name="I" data="{row(image)}"/>'
+               f'<module class="Constant" name="I" data="{matrix_text(image, ".9g")}"/>'
                '<module class="CSOM" name="S" rf_size_x="4" rf_size_y="1" block_size_x="2" '
                'span_size_x="1" som_size_x="2" som_size_y="1" alpha="0" alpha_min="0" '
                'use_arbor="yes" load_state="yes" filename="w.dat"/>'

@@ -3,10 +3,7 @@ import numpy as np
 import pytest
 
 from ikaros.testing import load_body as load
-
-
-def row(v):
-    return " ".join(f"{x:.9g}" for x in np.ravel(v))
+from ikaros.testing import matrix_text
 
 
 def test_forms_an_ordered_chain_along_a_line(tmp_path):
@@ -36,7 +33,7 @@ def test_salience_map_size_and_weight_files(tmp_path):
     W = np.random.default_rng(1).random((4, 9))
     np.savetxt(tmp_path / "in.txt", W.ravel())
     net = load(tmp_path,
-               f'<module class="Constant" name="I" data="{"; ".join(row(r) for r in image)}"/>'
+               f'<module class="Constant" name="I" data="{matrix_text(image, ".9g")}"/>'
                '<module class="CSOM_L" name="S" rf_inc_x="2" rf_inc_y="2" som_size_x="2" '
                'som_size_y="2" alpha="0" alpha_min="0" read_file="in.txt" '
                'write_file="out.txt"/>'

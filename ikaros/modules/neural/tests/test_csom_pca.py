@@ -3,14 +3,7 @@ import numpy as np
 import pytest
 
 from ikaros.testing import load_body as load
-
-
-def row(v):
-    return " ".join(f"{x:.9g}" for x in np.ravel(v))
-
-
-def matrix(a):
-    return "; ".join(row(r) for r in a)
+from ikaros.testing import matrix_text
 
 
 def test_one_unit_learns_the_first_principal_component(tmp_path):
@@ -18,7 +11,7 @@ def test_one_unit_learns_the_first_principal_component(tmp_path):
     axes = np.linalg.qr(rng.standard_normal((3, 3)))[0]
     samples = (rng.standard_normal((300, 3)) * [1.0, 0.4, 0.2]) @ axes.T
     net = load(tmp_path,
-               f'<module class="ListIterator" name="D" listdata="{matrix(samples)}" '
+               f'<module class="ListIterator" name="D" listdata="{matrix_text(samples, ".9g")}" '
                'repeat="yes"/>'
                '<module class="CSOM_PCA" name="S" rf_size_x="3" rf_size_y="1" som_size_x="1" '
                'som_size_y="1" alpha="0.02" alpha_max="0.02" alpha_min="0.002" '
@@ -38,8 +31,8 @@ def test_activity_is_the_dot_product_and_reconstruction(tmp_path):
     image = np.array([[0.2, 0.9, 0.4, 0.1], [0.5, 0.3, 0.8, 0.6]])
     top = np.array([[1, 0, 0.5, 2, 0, 1]])            # 1 x 3 fields, 2 units each (combined)
     net = load(tmp_path,
-               f'<module class="Constant" name="I" data="{matrix(image)}"/>'
-               f'<module class="Constant" name="T" data="{matrix(top)}"/>'
+               f'<module class="Constant" name="I" data="{matrix_text(image, ".9g")}"/>'
+               f'<module class="Constant" name="T" data="{matrix_text(top, ".9g")}"/>'
                '<module class="CSOM_PCA" name="S" rf_size_x="2" rf_size_y="2" som_size_x="2" '
                'som_size_y="1" alpha="0" alpha_min="0" seed="1"/>'
                '<connection source="I.OUTPUT" target="S.INPUT" delay="0"/>'
@@ -74,7 +67,7 @@ def test_neighbouring_units_learn_neighbouring_directions(tmp_path):
     r = rng.standard_normal(400)
     samples = np.stack([r * np.cos(theta), r * np.sin(theta)], axis=1)
     net = load(tmp_path,
-               f'<module class="ListIterator" name="D" listdata="{matrix(samples)}" '
+               f'<module class="ListIterator" name="D" listdata="{matrix_text(samples, ".9g")}" '
                'repeat="yes"/>'
                '<module class="CSOM_PCA" name="S" rf_size_x="2" rf_size_y="1" som_size_x="6" '
                'som_size_y="1" alpha="0.05" alpha_max="0.05" alpha_min="0.005" '

@@ -3,12 +3,9 @@ import numpy as np
 import pytest
 
 from ikaros.testing import load_body as load
+from ikaros.testing import matrix_text
 
 AND_X = "0 0; 0 1; 1 0; 1 1"
-
-
-def rows(a):
-    return "; ".join(" ".join(f"{v:g}" for v in r) for r in np.atleast_2d(a))
 
 
 def perceptron(tmp_path, inputs, targets, train=None, **params):
@@ -78,8 +75,8 @@ SEP_T = (2 * SEP_X[:, 0] - SEP_X[:, 1] + 0.1 > 0).astype(float)
 ])
 def test_rules_learn_a_linearly_separable_task(tmp_path, activation, rule, extra):
     targets = SEP_T if activation in ("step", "sigmoid") else 2 * SEP_T - 1
-    net = perceptron(tmp_path, rows(SEP_X), rows(targets[:, None]), seed=3,
-                     activation_type=activation, learning_rule=rule, **extra)
+    net = perceptron(tmp_path, matrix_text(SEP_X, "g"), matrix_text(targets[:, None], "g"),
+                     seed=3, activation_type=activation, learning_rule=rule, **extra)
     try:
         net.run(ticks=8 * 400)
         out = responses(net, 8)[:, 0]
@@ -142,8 +139,8 @@ def test_normalize_target_and_shapes(tmp_path):
 def test_same_seed_same_run(tmp_path):
     runs = []
     for _ in range(2):
-        net = perceptron(tmp_path, rows(SEP_X), rows(SEP_T[:, None]), seed=11,
-                         activation_type="sigmoid", learning_rule="delta")
+        net = perceptron(tmp_path, matrix_text(SEP_X, "g"), matrix_text(SEP_T[:, None], "g"),
+                         seed=11, activation_type="sigmoid", learning_rule="delta")
         try:
             runs.append(responses(net, 20))
         finally:

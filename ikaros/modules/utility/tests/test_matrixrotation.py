@@ -4,16 +4,13 @@ import math
 import numpy as np
 
 from ikaros.testing import load_body as load
+from ikaros.testing import matrix_text
 
 SQUARE = np.arange(16, dtype=np.float32).reshape(4, 4)
 
 
-def text(m):
-    return "; ".join(" ".join(str(float(v)) for v in row) for row in m)
-
-
 def rotated(tmp_path, m, angle, fmt="deg"):
-    net = load(tmp_path, f'<module class="Constant" name="C" data="{text(m)}"/>'
+    net = load(tmp_path, f'<module class="Constant" name="C" data="{matrix_text(m)}"/>'
                f'<module class="Constant" name="A" data="{angle!r}"/>'
                f'<module class="MatrixRotation" name="R" angle_format="{fmt}"/>'
                '<connection source="C.OUTPUT" target="R.INPUT" delay="0"/>'

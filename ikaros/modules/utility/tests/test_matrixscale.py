@@ -4,12 +4,9 @@ import math
 import numpy as np
 
 from ikaros.testing import load_body as load
+from ikaros.testing import matrix_text
 
 M = np.arange(1, 17, dtype=np.float32).reshape(4, 4)
-
-
-def text(m):
-    return "; ".join(" ".join(str(float(v)) for v in row) for row in m)
 
 
 def reference(m, fx, fy):
@@ -30,7 +27,7 @@ def reference(m, fx, fy):
 
 
 def scaled(tmp_path, m, fx, fy, ticks=2):
-    net = load(tmp_path, f'<module class="Constant" name="C" data="{text(m)}"/>'
+    net = load(tmp_path, f'<module class="Constant" name="C" data="{matrix_text(m)}"/>'
                f'<module class="Constant" name="X" data="{fx!r}"/>'
                f'<module class="Constant" name="Y" data="{fy!r}"/>'
                '<module class="MatrixScale" name="S"/>'

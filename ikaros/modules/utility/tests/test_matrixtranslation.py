@@ -2,12 +2,9 @@
 import numpy as np
 
 from ikaros.testing import load_body as load
+from ikaros.testing import matrix_text
 
 M = np.arange(1, 13, dtype=np.float32).reshape(3, 4)
-
-
-def text(m):
-    return "; ".join(" ".join(str(float(v)) for v in row) for row in m)
 
 
 def reference(m, dx, dy):
@@ -22,7 +19,7 @@ def reference(m, dx, dy):
 
 
 def shifted(tmp_path, x, y, m=M):
-    net = load(tmp_path, f'<module class="Constant" name="C" data="{text(m)}"/>'
+    net = load(tmp_path, f'<module class="Constant" name="C" data="{matrix_text(m)}"/>'
                f'<module class="Constant" name="X" data="{x!r}"/>'
                f'<module class="Constant" name="Y" data="{y!r}"/>'
                '<module class="MatrixTranslation" name="T"/>'
