@@ -78,6 +78,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--token", metavar="TOKEN",
                    help="the web UI's access token (one is made up when --bind serves "
                         "other machines)")
+    p.add_argument("--models", metavar="DIR",
+                   help="web UI editor: the folder to save, list, open and create models "
+                        "in (default: the model's folder)")
     p.add_argument("-p", "--profile", action="store_true",
                    help="measure per-module time and print the timing figures at exit")
     p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
@@ -125,7 +128,7 @@ def _serve(net, opts) -> int:
     try:
         net.profiling = opts.profile
         serve(net, host, 8000 if opts.port is None else opts.port, token, state,
-              on_ready=ready)
+              on_ready=ready, models_dir=opts.models)
     except ServeError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
         return EXIT_ERROR
@@ -178,6 +181,8 @@ def main(argv: list[str] | None = None) -> int:
             overrides["tick_duration"] = str(opts.tick_duration)
         if opts.threads is not None:
             overrides["threads"] = str(opts.threads)
+        if opts.models is not None and not os.path.isdir(opts.models):
+            p.error(f'--models "{opts.models}" is not a folder')
         if not opts.batch:
             from . import webui
             try:

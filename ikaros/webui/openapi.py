@@ -12,6 +12,11 @@ _ERRORS = {"400": _json(_ERROR, "bad request: a bad field, type or value"),
            "401": _json(_ERROR, "a token is required"),
            "404": _json(_ERROR, "unknown path, module, buffer or parameter")}
 _STATUS = {"$ref": "#/components/schemas/Status"}
+_NODE = {"$ref": "#/components/schemas/Node"}
+_CHANGED = {"type": "object", "properties": {"ok": {"type": "boolean"},
+                                             "file": {"type": "string"},
+                                             "network": {"$ref": "#/components/schemas/"
+                                                                 "Network"}}}
 
 
 def _body(schema: dict) -> dict:
@@ -29,6 +34,16 @@ def _post(summary: str, body: dict, answer: dict) -> dict:
     return {"post": {"summary": summary, "requestBody": _body(body),
                      "responses": {"200": _json(answer), **_ERRORS,
                                    "415": _json(_ERROR, "the body is not JSON")}}}
+
+
+def _editor_post(summary: str, body: dict, answer: dict) -> dict:
+    op = _post(summary, body, answer)
+    op["post"]["responses"].update({
+        "403": _json(_ERROR, "a file name outside the models folder, or cross-origin"),
+        "409": _json(_ERROR, "another apply, open or new is under way"),
+        "422": _json({"$ref": "#/components/schemas/ModelError"},
+                     "not a valid model: the kernel's error and the element at fault")})
+    return op
 
 
 def _q(name: str, description: str, schema: dict, required: bool = False) -> dict:
@@ -84,6 +99,41 @@ def openapi() -> dict:
                                  "$ref": "#/components/schemas/LogMessage"}}}},
                          [_q("since", "first sequence number wanted",
                              {"type": "integer", "minimum": 0})]),
+        "/api/model": _get("The model tree of the running network (for the editor)",
+                           {"type": "object", "properties": {
+                               "file": {"type": "string"}, "folder": {"type": "string"},
+                               "tree": _NODE}}),
+        "/api/apply": _editor_post(
+            "Rebuild the network from an edited tree and run it from tick 0 (module state "
+            "is reset); an invalid tree changes nothing (422)",
+            {"type": "object", "required": ["tree"], "additionalProperties": False,
+             "properties": {"tree": _NODE, "state": {
+                 "enum": ["pause", "step", "play", "realtime"],
+                 "description": "the run state after the rebuild (default: as before)"}}},
+            {"type": "object", "properties": {"ok": {"type": "boolean"},
+                                              "network": {"$ref": "#/components/schemas/"
+                                                                  "Network"}}}),
+        "/api/save": _editor_post(
+            "Write the tree to the model's file, or save as a plain .ikg name in the models "
+            "folder (does not rebuild)",
+            {"type": "object", "required": ["tree"], "additionalProperties": False,
+             "properties": {"tree": _NODE, "filename": {"type": "string",
+                                                        "example": "copy.ikg"}}},
+            {"type": "object", "properties": {"ok": {"type": "boolean"},
+                                              "file": {"type": "string"}}}),
+        "/api/files": _get("The .ikg models in the models folder",
+                           {"type": "object", "properties": {
+                               "folder": {"type": "string"},
+                               "files": {"type": "array", "items": {"type": "string"}}}}),
+        "/api/open": _editor_post(
+            "Load and build another model of the models folder (paused); an invalid model "
+            "changes nothing (422)",
+            {"type": "object", "required": ["filename"], "additionalProperties": False,
+             "properties": {"filename": {"type": "string"}}}, _CHANGED),
+        "/api/new": _editor_post(
+            "A new empty model (one group) in the models folder, not yet saved (paused)",
+            {"type": "object", "additionalProperties": False,
+             "properties": {"name": {"type": "string", "default": "Untitled"}}}, _CHANGED),
         "/api/openapi.json": _get("This description", obj),
     }
     schemas = {
@@ -122,6 +172,23 @@ def openapi() -> dict:
             "widgets": {"type": "array", "items": {"type": "object", "properties": {
                 "class": {"type": "string"}, "x": num, "y": num, "width": num,
                 "height": num}, "additionalProperties": True}}}},
+        "Node": {"type": "object", "required": ["tag"], "additionalProperties": False,
+                 "properties": {
+                     "id": {"type": ["integer", "null"], "minimum": 0,
+                            "description": "given by GET /api/model; none on new nodes"},
+                     "tag": {"type": "string",
+                             "description": "an element name, #comment or #include"},
+                     "attrs": {"type": "object", "additionalProperties": {"type": "string"},
+                               "description": "every attribute, in file order"},
+                     "text": {"type": ["string", "null"]},
+                     "children": {"type": "array", "items": _NODE},
+                     "file": {"type": ["string", "null"]},
+                     "line": {"type": ["integer", "null"]}}},
+        "ModelError": {"type": "object", "required": ["error"], "properties": {
+            "error": {"type": "string"},
+            "node": {"type": ["integer", "null"], "description": "id of the element at fault"},
+            "path": {"type": ["array", "null"], "items": {"type": "integer"},
+                     "description": "child indices from the root to the element at fault"}}},
         "LogMessage": {"type": "object", "properties": {
             "seq": {"type": "integer"}, "tick": {"type": "integer"},
             "level": {"type": "string"}, "module": {"type": "string"},

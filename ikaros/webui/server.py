@@ -8,6 +8,7 @@ is described in docs/webui-protocol.md; ``/api/openapi.json`` describes the HTTP
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import ipaddress
 import json
 import math
@@ -28,9 +29,11 @@ from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
-from ..errors import RunError
-from ..kernel.control import STATES
+from ..errors import ModelError, RunError
+from ..kernel.control import PAUSE, STATES, STEP, STOP
+from ..language.writer import write_file
 from ..module import Module
+from . import editing
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
 from .openapi import openapi
 from .snapshot import (DEFAULT_BUDGET, DEFAULT_MAX_RATE, STATUS_INTERVAL, Client, Hub,
@@ -247,6 +250,15 @@ def _check_value(path: str, ptype: str, value) -> None:
                             f'"{path}"')
 
 
+def _overrides_of(net) -> dict:
+    """The top-group attributes given beside the file (``name=value`` on the command line,
+    ``-d``, ``-t``): those of the built top group that the file does not say."""
+    defaults = {c.get("name") for c in net.model.elements("parameter")
+                if not c.get("target")}
+    return {k: v for k, v in net.top.attrs.items()
+            if net.model.attrs.get(k) != v and k not in defaults}
+
+
 def _numbers(v) -> bool:
     if _is_number(v):
         return True
@@ -259,14 +271,23 @@ class WebUI:
     """The state behind the routes of one app."""
 
     def __init__(self, net, static_dir: str, budget: float, max_rate: float,
-                 status_interval: float):
+                 status_interval: float, models_dir: str | None = None):
         self.net = net
         self.static_dir = os.path.abspath(static_dir)
         self.model_dir = os.path.dirname(os.path.abspath(net.filename)) if net.filename \
             else None
+        # The one folder the editor saves, lists, opens and creates models in.
+        self.models_dir = os.path.abspath(models_dir) if models_dir else self.model_dir
         self.logbook = LogBook(net)
         self.hub = Hub(net, self.status, self.logbook, budget, max_rate, status_interval)
         self._classes = None
+        self._changing = threading.Lock()       # one apply / open / new at a time
+        # What the command line set beside the file, kept while the model is rebuilt
+        # (dropped when another model is opened or a new one made).
+        self._overrides = _overrides_of(net)
+        own_stop = net.top.attrs.get("stop")
+        self._cli_stop = net.stop_tick if str(net.stop_tick) != str(own_stop).strip() and \
+            not (net.stop_tick is None and own_stop in (None, "")) else None
 
     # --- reads ---------------------------------------------------------------------------
     def status(self) -> dict:
@@ -429,6 +450,189 @@ class WebUI:
         nxt, messages = self.logbook.since(int(text))
         return Json({"next": nxt, "messages": messages})
 
+    # --- the editor ----------------------------------------------------------------------
+    def _folder(self) -> str:
+        if not self.models_dir:
+            raise ApiError(404, "the model has no folder")
+        return self.models_dir
+
+    def _model_json(self) -> dict:
+        net = self.net
+        tree = editing.tree_json(net.model, os.path.dirname(os.path.abspath(net.filename)))
+        return {"file": os.path.basename(net.filename or ""), "folder": self._folder(),
+                "tree": tree}
+
+    async def model(self, request: Request):
+        _query(request)
+        return Json(await self._call(self._model_json))
+
+    @staticmethod
+    def _tree(body: dict, filename: str, reread: bool = True):
+        try:
+            return editing.tree_from_json(body["tree"], filename, reread)
+        except editing.TreeError as e:
+            raise ApiError(400, f'"tree": {e}') from None
+
+    async def apply(self, request: Request):
+        body = await _body(request, ("tree",), ("state",))
+        state = body.get("state")
+        if state is not None and (state not in STATES or state == STOP):
+            raise ApiError(400, f'"state" must be one of '
+                                f'{", ".join(s for s in STATES if s != STOP)}')
+        with self._change():
+            filename = self.net.filename
+            try:
+                tree = self._tree(body, filename)
+                overrides = self._overrides
+                new = await run_in_threadpool(self._build, filename, tree, overrides)
+            except ModelError as e:
+                return Json(editing.error_json(e), status_code=422)
+            await self._swap(new, state)
+        return Json({"ok": True, "network": await self._call(network_json, self.net)})
+
+    async def save(self, request: Request):
+        body = await _body(request, ("tree",), ("filename",))
+        name = body.get("filename")
+        if name is None:
+            path = self.net.filename
+        else:
+            if not isinstance(name, str):
+                raise ApiError(400, '"filename" must be a string')
+            path = self._file(name)
+        tree = self._tree(body, path, reread=False)
+        try:                    # the text is made before a file is: nothing half-written
+            await run_in_threadpool(write_file, tree, path)
+        except ValueError as e:
+            raise ApiError(400, f"the tree can not be written as XML: {e}") from None
+        except OSError as e:
+            raise ApiError(500, f"cannot write {os.path.basename(path)}: "
+                                f"{e.strerror or e}") from None
+        if path != self.net.filename:       # save as: the model's file is the new one now
+            self.net.filename = path
+            self._set_model_dir(os.path.dirname(path))
+        return Json({"ok": True, "file": os.path.basename(path)})
+
+    def _file(self, name: str) -> str:
+        try:
+            return editing.file_in(self._folder(), name)
+        except editing.NameRefused as e:
+            raise ApiError(403, str(e)) from None
+
+    async def files(self, request: Request):
+        _query(request)
+        folder = self._folder()
+        return Json({"folder": folder,
+                     "files": await run_in_threadpool(editing.model_files, folder)})
+
+    async def open(self, request: Request):
+        body = await _body(request, ("filename",))
+        name = body["filename"]
+        if not isinstance(name, str):
+            raise ApiError(400, '"filename" must be a string')
+        path = self._file(name)
+        real, folder = os.path.realpath(path), os.path.realpath(self._folder())
+        if not os.path.isfile(path) or os.path.dirname(real) != folder:
+            raise ApiError(404, f'no model "{name}" in the models folder')
+        with self._change():
+            try:
+                new = await run_in_threadpool(self._build, path, None, None)
+            except ModelError as e:
+                return Json({"error": str(e), "node": None, "path": None},
+                            status_code=422)
+            self._overrides, self._cli_stop = None, None
+            await self._swap(new, PAUSE)
+        return Json({"ok": True, "file": os.path.basename(path),
+                     "network": await self._call(network_json, self.net)})
+
+    async def new(self, request: Request):
+        body = await _body(request, (), ("name",))
+        try:
+            tree, path = editing.new_model(self._folder(), body.get("name", "Untitled"))
+        except editing.TreeError as e:
+            raise ApiError(400, str(e)) from None
+        with self._change():
+            try:
+                new = await run_in_threadpool(self._build, path, tree, None)
+            except ModelError as e:
+                return Json(editing.error_json(e), status_code=422)
+            self._overrides, self._cli_stop = None, None
+            await self._swap(new, PAUSE)
+        return Json({"ok": True, "file": os.path.basename(path),
+                     "network": await self._call(network_json, self.net)})
+
+    @contextlib.contextmanager
+    def _change(self):
+        """Hold the lock of model changes; 409 when another change is under way."""
+        if not self._changing.acquire(blocking=False):
+            raise ApiError(409, "another apply, open or new is under way")
+        try:
+            yield
+        finally:
+            self._changing.release()
+
+    def _build(self, filename: str, tree, overrides: dict | None):
+        """Build a network (in a worker thread, not the kernel's)."""
+        from ..kernel.builder import Builder
+        new = Builder(filename, overrides, model=tree).build()
+        new.log_level = self.net.log_level
+        return new
+
+    async def _swap(self, new, state: str | None) -> None:
+        """Stop and close the running network; run ``new`` in its place."""
+        old, ctrl = self.net, self.net.controller
+        alive = kernel_thread_alive(ctrl)
+        previous = PAUSE if old.stopped or ctrl.state in (STOP, STEP) else ctrl.state
+        state = state or previous
+        ctrl.stop()
+        await run_in_threadpool(ctrl.join, 30)
+        if ctrl.running:
+            await run_in_threadpool(new.close)
+            raise ApiError(500, "the running network did not stop within 30 s")
+        try:
+            new.profiling = old.profiling
+        except Exception:
+            pass
+        if self._cli_stop is not None:
+            new.stop_tick = self._cli_stop
+        hooks = list(ctrl.tick_hooks)
+        ctrl.tick_hooks.clear()
+        new.controller.tick_hooks.extend(hooks)
+        await run_in_threadpool(old.close)
+        # the wiring: everything that read the old network reads the new one
+        self.net = new
+        self.logbook.net = new
+        self.logbook._last = None
+        hub = self.hub
+        hub.net = new
+        hub.snap.net = new
+        hub.snap._job = None
+        hub.in_flight = False
+        for client in list(hub.clients):
+            client.subs = [(p, f) for p, f in client.subs if self._still_there(p, f)]
+            client.version += 1
+            client.last = None
+        hub.snap.set_sources({p: new.buffer_array(p)
+                              for c in hub.clients for p, _ in c.subs})
+        self._set_model_dir(os.path.dirname(os.path.abspath(new.filename)))
+        if alive or state not in (PAUSE,):
+            new.controller.start(state)
+        else:
+            new.controller.set_state(state)
+        hub.broadcast({"type": "network"})
+        hub.poke()
+
+    def _set_model_dir(self, folder: str) -> None:
+        if folder != self.model_dir:
+            self.model_dir = folder
+            self._classes = None
+
+    def _still_there(self, path: str, fmt: str) -> bool:
+        try:
+            shape = tuple(self.net.buffer_array(path).shape)
+        except KeyError:
+            return False
+        return fmt not in IMAGE_FORMATS or image_shape_ok(shape)
+
     async def openapi(self, request: Request):
         _query(request)
         return Json(openapi())
@@ -518,13 +722,16 @@ class WebUI:
 def create_app(net, token: str | None = None, static_dir: str | None = None, *,
                hosts: tuple | None = None, budget: float = DEFAULT_BUDGET,
                max_rate: float = DEFAULT_MAX_RATE,
-               status_interval: float = STATUS_INTERVAL) -> Starlette:
+               status_interval: float = STATUS_INTERVAL,
+               models_dir: str | None = None) -> Starlette:
     """The ASGI app serving ``net``. With ``token``, every request must carry it. With
     ``hosts``, requests whose ``Host`` names another host are refused (a guard against DNS
     rebinding when no token is required). ``budget`` is the time in seconds the kernel may
     spend copying data for clients after one tick; ``max_rate`` caps the data frames per
-    second."""
-    ui = WebUI(net, static_dir or STATIC_DIR, budget, max_rate, status_interval)
+    second. ``models_dir`` is the folder the editor saves, lists, opens and creates models
+    in (default: the model's folder). The editor may replace the running network:
+    ``app.state.ui.net`` is the current one."""
+    ui = WebUI(net, static_dir or STATIC_DIR, budget, max_rate, status_interval, models_dir)
     routes = [
         Route("/", ui.index, methods=["GET"]),
         Route("/api/network", ui.network, methods=["GET"]),
@@ -536,14 +743,22 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
         Route("/api/module", ui.module, methods=["GET"]),
         Route("/api/data", ui.data, methods=["GET"]),
         Route("/api/log", ui.log, methods=["GET"]),
+        Route("/api/model", ui.model, methods=["GET"]),
+        Route("/api/apply", ui.apply, methods=["POST"]),
+        Route("/api/save", ui.save, methods=["POST"]),
+        Route("/api/files", ui.files, methods=["GET"]),
+        Route("/api/open", ui.open, methods=["POST"]),
+        Route("/api/new", ui.new, methods=["POST"]),
         Route("/api/openapi.json", ui.openapi, methods=["GET"]),
         WebSocketRoute("/api/ws", ui.websocket),
         Mount("/static", app=StaticFiles(directory=ui.static_dir, check_dir=False),
               name="static"),
     ]
     if ui.model_dir:
-        routes.append(Mount("/files", app=ImageFiles(directory=ui.model_dir,
-                                                      check_dir=False), name="files"))
+        async def model_files(scope, receive, send):      # the current model's folder
+            app = ImageFiles(directory=ui.model_dir, check_dir=False)
+            await app(scope, receive, send)
+        routes.append(Mount("/files", app=model_files, name="files"))
 
     async def api_error(request, exc: ApiError):
         return _error(exc.status, exc.message)
@@ -612,7 +827,7 @@ def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = No
     the controller's background thread, starting in ``state``. Serving another machine
     (a host that is not a loopback address) requires a token. ``on_ready(url)`` is called
     once the socket listens. The kernel loop is stopped on return; the caller closes the
-    network."""
+    network (a network the editor built in its place is closed here)."""
     import uvicorn
     if token is None and not is_loopback(host):
         raise ServeError(f"serving {host} (not this machine only) requires an access token")
@@ -639,7 +854,10 @@ def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = No
             on_ready(f"http://{shown}:{port}/")
         server.run(sockets=[sock])
     finally:
-        ctrl.stop()
-        ctrl.join(10)
+        current = app.state.ui.net          # the editor may have replaced the network
+        current.controller.stop()
+        current.controller.join(10)
+        if current is not net:
+            current.close()
         sock.close()
         threading.excepthook = previous_hook
