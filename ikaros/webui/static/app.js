@@ -7,6 +7,7 @@ import { Messages } from "./messages.js";
 import { ModuleInspector } from "./module-inspector.js";
 import { Navigator } from "./navigator.js";
 import { ViewRenderer } from "./views.js";
+import { Editor } from "./editor/editor.js";
 
 const $ = (sel) => document.querySelector(sel);
 const THEMES = ["light", "dark"];
@@ -55,9 +56,10 @@ class App {
             notify: this.ctx.notify, ctx: this.ctx, onViewChange: () => this.resubscribe(),
         });
         this.navigator = new Navigator($("#navigator"), {
-            onView: (group, view) => this.showView(group, view),
-            onModule: (path) => this.moduleInspector.open(path),
+            onView: (group, view) => this.editor?.active ? this.editor.openGroup(group, view) : this.showView(group, view),
+            onModule: (path) => this.editor?.active ? this.editor.selectPath(path) : this.moduleInspector.open(path),
         });
+        this.editor = new Editor(this);
         this.setupChrome();
         this.setupSocket();
         setInterval(() => this.pollParameters(), 500);
@@ -187,7 +189,7 @@ class App {
         this.mainView = renderer;
         await renderer.build();
         if (this.mainView !== renderer) return;
-        this.navigator.show(this.network, this.current);
+        if (!this.editor?.active) this.navigator.show(this.network, this.current);
         this.resubscribe();
         this.pollParameters();
     }

@@ -1,0 +1,693 @@
+// The network editor: a mode of the app (the "Edit" toggle in the toolbar). It edits its
+// own copy of the model tree (GET /api/model) and sends the whole tree back to apply
+// (rebuild and keep running) or to save (docs/webui-protocol.md, "The editor").
+import { api } from "../api.js";
+import { WIDGETS } from "../widgets/index.js";
+import { pickClass } from "./class-list.js";
+import { ask, files, pickFile } from "./files.js";
+import { EditorInspector } from "./inspector.js";
+import { graphOf, layout, storedPosition } from "./layout.js";
+import { EditorModel, clone, elements, kids, node, setWidgetBox, treeAsNetwork, widgetBox } from "./model.js";
+import { NetworkView } from "./network-view.js";
+import { ViewEditor } from "./view-editor.js";
+
+function h(tag, cls, text) {
+    const e = document.createElement(tag);
+    if (cls) e.className = cls;
+    if (text !== undefined) e.textContent = text;
+    return e;
+}
+
+const isComponent = (n) => n && (n.tag === "module" || n.tag === "group");
+
+export class Editor {
+    /** app: the App (navigator, messages, network). */
+    constructor(app) {
+        this.app = app;
+        this.model = new EditorModel();
+        this.active = false;
+        this.groupPath = "";
+        this.mode = "network";          // or a view index
+        this.selection = new Set();
+        this.errors = new Map();        // node -> message
+        this.groupError = null;
+        this.classes = {};
+        this.clipboard = null;
+        this.transforms = new Map();    // group path -> zoom/pan
+        this.graph = null;
+        this.positions = new Map();
+        this.automatic = false;
+        this.renderSeq = 0;
+        this.notify = (level, message) => app.messages.local(level, message);
+        this.buildChrome();
+        this.model.addEventListener("change", (e) => this.onModelChange(e.detail));
+    }
+
+    // --- chrome --------------------------------------------------------------------------
+
+    buildChrome() {
+        const toggle = h("button", "tool", "Edit");
+        toggle.id = "toggle-editor";
+        toggle.title = "edit the network and its views";
+        toggle.addEventListener("click", () => this.setActive(!this.active));
+        document.querySelector("#toolbar .spacer").before(toggle);
+        this.toggleButton = toggle;
+
+        this.area = h("div", "editor-area");
+        this.area.id = "editor-area";
+        this.area.hidden = true;
+        const bar = h("div", "editor-bar");
+        bar.id = "editor-bar";
+        const button = (id, label, title, fn) => {
+            const b = h("button", "tool small", label);
+            b.id = id;
+            b.title = title;
+            b.addEventListener("click", fn);
+            bar.appendChild(b);
+            return b;
+        };
+        const sep = () => bar.appendChild(h("span", "editor-sep"));
+        button("ed-new", "New", "a new empty model", () => this.newModel());
+        button("ed-open", "Open…", "open another model from the folder", () => this.openModel());
+        button("ed-save", "Save", "save to the model's file", () => this.save());
+        button("ed-save-as", "Save as…", "save as a new .ikg file", () => this.save(true));
+        sep();
+        button("ed-apply", "Apply", "rebuild the network from the edited model (module state is reset)", () => this.apply());
+        sep();
+        this.undoButton = button("ed-undo", "Undo", "undo (Ctrl-Z)", () => this.model.undo());
+        this.redoButton = button("ed-redo", "Redo", "redo (Ctrl-Shift-Z)", () => this.model.redo());
+        sep();
+        this.netTools = [
+            button("ed-add-module", "+ Module", "add a module", () => this.addModule()),
+            button("ed-add-group", "+ Group", "add a group", () => this.addGroup()),
+            button("ed-add-input", "+ Input", "add a group input", () => this.addPin("input")),
+            button("ed-add-output", "+ Output", "add a group output", () => this.addPin("output")),
+        ];
+        this.widgetMenu = h("select", "tool small");
+        this.widgetMenu.id = "ed-add-widget";
+        this.widgetMenu.add(new Option("+ Widget", ""));
+        for (const name of Object.keys(WIDGETS)) this.widgetMenu.add(new Option(name, name));
+        this.widgetMenu.addEventListener("change", () => { const c = this.widgetMenu.value; this.widgetMenu.value = ""; if (c) this.addWidget(c); });
+        bar.appendChild(this.widgetMenu);
+        button("ed-delete", "Delete", "delete the selection (Del)", () => this.deleteSelection());
+        button("ed-copy", "Copy", "copy (Ctrl-C)", () => this.copy());
+        button("ed-paste", "Paste", "paste (Ctrl-V)", () => this.paste());
+        button("ed-duplicate", "Duplicate", "duplicate (Ctrl-D)", () => this.duplicate());
+        sep();
+        this.layoutTools = [
+            button("ed-align-left", "⇤ Align", "align the selected boxes on the left", () => this.align("x")),
+            button("ed-align-top", "⤒ Align", "align the selected boxes at the top", () => this.align("y")),
+            button("ed-auto-layout", "Auto layout", "lay out the group along the data flow", () => this.autoLayout()),
+            button("ed-zoom-out", "−", "zoom out", () => this.netView?.zoom(1 / 1.25)),
+            button("ed-zoom-in", "+", "zoom in", () => this.netView?.zoom(1.25)),
+            button("ed-fit", "Fit", "fit the group into the view", () => this.netView?.fit()),
+        ];
+        const tabs = h("div", "editor-tabs");
+        tabs.id = "editor-tabs";
+        this.tabs = tabs;
+        this.crumbs = h("div", "editor-crumbs");
+        this.crumbs.id = "editor-crumbs";
+        this.status = h("div", "editor-status");
+        this.status.id = "editor-status";
+        this.host = h("div", "editor-host");
+        this.host.id = "editor-host";
+        this.area.append(bar, this.crumbs, tabs, this.status, this.host);
+        document.querySelector("#view-area").appendChild(this.area);
+
+        const insp = h("section", "editor-inspector");
+        insp.id = "editor-inspector";
+        insp.hidden = true;
+        document.querySelector("#inspector").prepend(insp);
+        this.inspectorEl = insp;
+        this.inspector = new EditorInspector(insp, {
+            edit: (label, fn) => this.edit(label, fn),
+            rename: (n, name) => this.rename(n, name),
+            classes: () => this.classes,
+            sources: () => this.sourcesInGroup(),
+            parameters: () => this.parametersInGroup(),
+            error: (n) => this.errors.get(n) || null,
+        });
+        document.addEventListener("keydown", (e) => this.onKey(e));
+    }
+
+    async setActive(on) {
+        this.active = on;
+        document.body.classList.toggle("editing", on);
+        this.toggleButton.classList.toggle("active", on);
+        this.area.hidden = !on;
+        this.inspectorEl.hidden = !on;
+        document.querySelector("#view-host").hidden = on;
+        document.querySelector("#view-title").hidden = on;
+        if (on) {
+            if (!Object.keys(this.classes).length) {
+                try { this.classes = await api.classes(); } catch (e) { this.notify("error", "classes: " + e.message); }
+            }
+            if (!this.model.tree) await this.reload();
+            else this.render();
+        } else {
+            this.app.navigator.show(this.app.network, this.app.current);
+        }
+    }
+
+    async reload() {
+        try {
+            const m = await files.model();
+            this.model.load(m);
+            this.errors.clear();
+            this.groupError = null;
+            if (!this.model.group(this.groupPath)) this.groupPath = "";
+        } catch (e) {
+            this.setStatus("error", "model: " + e.message);
+        }
+    }
+
+    setStatus(level, text) {
+        this.status.className = "editor-status level-" + level;
+        this.status.textContent = text;
+        this.status.dataset.level = level;
+    }
+
+    // --- edits -----------------------------------------------------------------------------
+
+    group() { return this.model.group(this.groupPath) || this.model.tree; }
+
+    edit(label, fn) {
+        try {
+            return this.model.do(label, fn);
+        } catch (e) {
+            this.notify("error", `${label}: ${e.message}`);
+            this.setStatus("error", `${label}: ${e.message}`);
+            this.render();
+            return null;
+        }
+    }
+
+    onModelChange(kind) {
+        if (kind === "undo" || kind === "redo" || kind === "load") {
+            this.selection.clear();
+            if (!this.model.group(this.groupPath)) this.groupPath = "";
+        }
+        if (kind !== "load" && kind !== "edit") this.errors.clear();
+        // forget the selection of nodes no longer in the tree
+        for (const n of [...this.selection]) if (!this.model.chain(n)) this.selection.delete(n);
+        this.updateTitle();
+        if (this.active) this.render();
+    }
+
+    updateTitle() {
+        this.undoButton.disabled = !this.model.canUndo();
+        this.redoButton.disabled = !this.model.canRedo();
+        const name = this.model.file || "(not saved)";
+        document.querySelector("#file-name").textContent = name + (this.model.unsaved ? " •" : "");
+    }
+
+    /** Write the present positions of every box of the group into _x/_y (inside an edit). */
+    freeze(g) {
+        if (!this.graph || g !== this.group()) return;
+        for (const b of this.graph.boxes) {
+            if (!isComponent(b.node) || b.readOnly) continue;
+            const p = this.positions.get(b.key);
+            if (p && !storedPosition(b)) { b.node.attrs._x = String(Math.round(p.x)); b.node.attrs._y = String(Math.round(p.y)); }
+        }
+    }
+
+    /** A free place for a new box: the middle of the view, moved down past other boxes. */
+    freeSpot(w = 170, hgt = 80) {
+        const r = this.host.getBoundingClientRect();
+        const t = this.netView?.t || { k: 1, x: 0, y: 0 };
+        let x = Math.round(((r.width / 2) - t.x) / t.k / 10) * 10 - 80, y = Math.round(((r.height / 3) - t.y) / t.k / 10) * 10;
+        const boxes = (this.graph?.boxes || []).map((b) => ({ ...this.positions.get(b.key), w: b.w, h: b.h })).filter((b) => b.x !== undefined);
+        for (let i = 0; i < 200; i++) {
+            if (!boxes.some((b) => x < b.x + b.w + 20 && b.x < x + w + 20 && y < b.y + b.h + 20 && b.y < y + hgt + 20)) break;
+            y += 30;
+        }
+        return { x, y };
+    }
+
+    async addModule() {
+        if (this.mode !== "network") this.openMode("network");
+        const cls = await pickClass(this.classes);
+        if (!cls) return;
+        const g = this.group();
+        const at = this.freeSpot();
+        const added = this.edit(`add ${cls}`, () => {
+            this.freeze(g);
+            const m = node("module", { class: cls, name: this.model.uniqueName(g, cls), _x: String(at.x), _y: String(at.y) });
+            return EditorModel.insert(g, m);
+        });
+        if (added) this.select([added]);
+    }
+
+    addGroup() {
+        const g = this.group();
+        const at = this.freeSpot();
+        const added = this.edit("add group", () => {
+            this.freeze(g);
+            return EditorModel.insert(g, node("group", { name: this.model.uniqueName(g, "Group"), _x: String(at.x), _y: String(at.y) }));
+        });
+        if (added) this.select([added]);
+    }
+
+    async addPin(tag) {
+        const g = this.group();
+        const taken = new Set(kids(g, tag).map((n) => n.attrs.name));
+        const name = await ask(`Add a group ${tag}`, "Name", tag === "input" ? "INPUT" : "OUTPUT");
+        if (!name) return;
+        if (taken.has(name)) { this.setStatus("error", `the group has an ${tag} "${name}" already`); return; }
+        const added = this.edit(`add ${tag}`, () => { this.freeze(g); return EditorModel.insert(g, node(tag, { name })); });
+        if (added) this.select([added]);
+    }
+
+    onConnect(from, to) {
+        const addr = (end) => (end.box.kind === "module" || end.box.kind === "group") ? `${end.box.name}.${end.port}` : end.box.name;
+        const g = this.group();
+        const source = addr(from), target = addr(to);
+        if (kids(g, "connection").some((c) => c.attrs.source === source && c.attrs.target === target)) return;
+        const added = this.edit("connect", () => {
+            this.freeze(g);
+            return EditorModel.insert(g, node("connection", { source, target, delay: "1" }));
+        });
+        if (added) this.select([added]);
+    }
+
+    onMove(moves) {
+        const g = this.group();
+        this.edit("move", () => {
+            this.freeze(g);
+            for (const [key, p] of moves) {
+                const b = this.graph.boxes.find((x) => x.key === key);
+                if (b && isComponent(b.node)) { b.node.attrs._x = String(Math.round(p.x)); b.node.attrs._y = String(Math.round(p.y)); }
+            }
+        });
+    }
+
+    align(axis) {
+        const sel = this.graph?.boxes.filter((b) => this.selection.has(b.node) && isComponent(b.node)) || [];
+        if (sel.length < 2) { this.setStatus("info", "select two or more boxes to align them (shift-click)"); return; }
+        const v = Math.min(...sel.map((b) => this.positions.get(b.key)[axis]));
+        this.edit("align", () => {
+            this.freeze(this.group());
+            for (const b of sel) b.node.attrs["_" + axis] = String(Math.round(v));
+        });
+    }
+
+    async autoLayout() {
+        if (!this.graph) return;
+        const { positions } = await layout(this.graph, { force: true });
+        this.edit("auto layout", () => {
+            for (const b of this.graph.boxes) {
+                const p = positions.get(b.key);
+                if (p && isComponent(b.node) && !b.readOnly) { b.node.attrs._x = String(p.x); b.node.attrs._y = String(p.y); }
+            }
+        });
+        this.netView?.fit();
+    }
+
+    rename(n, name) {
+        const g = this.parentOf(n);
+        if (!g) return;
+        if (name === n.attrs.name) return;
+        if (this.model.names(g).has(name)) { this.setStatus("error", `"${name}" is taken in this group`); this.render(); return; }
+        this.edit("rename", () => { this.freeze(this.group()); EditorModel.rename(g, n, name); });
+    }
+
+    parentOf(n) {
+        const chain = this.model.chain(n);
+        if (!chain) return null;
+        // an include's elements belong to the element holding the include
+        for (let i = chain.length - 2; i >= 0; i--) if (chain[i].tag !== "#include") return chain[i];
+        return null;
+    }
+
+    deleteSelection() {
+        const nodes = [...this.selection].filter((n) => !this.isReadOnly(n));
+        if (!nodes.length) return;
+        this.edit("delete", () => {
+            this.freeze(this.group());
+            for (const n of nodes) {
+                const parent = this.parentOf(n);
+                if (!parent) continue;
+                if (isComponent(n)) EditorModel.deleteComponents(parent, [n]);
+                else EditorModel.remove(this.model.chain(n).at(-2), n);
+            }
+        });
+        this.selection.clear();
+        this.render();
+    }
+
+    isReadOnly(n) {
+        const chain = this.model.chain(n);
+        return !chain || chain.some((x) => x.tag === "#include");
+    }
+
+    copy() {
+        const sel = [...this.selection];
+        if (this.mode === "network") {
+            const comps = sel.filter(isComponent);
+            if (comps.length) this.clipboard = { kind: "network", ...EditorModel.copy(this.group(), comps) };
+        } else {
+            const ws = sel.filter((n) => !isComponent(n) && n.tag !== "connection");
+            if (ws.length) this.clipboard = { kind: "view", nodes: ws.map((w) => clone(w)) };
+        }
+        if (this.clipboard) this.setStatus("info", `copied ${this.clipboard.nodes.length}`);
+    }
+
+    paste() {
+        const clip = this.clipboard;
+        if (!clip) return;
+        if (clip.kind === "network" && this.mode === "network") {
+            const g = this.group();
+            const added = this.edit("paste", () => { this.freeze(g); return this.model.pasteInto(g, clip); });
+            if (added) this.select(added);
+        } else if (clip.kind === "view" && this.mode !== "network") {
+            const v = this.currentView();
+            if (!v) return;
+            const added = this.edit("paste widgets", () => clip.nodes.map((w) => {
+                const m = clone(w);
+                const b = widgetBox(m);
+                setWidgetBox(m, { x: b.x + 20, y: b.y + 20 });
+                v.children.push(m);
+                return m;
+            }));
+            if (added) this.select(added);
+        }
+    }
+
+    duplicate() { this.copy(); this.paste(); }
+
+    // --- views -----------------------------------------------------------------------------
+
+    currentView() {
+        if (this.mode === "network") return null;
+        return kids(this.group(), "view")[this.mode] || null;
+    }
+
+    async addView() {
+        const g = this.group();
+        const name = await ask("Add a view", "Name", "View");
+        if (name === null) return;
+        const added = this.edit("add view", () => EditorModel.insert(g, node("view", { name })));
+        if (added) this.openMode(kids(g, "view").indexOf(added));
+    }
+
+    deleteView() {
+        const v = this.currentView();
+        if (!v) return;
+        const g = this.group();
+        this.edit("delete view", () => EditorModel.remove(g, v));
+        this.openMode("network");
+    }
+
+    addWidget(cls) {
+        let v = this.currentView();
+        const g = this.group();
+        if (!v) {
+            const views = kids(g, "view");
+            v = views[0] || this.edit("add view", () => EditorModel.insert(g, node("view", { name: "View" })));
+            this.mode = kids(g, "view").indexOf(v);
+        }
+        const n = kids(v).length;
+        const added = this.edit(`add ${cls}`, () => {
+            const w = node(cls, { title: cls, x: String(20 + 220 * (n % 3)), y: String(20 + 220 * Math.floor(n / 3)), width: "200", height: "200" });
+            v.children.push(w);
+            return w;
+        });
+        if (added) this.select([added]);
+    }
+
+    onGeometry(w, box) { this.edit("move widget", () => setWidgetBox(w, box)); }
+
+    sourcesInGroup() {
+        const out = [];
+        for (const m of kids(this.group(), "module")) for (const o of this.classes[m.attrs.class]?.outputs || []) out.push(`${m.attrs.name}.${o.name}`);
+        for (const s of kids(this.group(), "group")) for (const o of kids(s, "output")) out.push(`${s.attrs.name}.${o.attrs.name}`);
+        return out;
+    }
+
+    parametersInGroup() {
+        const out = [];
+        for (const m of kids(this.group(), "module")) for (const p of this.classes[m.attrs.class]?.parameters || []) out.push(`${m.attrs.name}.${p.name}`);
+        return out;
+    }
+
+    // --- navigation and drawing --------------------------------------------------------------
+
+    openGroup(path, view = null) {
+        if (!this.model.group(path)) return;
+        if (this.netView) this.transforms.set(this.groupPath, this.netView.t);
+        this.groupPath = path;
+        this.mode = view === null || view === undefined || view < 0 ? "network" : view;
+        this.selection.clear();
+        this.render();
+    }
+
+    /** Open the group of a module (dotted path) and select the module. */
+    selectPath(path) {
+        const i = path.lastIndexOf(".");
+        const group = i < 0 ? "" : path.slice(0, i), name = path.slice(i + 1);
+        const g = this.model.group(group);
+        const m = g && kids(g).find((c) => c.attrs.name === name);
+        if (!m) return;
+        if (group !== this.groupPath || this.mode !== "network") this.openGroup(group);
+        this.select([m]);
+    }
+
+    openMode(mode) {
+        this.mode = mode;
+        this.selection.clear();
+        this.render();
+    }
+
+    select(nodes, additive = false) {
+        if (!additive) this.selection.clear();
+        for (const n of nodes) {
+            if (additive && this.selection.has(n)) this.selection.delete(n); else this.selection.add(n);
+        }
+        this.redraw();
+    }
+
+    /** Redraw with the present positions (no new layout). */
+    redraw() {
+        if (!this.active) return;
+        if (this.mode === "network" && this.netView && this.graph) {
+            this.netView.show(this.graph, this.positions, { errors: this.visibleErrors(), selection: this.selection, groupError: this.groupError });
+        } else if (this.viewEditor && this.currentView()) {
+            this.viewEditor.show(this.currentView(), this.selection, this.errors);
+        }
+        this.showInspector();
+    }
+
+    /** Errors of nodes below the group's children are shown at the child. */
+    visibleErrors() {
+        const g = this.group();
+        const out = new Map(this.errors);
+        for (const [n, msg] of this.errors) {
+            const chain = this.model.chain(n) || [];
+            const i = chain.indexOf(g);
+            if (i >= 0 && chain.length > i + 2) {
+                let c = chain[i + 1];
+                if (c.tag === "#include") c = chain[i + 2];
+                if (!out.has(c)) out.set(c, msg);
+            }
+        }
+        return out;
+    }
+
+    showInspector() {
+        const sel = [...this.selection];
+        this.inspector.show(sel, { group: this.group(), readOnly: sel.length === 1 && this.isReadOnly(sel[0]) });
+    }
+
+    async render() {
+        if (!this.active || !this.model.tree) return;
+        const seq = ++this.renderSeq;
+        const g = this.group();
+        this.updateTitle();
+        this.app.navigator.show(treeAsNetwork(this.model.tree), { group: this.groupPath, view: this.mode === "network" ? -1 : this.mode });
+        // breadcrumbs
+        this.crumbs.textContent = "";
+        const parts = this.groupPath ? this.groupPath.split(".") : [];
+        const top = h("a", "crumb", this.model.tree.attrs.name || "(top)");
+        top.href = "#";
+        top.dataset.group = "";
+        top.addEventListener("click", (e) => { e.preventDefault(); this.openGroup(""); });
+        this.crumbs.appendChild(top);
+        parts.forEach((p, i) => {
+            this.crumbs.append(" ▸ ");
+            const a = h("a", "crumb", p);
+            a.href = "#";
+            a.dataset.group = parts.slice(0, i + 1).join(".");
+            a.addEventListener("click", (e) => { e.preventDefault(); this.openGroup(a.dataset.group); });
+            this.crumbs.appendChild(a);
+        });
+        // tabs: the network and the views
+        this.tabs.textContent = "";
+        const tab = (label, mode, cls = "") => {
+            const b = h("button", "editor-tab " + cls + (this.mode === mode ? " current" : ""), label);
+            b.dataset.mode = String(mode);
+            b.addEventListener("click", () => this.openMode(mode));
+            this.tabs.appendChild(b);
+            return b;
+        };
+        tab("Network", "network");
+        kids(g, "view").forEach((v, i) => tab("▭ " + (v.attrs.name || `View #${i}`), i, "view-tab"));
+        const addView = h("button", "editor-tab add-view", "+ View");
+        addView.id = "ed-add-view";
+        addView.addEventListener("click", () => this.addView());
+        this.tabs.appendChild(addView);
+        if (this.mode !== "network") {
+            const del = h("button", "editor-tab", "Delete view");
+            del.id = "ed-delete-view";
+            del.addEventListener("click", () => this.deleteView());
+            this.tabs.appendChild(del);
+        }
+        const network = this.mode === "network";
+        for (const b of this.netTools.concat(this.layoutTools)) b.hidden = !network;
+        if (network) {
+            if (this.viewEditor) { this.viewEditor.destroy(); this.viewEditor = null; }
+            if (!this.netView) {
+                this.netView = new NetworkView(this.host, {
+                    onSelect: (nodes, additive) => this.select(nodes, additive),
+                    onOpenGroup: (name) => this.openGroup(this.groupPath ? `${this.groupPath}.${name}` : name),
+                    onMove: (moves) => this.onMove(moves),
+                    onConnect: (from, to) => this.onConnect(from, to),
+                });
+                this.netView.shownGroup = null;
+            }
+            const graph = graphOf(g, this.classes);
+            const { positions, automatic } = await layout(graph);
+            if (seq !== this.renderSeq) return;
+            this.graph = graph;
+            this.positions = positions;
+            this.automatic = automatic;
+            this.host.dataset.layout = automatic ? "automatic" : "stored";
+            this.redraw();
+            if (this.netView.shownGroup !== this.groupPath) {
+                this.netView.shownGroup = this.groupPath;
+                const t = this.transforms.get(this.groupPath);
+                if (t) this.netView.setTransform(t); else this.netView.fit();
+            }
+            this.host.dataset.ready = String(seq);
+        } else {
+            if (this.netView) { this.transforms.set(this.groupPath, this.netView.t); this.netView.destroy(); this.netView = null; }
+            if (!this.viewEditor) {
+                this.viewEditor = new ViewEditor(this.host, {
+                    onSelect: (nodes, additive) => this.select(nodes, additive),
+                    onGeometry: (w, box) => this.onGeometry(w, box),
+                });
+            }
+            if (!this.currentView()) { this.mode = "network"; this.render(); return; }
+            this.redraw();
+            this.host.dataset.ready = String(seq);
+        }
+    }
+
+    // --- apply, files ------------------------------------------------------------------------
+
+    async apply() {
+        this.setStatus("info", "applying…");
+        try {
+            await files.apply(this.model.tree);
+            this.errors.clear();
+            this.groupError = null;
+            this.model.dirty = false;
+            this.setStatus("ok", "Applied: the network was rebuilt and runs from tick 0 (module state was reset).");
+            this.notify("info", "the edited network was applied: rebuilt, module state reset");
+            this.redraw();
+            return true;
+        } catch (e) {
+            this.showError(e);
+            return false;
+        }
+    }
+
+    /** A 422 from apply or open: the error next to the element at fault. */
+    showError(e) {
+        this.errors.clear();
+        this.groupError = null;
+        const body = e.body || {};
+        let n = body.path ? this.model.atIndices(body.path) : null;
+        if (!n && body.node !== null && body.node !== undefined) n = this.model.byId(body.node);
+        // the kernel names the file with its folder: the file name is enough here
+        const message = String(e.message).replace(/^[^\s:]*[\\/]([^\\/\s:]+\.ikg):/, "$1:");
+        if (n && n !== this.model.tree) {
+            this.errors.set(n, message);
+            // open the group that holds the element
+            const chain = this.model.chain(n) || [];
+            const groups = chain.filter((x) => x.tag === "group" && x !== n);
+            const path = groups.slice(1).map((x) => x.attrs.name).join(".");
+            if (path !== this.groupPath && this.model.group(path) === groups.at(-1)) { this.groupPath = path; this.mode = "network"; }
+            const view = chain.find((x) => x.tag === "view");
+            if (view) this.mode = kids(this.model.group(path), "view").indexOf(view);
+        } else {
+            this.groupError = message;
+        }
+        this.setStatus("error", "Not applied: " + message.replace(/\.?$/, ".") + " The previous network keeps running.");
+        this.notify("error", message);
+        this.render();
+    }
+
+    async save(as = false) {
+        let filename = null;
+        if (as || !this.model.file) {
+            filename = await ask("Save as", "File name", this.model.file || (this.model.tree.attrs.name || "model") + ".ikg", "save-as-name");
+            if (!filename) return;
+            if (!filename.endsWith(".ikg")) filename += ".ikg";
+        }
+        try {
+            const a = await files.save(this.model.tree, filename);
+            this.model.file = a.file || filename || this.model.file;
+            this.model.unsaved = false;
+            this.updateTitle();
+            this.setStatus("ok", `Saved ${this.model.file}.`);
+        } catch (e) {
+            this.setStatus("error", "Not saved: " + e.message);
+        }
+    }
+
+    async newModel() {
+        if (this.model.unsaved && !confirm("Discard the unsaved edits?")) return;
+        const name = await ask("New model", "Name of the top group", "Untitled", "new-name");
+        if (!name) return;
+        try {
+            await files.newModel(name);
+            this.groupPath = "";
+            this.mode = "network";
+            await this.reload();
+            this.setStatus("ok", `New model "${name}" (not saved yet).`);
+        } catch (e) { this.setStatus("error", "New: " + e.message); }
+    }
+
+    async openModel() {
+        if (this.model.unsaved && !confirm("Discard the unsaved edits?")) return;
+        const f = await pickFile(this.notify);
+        if (!f) return;
+        try {
+            await files.open(f);
+            this.groupPath = "";
+            this.mode = "network";
+            await this.reload();
+            this.setStatus("ok", `Opened ${f}.`);
+        } catch (e) {
+            this.setStatus("error", `${f} was not opened: ${e.message}`);
+        }
+    }
+
+    onKey(e) {
+        if (!this.active) return;
+        const t = e.target;
+        if (t && (t.tagName === "INPUT" || t.tagName === "TEXTAREA" || t.tagName === "SELECT" || t.isContentEditable)) return;
+        if (document.querySelector(".editor-dialog-back")) return;
+        const mod = e.ctrlKey || e.metaKey;
+        const k = e.key.toLowerCase();
+        if (mod && k === "z" && !e.shiftKey) this.model.undo();
+        else if (mod && (k === "y" || (k === "z" && e.shiftKey))) this.model.redo();
+        else if (mod && k === "c") this.copy();
+        else if (mod && k === "v") this.paste();
+        else if (mod && k === "d") this.duplicate();
+        else if (mod && k === "s") this.save();
+        else if (!mod && (e.key === "Delete" || e.key === "Backspace")) this.deleteSelection();
+        else return;
+        e.preventDefault();
+    }
+}

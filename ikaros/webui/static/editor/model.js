@@ -1,0 +1,292 @@
+// The editor's copy of the model tree (GET /api/model), the edit operations on it, and undo
+// and redo. Every edit is a command run through do(label, fn): the tree before it is kept,
+// so undo and redo restore whole trees (small: a model file's worth of JSON).
+//
+// A node is {id?, tag, attrs, text, children, file?, line?} (docs/webui-protocol.md, "The
+// editor"). Elements inside an <?include?> ("#include" nodes) are shown but read-only.
+
+export const INCLUDE = "#include";
+export const COMMENT = "#comment";
+const NAME = /^[A-Za-z_][A-Za-z0-9_-]*$/;
+
+export function clone(x) { return JSON.parse(JSON.stringify(x)); }
+
+export function node(tag, attrs = {}, children = []) {
+    return { tag, attrs: { ...attrs }, text: null, children };
+}
+
+/** Child elements of a node, with included ones spliced in (each marked {node, readOnly}). */
+export function elements(n, tag = null, readOnly = false) {
+    const out = [];
+    for (const c of n.children || []) {
+        if (c.tag === INCLUDE) out.push(...elements(c, tag, true));
+        else if (c.tag !== COMMENT && (tag === null || c.tag === tag)) out.push({ node: c, readOnly });
+    }
+    return out;
+}
+
+export function kids(n, tag) { return elements(n, tag).map((e) => e.node); }
+
+export function isValidName(name) { return NAME.test(name || ""); }
+
+/** The class of a widget element: <widget class=..>, <object class=..> or <plot ..>. */
+export function widgetClassOf(w) {
+    const c = (w.tag === "widget" || w.tag === "object") ? (w.attrs.class || "") : w.tag;
+    return String(c).replace(/([a-z0-9])([A-Z])/g, "$1-$2").replace(/_/g, "-").toLowerCase();
+}
+
+/** Widget geometry, from x/y or _x/_y. */
+export function widgetBox(w) {
+    const a = w.attrs;
+    return {
+        x: parseFloat(a.x ?? a._x) || 0, y: parseFloat(a.y ?? a._y) || 0,
+        width: parseFloat(a.width) || 200, height: parseFloat(a.height) || 200,
+    };
+}
+
+export function setWidgetBox(w, box) {
+    const a = w.attrs;
+    const xKey = a.x === undefined && a._x !== undefined ? "_x" : "x";
+    const yKey = a.y === undefined && a._y !== undefined ? "_y" : "y";
+    for (const [k, v] of [[xKey, box.x], [yKey, box.y], ["width", box.width], ["height", box.height]]) {
+        if (v !== undefined) a[k] = String(Math.round(v));
+    }
+}
+
+/** First component and the rest of a connection address ("A.OUTPUT[0:2]" -> A, OUTPUT). */
+export function splitAddress(text) {
+    let t = String(text || "").trim();
+    const sel = t.indexOf("[");
+    let selector = "";
+    if (sel >= 0) { selector = t.slice(sel); t = t.slice(0, sel); }
+    const fmt = t.indexOf(":");
+    if (fmt >= 0) t = t.slice(0, fmt);
+    return { path: t, selector, parts: t.split(".") };
+}
+
+export class EditorModel extends EventTarget {
+    constructor() {
+        super();
+        this.tree = null;
+        this.file = "";
+        this.folder = "";
+        this.undoStack = [];
+        this.redoStack = [];
+        this.dirty = false;        // edited since the last apply
+        this.unsaved = false;      // edited since the last save
+    }
+
+    load({ tree, file, folder }) {
+        this.tree = tree;
+        this.file = file || "";
+        this.folder = folder || "";
+        this.undoStack = [];
+        this.redoStack = [];
+        this.dirty = false;
+        this.unsaved = false;
+        this.changed("load");
+    }
+
+    changed(kind) { this.dispatchEvent(new CustomEvent("change", { detail: kind })); }
+
+    /** Run an edit as one undoable command. fn(tree) changes the tree; it may throw. */
+    do(label, fn) {
+        const before = JSON.stringify(this.tree);
+        let result;
+        try {
+            result = fn(this.tree);
+        } catch (e) {
+            this.tree = JSON.parse(before);
+            throw e;
+        }
+        if (JSON.stringify(this.tree) === before) return result;
+        this.undoStack.push({ label, tree: before });
+        if (this.undoStack.length > 500) this.undoStack.shift();
+        this.redoStack = [];
+        this.dirty = this.unsaved = true;
+        this.changed("edit");
+        return result;
+    }
+
+    canUndo() { return this.undoStack.length > 0; }
+    canRedo() { return this.redoStack.length > 0; }
+
+    undo() {
+        const step = this.undoStack.pop();
+        if (!step) return;
+        this.redoStack.push({ label: step.label, tree: JSON.stringify(this.tree) });
+        this.tree = JSON.parse(step.tree);
+        this.dirty = this.unsaved = true;
+        this.changed("undo");
+    }
+
+    redo() {
+        const step = this.redoStack.pop();
+        if (!step) return;
+        this.undoStack.push({ label: step.label, tree: JSON.stringify(this.tree) });
+        this.tree = JSON.parse(step.tree);
+        this.dirty = this.unsaved = true;
+        this.changed("redo");
+    }
+
+    // --- finding -----------------------------------------------------------------------
+
+    /** The group node at a dotted path from the top ("" is the top). */
+    group(path, tree = this.tree) {
+        let g = tree;
+        if (!path) return g;
+        for (const name of path.split(".")) {
+            g = kids(g, "group").find((c) => c.attrs.name === name);
+            if (!g) return null;
+        }
+        return g;
+    }
+
+    /** The node at a list of child indices from the root. */
+    atIndices(indices) {
+        let n = this.tree;
+        for (const i of indices || []) {
+            n = n?.children?.[i];
+            if (!n) return null;
+        }
+        return n;
+    }
+
+    /** The chain of nodes from the root to a node (inclusive), or null. */
+    chain(target, n = this.tree, acc = []) {
+        acc = [...acc, n];
+        if (n === target) return acc;
+        for (const c of n.children || []) {
+            const found = this.chain(target, c, acc);
+            if (found) return found;
+        }
+        return null;
+    }
+
+    byId(id, n = this.tree) {
+        if (n.id === id) return n;
+        for (const c of n.children || []) {
+            const f = this.byId(id, c);
+            if (f) return f;
+        }
+        return null;
+    }
+
+    /** Names used by the children of a group (modules and groups). */
+    names(g) { return new Set(kids(g).filter((c) => c.tag === "module" || c.tag === "group").map((c) => c.attrs.name)); }
+
+    uniqueName(g, base, taken = this.names(g)) {
+        base = (base || "Module").replace(/[^A-Za-z0-9_-]/g, "_").replace(/^([0-9-])/, "_$1");
+        if (!taken.has(base)) return base;
+        const stem = base.replace(/_?\d+$/, "") || base;
+        for (let i = 2; ; i++) if (!taken.has(`${stem}${i}`)) return `${stem}${i}`;
+    }
+
+    // --- edits (call inside do) --------------------------------------------------------
+
+    static insert(g, child) {
+        // before the connections and views, after the other components
+        const i = g.children.findIndex((c) => c.tag === "connection" || c.tag === "view");
+        if (child.tag === "connection") {
+            const v = g.children.findIndex((c) => c.tag === "view");
+            g.children.splice(v < 0 ? g.children.length : v, 0, child);
+        } else if (child.tag === "view" || i < 0) g.children.push(child);
+        else g.children.splice(i, 0, child);
+        return child;
+    }
+
+    static remove(parent, child) {
+        const i = parent.children.indexOf(child);
+        if (i >= 0) parent.children.splice(i, 1);
+        return i;
+    }
+
+    /** Connections of a group that touch a child (by name). */
+    static connectionsOf(g, name) {
+        return kids(g, "connection").filter((c) =>
+            splitAddress(c.attrs.source).parts[0] === name || splitAddress(c.attrs.target).parts[0] === name);
+    }
+
+    /** Delete components (nodes of group g) with their connections. */
+    static deleteComponents(g, nodes) {
+        for (const n of nodes) {
+            for (const c of EditorModel.connectionsOf(g, n.attrs.name)) EditorModel.remove(g, c);
+            EditorModel.remove(g, n);
+        }
+    }
+
+    /** Rename a child of g, and the addresses in g that name it. */
+    static rename(g, n, name) {
+        const old = n.attrs.name;
+        n.attrs.name = name;
+        const re = (t) => {
+            const a = splitAddress(t);
+            if (a.parts[0] !== old || a.parts.length < 2) return t;
+            return [name, ...a.parts.slice(1)].join(".") + String(t).trim().slice(a.path.length);
+        };
+        for (const c of kids(g, "connection")) {
+            if (c.attrs.source) c.attrs.source = re(c.attrs.source);
+            if (c.attrs.target) c.attrs.target = re(c.attrs.target);
+        }
+        for (const o of kids(g, "output")) if (o.attrs.source) o.attrs.source = re(o.attrs.source);
+        for (const v of kids(g, "view")) {
+            for (const w of kids(v)) {
+                for (const k of Object.keys(w.attrs)) {
+                    if (/source$|Source$|parameter$|Parameter$/.test(k) || ["red", "green", "blue", "matrix"].includes(k)) {
+                        w.attrs[k] = String(w.attrs[k]).split(",").map((s) => re(s.trim())).join(",");
+                    }
+                }
+            }
+        }
+    }
+
+    /** Copies of nodes of g (and the connections among them), as a clipboard. */
+    static copy(g, nodes) {
+        const names = new Set(nodes.map((n) => n.attrs.name));
+        const conns = kids(g, "connection").filter((c) =>
+            names.has(splitAddress(c.attrs.source).parts[0]) && names.has(splitAddress(c.attrs.target).parts[0]));
+        const strip = (n) => { const m = clone(n); const s = (x) => { delete x.id; delete x.file; delete x.line; (x.children || []).forEach(s); }; s(m); return m; };
+        return { nodes: nodes.map(strip), connections: conns.map(strip) };
+    }
+
+    /** Paste a clipboard into g: names made unique, connections remapped; returns the new nodes. */
+    pasteInto(g, clip, offset = 40) {
+        const taken = this.names(g);
+        const map = new Map();
+        const added = [];
+        for (const n of clip.nodes) {
+            const m = clone(n);
+            const name = this.uniqueName(g, m.attrs.name, taken);
+            taken.add(name);
+            map.set(n.attrs.name, name);
+            m.attrs.name = name;
+            if (m.attrs._x !== undefined) m.attrs._x = String((parseFloat(m.attrs._x) || 0) + offset);
+            if (m.attrs._y !== undefined) m.attrs._y = String((parseFloat(m.attrs._y) || 0) + offset);
+            EditorModel.insert(g, m);
+            added.push(m);
+        }
+        const re = (t) => {
+            const a = splitAddress(t);
+            return [map.get(a.parts[0]) ?? a.parts[0], ...a.parts.slice(1)].join(".") + String(t).trim().slice(a.path.length);
+        };
+        for (const c of clip.connections) {
+            const m = clone(c);
+            m.attrs.source = re(m.attrs.source);
+            m.attrs.target = re(m.attrs.target);
+            EditorModel.insert(g, m);
+        }
+        return added;
+    }
+}
+
+/** The tree as the navigator's network: {top: {name, path, groups, modules, views}}. */
+export function treeAsNetwork(tree) {
+    const walk = (g, path) => ({
+        name: g.attrs.name || "",
+        path,
+        modules: kids(g, "module").map((m) => ({ name: m.attrs.name, class: m.attrs.class, path: path ? `${path}.${m.attrs.name}` : m.attrs.name })),
+        groups: kids(g, "group").map((s) => walk(s, path ? `${path}.${s.attrs.name}` : s.attrs.name || "")),
+        views: kids(g, "view").map((v) => ({ name: v.attrs.name || "", widgets: [] })),
+    });
+    return { top: walk(tree, "") };
+}

@@ -1,0 +1,280 @@
+// The network view of one group: SVG boxes with input ports on the left and output ports on
+// the right, connections as curves labelled with their delay, the group's inputs and outputs
+// as pins at the edges. Zoom (wheel), pan (drag the background), select (click, shift-click),
+// move (drag boxes), connect (drag from an output port to an input port), open a group
+// (double-click). The view changes nothing itself: it reports to its owner.
+import { HEADER, PORT_H, portOffset } from "./layout.js";
+
+const SVG = "http://www.w3.org/2000/svg";
+
+function el(tag, attrs = {}, parent = null) {
+    const e = document.createElementNS(SVG, tag);
+    for (const [k, v] of Object.entries(attrs)) if (v !== undefined && v !== null) e.setAttribute(k, v);
+    if (parent) parent.appendChild(e);
+    return e;
+}
+
+/** The control points of a connection's curve; a backward one loops below its ends. */
+function controls(x1, y1, x2, y2) {
+    const back = x2 < x1 + 30;
+    const dx = back ? Math.max(80, (x1 - x2) / 2) : Math.max(40, Math.abs(x2 - x1) / 2);
+    const dy = back ? 50 + Math.abs(y2 - y1) / 4 : 0;
+    return [[x1, y1], [x1 + dx, y1 + dy], [x2 - dx, y2 + dy], [x2, y2]];
+}
+
+function curve(x1, y1, x2, y2) {
+    const [a, b, c, d] = controls(x1, y1, x2, y2);
+    return `M${a} C${b} ${c} ${d}`;
+}
+
+/** The middle of the curve (t = 1/2). */
+function middle(x1, y1, x2, y2) {
+    const [a, b, c, d] = controls(x1, y1, x2, y2);
+    return [0, 1].map((i) => 0.125 * a[i] + 0.375 * b[i] + 0.375 * c[i] + 0.125 * d[i]);
+}
+
+export class NetworkView {
+    /**
+     * handlers: onSelect(nodes, additive), onOpenGroup(name), onMove(Map key -> {x, y}),
+     * onConnect(from {box, port}, to {box, port})
+     */
+    constructor(host, handlers) {
+        this.host = host;
+        this.h = handlers;
+        this.svg = el("svg", { class: "network-view", tabindex: "0" });
+        host.appendChild(this.svg);
+        this.root = el("g", { class: "viewport" }, this.svg);
+        this.t = { k: 1, x: 0, y: 0 };
+        this.graph = null;
+        this.pos = new Map();
+        this.drag = null;
+        this.svg.addEventListener("wheel", (e) => this.onWheel(e), { passive: false });
+        this.svg.addEventListener("pointerdown", (e) => this.onDown(e));
+        window.addEventListener("pointermove", (e) => this.onMoveEvent(e));
+        window.addEventListener("pointerup", (e) => this.onUp(e));
+        this.svg.addEventListener("dblclick", (e) => {
+            const g = e.target.closest?.("[data-key]");
+            const b = g && this.graph?.boxes.find((x) => x.key === g.dataset.key);
+            if (b && b.kind === "group") this.h.onOpenGroup(b.name);
+        });
+    }
+
+    destroy() { this.svg.remove(); }
+
+    setTransform(t) {
+        this.t = { ...t };
+        this.root.setAttribute("transform", `translate(${this.t.x},${this.t.y}) scale(${this.t.k})`);
+    }
+
+    /** Fit the drawing into the view. */
+    fit() {
+        if (!this.graph || !this.graph.boxes.length) { this.setTransform({ k: 1, x: 20, y: 20 }); return; }
+        const r = this.svg.getBoundingClientRect();
+        let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+        for (const b of this.graph.boxes) {
+            const p = this.pos.get(b.key);
+            if (!p) continue;
+            x0 = Math.min(x0, p.x); y0 = Math.min(y0, p.y);
+            x1 = Math.max(x1, p.x + b.w); y1 = Math.max(y1, p.y + b.h + 30);
+        }
+        const w = Math.max(1, r.width || 800), h = Math.max(1, r.height || 600);
+        const k = Math.min(1.25, Math.max(0.2, Math.min((w - 40) / (x1 - x0 + 1), (h - 40) / (y1 - y0 + 1))));
+        this.setTransform({ k, x: 20 - x0 * k, y: 20 - y0 * k });
+    }
+
+    zoom(factor, cx = null, cy = null) {
+        const r = this.svg.getBoundingClientRect();
+        if (cx === null) { cx = r.width / 2; cy = r.height / 2; }
+        const k = Math.min(4, Math.max(0.1, this.t.k * factor));
+        const f = k / this.t.k;
+        this.setTransform({ k, x: cx - (cx - this.t.x) * f, y: cy - (cy - this.t.y) * f });
+    }
+
+    onWheel(e) {
+        e.preventDefault();
+        const r = this.svg.getBoundingClientRect();
+        this.zoom(Math.exp(-e.deltaY * 0.0015), e.clientX - r.left, e.clientY - r.top);
+    }
+
+    /** Screen point to drawing coordinates. */
+    local(e) {
+        const r = this.svg.getBoundingClientRect();
+        return { x: (e.clientX - r.left - this.t.x) / this.t.k, y: (e.clientY - r.top - this.t.y) / this.t.k };
+    }
+
+    // --- drawing -------------------------------------------------------------------------
+
+    /** Draw a graph: positions Map(key -> {x, y}); errors Map(node -> message); selection Set(node). */
+    show(graph, positions, { errors = new Map(), selection = new Set(), groupError = null } = {}) {
+        this.graph = graph;
+        this.pos = positions;
+        this.errors = errors;
+        this.selection = selection;
+        this.root.textContent = "";
+        this.svg.querySelectorAll(":scope > .group-error").forEach((x) => x.remove());
+        const edgeLayer = el("g", { class: "edges" }, this.root);
+        const boxLayer = el("g", { class: "boxes" }, this.root);
+        const labelLayer = el("g", { class: "edge-labels" }, this.root);
+        this.tempLayer = el("g", { class: "temp" }, this.root);
+        for (const b of graph.boxes) this.drawBox(boxLayer, b);
+        graph.edges.forEach((e, i) => this.drawEdge(edgeLayer, labelLayer, e, i));
+        if (groupError) {
+            const f = el("foreignObject", { x: 8, y: 8, width: 600, height: 80, class: "group-error" }, this.svg);
+            const d = document.createElement("div");
+            d.className = "editor-error";
+            d.textContent = groupError;
+            f.appendChild(d);
+        }
+    }
+
+    portXY(b, side, port) {
+        const p = this.pos.get(b.key) || { x: 0, y: 0 };
+        const o = portOffset(b, side, port);
+        return { x: p.x + o.x, y: p.y + o.y };
+    }
+
+    drawBox(layer, b) {
+        const p = this.pos.get(b.key) || { x: 0, y: 0 };
+        const selected = b.node && this.selection.has(b.node);
+        const error = b.node && this.errors.get(b.node);
+        const g = el("g", { class: `box-group kind-${b.kind}${selected ? " selected" : ""}${error ? " has-error" : ""}${b.readOnly ? " read-only" : ""}`,
+            "data-key": b.key, "data-name": b.name, "data-kind": b.kind, transform: `translate(${p.x},${p.y})` }, layer);
+        el("rect", { class: "box", width: b.w, height: b.h, rx: b.kind === "module" || b.kind === "group" ? 5 : 13,
+            "data-name": b.name, "data-kind": b.kind }, g);
+        if (b.kind === "module" || b.kind === "group") {
+            el("line", { class: "box-rule", x1: 0, y1: HEADER - 4, x2: b.w, y2: HEADER - 4 }, g);
+            const name = el("text", { class: "box-name", x: b.w / 2, y: 15, "text-anchor": "middle" }, g);
+            name.textContent = b.name;
+            const cls = el("text", { class: "box-class", x: b.w / 2, y: 29, "text-anchor": "middle" }, g);
+            cls.textContent = b.kind === "group" ? "group ▸" : b.label + (b.unknown ? " (unknown class)" : "");
+        } else {
+            const t = el("text", { class: "box-name", x: b.w / 2, y: b.h / 2 + 4, "text-anchor": "middle" }, g);
+            t.textContent = (b.kind.startsWith("external") ? "⋯ " : "") + b.name;
+        }
+        for (const side of ["in", "out"]) {
+            for (const port of side === "in" ? b.inputs : b.outputs) {
+                const o = portOffset(b, side, port);
+                const pg = el("g", { class: `port port-${side}`, "data-port": port, "data-side": side, "data-key": b.key }, g);
+                el("circle", { cx: o.x, cy: o.y, r: 5 }, pg);
+                if (port && (b.kind === "module" || b.kind === "group")) {
+                    const t = el("text", { class: "port-name", x: side === "in" ? o.x + 9 : o.x - 9, y: o.y + 4,
+                        "text-anchor": side === "in" ? "start" : "end" }, pg);
+                    t.textContent = port;
+                }
+            }
+        }
+        const title = el("title", {}, g);
+        title.textContent = b.kind === "module" ? `${b.name} (${b.label})` : `${b.name} (${b.kind})`;
+        if (error) this.errorNote(layer, p.x, p.y + b.h + 4, error);
+    }
+
+    errorNote(layer, x, y, message) {
+        const f = el("foreignObject", { x, y, width: 280, height: 90, class: "error-note" }, layer);
+        const d = document.createElement("div");
+        d.className = "editor-error";
+        d.textContent = message;
+        f.appendChild(d);
+    }
+
+    drawEdge(layer, labels, e, i) {
+        if (!e.from.box || !e.to.box) return;
+        const a = this.portXY(e.from.box, "out", e.from.port);
+        const b = this.portXY(e.to.box, "in", e.to.port);
+        const selected = this.selection.has(e.node);
+        const error = this.errors.get(e.node);
+        const g = el("g", { class: `edge${selected ? " selected" : ""}${error ? " has-error" : ""}${e.outputSource ? " output-source" : ""}`,
+            "data-edge": String(i), "data-source": e.node.attrs.source || "", "data-target": e.node.attrs.target || e.node.attrs.name || "" }, layer);
+        const d = curve(a.x, a.y, b.x, b.y);
+        el("path", { class: "edge-hit", d }, g);
+        el("path", { class: "edge-line", d }, g);
+        const label = [e.delay, e.from.selector, e.to.selector ? "→" + e.to.selector : ""].filter(Boolean).join(" ");
+        const [mx, my] = middle(a.x, a.y, b.x, b.y);
+        if (label) {
+            const lg = el("g", { class: `edge-label${selected ? " selected" : ""}`, "data-edge": String(i) }, labels);
+            const w = 8 + 7 * label.length;
+            el("rect", { x: mx - w / 2, y: my - 9, width: w, height: 18, rx: 9 }, lg);
+            const t = el("text", { x: mx, y: my + 4, "text-anchor": "middle" }, lg);
+            t.textContent = label;
+            const title = el("title", {}, lg);
+            title.textContent = `${e.node.attrs.source} → ${e.node.attrs.target}, delay ${e.delay}`;
+        }
+        if (error) this.errorNote(labels, mx - 20, my + 12, error);
+    }
+
+    // --- interaction ---------------------------------------------------------------------
+
+    onDown(e) {
+        if (e.button !== 0) return;
+        this.svg.focus({ preventScroll: true });
+        const port = e.target.closest?.(".port");
+        const boxEl = e.target.closest?.(".box-group");
+        const edgeEl = e.target.closest?.("[data-edge]");
+        const start = { cx: e.clientX, cy: e.clientY };
+        if (port && port.dataset.side === "out") {
+            const b = this.graph.boxes.find((x) => x.key === port.dataset.key);
+            if (b && !b.readOnly || b && b.kind === "input") {
+                const from = this.portXY(b, "out", port.dataset.port);
+                this.drag = { kind: "connect", from: { box: b, port: port.dataset.port }, start: from,
+                    path: el("path", { class: "edge-temp", d: curve(from.x, from.y, from.x, from.y) }, this.tempLayer) };
+                e.preventDefault();
+                return;
+            }
+        }
+        if (boxEl) {
+            const b = this.graph.boxes.find((x) => x.key === boxEl.dataset.key);
+            if (!b?.node) return;
+            if (!this.selection.has(b.node) || e.shiftKey) this.h.onSelect([b.node], e.shiftKey);
+            const movable = this.graph.boxes.filter((x) => x.node && this.selection.has(x.node) && (x.kind === "module" || x.kind === "group") && !x.readOnly);
+            this.drag = { kind: "move", ...start, boxes: movable.map((x) => ({ b: x, p0: { ...this.pos.get(x.key) } })), moved: false };
+            e.preventDefault();
+            return;
+        }
+        if (edgeEl) {
+            const edge = this.graph.edges[+edgeEl.dataset.edge];
+            if (edge) this.h.onSelect([edge.node], e.shiftKey);
+            return;
+        }
+        this.drag = { kind: "pan", ...start, t0: { ...this.t }, moved: false };
+    }
+
+    onMoveEvent(e) {
+        const d = this.drag;
+        if (!d) return;
+        if (d.kind === "pan") {
+            const dx = e.clientX - d.cx, dy = e.clientY - d.cy;
+            if (Math.abs(dx) + Math.abs(dy) > 2) d.moved = true;
+            this.setTransform({ k: d.t0.k, x: d.t0.x + dx, y: d.t0.y + dy });
+        } else if (d.kind === "move") {
+            const dx = (e.clientX - d.cx) / this.t.k, dy = (e.clientY - d.cy) / this.t.k;
+            if (Math.abs(dx) + Math.abs(dy) > 2) d.moved = true;
+            if (!d.moved) return;
+            for (const { b, p0 } of d.boxes) {
+                const p = { x: Math.round((p0.x + dx) / 10) * 10, y: Math.round((p0.y + dy) / 10) * 10 };
+                this.pos.set(b.key, p);
+            }
+            this.show(this.graph, this.pos, { errors: this.errors, selection: this.selection });
+        } else if (d.kind === "connect") {
+            const p = this.local(e);
+            d.path.setAttribute("d", curve(d.start.x, d.start.y, p.x, p.y));
+            const over = document.elementFromPoint(e.clientX, e.clientY)?.closest?.(".port-in");
+            this.svg.querySelectorAll(".port-in.target").forEach((x) => x.classList.remove("target"));
+            if (over) over.classList.add("target");
+        }
+    }
+
+    onUp(e) {
+        const d = this.drag;
+        this.drag = null;
+        if (!d) return;
+        if (d.kind === "pan" && !d.moved) this.h.onSelect([], false);
+        if (d.kind === "move" && d.moved) this.h.onMove(new Map(d.boxes.map(({ b }) => [b.key, this.pos.get(b.key)])));
+        if (d.kind === "connect") {
+            d.path.remove();
+            const over = document.elementFromPoint(e.clientX, e.clientY)?.closest?.(".port-in");
+            if (over) {
+                const b = this.graph.boxes.find((x) => x.key === over.dataset.key);
+                if (b) this.h.onConnect(d.from, { box: b, port: over.dataset.port });
+            }
+        }
+    }
+}

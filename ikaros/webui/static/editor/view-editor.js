@@ -1,0 +1,99 @@
+// The view editor: the widgets of one view as frames that can be selected, moved (drag) and
+// resized (the corner handle), snapped to a 10 px grid. Adding, deleting and restyling go
+// through the editor's toolbar and inspector.
+import { kids, widgetBox, widgetClassOf } from "./model.js";
+
+const SNAP = 10;
+const snap = (v) => Math.round(v / SNAP) * SNAP;
+
+export class ViewEditor {
+    /** handlers: onSelect(nodes, additive), onGeometry(node, box) */
+    constructor(host, handlers) {
+        this.host = host;
+        this.h = handlers;
+        this.el = document.createElement("div");
+        this.el.className = "view view-editor";
+        host.appendChild(this.el);
+        this.drag = null;
+        this.el.addEventListener("pointerdown", (e) => this.onDown(e));
+        this.move = (e) => this.onMove(e);
+        this.up = (e) => this.onUp(e);
+        window.addEventListener("pointermove", this.move);
+        window.addEventListener("pointerup", this.up);
+    }
+
+    destroy() {
+        window.removeEventListener("pointermove", this.move);
+        window.removeEventListener("pointerup", this.up);
+        this.el.remove();
+    }
+
+    show(view, selection, errors = new Map()) {
+        this.view = view;
+        this.el.textContent = "";
+        this.frames = new Map();
+        let right = 600, bottom = 400;
+        for (const w of kids(view)) {
+            const box = widgetBox(w);
+            right = Math.max(right, box.x + box.width + 40);
+            bottom = Math.max(bottom, box.y + box.height + 40);
+            const f = document.createElement("div");
+            f.className = "widget widget-frame" + (selection.has(w) ? " selected" : "");
+            const cls = widgetClassOf(w);
+            f.dataset.widget = cls;
+            f.dataset.title = w.attrs.title || "";
+            Object.assign(f.style, { left: box.x + "px", top: box.y + "px", width: box.width + "px", height: box.height + "px" });
+            const t = document.createElement("div");
+            t.className = "widget-title";
+            t.textContent = w.attrs.title || w.attrs.name || cls;
+            const b = document.createElement("div");
+            b.className = "widget-frame-body";
+            b.textContent = cls + (w.attrs.source ? `\n${w.attrs.source}` : "") + (w.attrs.parameter ? `\n${w.attrs.parameter}` : "");
+            if (w.attrs.color) b.style.color = w.attrs.color.split(",")[0];
+            const handle = document.createElement("div");
+            handle.className = "resize-handle";
+            f.append(t, b, handle);
+            const err = errors.get(w);
+            if (err) {
+                const e = document.createElement("div");
+                e.className = "editor-error";
+                e.textContent = err;
+                f.appendChild(e);
+            }
+            this.el.appendChild(f);
+            this.frames.set(f, w);
+        }
+        this.el.style.width = right + "px";
+        this.el.style.height = bottom + "px";
+    }
+
+    onDown(e) {
+        if (e.button !== 0) return;
+        const f = e.target.closest(".widget-frame");
+        if (!f) { this.h.onSelect([], false); return; }
+        const w = this.frames.get(f);
+        this.h.onSelect([w], e.shiftKey);
+        const frame = [...this.frames].find(([, x]) => x === w)?.[0] || f;
+        this.drag = { frame, w, resize: e.target.classList.contains("resize-handle"), cx: e.clientX, cy: e.clientY, box: widgetBox(w), moved: false };
+        e.preventDefault();
+    }
+
+    onMove(e) {
+        const d = this.drag;
+        if (!d) return;
+        const dx = e.clientX - d.cx, dy = e.clientY - d.cy;
+        if (Math.abs(dx) + Math.abs(dy) > 2) d.moved = true;
+        if (!d.moved) return;
+        const b = { ...d.box };
+        if (d.resize) { b.width = Math.max(40, snap(b.width + dx)); b.height = Math.max(30, snap(b.height + dy)); }
+        else { b.x = Math.max(0, snap(b.x + dx)); b.y = Math.max(0, snap(b.y + dy)); }
+        d.result = b;
+        Object.assign(d.frame.style, { left: b.x + "px", top: b.y + "px", width: b.width + "px", height: b.height + "px" });
+    }
+
+    onUp() {
+        const d = this.drag;
+        this.drag = null;
+        if (d && d.moved && d.result) this.h.onGeometry(d.w, d.result);
+    }
+}
