@@ -18,9 +18,9 @@ import numpy as np
 FUSE_LIMIT = 4096   # elements; larger arrays gain nothing from a gather and a scatter
 
 
-def _offset(block: np.ndarray, array: np.ndarray) -> int:
-    return (array.__array_interface__["data"][0] - block.__array_interface__["data"][0]) \
-        // block.itemsize
+def _offset(base: int, array: np.ndarray) -> int:
+    """The position of an arena view in the arena (``base``: the arena's address)."""
+    return (array.__array_interface__["data"][0] - base) // 4
 
 
 def _in_block(block: np.ndarray, array) -> bool:
@@ -58,6 +58,7 @@ class FusedOp:
 
     def __init__(self, block: np.ndarray, spec: tuple, members: list):
         self.block = block
+        base = block.__array_interface__["data"][0]
         self.ufunc = getattr(np, spec[0])
         self.members = members                     # (inst, inputs, outputs)
         self.operands = spec[1:]
@@ -65,7 +66,7 @@ class FusedOp:
         self.starts = np.cumsum([0] + sizes)
         total = int(self.starts[-1])
         out_idx = np.concatenate([
-            _offset(block, next(iter(out.values())).array) + np.arange(n)
+            _offset(base, next(iter(out.values())).array) + np.arange(n)
             for (_, _, out), n in zip(members, sizes)])
         first = int(out_idx[0])
         if np.array_equal(out_idx, np.arange(first, first + total)):
@@ -82,7 +83,7 @@ class FusedOp:
                 self.args.append(vec)
             else:
                 name, first = _input_name(operand), operand.endswith("[0]")
-                idx = np.concatenate([_offset(block, ins[name].array) +
+                idx = np.concatenate([_offset(base, ins[name].array) +
                                       (np.zeros(n, np.intp) if first else np.arange(n))
                                       for (_, ins, _), n in zip(members, sizes)])
                 scratch = np.zeros(total, np.float32)

@@ -70,21 +70,22 @@ def _parse_elements(path: str, text: str | None = None) -> list:
 
 
 def _to_node(item, path: str, stack: tuple[str, ...]) -> Node | None:
-    if isinstance(item, etree._Comment):
-        return Node(COMMENT, file=path, line=item.sourceline, text=item.text)
-    if isinstance(item, etree._ProcessingInstruction):
-        if item.target != "include":
-            return None
-        return _include(item, path, stack)
-    if not isinstance(item.tag, str):
+    tag = item.tag
+    if type(tag) is not str:          # a comment, a processing instruction or an entity
+        if isinstance(item, etree._Comment):
+            return Node(COMMENT, file=path, line=item.sourceline, text=item.text)
+        if isinstance(item, etree._ProcessingInstruction) and item.target == "include":
+            return _include(item, path, stack)
         return None
-    node = Node(item.tag, dict(item.attrib), [], path, item.sourceline,
-                item.text.strip() if item.text and item.text.strip() else None)
+    text = item.text
+    if text is not None:
+        text = text.strip() or None
+    children = []
     for child in item:
         converted = _to_node(child, path, stack)
         if converted is not None:
-            node.children.append(converted)
-    return node
+            children.append(converted)
+    return Node(tag, dict(item.attrib), children, path, item.sourceline, text)
 
 
 def _include(item, path: str, stack: tuple[str, ...]) -> Node:
