@@ -2,6 +2,7 @@
 line and the web UI, with requests applied between ticks."""
 from __future__ import annotations
 
+import gc
 import queue
 import threading
 import time
@@ -79,6 +80,8 @@ class Controller:
         return done.result(timeout=30)
 
     def _drain(self) -> None:
+        if self._requests.empty():
+            return
         while True:
             try:
                 fn, args, kwargs, done = self._requests.get_nowait()
@@ -118,6 +121,15 @@ class Controller:
             self._thread.join(timeout)
 
     def _loop(self) -> None:
+        # Objects that live as long as the network need not be traced by every full
+        # garbage collection: freezing them keeps collections short while ticks are due.
+        gc.freeze()
+        try:
+            self._run_loop()
+        finally:
+            gc.unfreeze()
+
+    def _run_loop(self) -> None:
         net, timing = self.net, self.net.timing
         perf = time.perf_counter
         while True:

@@ -6,7 +6,7 @@ import time
 
 import numpy as np
 
-SPIN = 0.0004      # seconds before a deadline spent spinning instead of sleeping
+SPIN = 0.0005      # seconds before a deadline spent spinning instead of sleeping
 LAG_HISTORY = 4096  # ticks of lag kept for the 99th percentile
 
 
