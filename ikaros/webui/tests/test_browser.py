@@ -5,86 +5,21 @@ change parameters and run commands, the inspectors, the messages and the themes.
 Screenshots of the demo views are kept in test-artifacts/."""
 from __future__ import annotations
 
-import json
 import os
-import socket
-import subprocess
-import sys
 import time
-import urllib.request
 
 import pytest
 
-sync_api = pytest.importorskip("playwright.sync_api")
+from browsing import ARGS, ARTIFACTS, CHROMIUM, ROOT, TIMEOUT, Server, sync_api
 
-CHROMIUM = "/usr/bin/chromium"
-ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
-    os.path.abspath(__file__)))))
 DEMO = os.path.join(ROOT, "examples", "demo.ikg")
-ARTIFACTS = os.path.join(ROOT, "test-artifacts")
-TIMEOUT = 15_000   # ms, for waits in the page
-
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"{CHROMIUM} is not installed", allow_module_level=True)
-
-
-# --- the server ---------------------------------------------------------------------------
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-class Server:
-    def __init__(self, base: str):
-        self.base = base
-
-    def get(self, path: str):
-        with urllib.request.urlopen(self.base + path, timeout=10) as r:
-            return json.loads(r.read())
-
-    def post(self, path: str, body: dict):
-        req = urllib.request.Request(self.base + path, data=json.dumps(body).encode(),
-                                     headers={"Content-Type": "application/json"})
-        with urllib.request.urlopen(req, timeout=10) as r:
-            return json.loads(r.read())
-
-    def data(self, *paths: str) -> dict:
-        return self.get("/api/data?paths=" + ",".join(paths))
-
-    def parameter(self, path: str):
-        module, _, name = path.rpartition(".")
-        info = self.get("/api/module?path=" + module)
-        return next(p["value"] for p in info["parameters"] if p["name"] == name)
 
 
 @pytest.fixture(scope="session")
 def server():
-    port = free_port()
-    proc = subprocess.Popen([sys.executable, "-m", "ikaros", "-w", str(port), DEMO], cwd=ROOT,
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
-    srv = Server(f"http://127.0.0.1:{port}")
-    deadline = time.monotonic() + 30
-    while True:
-        try:
-            srv.get("/api/status")
-            break
-        except OSError:
-            if proc.poll() is not None or time.monotonic() > deadline:
-                proc.kill()
-                out = proc.stdout.read().decode(errors="replace")
-                pytest.fail(f"the server did not start:\n{out}")
-            time.sleep(0.1)
+    srv = Server(DEMO)
     yield srv
-    proc.terminate()
-    try:
-        proc.wait(10)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        proc.wait()
+    srv.stop()
 
 
 @pytest.fixture(scope="session")

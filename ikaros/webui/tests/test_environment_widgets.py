@@ -7,31 +7,17 @@ Screenshots are kept in test-artifacts/."""
 from __future__ import annotations
 
 import base64
-import json
 import math
 import os
-import socket
-import subprocess
-import sys
 import threading
 import time
-import urllib.request
 
 import pytest
 
-sync_api = pytest.importorskip("playwright.sync_api")
+from browsing import ARGS, ARTIFACTS, CHROMIUM, ROOT, TIMEOUT, Server, sync_api
 
-CHROMIUM = "/usr/bin/chromium"
-ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
-    os.path.abspath(__file__)))))
 EXAMPLES = os.path.join(ROOT, "examples")
-ARTIFACTS = os.path.join(ROOT, "test-artifacts")
-TIMEOUT = 15_000   # ms, for waits in the page
 
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"{CHROMIUM} is not installed", allow_module_level=True)
 
 # the widgets' default colours (COLORS in the widget files)
 AGENT = (0x1f, 0x6f, 0xd0)        # grid-world agent, planar-arm hand, world-2d robot
@@ -42,67 +28,6 @@ POINTER = (0xff, 0xff, 0xff)      # the heading pointer
 TARGET = (0xd8, 0x3a, 0x2e)       # planar-arm target, world-2d ray ends
 LINK = (0x3f, 0x46, 0x54)
 OBJECT = (0xe0, 0x8a, 0x1e)
-
-
-# --- the server ---------------------------------------------------------------------------
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-class Server:
-    def __init__(self, model: str):
-        self.port = free_port()
-        self.base = f"http://127.0.0.1:{self.port}"
-        self.proc = subprocess.Popen([sys.executable, "-m", "ikaros", "-w", str(self.port), model],
-                                     cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
-        deadline = time.monotonic() + 30
-        while True:
-            try:
-                self.get("/api/status")
-                return
-            except OSError:
-                if self.proc.poll() is not None or time.monotonic() > deadline:
-                    self.stop()
-                    out = self.proc.stdout.read().decode(errors="replace")
-                    pytest.fail(f"the server did not start for {model}:\n{out}")
-                time.sleep(0.1)
-
-    def stop(self):
-        if self.proc.poll() is None:
-            self.proc.terminate()
-            try:
-                self.proc.wait(10)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
-
-    def get(self, path: str):
-        with urllib.request.urlopen(self.base + path, timeout=10) as r:
-            return json.loads(r.read())
-
-    def post(self, path: str, body: dict):
-        req = urllib.request.Request(self.base + path, data=json.dumps(body).encode(),
-                                     headers={"Content-Type": "application/json"})
-        with urllib.request.urlopen(req, timeout=10) as r:
-            return json.loads(r.read())
-
-    def data(self, *paths: str) -> dict:
-        return self.get("/api/data?paths=" + ",".join(paths))["data"]
-
-    def step(self, n: int) -> int:
-        """n ticks through POST /api/control, one at a time; the tick count afterwards."""
-        tick = self.get("/api/status")["tick"]
-        for _ in range(n):
-            self.post("/api/control", {"state": "step"})
-            deadline = time.monotonic() + 20
-            while (now := self.get("/api/status")["tick"]) < tick + 1:
-                assert time.monotonic() < deadline, "the step did not run"
-                time.sleep(0.01)
-            tick = now
-        return tick
 
 
 def in_browser(model: str, view: int, check):
@@ -228,7 +153,7 @@ def check_grid_world(server, page):
     for round_ in range(3):
         tick = server.step(4)
         wait_drawn(page, canvas, tick)
-        d = server.data("World.IMAGE", "World.COORDINATE", "World.HEADING")
+        d = server.data("World.IMAGE", "World.COORDINATE", "World.HEADING")["data"]
         image = d["World.IMAGE"]
         x, y = d["World.COORDINATE"]
         heading = d["World.HEADING"][0]
@@ -277,7 +202,7 @@ def check_planar_arm(server, page):
     for round_ in range(3):
         tick = server.step(5)
         wait_drawn(page, canvas, tick)
-        d = server.data("Arm.JOINTS", "Arm.TARGET", "Arm.HAND_POSITION")
+        d = server.data("Arm.JOINTS", "Arm.TARGET", "Arm.HAND_POSITION")["data"]
         joints, target, hand = d["Arm.JOINTS"], d["Arm.TARGET"], d["Arm.HAND_POSITION"]
         px = Pixels(canvas)
         scale, mx, my = world_mapping(px.css_w, px.css_h, 0, 1, 0, 1)
@@ -308,7 +233,7 @@ def check_world_2d(server, page):
     for round_ in range(3):
         tick = server.step(10)
         wait_drawn(page, canvas, tick)
-        d = server.data("World.POSE", "World.OBJECTS", "World.WALLS", "World.RANGE_POINTS")
+        d = server.data("World.POSE", "World.OBJECTS", "World.WALLS", "World.RANGE_POINTS")["data"]
         (x, y, heading), objects = d["World.POSE"], d["World.OBJECTS"]
         start = start or (x, y)
         px = Pixels(canvas)
@@ -352,7 +277,6 @@ def test_planar_arm_shows_links_target_and_hand():
 
 
 def test_world_2d_shows_walls_objects_robot_and_rays():
-    pytest.importorskip("pymunk")
     in_browser(os.path.join("modules", "World2D_example.ikg"), 1, check_world_2d)
 
 

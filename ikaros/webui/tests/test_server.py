@@ -17,8 +17,6 @@ import numpy as np
 import pytest
 
 warnings.filterwarnings("ignore", message=".*httpx.*")
-pytest.importorskip("starlette")
-pytest.importorskip("httpx")
 
 import ikaros  # noqa: E402
 from ikaros.module import WARNING  # noqa: E402

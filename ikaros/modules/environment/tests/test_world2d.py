@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-pytest.importorskip("pymunk")
+import pymunk  # noqa: F401  (the physics extra; part of the test extras)
 
 from ikaros.testing import load_body as load      # noqa: E402
 

@@ -6,8 +6,8 @@ from ikaros.errors import ModelError, RunError
 from ikaros.module import PRINT
 from ikaros.testing import load_body as load
 
-iio = pytest.importorskip("imageio.v3")
-pytest.importorskip("imageio_ffmpeg")
+import imageio.v3 as iio
+import imageio_ffmpeg  # noqa: F401  (the video extra; part of the test extras)
 
 COLOURS = [(200, 30, 60), (20, 220, 100), (90, 90, 240), (128, 128, 128)]
 

@@ -1,11 +1,10 @@
 """Tests of the OutputVideoFile module: movies are read back with imageio."""
 import numpy as np
-import pytest
 
 from ikaros.testing import load_body as load
 
-iio = pytest.importorskip("imageio.v3")
-pytest.importorskip("imageio_ffmpeg")
+import imageio.v3 as iio
+import imageio_ffmpeg  # noqa: F401  (the video extra; part of the test extras)
 
 
 def read_movie(path):

@@ -1,0 +1,97 @@
+"""What the browser tests share: Debian's Chromium driven by Playwright, and the real
+``ikaros`` server started on a free 127.0.0.1 port with a bounded wait."""
+from __future__ import annotations
+
+import json
+import os
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+
+import pytest
+
+CHROMIUM = "/usr/bin/chromium"
+ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__)))))
+ARTIFACTS = os.path.join(ROOT, "test-artifacts")
+TIMEOUT = 15_000   # ms, for waits in the page
+
+if not os.path.exists(CHROMIUM):
+    raise RuntimeError(f"the browser tests need Debian's Chromium at {CHROMIUM}: "
+                       f"`bash scripts/test.sh` installs it (apt-get install chromium)")
+
+from playwright import sync_api  # noqa: E402,F401  (re-exported for the tests)
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Server:
+    """``python -m ikaros -w PORT MODEL`` on 127.0.0.1, with JSON helpers for its API."""
+
+    def __init__(self, model: str, start_within: float = 30):
+        self.port = free_port()
+        self.base = f"http://127.0.0.1:{self.port}"
+        self.proc = subprocess.Popen([sys.executable, "-m", "ikaros", "-w", str(self.port),
+                                      model], cwd=ROOT, stdout=subprocess.PIPE,
+                                     stderr=subprocess.STDOUT)
+        deadline = time.monotonic() + start_within
+        while True:
+            try:
+                self.get("/api/status")
+                return
+            except OSError:
+                if self.proc.poll() is not None or time.monotonic() > deadline:
+                    self.stop()
+                    out = self.proc.stdout.read().decode(errors="replace")
+                    pytest.fail(f"the server did not start for {model}:\n{out}")
+                time.sleep(0.1)
+
+    def stop(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.terminate()
+            try:
+                self.proc.wait(10)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+
+    def get(self, path: str):
+        with urllib.request.urlopen(self.base + path, timeout=10) as r:
+            return json.loads(r.read())
+
+    def post(self, path: str, body: dict):
+        req = urllib.request.Request(self.base + path, data=json.dumps(body).encode(),
+                                     headers={"Content-Type": "application/json"})
+        with urllib.request.urlopen(req, timeout=10) as r:
+            return json.loads(r.read())
+
+    def data(self, *paths: str) -> dict:
+        return self.get("/api/data?paths=" + ",".join(paths))
+
+    def parameter(self, path: str):
+        module, _, name = path.rpartition(".")
+        info = self.get("/api/module?path=" + module)
+        return next(p["value"] for p in info["parameters"] if p["name"] == name)
+
+    def tick(self) -> int:
+        return self.get("/api/status")["tick"]
+
+    def step(self, n: int) -> int:
+        """n ticks through POST /api/control, one at a time; the tick count afterwards."""
+        tick = self.tick()
+        for _ in range(n):
+            self.post("/api/control", {"state": "step"})
+            deadline = time.monotonic() + 20
+            while (now := self.tick()) < tick + 1:
+                assert time.monotonic() < deadline, "the step did not run"
+                time.sleep(0.01)
+            tick = now
+        return tick
