@@ -23,7 +23,7 @@ from ..module import LEVEL_NAMES
 from .encoding import IMAGE_FORMATS, encode_array, encode_frame
 
 DEFAULT_BUDGET = 0.001        # seconds of copying per tick at most
-DEFAULT_MAX_RATE = 30.0       # snapshots per second at most: smooth to the eye, cheap for the kernel
+DEFAULT_MAX_RATE = 15.0       # snapshots per second at most: what keeps a busy kernel within 5 %
 STATUS_INTERVAL = 0.2         # seconds between status messages
 
 
