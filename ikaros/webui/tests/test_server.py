@@ -601,3 +601,27 @@ def test_the_ikaros_command_serves_the_demo():
             out, err = proc.communicate()
     assert proc.returncode == 0, err
     assert f"http://127.0.0.1:{port}/" in out
+
+
+def test_a_class_can_carry_its_own_view(tmp_path):
+    (tmp_path / "Gauge.ikc").write_text('''<class name="Gauge" description="A test class with a view.">
+    <input name="INPUT" description="in"/>
+    <output name="OUTPUT" size_set="INPUT" description="out"/>
+    <view name="Gauge view">
+        <bar-graph x="0" y="0" width="120" height="80" source="OUTPUT" max="5"/>
+    </view>
+</class>''')
+    (tmp_path / "m.ikg").write_text('''<group name="M">
+    <module class="Constant" name="K" data="1 2"/>
+    <module class="Gauge" name="G"/>
+    <connection source="K.OUTPUT" target="G.INPUT"/>
+</group>''')
+    net = ikaros.load(str(tmp_path / "m.ikg"))
+    try:
+        with TestClient(create_app(net)) as client:
+            view = client.get("/api/module?path=G").json()["view"]
+        assert view["name"] == "Gauge view"
+        (widget,) = view["widgets"]
+        assert widget["class"] == "bar-graph" and widget["source_path"] == "G.OUTPUT"
+    finally:
+        net.close()
