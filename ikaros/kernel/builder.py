@@ -380,7 +380,15 @@ class Builder:
 
     def resolve_sizes(self) -> None:
         self._drop_links_from_unconnected_ports()
-        self.check_zero_delay_cycles()
+        try:
+            self._resolve_sizes()
+        except ModelError:
+            # A zero-delay cycle often shows first as sizes that cannot be resolved; name
+            # the cycle, which is the cause.
+            self.check_zero_delay_cycles()
+            raise
+
+    def _resolve_sizes(self) -> None:
         for inst in self.instances:
             inputs, _ = self.buffers[inst]
             for buf in inputs.values():

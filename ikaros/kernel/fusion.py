@@ -62,12 +62,17 @@ class FusedOp:
         self.ufunc = getattr(np, spec[0])
         self.members = members                     # (inst, inputs, outputs)
         self.operands = spec[1:]
-        sizes = [next(iter(out.values())).array.size for _, _, out in members]
-        self.starts = np.cumsum([0] + sizes)
+        sizes = np.array([next(iter(out.values())).array.size for _, _, out in members])
+        self.starts = np.concatenate([[0], np.cumsum(sizes)])
         total = int(self.starts[-1])
-        out_idx = np.concatenate([
-            _offset(base, next(iter(out.values())).array) + np.arange(n)
-            for (_, _, out), n in zip(members, sizes)])
+        within = np.arange(total) - np.repeat(self.starts[:-1], sizes)   # 0.. in each member
+
+        def spread(offsets, whole=True):
+            """Flat arena indices of each member's elements, from its start offset."""
+            return np.repeat(np.array(offsets, dtype=np.intp), sizes) + (within if whole else 0)
+
+        out_idx = spread([_offset(base, next(iter(out.values())).array)
+                          for _, _, out in members])
         first = int(out_idx[0])
         if np.array_equal(out_idx, np.arange(first, first + total)):
             self.out_view, self.out_idx = block[first:first + total], None
@@ -83,9 +88,8 @@ class FusedOp:
                 self.args.append(vec)
             else:
                 name, first = _input_name(operand), operand.endswith("[0]")
-                idx = np.concatenate([_offset(base, ins[name].array) +
-                                      (np.zeros(n, np.intp) if first else np.arange(n))
-                                      for (_, ins, _), n in zip(members, sizes)])
+                idx = spread([_offset(base, ins[name].array) for _, ins, _ in members],
+                             whole=not first)
                 scratch = np.zeros(total, np.float32)
                 self.gathers.append((idx.astype(np.intp), scratch))
                 self.args.append(scratch)

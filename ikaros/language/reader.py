@@ -54,9 +54,11 @@ def _parse_elements(path: str, text: str | None = None) -> list:
         except UnicodeDecodeError as e:
             raise ModelError(f"file is not UTF-8 text ({e.reason} at byte {e.start})",
                              path) from None
-    text = _ATTRIBUTE_WITH_COMMENT.sub(_keep_newlines, text)
+    if "#" in text:
+        text = _ATTRIBUTE_WITH_COMMENT.sub(_keep_newlines, text)
     text = _DECLARATION.sub(_keep_lines, text, count=1)
-    text = _DOCTYPE.sub(_keep_lines, text, count=1)
+    if "<!DOCTYPE" in text:
+        text = _DOCTYPE.sub(_keep_lines, text, count=1)
     wrapped = f"<{_WRAPPER}>{text}</{_WRAPPER}>"
     try:
         root = etree.fromstring(wrapped.encode("utf-8"), _parser())

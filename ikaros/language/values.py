@@ -140,6 +140,8 @@ def parse_delays(text: str) -> list[int]:
     (Ikaros 3); ``[n]``.
     """
     s = str(text).strip()
+    if s.isdigit():
+        return [int(s)]
     if s == "":
         raise ValueError_("delay must not be empty")
     if s.startswith("["):
@@ -201,6 +203,8 @@ _SELECTOR_TAIL = re.compile(r"((?:\[[^\[\]]*\])+)$")
 
 def split_selectors(address: str) -> tuple[str, list[tuple] | None]:
     """Split ``A.OUTPUT[0:2][1]`` into the path and its selector dimensions (None if none)."""
+    if not address.endswith("]"):
+        return address, None
     m = _SELECTOR_TAIL.search(address)
     if not m:
         return address, None
