@@ -1,6 +1,7 @@
 """The instance tree: groups and modules as built from the model file, with their paths."""
 from __future__ import annotations
 
+import functools
 from typing import Iterator
 
 from ..language.node import Node
@@ -16,7 +17,7 @@ class Component:
         self.parent = parent
         self.attrs = node.attrs if attrs is None else attrs
 
-    @property
+    @functools.cached_property
     def path(self) -> str:
         """The dotted path from the top group, without the top group's name."""
         parts = []

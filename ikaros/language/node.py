@@ -10,7 +10,7 @@ COMMENT = "#comment"
 INCLUDE = "#include"        # stands for <?include file="..."?>; its children are the spliced ones
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class Node:
     """One element of a model file. ``attrs`` keeps every attribute in file order."""
     tag: str
