@@ -23,10 +23,6 @@ from .tree import Component, Group, ModuleInstance, Scope, find_component
 
 _NAME = re.compile(r"[A-Za-z_][\w\-]*$")
 
-# Attributes of <module> that belong to the kernel, not to the class's parameters.
-MODULE_ATTRIBUTES = {"class", "name", "path", "period", "phase", "active", "async",
-                     "high_priority", "log_level", "description", "title"}
-
 
 class Builder:
     """Builds one model: a file, the text of one (``text``), or a model tree already read

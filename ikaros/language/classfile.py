@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import os
-import re
 
 from ..description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
                            SIZE_RULE_KEYS, canonical_type)
@@ -93,6 +92,3 @@ def read_class_file(path: str) -> tuple[ClassDescription, list[str]]:
     desc.name = stem
     return desc, warnings
 
-
-def is_identifier(name: str) -> bool:
-    return bool(re.fullmatch(r"[A-Za-z_][\w\-]*", name or ""))

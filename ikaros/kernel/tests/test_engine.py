@@ -1,6 +1,5 @@
 """The run engine: modes through the controller, timing figures, threads, asynchronous
 modules, period and phase."""
-import threading
 import time
 
 import numpy as np
