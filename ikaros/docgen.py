@@ -125,31 +125,22 @@ def _class_section(desc: ClassDescription) -> list[str]:
     lines = [f"### {desc.name}", ""]
     text = " ".join(desc.description.split())
     lines += [text or "*(no description)*", ""]
-    if desc.parameters:
-        lines += ["**Parameters**", "",
-                  "| Name | Type | Default | Options | Description |",
-                  "|---|---|---|---|---|"]
-        lines += [_parameter_row(p) for p in desc.parameters]
-    else:
-        lines.append("**Parameters:** none")
-    lines.append("")
-    if desc.inputs:
-        lines += ["**Inputs**", "",
-                  "| Name | Flags | Description |",
-                  "|---|---|---|"]
-        lines += [_input_row(i) for i in desc.inputs]
-    else:
-        lines.append("**Inputs:** none")
-    lines.append("")
-    if desc.outputs:
-        lines += ["**Outputs**", "",
-                  "| Name | Size | Description |",
-                  "|---|---|---|"]
-        lines += [_output_row(o) for o in desc.outputs]
-    else:
-        lines.append("**Outputs:** none (or set by the module in code)")
-    lines += ["", f"Source: `{source_path(desc)}`", ""]
+    lines += _table("Parameters", "| Name | Type | Default | Options | Description |",
+                    [_parameter_row(p) for p in desc.parameters], "none")
+    lines += _table("Inputs", "| Name | Flags | Description |",
+                    [_input_row(i) for i in desc.inputs], "none")
+    lines += _table("Outputs", "| Name | Size | Description |",
+                    [_output_row(o) for o in desc.outputs], "none (or set by the module in code)")
+    lines += [f"Source: `{source_path(desc)}`", ""]
     return lines
+
+
+def _table(title: str, header: str, rows: list[str], empty: str) -> list[str]:
+    """A titled Markdown table, or one line saying there is nothing."""
+    if not rows:
+        return [f"**{title}:** {empty}", ""]
+    rule = "|" + "---|" * (header.count("|") - 1)
+    return [f"**{title}**", "", header, rule] + rows + [""]
 
 
 def module_reference() -> str:

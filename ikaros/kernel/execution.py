@@ -25,13 +25,13 @@ class AsyncModule:
         self.module = inst.module
         self.shared_clock = clock
         self.module.clock = Clock(clock.tick_duration)
-        self.inputs = [(buf.array, buf.array.copy()) for buf in inputs.values()
+        # the module's own copies of its connected inputs and of its outputs, by port name
+        self.private = {name: buf.array.copy()
+                        for name, buf in list(inputs.items()) + list(outputs.items())
+                        if buf.array is not None}
+        self.inputs = [(buf.array, self.private[n]) for n, buf in inputs.items()
                        if buf.array is not None]
-        self.outputs = [(buf.array, buf.array.copy()) for buf in outputs.values()]
-        self.private = {name: priv for name, (_, priv) in
-                        zip([n for n, b in inputs.items() if b.array is not None],
-                            self.inputs)}
-        self.private.update({name: priv for name, (_, priv) in zip(outputs, self.outputs)})
+        self.outputs = [(buf.array, self.private[n]) for n, buf in outputs.items()]
         self.executor = ThreadPoolExecutor(1, thread_name_prefix=f"ikaros-async-{inst.path}")
         self.future = None
         self.pending: collections.deque = collections.deque()

@@ -7,6 +7,7 @@ import os
 import socket
 import subprocess
 import sys
+import threading
 import time
 import urllib.request
 
@@ -95,3 +96,44 @@ class Server:
                 time.sleep(0.01)
             tick = now
         return tick
+
+
+def in_own_browser(model: str, open_page, check) -> None:
+    """Serve a model, open the app in Chromium, then run ``open_page(server, page)`` and
+    ``check(server, page)``. The browser runs in a thread of its own, with its own
+    Playwright: the sync API cannot start inside another module's running Playwright
+    (test_browser.py keeps one for the whole session)."""
+    os.makedirs(ARTIFACTS, exist_ok=True)
+    server = Server(model)
+    failure = []
+
+    def run():
+        try:
+            with sync_api.sync_playwright() as p:
+                browser = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+                try:
+                    page = browser.new_page(viewport={"width": 1400, "height": 900})
+                    errors = []
+                    page.on("pageerror", lambda e: errors.append(str(e)))
+                    page.errors = errors
+                    page.set_default_timeout(TIMEOUT)
+                    page.goto(server.base + "/")
+                    page.wait_for_function(
+                        "() => window.ikaros && window.ikaros.socket.connected")
+                    open_page(server, page)
+                    check(server, page)
+                finally:
+                    browser.close()
+        except BaseException as e:      # noqa: BLE001 - handed to the test's thread
+            failure.append(e)
+
+    try:
+        thread = threading.Thread(target=run, daemon=True)
+        thread.start()
+        thread.join(240)
+        if thread.is_alive():
+            pytest.fail("the browser part did not finish in 240 s")
+    finally:
+        server.stop()
+    if failure:
+        raise failure[0]

@@ -8,13 +8,11 @@ from __future__ import annotations
 
 import os
 import shutil
-import threading
 import time
 
 import numpy as np
-import pytest
 
-from browsing import ARGS, ARTIFACTS, CHROMIUM, ROOT, TIMEOUT, Server, sync_api
+from browsing import ARTIFACTS, ROOT, in_own_browser
 
 ADD_EXAMPLE = os.path.join(ROOT, "examples", "modules", "Add_example.ikg")
 ADDRESSING = os.path.join(ROOT, "tests", "conformance", "models", "addressing.ikg")
@@ -22,43 +20,17 @@ ADDRESSING = os.path.join(ROOT, "tests", "conformance", "models", "addressing.ik
 
 
 def in_browser(model: str, check):
-    """Serve a model, open the app in Chromium, switch the editor on and run check(server,
-    page). The browser runs in a thread of its own, with its own Playwright (another test
-    module keeps one for the whole session)."""
-    os.makedirs(ARTIFACTS, exist_ok=True)
-    server = Server(model)
-    failure = []
+    """Serve a model, open the app in Chromium, switch the editor on and run
+    check(server, page); the page must raise no JavaScript error."""
+    def open_editor(server, page):
+        page.click("#toggle-editor")
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
 
-    def run():
-        try:
-            with sync_api.sync_playwright() as p:
-                browser = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
-                try:
-                    page = browser.new_page(viewport={"width": 1400, "height": 900})
-                    errors = []
-                    page.on("pageerror", lambda e: errors.append(str(e)))
-                    page.set_default_timeout(TIMEOUT)
-                    page.goto(server.base + "/")
-                    page.wait_for_function("() => window.ikaros && window.ikaros.socket.connected")
-                    page.click("#toggle-editor")
-                    page.wait_for_selector("#editor-host[data-ready] svg.network-view")
-                    check(server, page)
-                    assert not errors, errors
-                finally:
-                    browser.close()
-        except BaseException as e:      # noqa: BLE001 - handed to the test's thread
-            failure.append(e)
+    def checked(server, page):
+        check(server, page)
+        assert not page.errors, page.errors
 
-    try:
-        thread = threading.Thread(target=run, daemon=True)
-        thread.start()
-        thread.join(240)
-        if thread.is_alive():
-            pytest.fail("the browser part did not finish in 240 s")
-    finally:
-        server.stop()
-    if failure:
-        raise failure[0]
+    in_own_browser(model, open_editor, checked)
 
 
 # --- helpers ------------------------------------------------------------------------------

@@ -9,12 +9,11 @@ from __future__ import annotations
 import base64
 import math
 import os
-import threading
 import time
 
 import pytest
 
-from browsing import ARGS, ARTIFACTS, CHROMIUM, ROOT, TIMEOUT, Server, sync_api
+from browsing import ARTIFACTS, ROOT, Server, in_own_browser
 
 EXAMPLES = os.path.join(ROOT, "examples")
 
@@ -31,47 +30,16 @@ OBJECT = (0xe0, 0x8a, 0x1e)
 
 
 def in_browser(model: str, view: int, check):
-    """Serve a model, open the app at one of its views in Chromium and run check(server,
-    page). The browser runs in a thread of its own, with its own Playwright: the sync API
-    cannot start inside another module's running Playwright (test_browser.py keeps one for
-    the whole session)."""
-    os.makedirs(ARTIFACTS, exist_ok=True)
-    server = Server(os.path.join(EXAMPLES, model))
-    failure = []
+    """Serve a model, open the app at one of its views in Chromium and run
+    check(server, page)."""
+    def open_view(server, page):
+        page.click(f"#navigator a[data-group=''][data-view='{view}']")
+        page.wait_for_function(
+            "(v) => { const c = window.ikaros.current; return c && c.group === '' && "
+            "c.view === v; }", arg=view)
+        assert server.get("/api/status")["state"] != "play"
 
-    def run():
-        try:
-            with sync_api.sync_playwright() as p:
-                browser = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
-                try:
-                    page = browser.new_page(viewport={"width": 1400, "height": 900})
-                    errors = []
-                    page.on("pageerror", lambda e: errors.append(str(e)))
-                    page.errors = errors
-                    page.set_default_timeout(TIMEOUT)
-                    page.goto(server.base + "/")
-                    page.wait_for_function("() => window.ikaros && window.ikaros.socket.connected")
-                    page.click(f"#navigator a[data-group=''][data-view='{view}']")
-                    page.wait_for_function(
-                        "(v) => { const c = window.ikaros.current; return c && c.group === '' && c.view === v; }",
-                        arg=view)
-                    assert server.get("/api/status")["state"] != "play"
-                    check(server, page)
-                finally:
-                    browser.close()
-        except BaseException as e:      # noqa: BLE001 - handed to the test's thread
-            failure.append(e)
-
-    try:
-        thread = threading.Thread(target=run, daemon=True)
-        thread.start()
-        thread.join(240)
-        if thread.is_alive():
-            pytest.fail("the browser part did not finish in 240 s")
-    finally:
-        server.stop()
-    if failure:
-        raise failure[0]
+    in_own_browser(os.path.join(EXAMPLES, model), open_view, check)
 
 
 # --- helpers ------------------------------------------------------------------------------

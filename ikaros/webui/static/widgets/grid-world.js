@@ -24,32 +24,19 @@
 //   grid_color         the colours (CSS)
 // and the base's title, show_title, show_frame|frame, frame_color, frame_width,
 // background, style. Cells are square and the world is centred in the widget.
-import { CanvasWidget, asRows, resolvePath } from "./widget.js";
+import { ModuleWidget, asRows } from "./widget.js";
 
 export const COLORS = {
     free: "#f4f3ee", wall: "#3f4654", reward: "#f0a81c", punishment: "#c8322d",
     agent: "#1f6fd0", heading: "#ffffff", grid: "rgba(0, 0, 0, 0.12)",
 };
 
-export default class GridWorld extends CanvasWidget {
+export default class GridWorld extends ModuleWidget {
     static defaultTitle = "";
 
     constructor(attrs, ctx) {
         super(attrs, ctx);
-        this.module = resolvePath(this.groupPath, this.str(["module"]));
         this.params = { radius: 0.3, normalize_coordinate: false };
-        if (this.titleEl && this.module && ctx.selectModule && !this.titleEl.title) {
-            this.titleEl.title = "Show " + this.module;
-            this.titleEl.addEventListener("click", () => ctx.selectModule(this.module));
-        }
-    }
-
-    /** The buffer for a role: the <role>_source attribute, else MODULE.OUTPUT. */
-    buffer(role, output) {
-        const own = this.path(role + "_source");
-        if (own) return own;
-        if (Object.prototype.hasOwnProperty.call(this.attrs, role + "_source_path")) return "";
-        return this.module && output ? `${this.module}.${output}` : "";
     }
 
     paths() {

@@ -19,7 +19,7 @@
 //   area_color (the square x_min..x_max, y_min..y_max)   the colours (CSS)
 // and the base's title, show_title, show_frame|frame, frame_color, frame_width,
 // background, style.
-import { CanvasWidget, asRows, resolvePath } from "./widget.js";
+import { ModuleWidget, asRows } from "./widget.js";
 
 export const COLORS = {
     area: "#f4f3ee", link: "#3f4654", joint: "#8a93a3", base: "#222831",
@@ -39,24 +39,11 @@ export function worldMapping(width, height, xmin, xmax, ymin, ymax, margin = 4) 
     };
 }
 
-export default class PlanarArm extends CanvasWidget {
+export default class PlanarArm extends ModuleWidget {
     constructor(attrs, ctx) {
         super(attrs, ctx);
-        this.module = resolvePath(this.groupPath, this.str(["module"]));
         this.targetSize = 0.05;
         this.trail = [];
-        if (this.titleEl && this.module && ctx.selectModule && !this.titleEl.title) {
-            this.titleEl.title = "Show " + this.module;
-            this.titleEl.addEventListener("click", () => ctx.selectModule(this.module));
-        }
-    }
-
-    buffer(role, output) {
-        if (this.str([role + "_source"]).toLowerCase() === "none") return "";
-        const own = this.path(role + "_source");
-        if (own) return own;
-        if (Object.prototype.hasOwnProperty.call(this.attrs, role + "_source_path")) return "";
-        return this.module && output ? `${this.module}.${output}` : "";
     }
 
     paths() {

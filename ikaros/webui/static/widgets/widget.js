@@ -322,6 +322,28 @@ export class CanvasWidget extends Widget {
 }
 
 /** Format a number with a number of decimals (-1 or none: as it is). */
+/** A canvas widget that draws one module: the ``module`` attribute names it, clicking the
+ * title shows it in the inspector, and each buffer it reads is the ``<role>_source``
+ * attribute ("none" hides that part), or else MODULE.OUTPUT. */
+export class ModuleWidget extends CanvasWidget {
+    constructor(attrs, ctx) {
+        super(attrs, ctx);
+        this.module = resolvePath(this.groupPath, this.str(["module"]));
+        if (this.titleEl && this.module && ctx.selectModule && !this.titleEl.title) {
+            this.titleEl.title = "Show " + this.module;
+            this.titleEl.addEventListener("click", () => ctx.selectModule(this.module));
+        }
+    }
+
+    buffer(role, output) {
+        if (this.str([role + "_source"]).toLowerCase() === "none") return "";
+        const own = this.path(role + "_source");
+        if (own) return own;
+        if (Object.prototype.hasOwnProperty.call(this.attrs, role + "_source_path")) return "";
+        return this.module && output ? `${this.module}.${output}` : "";
+    }
+}
+
 export function formatNumber(v, decimals) {
     if (typeof v !== "number") return String(v);
     if (decimals === undefined || decimals < 0) return String(Math.round(v * 1e6) / 1e6);

@@ -21,7 +21,7 @@
 //   ray_color        the colours (CSS)
 // and the base's title, show_title, show_frame|frame, frame_color, frame_width,
 // background, style.
-import { CanvasWidget, asRows, resolvePath } from "./widget.js";
+import { ModuleWidget, asRows } from "./widget.js";
 import { worldMapping } from "./planar-arm.js";
 import { drawPointer } from "./grid-world.js";
 
@@ -30,23 +30,10 @@ export const COLORS = {
     robot: "#1f6fd0", heading: "#ffffff", ray: "#d83a2e",
 };
 
-export default class World2D extends CanvasWidget {
+export default class World2D extends ModuleWidget {
     constructor(attrs, ctx) {
         super(attrs, ctx);
-        this.module = resolvePath(this.groupPath, this.str(["module"]));
         this.params = { robot_radius: 0.15, width: null, height: null };
-        if (this.titleEl && this.module && ctx.selectModule && !this.titleEl.title) {
-            this.titleEl.title = "Show " + this.module;
-            this.titleEl.addEventListener("click", () => ctx.selectModule(this.module));
-        }
-    }
-
-    buffer(role, output) {
-        if (this.str([role + "_source"]).toLowerCase() === "none") return "";
-        const own = this.path(role + "_source");
-        if (own) return own;
-        if (Object.prototype.hasOwnProperty.call(this.attrs, role + "_source_path")) return "";
-        return this.module && output ? `${this.module}.${output}` : "";
     }
 
     paths() {
