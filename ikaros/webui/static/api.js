@@ -50,11 +50,18 @@ export const api = {
     classes: () => getJSON("/api/classes"),
     status: () => getJSON("/api/status"),
     control: (state) => postJSON("/api/control", { state }),
-    setParameter(path, value, x = undefined, y = undefined) {
+    /** Counts parameter writes begun and ended, so a read that overlapped one can be dropped. */
+    parameterWrites: 0,
+    async setParameter(path, value, x = undefined, y = undefined) {
         const body = { path, value };
         if (x !== undefined && x !== null) body.x = x;
         if (y !== undefined && y !== null) body.y = y;
-        return postJSON("/api/parameter", body);
+        this.parameterWrites++;
+        try {
+            return await postJSON("/api/parameter", body);
+        } finally {
+            this.parameterWrites++;
+        }
     },
     command: (module, name, x = 0, y = 0, value = null) =>
         postJSON("/api/command", { module, name, x, y, value }),

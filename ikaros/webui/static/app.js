@@ -284,6 +284,7 @@ class App {
             modules.get(m).push(p);
         }
         const values = new Map();
+        const writes = api.parameterWrites;
         await Promise.all([...modules].map(async ([m, ps]) => {
             try {
                 const info = await api.module(m);
@@ -293,6 +294,8 @@ class App {
                 }
             } catch { }
         }));
+        // values read while a widget was writing may predate the write
+        if (api.parameterWrites !== writes) return;
         this.params = values;
         for (const v of this.views()) v.setParameters(values);
     }

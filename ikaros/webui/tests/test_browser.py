@@ -349,7 +349,8 @@ def test_widgets_are_laid_out_as_the_file_says(page, server):
     page.click("#navigator .group-name[data-group='Space']")
     page.wait_for_function("() => window.ikaros.current.group === 'Space'")
     space = net["top"]["groups"][0]["views"][0]["widgets"]
-    assert page.locator("#view-host .view > .widget").count() == len(space)
+    page.wait_for_function(
+        f"() => document.querySelectorAll('#view-host .view > .widget').length === {len(space)}")
 
 
 def test_module_inspector_shows_and_edits_a_module(page, server):

@@ -43,6 +43,7 @@ export default class Button extends Widget {
                 v = Number(cur) === this.onValue() ? this.offValue() : this.onValue();
             }
             const [x, y] = this.element(this.paramValue);
+            if (this.paramValue !== null) this.setParameters(new Map([[param, Widget.withElement(this.paramValue, x ?? 0, y ?? 0, v)]]));
             const a = await this.setParameter(param, v, x, y);
             if (a) this.setParameters(new Map([[param, a.value]]));
         }

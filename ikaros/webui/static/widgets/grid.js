@@ -119,8 +119,11 @@ export default class Grid extends CanvasWidget {
         if (command) await this.sendCommand(command, c, r, on);
         const param = this.path("parameter");
         if (param) {
-            const current = this.paramValue !== null ? Widget.element(this.paramValue, c, r) : off;
-            const next = current === on ? off : on;
+            if (this.paramValue === null) this.paramValue = await this.readParameter(param);
+            if (this.paramValue === null) return;
+            const next = Widget.element(this.paramValue, c, r) === on ? off : on;
+            // kept at once, so a second click before the answer toggles back
+            this.paramValue = Widget.withElement(this.paramValue, c, r, next);
             const answer = await this.setParameter(param, next, c, r);
             if (answer) this.paramValue = answer.value;
         }

@@ -228,6 +228,19 @@ export class Widget {
         }
     }
 
+    /** The current value of a parameter "Module.name", read from the server. */
+    async readParameter(path) {
+        const i = path.lastIndexOf(".");
+        try {
+            const info = await api.module(path.slice(0, i));
+            const p = (info.parameters || []).find((q) => q.name === path.slice(i + 1));
+            return p ? p.value : null;
+        } catch (e) {
+            this.ctx.notify?.("error", `parameter ${path}: ${e.message}`);
+            return null;
+        }
+    }
+
     async setParameter(path, value, x, y) {
         try {
             return await api.setParameter(path, value, x, y);
@@ -243,6 +256,13 @@ export class Widget {
             return value[x];
         }
         return value;
+    }
+
+    /** A copy of a parameter value with element (x, y) set to v (v itself for a scalar). */
+    static withElement(value, x, y, v) {
+        if (!Array.isArray(value)) return v;
+        if (Array.isArray(value[0])) return value.map((row, i) => (i === y ? row.map((e, j) => (j === x ? v : e)) : row));
+        return value.map((e, j) => (j === x ? v : e));
     }
 
     /** Whether a widget's "enabled" source says it is disabled ([0][0] == 0). */
