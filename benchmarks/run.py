@@ -160,7 +160,7 @@ def _lag_stats(lateness: list[float]) -> dict:
 def jitter_kernel(path: str, dt: float, seconds: float) -> dict:
     """net.run(real_time=True): the kernel's own real-time loop. Each tick's start is
     recorded by wrapping the network's tick method, and compared with its deadline
-    start + n*dt."""
+    first tick start + n*dt."""
     import ikaros
     net = ikaros.load(path, tick_duration=dt)
     n = int(round(seconds / dt))
@@ -181,7 +181,8 @@ def jitter_kernel(path: str, dt: float, seconds: float) -> dict:
     busy_end = clock()
     net.close()
     assert count[0] == n, (count[0], n)
-    lateness = [starts[i] - (t0 + i * dt) for i in range(n)]
+    # the kernel's time base starts with its first tick
+    lateness = [starts[i] - (starts[0] + i * dt) for i in range(n)]
     r = _lag_stats(lateness)
     r["elapsed_s"] = busy_end - t0
     return r

@@ -2,6 +2,7 @@
 
     python benchmarks/webui.py                 # about 60 s
     python benchmarks/webui.py --seconds 3 --rounds 2
+    python benchmarks/webui.py --real-time     # lag at 1 kHz instead of ticks per second
 
 Runs robot_320 (benchmarks/models.py) in play mode (as fast as possible) in the
 controller's background thread, with the web UI server (uvicorn, on 127.0.0.1, a free port)
@@ -17,6 +18,9 @@ each (the client process connects at the start of each client phase and disconne
 end); the medians are printed with the drop in percent (the goal: at most 5 %), and the
 frames per second the client received. On a busy machine the rounds vary a lot: compare
 the median of the rounds' drops, and run it on a quiet machine.
+
+With ``--real-time`` the model runs in real time at 1 kHz instead, and each phase reports
+the kernel's own lag figures (mean, 99th percentile, max) instead of ticks per second.
 """
 from __future__ import annotations
 
@@ -69,6 +73,18 @@ def rate(net, seconds: float) -> float:
     return (net.tick - n0) / (time.perf_counter() - t0)
 
 
+def lag_figures(net, seconds: float) -> tuple[float, float, float]:
+    """Lag mean, 99th percentile and max in ms of the ticks run in the next ``seconds``."""
+    timing = net.timing
+    c0 = timing.lag_count
+    time.sleep(seconds)
+    c1 = timing.lag_count
+    lags = [timing.lags[i % len(timing.lags)] for i in range(max(c0, c1 - len(timing.lags)), c1)]
+    lags.sort()
+    return (statistics.fmean(lags) * 1e3, lags[int(0.99 * (len(lags) - 1))] * 1e3,
+            lags[-1] * 1e3)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--seconds", type=float, default=2.0, help="length of one phase")
@@ -76,6 +92,8 @@ def main(argv=None) -> int:
     ap.add_argument("--buffers", type=int, default=20, help="buffers the client subscribes to")
     ap.add_argument("--max-rate", type=float, default=None,
                     help="the server's cap on data frames per second (default: the server's)")
+    ap.add_argument("--real-time", action="store_true",
+                    help="run in real time at 1 kHz and report lag instead of ticks per second")
     args = ap.parse_args(argv)
 
     import uvicorn
@@ -86,16 +104,17 @@ def main(argv=None) -> int:
     from ikaros.webui.server import create_app, listen
 
     folder = tempfile.mkdtemp(prefix="ikaros-webui-bench-")
-    net = ikaros.load(robot_320(folder))
+    net = ikaros.load(robot_320(folder), tick_duration=0.001 if args.real_time else None)
     net.log_level = WARNING
     outputs = [p + ".OUTPUT" for p in net.modules]
     step = max(1, len(outputs) // args.buffers)
     paths = outputs[::step][:args.buffers]
 
     ctrl = net.controller
-    ctrl.start("play")
+    ctrl.start("realtime" if args.real_time else "play")
+    measure = lag_figures if args.real_time else rate
     time.sleep(1.0)                                   # warm up
-    alone = rate(net, args.seconds)
+    alone = measure(net, args.seconds)
 
     sock = listen("127.0.0.1", 0)
     port = sock.getsockname()[1]
@@ -117,14 +136,14 @@ def main(argv=None) -> int:
     proc.start()
     idle, busy, fps = [], [], []
     for _ in range(args.rounds):
-        idle.append(rate(net, args.seconds))
+        idle.append(measure(net, args.seconds))
         go.set()
         if not connected.wait(30):
             print("the client did not connect", file=sys.stderr)
             return 1
         time.sleep(0.2)
         f0, t0 = frames.value, time.perf_counter()
-        busy.append(rate(net, args.seconds))
+        busy.append(measure(net, args.seconds))
         fps.append((frames.value - f0) / (time.perf_counter() - t0))
         stop.set()
         while connected.is_set():
@@ -139,6 +158,19 @@ def main(argv=None) -> int:
     ctrl.join(10)
     net.close()
 
+    fps_text = f"client received {statistics.median(fps):.1f} frames/s"
+    if args.real_time:
+        def row(label, figures):
+            med = [statistics.median(f[i] for f in figures) for i in range(3)]
+            print(f"  {label:34}{med[0]:8.3f}{med[1]:8.3f}{med[2]:8.3f}   (p99 of the rounds: "
+                  f"{', '.join(f'{f[1]:.2f}' for f in figures)})")
+        print(f"robot_320, real time at 1 kHz, {args.rounds} x {args.seconds:g} s per phase "
+              f"(medians of the rounds; {os.cpu_count()} cores); lag in ms: mean, p99, max")
+        row("kernel only (no server):", [alone])
+        row("server, no client:", idle)
+        row(f"server, client on {len(paths)} buffers:", busy)
+        print(f"  ({fps_text})")
+        return 0
     no_client, client = statistics.median(idle), statistics.median(busy)
     drop = (no_client - client) / no_client * 100
     paired = statistics.median((a - b) / a * 100 for a, b in zip(idle, busy))
@@ -150,7 +182,7 @@ def main(argv=None) -> int:
     print(f"  server, client on {len(paths)} buffers:     {client:10.1f} ticks/s   "
           f"(rounds: {', '.join(f'{x:.0f}' for x in busy)})")
     print(f"  drop: {drop:.1f} % of the medians; {paired:.1f} % the median of the rounds' "
-          f"drops (client received {statistics.median(fps):.1f} frames/s)")
+          f"drops ({fps_text})")
     return 0
 
 

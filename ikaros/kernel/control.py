@@ -9,7 +9,7 @@ import time
 from concurrent.futures import Future
 
 from ..module import WARNING
-from .timing import wait_until
+from .timing import Waiter
 
 STOP, PAUSE, STEP, PLAY, REALTIME = "stop", "pause", "step", "play", "realtime"
 STATES = (STOP, PAUSE, STEP, PLAY, REALTIME)
@@ -32,6 +32,7 @@ class Controller:
         self._wake = threading.Event()
         self._thread: threading.Thread | None = None
         self._base: tuple[float, int] | None = None
+        self._waiter = Waiter()
         self._last_warning = 0.0
         # Called in the run thread after every tick (the web UI copies what its clients
         # subscribed to here); each must be quick and must not raise.
@@ -102,6 +103,8 @@ class Controller:
             self.end_tick = net.stop_tick
         self.set_state(state)
         self._loop()
+        if self.state != STOP:
+            self.state = PAUSE       # the time between two runs is not owed to real time
         return net.tick
 
     def start(self, state: str = PAUSE) -> None:
@@ -161,7 +164,7 @@ class Controller:
                 t0, n0 = self._base
                 deadline = t0 + (net.tick - n0) * dt
                 if now < deadline:
-                    timing.idle += wait_until(deadline)
+                    timing.idle += self._waiter.wait_until(deadline)
                     now = perf()
                 lag = now - deadline
                 if lag > self.resync_lag:

@@ -6,20 +6,47 @@ import time
 
 import numpy as np
 
-SPIN = 0.0005      # seconds before a deadline spent spinning instead of sleeping
 LAG_HISTORY = 4096  # ticks of lag kept for the 99th percentile
 
 
-def wait_until(deadline: float) -> float:
-    """Sleep, then spin for the last stretch, until ``perf_counter() >= deadline``.
-    Returns the time spent waiting."""
-    start = time.perf_counter()
-    remaining = deadline - start
-    if remaining > SPIN:
-        time.sleep(remaining - SPIN)
-    while time.perf_counter() < deadline:
-        pass
-    return time.perf_counter() - start
+class Waiter:
+    """Waits for real-time deadlines: sleeps, then spins for the last stretch (the margin).
+
+    How late ``time.sleep`` wakes up depends on the machine and its load, so the margin
+    follows it: it rises at once to a late wake-up seen (plus ``SLACK``), falls slowly
+    while wake-ups are prompt, and falls slowly too while it is so large that no sleep is
+    taken, so that it is tried again. It stays between ``MIN_MARGIN`` and ``MAX_MARGIN``.
+    """
+
+    MIN_MARGIN = 0.0002
+    MAX_MARGIN = 0.002
+    SLACK = 0.00005
+    FALL = 0.01            # fraction of the distance to a prompt wake-up's need, per sleep
+    UNUSED_FALL = 0.998    # factor per wait taken without sleeping
+
+    def __init__(self, margin: float = 0.0005):
+        self.margin = margin
+
+    def wait_until(self, deadline: float) -> float:
+        """Return once ``perf_counter() >= deadline``; returns the time spent waiting."""
+        perf = time.perf_counter
+        start = perf()
+        request = deadline - start - self.margin
+        if request > 0:
+            time.sleep(request)
+            self._woke(perf() - start - request)
+        elif request > self.MIN_MARGIN - self.margin:
+            self.margin = max(self.MIN_MARGIN, self.margin * self.UNUSED_FALL)
+        while perf() < deadline:
+            pass
+        return perf() - start
+
+    def _woke(self, overshoot: float) -> None:
+        need = overshoot + self.SLACK
+        if need > self.margin:
+            self.margin = min(self.MAX_MARGIN, need)
+        else:
+            self.margin = max(self.MIN_MARGIN, self.margin - (self.margin - need) * self.FALL)
 
 
 class Timing:

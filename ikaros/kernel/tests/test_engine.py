@@ -96,15 +96,30 @@ def test_a_long_stall_resynchronises_instead_of_bursting(tmp_path):
     (tmp_path / "Slow.py").write_text(SLOW)
     net = _model(tmp_path, '<group name="G" tick_duration="0.01"><module class="Slow" '
                            'name="S" seconds="0"/></group>')
-    net.run(ticks=5, real_time=True)
-    net.set_parameter("S.seconds", 0.3)          # one stalled tick of 300 ms
-    net.run(ticks=1, real_time=True)
-    net.set_parameter("S.seconds", 0)
+    ends = {}
+
+    def stall_at_tick_5():
+        ends[net.tick] = time.perf_counter()
+        if net.tick in (5, 6):
+            net.set_parameter("S.seconds", 0.3 if net.tick == 5 else 0)   # tick 5 takes 300 ms
+
+    net.controller.tick_hooks.append(stall_at_tick_5)
+    net.run(ticks=16, real_time=True)
+    # without resync the 10 ticks after the stall would run back to back to catch up
+    assert ends[16] - ends[6] >= 0.08
+    assert net.figures()["resyncs"] == 1
+
+
+def test_time_between_two_real_time_runs_is_not_owed(tmp_path):
+    (tmp_path / "Slow.py").write_text(SLOW)
+    net = _model(tmp_path, '<group name="G" tick_duration="0.01"><module class="Slow" '
+                           'name="S" seconds="0"/></group>')
+    net.run(ticks=3, real_time=True)
+    time.sleep(0.3)
     start = time.perf_counter()
     net.run(ticks=10, real_time=True)
-    # without resync the 10 ticks would run back to back (about 0 s) to catch up
-    assert time.perf_counter() - start >= 0.08
-    assert net.figures()["resyncs"] >= 1
+    assert time.perf_counter() - start >= 0.08      # no burst to catch up the 300 ms
+    assert net.figures()["resyncs"] == 0 and net.figures()["state"] == "pause"
 
 
 def test_profiling_measures_each_module(tmp_path):
