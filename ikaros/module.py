@@ -18,6 +18,7 @@ Attributes whose names start with ``_ik_`` belong to the kernel; other names are
 """
 from __future__ import annotations
 
+import functools
 import re
 from typing import Any, Callable
 
@@ -53,6 +54,7 @@ def require(module_name: str, package: str, extra: str | None = None):
                                 f"(or pip install {package})") from None
 
 
+@functools.lru_cache(maxsize=None)
 def attribute_name(port_name: str) -> str:
     """The Python attribute that holds a port: ``T-INPUT`` is ``self.T_INPUT``."""
     name = re.sub(r"\W", "_", port_name)

@@ -30,6 +30,7 @@ class Buffer:
         self.incoming: list[Link] = []
         self.outgoing: list[Link] = []
         self.array: np.ndarray | None = None
+        self.offset: int | None = None    # where ``array`` starts in the arena, in elements
 
     @property
     def path(self) -> str:

@@ -3,6 +3,7 @@ schedule and the element maps a Network runs."""
 from __future__ import annotations
 
 import collections
+import contextlib
 import gc
 import os
 import re
@@ -24,6 +25,19 @@ from .tree import Component, Group, ModuleInstance, Scope, find_component
 _NAME = re.compile(r"[A-Za-z_][\w\-]*$")
 
 
+@contextlib.contextmanager
+def _collector_paused():
+    """Reading and building make many long-lived objects; collecting garbage meanwhile only
+    costs time (the collector runs again as usual afterwards)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
 class Builder:
     """Builds one model: a file, the text of one (``text``), or a model tree already read
     (``model``, as the editor holds it). ``notify`` receives build-time warnings."""
@@ -32,12 +46,10 @@ class Builder:
                  notify=None, registry: ClassRegistry | None = None,
                  model: Node | None = None):
         self.filename = os.path.abspath(filename)
-        if model is not None:
-            if model.tag != "group":
-                raise model.error(f"the root element is <{model.tag}> but must be <group>")
-            self.model = model
-        else:
-            self.model = read_file(self.filename, text, root_tag="group")
+        if model is not None and model.tag != "group":
+            raise model.error(f"the root element is <{model.tag}> but must be <group>")
+        self.model = model            # read by build() when not given
+        self._text = text
         self.overrides = {k: value_text(v) for k, v in (overrides or {}).items()}
         self.registry = registry or ClassRegistry([os.path.dirname(self.filename)])
         self.notify = notify or _print_warning
@@ -259,8 +271,8 @@ class Builder:
             dst_path, dst_sel = split_selectors(target)
             delay = attr("delay")
             delays = parse_delays("1" if delay is None else delay)
-            offsets = {k: parse_int(attr(k)) for k in ("sourceoffset", "targetoffset", "size")
-                       if attr(k) not in (None, "")}
+            offsets = {k: parse_int(v) for k in ("sourceoffset", "targetoffset", "size")
+                       if k in node.attrs and (v := attr(k))}
         except ValueError_ as e:
             raise node.error(str(e)) from None
         if any(v < 0 for v in offsets.values()):
@@ -517,15 +529,10 @@ class Builder:
     # --- everything ----------------------------------------------------------------------
     def build(self):
         """Build the network; raises ModelError naming the file, line and element."""
-        # The build makes many long-lived objects; collecting garbage while it runs only
-        # costs time (the collector runs again as usual afterwards).
-        enabled = gc.isenabled()
-        gc.disable()
-        try:
+        with _collector_paused():
+            if self.model is None:
+                self.model = read_file(self.filename, self._text, root_tag="group")
             return self._build()
-        finally:
-            if enabled:
-                gc.enable()
 
     def _build(self):
         from .network import Network

@@ -178,6 +178,7 @@ class ClassRegistry:
     def __init__(self, folders: list[str] = ()):
         self.folders = [os.path.abspath(f) for f in folders]
         self._folder_cache: dict[str, dict[str, ClassEntry]] = {}
+        self._found: dict[tuple, ClassEntry | None] = {}
 
     def _in_folder(self, folder: str) -> dict[str, ClassEntry]:
         folder = os.path.abspath(folder)
@@ -190,6 +191,12 @@ class ClassRegistry:
         """The class called ``name``; ``extra_folders`` (a module's ``path``) are searched
         first. Group files in ``skip_files`` (the files being built) are passed over, so a
         model named after a class can use that class."""
+        key = (name, tuple(extra_folders), skip_files)
+        if key not in self._found:
+            self._found[key] = self._find(name, extra_folders, skip_files)
+        return self._found[key]
+
+    def _find(self, name: str, extra_folders, skip_files) -> ClassEntry | None:
         for folder in list(extra_folders) + self.folders:
             entry = self._in_folder(folder).get(name)
             if entry is None or (entry.is_group and entry.group in skip_files):

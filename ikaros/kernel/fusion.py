@@ -18,11 +18,6 @@ import numpy as np
 FUSE_LIMIT = 4096   # elements; larger arrays gain nothing from a gather and a scatter
 
 
-def _offset(base: int, array: np.ndarray) -> int:
-    """The position of an arena view in the arena (``base``: the arena's address)."""
-    return (array.__array_interface__["data"][0] - base) // 4
-
-
 def _in_block(block: np.ndarray, array) -> bool:
     # arena buffers are views of the block (NumPy keeps the owner as every view's base)
     return array is not None and array.base is block and array.flags.c_contiguous
@@ -58,7 +53,6 @@ class FusedOp:
 
     def __init__(self, block: np.ndarray, spec: tuple, members: list):
         self.block = block
-        base = block.__array_interface__["data"][0]
         self.ufunc = getattr(np, spec[0])
         self.members = members                     # (inst, inputs, outputs)
         self.operands = spec[1:]
@@ -71,8 +65,7 @@ class FusedOp:
             """Flat arena indices of each member's elements, from its start offset."""
             return np.repeat(np.array(offsets, dtype=np.intp), sizes) + (within if whole else 0)
 
-        out_idx = spread([_offset(base, next(iter(out.values())).array)
-                          for _, _, out in members])
+        out_idx = spread([next(iter(out.values())).offset for _, _, out in members])
         first = int(out_idx[0])
         if np.array_equal(out_idx, np.arange(first, first + total)):
             self.out_view, self.out_idx = block[first:first + total], None
@@ -88,8 +81,7 @@ class FusedOp:
                 self.args.append(vec)
             else:
                 name, first = _input_name(operand), operand.endswith("[0]")
-                idx = spread([_offset(base, ins[name].array) for _, ins, _ in members],
-                             whole=not first)
+                idx = spread([ins[name].offset for _, ins, _ in members], whole=not first)
                 scratch = np.zeros(total, np.float32)
                 self.gathers.append((idx.astype(np.intp), scratch))
                 self.args.append(scratch)

@@ -17,7 +17,8 @@ class Arena:
         self.block: np.ndarray | None = None
 
     def request(self, shape: tuple) -> list:
-        """Reserve room for an array; the returned holder gets the view at ``allocate``."""
+        """Reserve room for an array; the returned holder gets the view and its offset in
+        the block (in elements) at ``allocate``."""
         holder: list = []
         self._requests.append((tuple(shape), holder))
         return holder
@@ -31,7 +32,7 @@ class Arena:
         self.block = np.zeros(max(total, 1), dtype=np.float32)
         for (shape, holder), start in zip(self._requests, offsets):
             n = math.prod(shape) if shape else 1
-            holder.append(self.block[start:start + n].reshape(shape))
+            holder.extend((self.block[start:start + n].reshape(shape), start))
 
     @property
     def nbytes(self) -> int:
@@ -114,21 +115,17 @@ class BulkCopy:
 
     def __init__(self, block: np.ndarray):
         self.block = block
-        self._base = block.__array_interface__["data"][0]
         self._src: list[np.ndarray] = []
         self._dst: list[np.ndarray] = []
-
-    def offset(self, array: np.ndarray) -> int:
-        return (array.__array_interface__["data"][0] - self._base) // self.block.itemsize
 
     def accepts(self, dst: np.ndarray, src: np.ndarray, count: int) -> bool:
         """Whether a copy between these arrays can join (both in the arena, and small)."""
         return count <= BULK_LIMIT and dst.base is self.block and src.base is self.block
 
-    def add(self, dst: np.ndarray, dst_index: np.ndarray, src: np.ndarray,
-            src_index: np.ndarray) -> None:
-        self._dst.append(self.offset(dst) + np.asarray(dst_index, dtype=np.intp))
-        self._src.append(self.offset(src) + np.asarray(src_index, dtype=np.intp))
+    def add(self, dst_offset: int, dst_index, src_offset: int, src_index) -> None:
+        """Add a copy between arena buffers at these offsets (in elements)."""
+        self._dst.append(dst_offset + np.asarray(dst_index, dtype=np.intp))
+        self._src.append(src_offset + np.asarray(src_index, dtype=np.intp))
 
     def compile(self):
         """The copy as a no-argument function, or None when nothing was added."""

@@ -112,9 +112,9 @@ class Network:
             deepest[run.source] = max(deepest.get(run.source, 0), run.delay)
         arena.allocate()
         for buf, holder in holders:
-            buf.array = holder[0]
+            buf.array, buf.offset = holder
         for buf, source in self._shared.items():
-            buf.array = source.array.reshape(buf.shape)
+            buf.array, buf.offset = source.array.reshape(buf.shape), source.offset
         ring_arena = Arena()
         self.rings = {src: Ring(src.array, d - 1, ring_arena) for src, d in deepest.items()
                       if d >= 2}
@@ -147,7 +147,8 @@ class Network:
                     compile_copy(dst, run.dst_index, run.source.array, run.src_index))
             elif run.delay == 1:
                 if bulk.accepts(dst, run.source.array, len(run.src_index)):
-                    bulk.add(dst, run.dst_index, run.source.array, run.src_index)
+                    bulk.add(run.target.offset, run.dst_index, run.source.offset,
+                             run.src_index)
                 else:
                     self._delayed.append(
                         compile_copy(dst, run.dst_index, run.source.array, run.src_index))

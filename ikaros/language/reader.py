@@ -3,8 +3,7 @@ from __future__ import annotations
 
 import os
 import re
-
-from lxml import etree
+from xml.parsers import expat
 
 from ..errors import ModelError
 from .node import COMMENT, INCLUDE, Node
@@ -13,13 +12,7 @@ MAX_INCLUDE_DEPTH = 32
 _WRAPPER = "ikaros-file"
 _DECLARATION = re.compile(r"^\s*<\?xml[^>]*\?>")
 _DOCTYPE = re.compile(r"<!DOCTYPE[^>\[]*(\[[^\]]*\])?\s*>", re.S)
-
-
-def _parser() -> etree.XMLParser:
-    # No entity expansion beyond XML's own, no DTDs, no network: safe on untrusted files.
-    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
-                           remove_blank_text=False, huge_tree=False)
-
+_PSEUDO_ATTRIBUTE = re.compile(r"""([\w.-]+)\s*=\s*(["'])(.*?)\2""", re.S)
 
 # XML turns newlines in attribute values into spaces; a multi-line matrix literal with
 # '#' comments needs them. Such values get character references (the newline stays too, so
@@ -38,75 +31,112 @@ def _keep_lines(match: re.Match) -> str:
     return "\n" * match.group(0).count("\n")
 
 
-def _parse_elements(path: str, text: str | None = None) -> list:
-    """Parse a file as a list of top-level XML nodes (an included file need not have one root).
+def _file_text(path: str) -> str:
+    try:
+        with open(path, "rb") as f:
+            raw = f.read()
+    except OSError as e:
+        raise ModelError(f"cannot read file: {e.strerror}", path) from None
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise ModelError(f"file is not UTF-8 text ({e.reason} at byte {e.start})",
+                         path) from None
 
-    Line numbers are those of the file: the wrapper element is put on its first line.
+
+class _TreeBuilder:
+    """Expat handlers that build Nodes (with their lines) as the file is parsed.
+
+    Expat is used rather than lxml here because it calls back with each element and its
+    line, so no intermediate element tree is built and walked: reading is twice as fast.
+    It expands no external entities, and the DOCTYPE is removed before parsing.
     """
+
+    def __init__(self, parser, path: str, stack: tuple[str, ...]):
+        self.parser, self.path, self.stack = parser, path, stack
+        self.top: list[Node] = []          # the file's top-level items
+        self.open: list[Node] = []         # elements not yet closed, the wrapper excluded
+        self.text: list[str] | None = None  # text of the innermost element before a child
+        self.in_wrapper = False
+
+    def _add(self, node: Node) -> None:
+        if self.open:
+            self.open[-1].children.append(node)
+        else:
+            self.top.append(node)
+        self.text = None
+
+    def start(self, tag: str, attrs: dict) -> None:
+        if not self.in_wrapper:             # the first element is always the wrapper
+            self.in_wrapper = True
+            return
+        node = Node(tag, attrs, [], self.path, self.parser.CurrentLineNumber)
+        self._add(node)
+        self.open.append(node)
+        self.text = []
+
+    def end(self, tag: str) -> None:
+        if not self.open:
+            return                          # the wrapper
+        node = self.open.pop()
+        if self.text:
+            node.text = "".join(self.text).strip() or None
+        self.text = None
+
+    def data(self, text: str) -> None:
+        if self.text is not None:
+            self.text.append(text)
+
+    def comment(self, text: str) -> None:
+        self._add(Node(COMMENT, file=self.path, line=self.parser.CurrentLineNumber, text=text))
+
+    def instruction(self, target: str, data: str) -> None:
+        if target == "include":
+            attrs = {m.group(1): m.group(3) for m in _PSEUDO_ATTRIBUTE.finditer(data)}
+            self._add(_include(attrs.get("file"), self.path, self.parser.CurrentLineNumber,
+                               self.stack))
+
+
+def read_items(path: str, text: str | None = None,
+               stack: tuple[str, ...] | None = None) -> list[Node]:
+    """Parse a file into its top-level items (an included file need not have one root),
+    with included files spliced in. Line numbers are those of the file."""
     if text is None:
-        try:
-            with open(path, "rb") as f:
-                raw = f.read()
-        except OSError as e:
-            raise ModelError(f"cannot read file: {e.strerror}", path) from None
-        try:
-            text = raw.decode("utf-8-sig")
-        except UnicodeDecodeError as e:
-            raise ModelError(f"file is not UTF-8 text ({e.reason} at byte {e.start})",
-                             path) from None
+        text = _file_text(path)
     if "#" in text:
         text = _ATTRIBUTE_WITH_COMMENT.sub(_keep_newlines, text)
     text = _DECLARATION.sub(_keep_lines, text, count=1)
     if "<!DOCTYPE" in text:
         text = _DOCTYPE.sub(_keep_lines, text, count=1)
-    wrapped = f"<{_WRAPPER}>{text}</{_WRAPPER}>"
+    parser = expat.ParserCreate()
+    builder = _TreeBuilder(parser, path, stack if stack is not None else (path,))
+    parser.buffer_text = True
+    parser.StartElementHandler = builder.start
+    parser.EndElementHandler = builder.end
+    parser.CharacterDataHandler = builder.data
+    parser.CommentHandler = builder.comment
+    parser.ProcessingInstructionHandler = builder.instruction
     try:
-        root = etree.fromstring(wrapped.encode("utf-8"), _parser())
-    except etree.XMLSyntaxError as e:
-        line = e.lineno or None
-        msg = re.sub(r",? line \d+, column \d+$", "", e.msg or str(e))
-        col = f" (column {e.position[1]})" if e.position and line != 1 else ""
-        raise ModelError(f"malformed XML: {msg}{col}".replace(_WRAPPER, "file end"), path,
-                         line) from None
-    return list(root)
+        parser.Parse(f"<{_WRAPPER}>{text}</{_WRAPPER}>", True)
+    except expat.ExpatError as e:
+        message = expat.errors.messages[e.code]
+        col = f" (column {e.offset + 1})" if e.lineno != 1 else ""
+        raise ModelError(f"malformed XML: {message}{col}", path, e.lineno) from None
+    return builder.top
 
 
-def _to_node(item, path: str, stack: tuple[str, ...]) -> Node | None:
-    tag = item.tag
-    if type(tag) is not str:          # a comment, a processing instruction or an entity
-        if isinstance(item, etree._Comment):
-            return Node(COMMENT, file=path, line=item.sourceline, text=item.text)
-        if isinstance(item, etree._ProcessingInstruction) and item.target == "include":
-            return _include(item, path, stack)
-        return None
-    text = item.text
-    if text is not None:
-        text = text.strip() or None
-    children = []
-    for child in item:
-        converted = _to_node(child, path, stack)
-        if converted is not None:
-            children.append(converted)
-    return Node(tag, dict(item.attrib), children, path, item.sourceline, text)
-
-
-def _include(item, path: str, stack: tuple[str, ...]) -> Node:
-    file = item.get("file")
-    node = Node(INCLUDE, {"file": file or ""}, [], path, item.sourceline)
+def _include(file: str | None, path: str, line: int, stack: tuple[str, ...]) -> Node:
+    node = Node(INCLUDE, {"file": file or ""}, [], path, line)
     if not file:
-        raise ModelError('<?include?> needs a file="..." attribute', path, item.sourceline)
+        raise ModelError('<?include?> needs a file="..." attribute', path, line)
     target = os.path.normpath(os.path.join(os.path.dirname(path), file))
     if target in stack:
-        raise ModelError(f'<?include file="{file}"?> includes itself', path, item.sourceline)
+        raise ModelError(f'<?include file="{file}"?> includes itself', path, line)
     if len(stack) >= MAX_INCLUDE_DEPTH:
-        raise ModelError(f"includes nest deeper than {MAX_INCLUDE_DEPTH} levels", path,
-                         item.sourceline)
+        raise ModelError(f"includes nest deeper than {MAX_INCLUDE_DEPTH} levels", path, line)
     if not os.path.isfile(target):
-        raise ModelError(f'included file "{file}" not found', path, item.sourceline)
-    for child in _parse_elements(target):
-        converted = _to_node(child, target, stack + (target,))
-        if converted is not None:
-            node.children.append(converted)
+        raise ModelError(f'included file "{file}" not found', path, line)
+    node.children.extend(read_items(target, stack=stack + (target,)))
     return node
 
 
@@ -117,8 +147,7 @@ def read_file(path: str, text: str | None = None, root_tag: str | None = None) -
     kind of the root element (``group`` or ``class``).
     """
     path = os.path.abspath(path)
-    items = [n for n in (_to_node(i, path, (path,)) for i in _parse_elements(path, text))
-             if n is not None]
+    items = read_items(path, text)
     roots = [n for n in items if n.tag not in (COMMENT, INCLUDE)]
     if len(roots) != 1 or any(n.tag == INCLUDE for n in items):
         raise ModelError(f"a file must have exactly one root element, found {len(roots)}",

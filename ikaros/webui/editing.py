@@ -45,7 +45,7 @@ from dataclasses import dataclass
 
 from ..errors import ModelError
 from ..language.node import COMMENT, INCLUDE, Node
-from ..language.reader import MAX_INCLUDE_DEPTH, _parse_elements, _to_node
+from ..language.reader import MAX_INCLUDE_DEPTH, read_items
 
 MAX_NODES = 100_000
 MAX_DEPTH = 100
@@ -245,12 +245,12 @@ def _read_include(inc: EditorNode, containing: str, folder: str, kids: list,
         raise inc.error(f'included file "{file}" not found')
     index = _json_index(kids, folder, {})
     try:
-        items = [_to_node(item, target, stack + (target,)) for item in _parse_elements(target)]
+        items = read_items(target, stack=stack + (target,))
     except ModelError as e:
         if getattr(e, "editor_ref", None) is None:
             e.editor_ref = inc.ref
         raise
-    return [_retag(n, index, inc.ref) for n in items if n is not None]
+    return [_retag(n, index, inc.ref) for n in items]
 
 
 def _retag(node: Node, index: dict, default: tuple) -> EditorNode:
