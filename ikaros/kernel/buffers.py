@@ -15,6 +15,9 @@ class Buffer:
     Inputs and ports are filled by incoming links; outputs are written by their module.
     """
 
+    __slots__ = ("kind", "owner", "name", "optional", "flatten", "stack", "fixed", "node",
+                 "shape", "incoming", "outgoing", "array", "offset")
+
     def __init__(self, kind: str, owner, name: str, *, optional: bool = False,
                  flatten: bool = False, stack: bool = False, fixed: str | None = None,
                  node: Node | None = None):
@@ -45,7 +48,7 @@ class Buffer:
         return f"<{self.kind} {self.path} {self.shape}>"
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class Link:
     """One connection between two buffers, after group aliases are followed.
 
@@ -74,7 +77,7 @@ class Link:
         return f"{self.source.path} -> {self.target.path} (delay {d})"
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class Run:
     """Resolved data flow into a module input: elements ``src_index`` of module output
     ``source`` at ``delay`` go to elements ``dst_index`` of the input."""

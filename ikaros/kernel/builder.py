@@ -25,6 +25,9 @@ from .tree import Component, Group, ModuleInstance, Scope, find_component
 _NAME = re.compile(r"[A-Za-z_][\w\-]*$")
 
 
+_ONE_TICK = [1]     # the default delay (link delays are never changed after parsing)
+
+
 @contextlib.contextmanager
 def _collector_paused():
     """Reading and building make many long-lived objects; collecting garbage meanwhile only
@@ -255,11 +258,13 @@ class Builder:
 
     # --- connections ---------------------------------------------------------------------
     def connect(self, order: int, node: Node, group: Group) -> None:
-        scope = Scope(node, group)
+        attrs = node.attrs
 
         def attr(key):
-            value = node.get(key)
-            return None if value is None else self._substitute(value, scope, node, key).strip()
+            value = attrs.get(key)
+            if value is not None and ("@" in value or "{" in value):
+                value = self._substitute(value, Scope(node, group), node, key)
+            return None if value is None else value.strip()
 
         source, target = attr("source"), attr("target")
         if not source:
@@ -270,9 +275,9 @@ class Builder:
             src_path, src_sel = split_selectors(source)
             dst_path, dst_sel = split_selectors(target)
             delay = attr("delay")
-            delays = parse_delays("1" if delay is None else delay)
+            delays = _ONE_TICK if delay is None or delay == "1" else parse_delays(delay)
             offsets = {k: parse_int(v) for k in ("sourceoffset", "targetoffset", "size")
-                       if k in node.attrs and (v := attr(k))}
+                       if k in attrs and (v := attr(k))}
         except ValueError_ as e:
             raise node.error(str(e)) from None
         if any(v < 0 for v in offsets.values()):

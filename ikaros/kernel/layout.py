@@ -70,7 +70,18 @@ def layout(buffer: Buffer, fixed_shape: tuple | None = None) -> None:
     single one keeps its shape; ``stack`` adds a leading axis with one slice per
     connection. Connections with ``targetoffset`` or a target selector write where they say.
     """
-    links = sorted(buffer.incoming, key=lambda lk: lk.order)
+    links = buffer.incoming
+    if len(links) == 1:
+        link = links[0]
+        if (link.src_sel is None and link.dst_sel is None and fixed_shape is None
+                and not buffer.stack and not buffer.flatten and len(link.delays) == 1):
+            # the common case: one whole connection, which keeps its shape
+            shape = tuple(link.source.shape)
+            link.src_index = link.dst_index = range(math.prod(shape))
+            link.piece_shape = buffer.shape = shape
+            return
+    else:
+        links = sorted(links, key=lambda lk: lk.order)
     for link in links:
         _piece(link)
     placed = [lk for lk in links if lk.dst_sel is not None]
@@ -190,9 +201,13 @@ def runs_into(buffer: Buffer, memo: dict, stack: tuple = ()) -> list[Run]:
     if buffer in stack:
         raise ModelError(f"group ports form a loop at {buffer.path}")
     runs: list[Run] = []
-    for link in sorted(buffer.incoming, key=lambda lk: lk.order):
-        n = len(link.src_index)
-        lanes = [(d, link.dst_index[k * n:(k + 1) * n]) for k, d in enumerate(link.delays)]
+    incoming = buffer.incoming
+    for link in incoming if len(incoming) == 1 else sorted(incoming, key=lambda lk: lk.order):
+        if len(link.delays) == 1:
+            lanes = [(link.delays[0], link.dst_index)]
+        else:
+            n = len(link.src_index)
+            lanes = [(d, link.dst_index[k * n:(k + 1) * n]) for k, d in enumerate(link.delays)]
         if link.source.kind == "output":
             for d, dst in lanes:
                 runs.append(Run(link.source, buffer, d, link.src_index, dst, link.node,
