@@ -1,7 +1,7 @@
 """The network editor in a real headless Chromium, against the real server running a copy of
 a model in tmp_path: building a model from nothing and saving it, the automatic layout of a
-file without positions, delete and undo, and an invalid edit that leaves the previous network
-running.
+file without positions, delete and undo, rename and delete across groups, and an invalid edit
+that leaves the previous network running.
 
 Screenshots are kept in test-artifacts/."""
 from __future__ import annotations
@@ -239,6 +239,53 @@ def test_delete_a_module_and_undo(tmp_path):
         assert edges(page) == before
 
     in_browser(str(tmp_path / "add.ikg"), check)
+
+
+def rename(page, name, new_name):
+    box(page, name).click()
+    field = page.locator("#editor-inspector input[data-attr='name']")
+    field.fill(new_name)
+    field.press("Tab")
+    wait_boxes(page, [new_name])
+
+
+def test_rename_and_delete_reach_addresses_in_every_group(tmp_path):
+    shutil.copy(ADDRESSING, tmp_path / "addressing.ikg")
+
+    def check(server, page):
+        wait_boxes(page, ["TopC", "Down", "G1", "Abs"])
+        # Abs is reached from G3 only (G1.Other.D.OUTPUT -> .Abs.INPUT): that goes with it
+        box(page, "Abs").click()
+        page.keyboard.press("Delete")
+        page.wait_for_function("() => !document.querySelector(\"#editor-host rect.box[data-name='Abs']\")")
+        # TopC is reached from G3 by climbing: G2.G1.Main.TopC.OUTPUT
+        rename(page, "TopC", "Top")
+        box(page, "G1").dblclick()
+        wait_boxes(page, ["G2", "Other"])
+        box(page, "G2").dblclick()
+        wait_boxes(page, ["G", "G3"])
+        box(page, "G3").dblclick()
+        wait_boxes(page, ["C"])
+        # C is reached from the top (relative), from G3 (by name) and absolutely (.G1...)
+        rename(page, "C", "K")
+        page.click("#ed-save")
+        page.wait_for_function("() => document.querySelector('#editor-status').textContent.includes('Saved')")
+
+    in_browser(str(tmp_path / "addressing.ikg"), check)
+
+    import ikaros
+    text = (tmp_path / "addressing.ikg").read_text()
+    for address in ('source="G1.G2.G3.K.OUTPUT"', 'source="G2.G1.Main.Top.OUTPUT"',
+                    'source="K.OUTPUT"', 'source=".G1.G2.G3.K.OUTPUT"'):
+        assert address in text
+    assert "TopC" not in text and '"C.OUTPUT"' not in text and "Abs" not in text
+    net = ikaros.load(str(tmp_path / "addressing.ikg"))
+    try:
+        net.run(3)
+        assert net.output("Down.INPUT").tolist() == [3.0]      # from K, at the top
+        assert net.output("G1.G2.G.INPUT").tolist() == [7.0, 3.0, 3.0]
+    finally:
+        net.close()
 
 
 def test_an_invalid_edit_shows_the_error_and_the_network_keeps_running(tmp_path):

@@ -308,7 +308,7 @@ export class Editor {
         if (!g) return;
         if (name === n.attrs.name) return;
         if (this.model.names(g).has(name)) { this.setStatus("error", `"${name}" is taken in this group`); this.render(); return; }
-        this.edit("rename", () => { this.freeze(this.group()); EditorModel.rename(g, n, name); });
+        this.edit("rename", () => { this.freeze(this.group()); EditorModel.rename(this.model.tree, n, name); });
     }
 
     parentOf(n) {
@@ -327,7 +327,7 @@ export class Editor {
             for (const n of nodes) {
                 const parent = this.parentOf(n);
                 if (!parent) continue;
-                if (isComponent(n)) EditorModel.deleteComponents(parent, [n]);
+                if (isComponent(n)) EditorModel.deleteComponents(this.model.tree, parent, [n]);
                 else EditorModel.remove(this.model.chain(n).at(-2), n);
             }
         });

@@ -201,43 +201,48 @@ export class EditorModel extends EventTarget {
         return i;
     }
 
-    /** Connections of a group that touch a child (by name). */
-    static connectionsOf(g, name) {
-        return kids(g, "connection").filter((c) =>
-            splitAddress(c.attrs.source).parts[0] === name || splitAddress(c.attrs.target).parts[0] === name);
-    }
-
-    /** Delete components (nodes of group g) with their connections. */
-    static deleteComponents(g, nodes) {
-        for (const n of nodes) {
-            for (const c of EditorModel.connectionsOf(g, n.attrs.name)) EditorModel.remove(g, c);
-            EditorModel.remove(g, n);
+    /** Delete components (children of group g) with every connection that reaches them,
+     *  in g or any other group of the tree. */
+    static deleteComponents(tree, g, nodes) {
+        const gone = new Set(nodes);
+        for (const { chain, group } of addressHolders(tree)) {
+            for (const c of group.connections) {
+                const ends = [c.attrs.source, c.attrs.target].map((t) => componentsOf(chain, t));
+                if (ends.some((e) => e.some((s) => gone.has(s.node)))) EditorModel.remove(group.node, c);
+            }
         }
+        for (const n of nodes) EditorModel.remove(g, n);
     }
 
-    /** Rename a child of g, and the addresses in g that name it. */
-    static rename(g, n, name) {
+    /** Rename component n, and every address in the tree that reaches it (connections, group
+     *  port aliases and widget sources, wherever they are written). */
+    static rename(tree, n, name) {
         const old = n.attrs.name;
-        n.attrs.name = name;
-        const re = (t) => {
+        const re = (chain, t) => {
             const a = splitAddress(t);
-            if (a.parts[0] !== old || a.parts.length < 2) return t;
-            return [name, ...a.parts.slice(1)].join(".") + String(t).trim().slice(a.path.length);
+            const parts = [...a.parts];
+            let changed = false;
+            for (const s of componentsOf(chain, t)) {
+                if (s.node === n && parts[s.index] === old) { parts[s.index] = name; changed = true; }
+            }
+            return changed ? parts.join(".") + String(t).trim().slice(a.path.length) : t;
         };
-        for (const c of kids(g, "connection")) {
-            if (c.attrs.source) c.attrs.source = re(c.attrs.source);
-            if (c.attrs.target) c.attrs.target = re(c.attrs.target);
-        }
-        for (const o of kids(g, "output")) if (o.attrs.source) o.attrs.source = re(o.attrs.source);
-        for (const v of kids(g, "view")) {
-            for (const w of kids(v)) {
+        for (const { chain, group } of addressHolders(tree)) {
+            for (const c of group.connections) {
+                if (c.attrs.source) c.attrs.source = re(chain, c.attrs.source);
+                if (c.attrs.target) c.attrs.target = re(chain, c.attrs.target);
+            }
+            for (const o of group.outputs) if (o.attrs.source) o.attrs.source = re(chain, o.attrs.source);
+            for (const i of group.inputs) if (i.attrs.target) i.attrs.target = re(chain, i.attrs.target);
+            for (const w of group.widgets) {
                 for (const k of Object.keys(w.attrs)) {
                     if (/source$|Source$|parameter$|Parameter$/.test(k) || ["red", "green", "blue", "matrix"].includes(k)) {
-                        w.attrs[k] = String(w.attrs[k]).split(",").map((s) => re(s.trim())).join(",");
+                        w.attrs[k] = String(w.attrs[k]).split(",").map((t) => re(chain, t.trim())).join(",");
                     }
                 }
             }
         }
+        n.attrs.name = name;
     }
 
     /** Copies of nodes of g (and the connections among them), as a clipboard. */
@@ -277,6 +282,63 @@ export class EditorModel extends EventTarget {
         }
         return added;
     }
+}
+
+function childNamed(g, name) {
+    if (g.tag !== "group") return null;
+    return kids(g).find((c) => (c.tag === "module" || c.tag === "group") && c.attrs.name === name) || null;
+}
+
+/** What the component part of an address (all but its last part, the port) names, seen
+ *  from the last group of chain (groups from the top): [{index, node}] for each part, by
+ *  the kernel's rule (a part names a child, or else an enclosing group, nearest first; a
+ *  leading "." starts at the top, whose name may follow). Stops where a part names nothing. */
+export function componentsOf(chain, address) {
+    const parts = splitAddress(address).parts.slice(0, -1);
+    let path = chain, i = 0;
+    const out = [];
+    if (parts[0] === "" && parts.length > 1) {
+        path = [chain[0]];
+        i = 1;
+        if (parts[1] === (chain[0].attrs.name || "") && !childNamed(chain[0], parts[1])) {
+            out.push({ index: 1, node: chain[0] });
+            i = 2;
+        }
+    }
+    for (; i < parts.length; i++) {
+        const here = path[path.length - 1];
+        const child = childNamed(here, parts[i]);
+        if (child) {
+            path = [...path, child];
+        } else {
+            let k = path.length - 1;
+            while (k >= 0 && path[k].attrs.name !== parts[i]) k--;
+            if (k < 0) break;
+            path = path.slice(0, k + 1);
+        }
+        out.push({ index: i, node: path[path.length - 1] });
+    }
+    return out;
+}
+
+/** Every group of the tree with the chain of groups from the top to it, and its editable
+ *  elements that hold addresses (those inside an include are read-only and left out). */
+function addressHolders(tree) {
+    const out = [];
+    const visit = (g, chain) => {
+        const here = [...chain, g];
+        const own = (tag) => elements(g, tag).filter((e) => !e.readOnly).map((e) => e.node);
+        out.push({
+            chain: here,
+            group: {
+                node: g, connections: own("connection"), outputs: own("output"), inputs: own("input"),
+                widgets: own("view").flatMap((v) => kids(v)),
+            },
+        });
+        for (const s of kids(g, "group")) visit(s, here);
+    };
+    visit(tree, []);
+    return out;
 }
 
 /** The tree as the navigator's network: {top: {name, path, groups, modules, views}}. */
