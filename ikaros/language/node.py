@@ -19,6 +19,8 @@ class Node:
     file: str | None = None
     line: int | None = None
     text: str | None = None      # text content (descriptions), or a comment's text
+    # a file's root only: the texts of the comments before and after the root element
+    outside: tuple[list[str], list[str]] | None = None
 
     def elements(self, tag: str | None = None) -> Iterator["Node"]:
         """Child elements in document order, with included elements spliced in place."""
@@ -43,4 +45,7 @@ class Node:
     def copy(self) -> "Node":
         """A deep copy (the build works on copies, so the loaded tree stays as written)."""
         return Node(self.tag, dict(self.attrs), [c.copy() for c in self.children], self.file,
-                    self.line, self.text)
+                    self.line, self.text, self._outside_copy())
+
+    def _outside_copy(self):
+        return None if self.outside is None else (list(self.outside[0]), list(self.outside[1]))

@@ -153,6 +153,11 @@ def read_file(path: str, text: str | None = None, root_tag: str | None = None) -
         raise ModelError(f"a file must have exactly one root element, found {len(roots)}",
                          path, roots[1].line if len(roots) > 1 else None)
     root = roots[0]
+    at = items.index(root)
+    before = [n.text or "" for n in items[:at]]
+    after = [n.text or "" for n in items[at + 1:]]
+    if before or after:
+        root.outside = (before, after)
     if root_tag and root.tag != root_tag:
         raise ModelError(f"the root element is <{root.tag}> but must be <{root_tag}>", path,
                          root.line)

@@ -25,11 +25,14 @@ def _element(node: Node):
 
 
 def to_text(root: Node) -> str:
-    """The tree as XML text with an XML declaration."""
+    """The tree as XML text with an XML declaration (and the comments around the root)."""
     el = _element(root)
     etree.indent(el, space="    ")
-    body = etree.tostring(el, encoding="unicode")
-    return '<?xml version="1.0"?>\n' + body + "\n"
+    before, after = root.outside or ([], [])
+    parts = [etree.tostring(etree.Comment(t), encoding="unicode") for t in before]
+    parts.append(etree.tostring(el, encoding="unicode"))
+    parts += [etree.tostring(etree.Comment(t), encoding="unicode") for t in after]
+    return '<?xml version="1.0"?>\n' + "\n".join(parts) + "\n"
 
 
 def write_file(root: Node, filename: str) -> None:

@@ -49,7 +49,7 @@ from ..language.reader import MAX_INCLUDE_DEPTH, read_items
 
 MAX_NODES = 100_000
 MAX_DEPTH = 100
-NODE_KEYS = ("id", "tag", "attrs", "text", "children", "file", "line")
+NODE_KEYS = ("id", "tag", "attrs", "text", "children", "file", "line", "outside")
 _XML_NAME = re.compile(r"[A-Za-z_][\w.\-]*\Z", re.ASCII)
 _BAD_CHARS = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]")
 _FILE_NAME = re.compile(r"[^\W][\w\-. ]*\.ikg\Z")
@@ -76,7 +76,7 @@ class EditorNode(Node):
 
     def copy(self) -> "EditorNode":
         return EditorNode(self.tag, dict(self.attrs), [c.copy() for c in self.children],
-                          self.file, self.line, self.text, self.ref)
+                          self.file, self.line, self.text, self._outside_copy(), self.ref)
 
 
 def locate(error: ModelError) -> tuple[int | None, list[int] | None]:
@@ -111,7 +111,10 @@ def tree_json(root: Node, folder: str) -> dict:
         return {"id": counter[0], "tag": node.tag, "attrs": dict(node.attrs),
                 "text": node.text, "children": [walk(c) for c in node.children],
                 "file": rel(node.file), "line": node.line}
-    return walk(root)
+    out = walk(root)
+    if root.outside:
+        out["outside"] = {"before": list(root.outside[0]), "after": list(root.outside[1])}
+    return out
 
 
 # --- JSON -> tree -------------------------------------------------------------------------
@@ -187,7 +190,29 @@ def _check(data, path: tuple, depth: int, count: list) -> dict:
             raise TreeError(f'{where}: an include needs just attrs.file, a file name '
                             f'without quotes')
     return {"tag": tag, "id": node_id, "line": line, "file": file, "attrs": clean,
-            "text": text, "children": children}
+            "text": text, "children": children, "outside": _outside(data, path, where)}
+
+
+def _outside(data: dict, path: tuple, where: str):
+    """The root's comments before and after it: {"before": [text], "after": [text]}."""
+    value = data.get("outside")
+    if value is None:
+        return None
+    if path:
+        raise TreeError(f'{where}: only the root has "outside" comments')
+    if not isinstance(value, dict) or set(value) - {"before", "after"}:
+        raise TreeError(f'{where}: "outside" must be {{"before": [...], "after": [...]}}')
+    lists = []
+    for key in ("before", "after"):
+        texts = value.get(key, [])
+        if not isinstance(texts, list) or not all(isinstance(t, str) for t in texts):
+            raise TreeError(f'{where}: "outside.{key}" must be a list of comment texts')
+        for t in texts:
+            _text(t, f"{where}: a comment")
+            if "--" in t or t.endswith("-"):
+                raise TreeError(f'{where}: a comment must not contain "--" or end with "-"')
+        lists.append(list(texts))
+    return tuple(lists)
 
 
 def tree_from_json(data, filename: str, reread_includes: bool = True) -> EditorNode:
@@ -204,7 +229,7 @@ def tree_from_json(data, filename: str, reread_includes: bool = True) -> EditorN
         # ``shown``: a node displayed under an include (kept only to locate errors)
         f = _check(data, path, depth, count)
         node = EditorNode(f["tag"], f["attrs"], [], filename, f["line"], f["text"],
-                          (f["id"], path))
+                          f["outside"] if not path else None, (f["id"], path))
         node._sent_file = f["file"]
         inside = shown or f["tag"] == INCLUDE
         kids = [convert(c, path + (i,), depth + 1, inside)
@@ -257,7 +282,7 @@ def _retag(node: Node, index: dict, default: tuple) -> EditorNode:
     ref = index.get((os.path.normpath(node.file or ""), node.line, node.tag), default)
     return EditorNode(node.tag, dict(node.attrs), [_retag(c, index, ref) for c in
                                                     node.children],
-                      node.file, node.line, node.text, ref)
+                      node.file, node.line, node.text, ref=ref)
 
 
 # --- files and the folder rule ------------------------------------------------------------

@@ -64,3 +64,14 @@ def test_root_must_be_the_expected_kind(tmp_path):
     with pytest.raises(ModelError, match="must be <group>") as e:
         read_file(str(tmp_path / "m.ikg"), "<class name='X'/>", root_tag="group")
     assert e.value.line == 1
+
+
+def test_comments_around_the_root_are_kept(tmp_path):
+    text = ('<?xml version="1.0"?>\n<!-- before -->\n<!-- also before -->\n'
+            '<group name="G"/>\n<!-- after -->\n')
+    root = read_file(str(tmp_path / "m.ikg"), text)
+    assert root.outside == ([" before ", " also before "], [" after "])
+    written = to_text(root)
+    assert written == ('<?xml version="1.0"?>\n<!-- before -->\n<!-- also before -->\n'
+                       '<group name="G"/>\n<!-- after -->\n')
+    assert root.copy().outside == root.outside

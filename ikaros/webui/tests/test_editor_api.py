@@ -29,7 +29,7 @@ CONFORMANCE = os.path.join(ROOT, "tests", "conformance", "models")
 GOOD = sorted(os.path.basename(p) for p in glob.glob(os.path.join(CONFORMANCE, "*.ikg"))
               if not os.path.basename(p).startswith("err_"))
 
-MODEL = """<?xml version="1.0"?>
+MODEL = """<?xml version="1.0"?><!-- before the model -->
 <group name="E" tick_duration="0.01" mystery="kept">
     <!-- a comment inside the model -->
     <module class="Constant" name="C" data="1 2 3" color="red" _x="10" _y="20" />
@@ -41,6 +41,7 @@ MODEL = """<?xml version="1.0"?>
         <plot source="S.OUTPUT" x="0" y="0" odd="1" />
     </view>
 </group>
+<!-- after the model -->
 """
 
 PART = """<module class="Constant" name="P" data="5" />
@@ -171,6 +172,7 @@ def test_model_tree(client, folder):
     assert ids == list(range(1, len(ids) + 1))
     assert tree["tag"] == "group" and tree["file"] == "e.ikg" and tree["line"] == 2
     assert list(tree["attrs"]) == ["name", "tick_duration", "mystery"]
+    assert tree["outside"] == {"before": [" before the model "], "after": [" after the model "]}
     kinds = [c["tag"] for c in tree["children"]]
     assert kinds == ["#comment", "module", "module", "connection", "note", "#include", "view"]
     comment, c = tree["children"][0], tree["children"][1]
@@ -191,7 +193,8 @@ def test_save_unchanged_keeps_everything_and_loads_to_the_same_network(client, n
     r = client.post("/api/save", json={"tree": tree})
     assert r.status_code == 200 and r.json() == {"ok": True, "file": "e.ikg"}
     text = (folder / "e.ikg").read_text()
-    assert text.startswith('<?xml version="1.0"?>\n<group name="E"') and before
+    assert text.startswith('<?xml version="1.0"?>\n<!-- before the model -->\n<group name="E"')
+    assert text.endswith('</group>\n<!-- after the model -->\n') and before
     for kept in ('<!-- a comment inside the model -->', 'mystery="kept"', 'color="red"',
                  '_x="10"', '<note author="me" lang="en">', '<b>free</b>',
                  '<?include file="part.xml"?>', 'odd="1"'):
@@ -391,6 +394,10 @@ def test_apply_refuses_bad_requests(client, app, net):
         {"tag": "group", "children": [{"tag": "#include", "attrs": {}}]},
         {"tag": "group", "children": [{"tag": "#include", "attrs": {"file": 'a"b'}}]},
         {"tag": "group", "attrs": {"x": "bell\x07"}},
+        {"tag": "group", "outside": []}, {"tag": "group", "outside": {"before": "x"}},
+        {"tag": "group", "outside": {"before": ["a -- b"]}},
+        {"tag": "group", "outside": {"middle": []}},
+        {"tag": "group", "children": [{"tag": "group", "outside": {"before": []}}]},
     ]
     for bad in bad_trees:
         _error(client.post("/api/apply", json={"tree": bad}), 400)
