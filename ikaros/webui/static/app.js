@@ -80,7 +80,10 @@ class App {
             if (c && (!this.current || c.group !== this.current.group || c.view !== this.current.view)) this.showView(c.group, c.view);
         });
         document.addEventListener("keydown", (e) => {
-            if (e.key === "Escape") document.body.classList.toggle("hide-system");
+            // not while typing or in a dialog, where Escape means cancel
+            if (e.key === "Escape" && !e.target.closest("input, textarea, select, .editor-dialog-back")) {
+                document.body.classList.toggle("hide-system");
+            }
         });
     }
 

@@ -250,7 +250,15 @@ def rename(page, name, new_name):
 
 
 def test_rename_and_delete_reach_addresses_in_every_group(tmp_path):
-    shutil.copy(ADDRESSING, tmp_path / "addressing.ikg")
+    # the addressing model with a view whose widgets name TopC and C
+    head, _, _ = open(ADDRESSING).read().rpartition("</group>")
+    text = head + """
+    <view name="V">
+        <plot source="G1.G2.G3.C.OUTPUT" x="0" y="0" width="200" height="100"/>
+        <grid-world module="TopC" x="0" y="100" width="200" height="200"/>
+    </view>
+</group>"""
+    (tmp_path / "addressing.ikg").write_text(text)
 
     def check(server, page):
         wait_boxes(page, ["TopC", "Down", "G1", "Abs"])
@@ -276,8 +284,9 @@ def test_rename_and_delete_reach_addresses_in_every_group(tmp_path):
     import ikaros
     text = (tmp_path / "addressing.ikg").read_text()
     for address in ('source="G1.G2.G3.K.OUTPUT"', 'source="G2.G1.Main.Top.OUTPUT"',
-                    'source="K.OUTPUT"', 'source=".G1.G2.G3.K.OUTPUT"'):
+                    'source="K.OUTPUT"', 'source=".G1.G2.G3.K.OUTPUT"', 'module="Top"'):
         assert address in text
+    assert text.count('source="G1.G2.G3.K.OUTPUT"') == 2     # the connection and the plot
     assert "TopC" not in text and '"C.OUTPUT"' not in text and "Abs" not in text
     net = ikaros.load(str(tmp_path / "addressing.ikg"))
     try:

@@ -305,7 +305,7 @@ export class Editor {
 
     rename(n, name) {
         const g = this.parentOf(n);
-        if (!g) return;
+        if (!g || this.isReadOnly(n)) return;
         if (name === n.attrs.name) return;
         if (this.model.names(g).has(name)) { this.setStatus("error", `"${name}" is taken in this group`); this.render(); return; }
         this.edit("rename", () => { this.freeze(this.group()); EditorModel.rename(this.model.tree, n, name); });
@@ -415,7 +415,10 @@ export class Editor {
         if (added) this.select([added]);
     }
 
-    onGeometry(w, box) { this.edit("move widget", () => setWidgetBox(w, box)); }
+    onGeometry(w, box) {
+        if (this.isReadOnly(w)) { this.render(); return; }     // snaps back
+        this.edit("move widget", () => setWidgetBox(w, box));
+    }
 
     sourcesInGroup() {
         const out = [];
@@ -633,6 +636,7 @@ export class Editor {
             filename = await ask("Save as", "File name", this.model.file || (this.model.tree.attrs.name || "model") + ".ikg", "save-as-name");
             if (!filename) return;
             if (!filename.endsWith(".ikg")) filename += ".ikg";
+            if (filename !== this.model.file && !(await this.mayReplace(filename))) return;
         }
         try {
             const a = await files.save(this.model.tree, filename);
@@ -643,6 +647,13 @@ export class Editor {
         } catch (e) {
             this.setStatus("error", "Not saved: " + e.message);
         }
+    }
+
+    /** Whether a save-as may write filename: it is new, or the user agrees to replace it. */
+    async mayReplace(filename) {
+        let existing = [];
+        try { existing = (await files.list()).files || []; } catch { }
+        return !existing.includes(filename) || confirm(`${filename} exists. Replace it?`);
     }
 
     async newModel() {

@@ -41,6 +41,9 @@ export class EditorInspector {
         else if (n.tag === "connection") this.connectionPanel(n);
         else if (n.tag === "input" || n.tag === "output") this.pinPanel(n);
         else this.widgetPanel(n);
+        if (context?.readOnly) {
+            for (const field of this.el.querySelectorAll("input, select, textarea, button")) field.disabled = true;
+        }
     }
 
     table(title) {

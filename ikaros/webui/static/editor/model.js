@@ -218,11 +218,11 @@ export class EditorModel extends EventTarget {
      *  port aliases and widget sources, wherever they are written). */
     static rename(tree, n, name) {
         const old = n.attrs.name;
-        const re = (chain, t) => {
+        const re = (chain, t, whole = false) => {
             const a = splitAddress(t);
             const parts = [...a.parts];
             let changed = false;
-            for (const s of componentsOf(chain, t)) {
+            for (const s of componentsOf(chain, t, whole)) {
                 if (s.node === n && parts[s.index] === old) { parts[s.index] = name; changed = true; }
             }
             return changed ? parts.join(".") + String(t).trim().slice(a.path.length) : t;
@@ -236,7 +236,8 @@ export class EditorModel extends EventTarget {
             for (const i of group.inputs) if (i.attrs.target) i.attrs.target = re(chain, i.attrs.target);
             for (const w of group.widgets) {
                 for (const k of Object.keys(w.attrs)) {
-                    if (/source$|Source$|parameter$|Parameter$/.test(k) || ["red", "green", "blue", "matrix"].includes(k)) {
+                    if (k === "module") w.attrs[k] = re(chain, w.attrs[k], true);
+                    else if (WIDGET_ADDRESS.test(k) || ["red", "green", "blue", "matrix", "index"].includes(k)) {
                         w.attrs[k] = String(w.attrs[k]).split(",").map((t) => re(chain, t.trim())).join(",");
                     }
                 }
@@ -284,17 +285,22 @@ export class EditorModel extends EventTarget {
     }
 }
 
+/** Widget attributes that hold "Module.PORT" addresses (sources, parameters, commands). */
+const WIDGET_ADDRESS = /source$|Source$|parameter$|Parameter$|command|Command/;
+
 function childNamed(g, name) {
     if (g.tag !== "group") return null;
     return kids(g).find((c) => (c.tag === "module" || c.tag === "group") && c.attrs.name === name) || null;
 }
 
-/** What the component part of an address (all but its last part, the port) names, seen
- *  from the last group of chain (groups from the top): [{index, node}] for each part, by
- *  the kernel's rule (a part names a child, or else an enclosing group, nearest first; a
- *  leading "." starts at the top, whose name may follow). Stops where a part names nothing. */
-export function componentsOf(chain, address) {
-    const parts = splitAddress(address).parts.slice(0, -1);
+/** What the component part of an address (all but its last part, the port; all of it when
+ *  ``whole``) names, seen from the last group of chain (groups from the top): [{index, node}]
+ *  for each part, by the kernel's rule (a part names a child, or else an enclosing group,
+ *  nearest first; a leading "." starts at the top, whose name may follow). Stops where a
+ *  part names nothing. */
+export function componentsOf(chain, address, whole = false) {
+    const all = splitAddress(address).parts;
+    const parts = whole ? all : all.slice(0, -1);
     let path = chain, i = 0;
     const out = [];
     if (parts[0] === "" && parts.length > 1) {
@@ -332,7 +338,7 @@ function addressHolders(tree) {
             chain: here,
             group: {
                 node: g, connections: own("connection"), outputs: own("output"), inputs: own("input"),
-                widgets: own("view").flatMap((v) => kids(v)),
+                widgets: [...own("view").flatMap((v) => kids(v)), ...own("widget")],
             },
         });
         for (const s of kids(g, "group")) visit(s, here);
