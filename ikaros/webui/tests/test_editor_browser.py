@@ -297,6 +297,32 @@ def test_rename_and_delete_reach_addresses_in_every_group(tmp_path):
         net.close()
 
 
+IKAROS3_WIDGETS = """<?xml version="1.0"?>
+<group name="W">
+    <module class="Constant" name="C" data="1 2 3"/>
+    <widget class="plot" name="P" source="C.OUTPUT" _x="10" _y="10" width="200" height="100"/>
+</group>
+"""
+
+
+def test_widgets_placed_in_a_group_are_edited_as_a_view(tmp_path):
+    (tmp_path / "w.ikg").write_text(IKAROS3_WIDGETS)
+
+    def check(server, page):
+        wait_boxes(page, ["C"])
+        page.click(".editor-tab.view-tab:has-text('Widgets')")
+        page.wait_for_selector("#editor-host .widget-frame[data-widget='plot']")
+        page.select_option("#ed-add-widget", "bar-graph")
+        page.wait_for_selector("#editor-host .widget-frame[data-widget='bar-graph']")
+        page.click("#ed-save")
+        page.wait_for_function("() => document.querySelector('#editor-status').textContent.includes('Saved')")
+
+    in_browser(str(tmp_path / "w.ikg"), check)
+    text = (tmp_path / "w.ikg").read_text()
+    assert '<widget class="plot" name="P" source="C.OUTPUT"' in text
+    assert '<widget class="bar-graph" title="bar-graph"' in text and "<view" not in text
+
+
 def test_an_invalid_edit_shows_the_error_and_the_network_keeps_running(tmp_path):
     shutil.copy(ADD_EXAMPLE, tmp_path / "add.ikg")
 

@@ -7,7 +7,7 @@ import { pickClass } from "./class-list.js";
 import { ask, files, pickFile } from "./files.js";
 import { EditorInspector } from "./inspector.js";
 import { graphOf, layout, storedPosition } from "./layout.js";
-import { EditorModel, clone, elements, kids, node, setWidgetBox, treeAsNetwork, widgetBox } from "./model.js";
+import { EditorModel, GROUP_WIDGETS, clone, elements, kids, node, setWidgetBox, treeAsNetwork, viewsOf, widgetBox } from "./model.js";
 import { NetworkView } from "./network-view.js";
 import { ViewEditor } from "./view-editor.js";
 
@@ -366,8 +366,7 @@ export class Editor {
                 const m = clone(w);
                 const b = widgetBox(m);
                 setWidgetBox(m, { x: b.x + 20, y: b.y + 20 });
-                v.children.push(m);
-                return m;
+                return this.addToView(v, m);
             }));
             if (added) this.select(added);
         }
@@ -379,7 +378,14 @@ export class Editor {
 
     currentView() {
         if (this.mode === "network") return null;
-        return kids(this.group(), "view")[this.mode] || null;
+        return viewsOf(this.group())[this.mode] || null;
+    }
+
+    /** Put widget w in view v (for the group's own widgets: a <widget> in the group). */
+    addToView(v, w) {
+        if (v.tag !== GROUP_WIDGETS) { v.children.push(w); return w; }
+        if (w.tag !== "widget") w = node("widget", { class: w.tag, ...w.attrs }, w.children);
+        return EditorModel.insert(v.group, w);
     }
 
     async addView() {
@@ -387,14 +393,17 @@ export class Editor {
         const name = await ask("Add a view", "Name", "View");
         if (name === null) return;
         const added = this.edit("add view", () => EditorModel.insert(g, node("view", { name })));
-        if (added) this.openMode(kids(g, "view").indexOf(added));
+        if (added) this.openMode(viewsOf(g).indexOf(added));
     }
 
     deleteView() {
         const v = this.currentView();
         if (!v) return;
         const g = this.group();
-        this.edit("delete view", () => EditorModel.remove(g, v));
+        this.edit("delete view", () => {
+            if (v.tag === GROUP_WIDGETS) for (const w of kids(v)) EditorModel.remove(g, w);
+            else EditorModel.remove(g, v);
+        });
         this.openMode("network");
     }
 
@@ -402,15 +411,14 @@ export class Editor {
         let v = this.currentView();
         const g = this.group();
         if (!v) {
-            const views = kids(g, "view");
+            const views = viewsOf(g);
             v = views[0] || this.edit("add view", () => EditorModel.insert(g, node("view", { name: "View" })));
-            this.mode = kids(g, "view").indexOf(v);
+            this.mode = viewsOf(g).indexOf(v);
         }
         const n = kids(v).length;
         const added = this.edit(`add ${cls}`, () => {
             const w = node(cls, { title: cls, x: String(20 + 220 * (n % 3)), y: String(20 + 220 * Math.floor(n / 3)), width: "200", height: "200" });
-            v.children.push(w);
-            return w;
+            return this.addToView(v, w);
         });
         if (added) this.select([added]);
     }
@@ -533,7 +541,7 @@ export class Editor {
             return b;
         };
         tab("Network", "network");
-        kids(g, "view").forEach((v, i) => tab("▭ " + (v.attrs.name || `View #${i}`), i, "view-tab"));
+        viewsOf(g).forEach((v, i) => tab("▭ " + (v.attrs.name || `View #${i}`), i, "view-tab"));
         const addView = h("button", "editor-tab add-view", "+ View");
         addView.id = "ed-add-view";
         addView.addEventListener("click", () => this.addView());
@@ -621,7 +629,9 @@ export class Editor {
             const path = groups.slice(1).map((x) => x.attrs.name).join(".");
             if (path !== this.groupPath && this.model.group(path) === groups.at(-1)) { this.groupPath = path; this.mode = "network"; }
             const view = chain.find((x) => x.tag === "view");
-            if (view) this.mode = kids(this.model.group(path), "view").indexOf(view);
+            const views = viewsOf(this.model.group(path));
+            if (view) this.mode = views.indexOf(view);
+            else if (n.tag === "widget") this.mode = views.findIndex((v) => v.tag === GROUP_WIDGETS);
         } else {
             this.groupError = message;
         }

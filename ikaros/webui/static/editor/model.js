@@ -27,6 +27,26 @@ export function elements(n, tag = null, readOnly = false) {
 
 export function kids(n, tag) { return elements(n, tag).map((e) => e.node); }
 
+/** Stands for the <widget> elements placed directly in a group (the Ikaros 3 form) as one
+ *  view: its children are those widgets, read live from the group. */
+export const GROUP_WIDGETS = "#widgets";
+const groupWidgetViews = new WeakMap();
+
+/** A group's views: its <view> elements, then the "Widgets" view of its own <widget>s. */
+export function viewsOf(g) {
+    const views = kids(g, "view");
+    if (kids(g, "widget").length) {
+        if (!groupWidgetViews.has(g)) {
+            groupWidgetViews.set(g, {
+                tag: GROUP_WIDGETS, attrs: { name: "Widgets" }, group: g,
+                get children() { return g.children.filter((c) => c.tag === "widget"); },
+            });
+        }
+        views.push(groupWidgetViews.get(g));
+    }
+    return views;
+}
+
 export function isValidName(name) { return NAME.test(name || ""); }
 
 /** The class of a widget element: <widget class=..>, <object class=..> or <plot ..>. */
