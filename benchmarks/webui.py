@@ -104,7 +104,7 @@ def main(argv=None) -> int:
     from ikaros.webui.server import create_app, listen
 
     folder = tempfile.mkdtemp(prefix="ikaros-webui-bench-")
-    net = ikaros.load(robot_320(folder), tick_duration=0.001 if args.real_time else None)
+    net = ikaros.load(robot_320(folder), **({"tick_duration": 0.001} if args.real_time else {}))
     net.log_level = WARNING
     outputs = [p + ".OUTPUT" for p in net.modules]
     step = max(1, len(outputs) // args.buffers)
