@@ -75,3 +75,15 @@ def test_comments_around_the_root_are_kept(tmp_path):
     assert written == ('<?xml version="1.0"?>\n<!-- before -->\n<!-- also before -->\n'
                        '<group name="G"/>\n<!-- after -->\n')
     assert root.copy().outside == root.outside
+
+
+def test_entities_are_never_expanded(tmp_path):
+    secret = tmp_path / "secret.txt"
+    secret.write_text("private")
+    text = ('<?xml version="1.0"?>\n<!DOCTYPE g [\n <!ENTITY lol "lol">\n'
+            f' <!ENTITY xxe SYSTEM "file://{secret}">\n]>\n<group name="&lol;" a="&xxe;"/>\n')
+    with pytest.raises(ModelError, match="undefined entity") as e:
+        read_file(str(tmp_path / "m.ikg"), text)
+    assert e.value.line == 6
+    root = read_file(str(tmp_path / "m.ikg"), '<group name="a&amp;b&#65;"/>')
+    assert root.attrs["name"] == "a&bA"          # XML's own entities and references
