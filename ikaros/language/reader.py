@@ -61,10 +61,17 @@ class _TreeBuilder:
 
     def _add(self, node: Node) -> None:
         if self.open:
+            self._keep_text()
             self.open[-1].children.append(node)
         else:
             self.top.append(node)
         self.text = None
+
+    def _keep_text(self) -> None:
+        """The innermost element's text so far is its text (what comes after a child is not
+        kept, as in Ikaros)."""
+        if self.text:
+            self.open[-1].text = "".join(self.text).strip() or None
 
     def start(self, tag: str, attrs: dict) -> None:
         if not self.in_wrapper:             # the first element is always the wrapper
@@ -78,9 +85,8 @@ class _TreeBuilder:
     def end(self, tag: str) -> None:
         if not self.open:
             return                          # the wrapper
-        node = self.open.pop()
-        if self.text:
-            node.text = "".join(self.text).strip() or None
+        self._keep_text()
+        self.open.pop()
         self.text = None
 
     def data(self, text: str) -> None:

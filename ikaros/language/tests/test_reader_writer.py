@@ -87,3 +87,10 @@ def test_entities_are_never_expanded(tmp_path):
     assert e.value.line == 6
     root = read_file(str(tmp_path / "m.ikg"), '<group name="a&amp;b&#65;"/>')
     assert root.attrs["name"] == "a&bA"          # XML's own entities and references
+
+
+def test_an_element_keeps_its_text_before_the_first_child(tmp_path):
+    root = read_file(str(tmp_path / "m.ikg"),
+                     '<group><note> A <b>free</b> text</note><d>\n  plain\n</d></group>')
+    note, d = root.children
+    assert (note.text, note.children[0].text, d.text) == ("A", "free", "plain")
