@@ -235,7 +235,7 @@ export class EditorInspector {
             return s;
         };
         this.row(t, "source", pick("source", this.ctx.sources()), "an output in this group");
-        if ("parameter" in n.attrs || ["slider-horizontal", "slider-vertical", "switch", "drop-down-menu", "button", "table"].includes(cls)) {
+        if ("parameter" in n.attrs || ["slider-horizontal", "slider-vertical", "switch", "drop-down-menu", "button", "text", "grid"].includes(cls)) {
             this.row(t, "parameter", pick("parameter", this.ctx.parameters()), "a parameter in this group");
         }
         for (const key of ["x", "y", "width", "height"]) {
