@@ -351,9 +351,9 @@ export function componentsOf(chain, address, whole = false) {
  *  elements that hold addresses (those inside an include are read-only and left out). */
 function addressHolders(tree) {
     const out = [];
-    const visit = (g, chain) => {
+    const visit = (g, chain, readOnly = false) => {
         const here = [...chain, g];
-        const own = (tag) => elements(g, tag).filter((e) => !e.readOnly).map((e) => e.node);
+        const own = (tag) => elements(g, tag).filter((e) => !readOnly && !e.readOnly).map((e) => e.node);
         out.push({
             chain: here,
             group: {
@@ -361,7 +361,7 @@ function addressHolders(tree) {
                 widgets: [...own("view").flatMap((v) => kids(v)), ...own("widget")],
             },
         });
-        for (const s of kids(g, "group")) visit(s, here);
+        for (const e of elements(g, "group")) visit(e.node, here, readOnly || e.readOnly);
     };
     visit(tree, []);
     return out;
