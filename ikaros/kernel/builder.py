@@ -237,11 +237,13 @@ class Builder:
     def make_buffers(self, inst: ModuleInstance) -> None:
         module: Module = inst.module
         inputs, outputs = {}, {}
+        dotted = any("." in key for key in inst.attrs)     # INPUT.flatten="yes" and the like
         for spec in module._ik_inputs.values():
-            flags = {}
-            for key in ("flatten", "stack"):
+            flags = {"flatten": spec.flatten, "stack": spec.stack}
+            for key in ("flatten", "stack") if dotted else ():
                 value = inst.attrs.get(f"{spec.name}.{key}")
-                flags[key] = self._flag(inst, value, key) if value else getattr(spec, key)
+                if value:
+                    flags[key] = self._flag(inst, value, key)
             inputs[spec.name] = Buffer("input", inst, spec.name, optional=spec.optional,
                                        fixed=spec.size, node=inst.node, **flags)
         for spec in module._ik_outputs.values():

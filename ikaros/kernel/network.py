@@ -131,8 +131,10 @@ class Network:
                 for name, buf in list(inputs.items()) + list(outputs.items()):
                     setattr(inst.module, attribute_name(name), job.private.get(name))
                 continue
-            for name, buf in list(inputs.items()) + list(outputs.items()):
-                setattr(inst.module, attribute_name(name), buf.array)
+            module = inst.module
+            for ports in (inputs, outputs):
+                for name, buf in ports.items():
+                    setattr(module, attribute_name(name), buf.array)
 
     def _compile(self) -> None:
         self._delayed = []
