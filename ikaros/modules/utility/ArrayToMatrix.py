@@ -1,4 +1,6 @@
 """ArrayToMatrix: lays a vector out as the rows of a matrix."""
+import math
+
 from ikaros.module import Input, Module, Output, Parameter
 
 
@@ -19,9 +21,7 @@ class ArrayToMatrix(Module):
             return
         if self.array_length < 1:
             raise ValueError(f"array_length must be at least 1, not {self.array_length}")
-        n = 1
-        for s in shape:
-            n *= s
+        n = math.prod(shape)
         rows = max(1, -(-n // self.array_length))
         self.set_output_shape("OUTPUT", (rows, self.array_length))
 

@@ -1,4 +1,6 @@
 """DataBuffer: a matrix of past inputs."""
+import math
+
 import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
@@ -27,9 +29,7 @@ class DataBuffer(Module):
             return
         if self.size < 1:
             raise ValueError(f"size must be at least 1, not {self.size}")
-        n = 1
-        for s in shape:
-            n *= s
+        n = math.prod(shape)
         self.set_output_shape("OUTPUT", (self.size, n))
 
     def init(self):

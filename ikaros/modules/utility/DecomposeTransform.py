@@ -1,4 +1,6 @@
 """DecomposeTransform: translation, rotation and scale of homogeneous matrices."""
+import math
+
 import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
@@ -25,9 +27,7 @@ class DecomposeTransform(Module):
         shape = self.input_shape("INPUT")
         if shape is None:
             return
-        n = 1
-        for s in shape:
-            n *= s
+        n = math.prod(shape)
         if n == 0 or n % 16:
             raise ValueError(f"the input must hold 4x4 matrices (a multiple of 16 elements), "
                              f"not {n} elements")
