@@ -261,14 +261,8 @@ class Builder:
     # --- connections ---------------------------------------------------------------------
     def connect(self, order: int, node: Node, group: Group) -> None:
         attrs = node.attrs
-
-        def attr(key):
-            value = attrs.get(key)
-            if value is not None and ("@" in value or "{" in value):
-                value = self._substitute(value, Scope(node, group), node, key)
-            return None if value is None else value.strip()
-
-        source, target = attr("source"), attr("target")
+        source = self._connection_attr(node, group, "source")
+        target = self._connection_attr(node, group, "target")
         if not source:
             raise node.error("a connection needs a source")
         if not target:
@@ -276,37 +270,43 @@ class Builder:
         try:
             src_path, src_sel = split_selectors(source)
             dst_path, dst_sel = split_selectors(target)
-            delay = attr("delay")
-            delays = _ONE_TICK if delay is None or delay == "1" else parse_delays(delay)
-            offsets = {k: parse_int(v) for k in ("sourceoffset", "targetoffset", "size")
-                       if k in attrs and (v := attr(k))}
+            delay = attrs.get("delay")
+            if delay is None or delay == "1":
+                delays = _ONE_TICK
+            else:
+                delays = parse_delays(self._connection_attr(node, group, "delay"))
+            offsets = {}
+            if "sourceoffset" in attrs or "targetoffset" in attrs or "size" in attrs:
+                offsets = {k: parse_int(v) for k in ("sourceoffset", "targetoffset", "size")
+                           if k in attrs and (v := self._connection_attr(node, group, k))}
         except ValueError_ as e:
             raise node.error(str(e)) from None
-        if any(v < 0 for v in offsets.values()):
-            raise node.error("sourceoffset, targetoffset and size must not be negative")
-        if src_sel is not None and ("sourceoffset" in offsets or "size" in offsets):
-            raise node.error("a source selector cannot be combined with sourceoffset or size")
-        if dst_sel is not None and "targetoffset" in offsets:
-            raise node.error("a target selector cannot be combined with targetoffset")
-        if src_sel is None and ("sourceoffset" in offsets or "size" in offsets):
-            src_sel = ("offset", offsets.get("sourceoffset", 0), offsets.get("size"))
-        elif src_sel is not None:
-            src_sel = ("selector", src_sel)
-        if "targetoffset" in offsets:
-            dst_sel = ("offset", offsets["targetoffset"])
-        elif dst_sel is not None:
-            dst_sel = ("selector", dst_sel)
+        if offsets:
+            src_sel, dst_sel = _placement(node, offsets, src_sel, dst_sel)
+        else:
+            src_sel = src_sel and ("selector", src_sel)
+            dst_sel = dst_sel and ("selector", dst_sel)
         src = self._source(group, src_path, node)
         for dst in self._targets(group, dst_path, node):
             link = Link(src, dst, delays, node, order, src_sel, dst_sel)
             src.outgoing.append(link)
             dst.incoming.append(link)
 
+    def _connection_attr(self, node: Node, group: Group, key: str) -> str | None:
+        value = node.attrs.get(key)
+        if value is None:
+            return None
+        if "@" in value or "{" in value:
+            value = self._substitute(value, Scope(node, group), node, key)
+        return value.strip()
+
     def _split(self, group: Group, path: str, node: Node, role: str):
-        if "." not in path:
+        comp_path, dot, port = path.rpartition(".")
+        if not dot:
             return group, path
-        comp_path, port = path.rsplit(".", 1)
-        comp = group.top() if comp_path == "" else find_component(group, comp_path)
+        comp = group.children.get(comp_path)     # the common case: a child of this group
+        if comp is None:
+            comp = group.top() if comp_path == "" else find_component(group, comp_path)
         if comp is None:
             raise node.error(f'connection {role} "{path}" not found: there is no '
                              f'"{comp_path}" seen from group "{group.path or group.name}"')
@@ -410,6 +410,7 @@ class Builder:
                 if not buf.incoming and not buf.optional:
                     raise inst.node.error(f'required input "{buf.name}" of {inst.path} is not '
                                           f'connected')
+            inst.module._ik_connected = {n for n, b in inputs.items() if b.incoming}
         # A worklist: whenever a buffer gets its size, the owners of what it feeds are
         # looked at again, so sizing is linear in the size of the model.
         # When the worklist runs dry with outputs unsized (a loop through a delay), size_set
@@ -442,8 +443,13 @@ class Builder:
         self._check_sizes(pending)
 
     def _ready(self, buf: Buffer) -> bool:
-        return buf.shape is None and bool(buf.incoming) and \
-            all(link.source.shape is not None for link in buf.incoming)
+        """Whether an input or port can be laid out: unsized, connected, all sources sized."""
+        if buf.shape is not None or not buf.incoming:
+            return False
+        for link in buf.incoming:
+            if link.source.shape is None:
+                return False
+        return True
 
     def _advance(self, item) -> list[Buffer]:
         """Size what can be sized now in a module or port; return the buffers newly sized."""
@@ -454,10 +460,13 @@ class Builder:
             return []
         for buf in self.buffers[item][0].values():
             if self._ready(buf):
-                fixed = self._fixed_shape(buf)
-                if fixed is WAIT and buf.fixed:
-                    continue
-                layout(buf, fixed)
+                if buf.fixed:
+                    fixed = self._fixed_shape(buf)
+                    if fixed is WAIT:
+                        continue
+                    layout(buf, fixed)
+                else:
+                    layout(buf, None)
         return self._size_outputs(item)
 
     def _drop_links_from_unconnected_ports(self) -> None:
@@ -490,8 +499,8 @@ class Builder:
         inputs, outputs = self.buffers[inst]
         shapes = self._input_shapes(inst)
         module._ik_input_shapes = shapes
-        module._ik_connected = {n for n, b in inputs.items() if b.incoming}
         sized = []
+        waiting = False
         for name, buf in outputs.items():
             if buf.shape is not None:
                 continue
@@ -500,11 +509,13 @@ class Builder:
                 shape = rule_shape(inst, spec, shapes, partial) if spec.rule else WAIT
             except SizeError as e:
                 raise inst.node.error(f'size of output "{name}": {e}') from None
-            if shape is not WAIT:
+            if shape is WAIT:
+                waiting = True
+            else:
                 buf.shape = shape
                 module._ik_output_shapes[name] = shape
                 sized.append(buf)
-        if any(b.shape is None for b in outputs.values()):
+        if waiting and type(module).set_sizes is not Module.set_sizes:
             try:
                 module.set_sizes()
             except Exception as e:
@@ -573,3 +584,23 @@ def _alias(decl: Node, key: str, legacy: str) -> str | None:
 def _print_warning(level: int, where: str, message: str) -> None:
     import sys
     print(f"warning: {where + ': ' if where else ''}{message}", file=sys.stderr)
+
+
+def _placement(node: Node, offsets: dict, src_sel, dst_sel) -> tuple:
+    """Source and target placement of a connection with ``sourceoffset``, ``targetoffset``
+    or ``size``, checked against its selectors."""
+    if any(v < 0 for v in offsets.values()):
+        raise node.error("sourceoffset, targetoffset and size must not be negative")
+    if src_sel is not None and ("sourceoffset" in offsets or "size" in offsets):
+        raise node.error("a source selector cannot be combined with sourceoffset or size")
+    if dst_sel is not None and "targetoffset" in offsets:
+        raise node.error("a target selector cannot be combined with targetoffset")
+    if "sourceoffset" in offsets or "size" in offsets:
+        src_sel = ("offset", offsets.get("sourceoffset", 0), offsets.get("size"))
+    elif src_sel is not None:
+        src_sel = ("selector", src_sel)
+    if "targetoffset" in offsets:
+        dst_sel = ("offset", offsets["targetoffset"])
+    elif dst_sel is not None:
+        dst_sel = ("selector", dst_sel)
+    return src_sel, dst_sel

@@ -1,6 +1,7 @@
 """Output size rules: the Ikaros 2 ``size_*`` attributes and Ikaros 3 ``shape`` expressions."""
 from __future__ import annotations
 
+import functools
 import math
 import re
 
@@ -87,7 +88,7 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
     if "size" in rule:
         return shape_expression(inst, rule["size"], input_shapes)
     if "size_set" in rule:
-        names = [n.strip() for n in rule["size_set"].split(",") if n.strip()]
+        names = _input_names(rule["size_set"])
         shapes = []
         for name in names:
             if name not in input_shapes:
@@ -109,6 +110,12 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
     if "shape" in rule:
         return shape_expression(inst, rule["shape"], input_shapes)
     return WAIT
+
+
+@functools.lru_cache(maxsize=None)
+def _input_names(text: str) -> tuple[str, ...]:
+    """The inputs a ``size_set`` rule names."""
+    return tuple(n.strip() for n in text.split(",") if n.strip())
 
 
 def _axes(inst: ModuleInstance, rule: dict, input_shapes: dict) -> tuple | None:
