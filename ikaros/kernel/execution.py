@@ -100,11 +100,11 @@ class Plan:
 
     ``threads`` > 1 runs thread groups (modules joined by zero-delay connections) in
     parallel lanes; results are the same as with one thread, since lanes share no
-    zero-delay data.
+    zero-delay data. ``cost(module)`` weighs modules when lanes are balanced.
     """
 
     def __init__(self, schedule: list, pre_tick: dict, tick_of: dict, edges: dict,
-                 threads: int, cost: dict, fuser=None):
+                 threads: int, cost, fuser=None):
         self.schedule = schedule
         self.index = {inst: i for i, inst in enumerate(schedule)}
         self.calls = {inst: list(pre_tick.get(inst, ())) + [tick_of[inst]] for inst in schedule}
@@ -127,10 +127,10 @@ class Plan:
             if len(groups) > 1:
                 lanes = [[] for _ in range(min(threads, len(groups)))]
                 load = [0.0] * len(lanes)
-                for group in sorted(groups, key=lambda g: -sum(cost[m] for m in g)):
+                for group in sorted(groups, key=lambda g: -sum(cost(m) for m in g)):
                     k = load.index(min(load))
                     lanes[k].append(group)
-                    load[k] += sum(cost[m] for m in group)
+                    load[k] += sum(cost(m) for m in group)
                 self.lanes = [[m for group in lane for m in group] for lane in lanes]
                 self.pool = ThreadPoolExecutor(len(self.lanes) - 1,
                                                thread_name_prefix="ikaros-lane")

@@ -11,6 +11,7 @@ order on float32 values.
 from __future__ import annotations
 
 import collections
+import functools
 
 import numpy as np
 
@@ -27,6 +28,15 @@ def _input_name(operand: str) -> str:
     return operand[:-3] if operand.endswith("[0]") else operand
 
 
+@functools.lru_cache(maxsize=None)
+def _operands(form: tuple) -> tuple[frozenset, tuple]:
+    """The inputs a form reads, and its input operands as (operand, input name, whether
+    only the first element is read)."""
+    operands = tuple((o, _input_name(o), o.endswith("[0]")) for o in form[1:]
+                     if not o.startswith("@"))
+    return frozenset(name for _, name, _ in operands), operands
+
+
 def fused_form(inst, inputs: dict, outputs: dict, block: np.ndarray) -> tuple | None:
     """The element-wise form an instance can be fused with, or None."""
     forms = getattr(type(inst.module), "elementwise", None)
@@ -35,14 +45,14 @@ def fused_form(inst, inputs: dict, outputs: dict, block: np.ndarray) -> tuple | 
     out = next(iter(outputs.values())).array
     if not _in_block(block, out) or out.size > FUSE_LIMIT:
         return None
-    connected = {name for name, buf in inputs.items() if buf.incoming}
+    connected = inst.module._ik_connected
     for form in (forms if isinstance(forms, list) else [forms]):
-        operands = [o for o in form[1:] if not o.startswith("@")]
-        if {_input_name(o) for o in operands} != connected:
+        names, operands = _operands(form)
+        if names != connected:
             continue
-        for o in operands:
-            arr = inputs[_input_name(o)].array
-            if not _in_block(block, arr) or (arr.size != out.size and not o.endswith("[0]")):
+        for _, name, first in operands:
+            arr = inputs[name].array
+            if not _in_block(block, arr) or (arr.size != out.size and not first):
                 return None
         return form
     return None
@@ -135,19 +145,22 @@ def fuse(schedule: list, edges: dict, buffers: dict, block: np.ndarray, calls: d
     if not groups:
         return None
     fused, sequence, owner = {}, [], {}
-    by_level = collections.defaultdict(list)
+    ops_by_level = collections.defaultdict(list)
     for (lvl, spec), members in groups.items():
         op = FusedOp(block, spec, members)
-        by_level[lvl].append(op)
+        ops_by_level[lvl].append(op)
         for inst, _, _ in members:
             fused[inst] = op
+    unfused_by_level = collections.defaultdict(list)
+    for inst in schedule:
+        if inst not in fused:
+            unfused_by_level[level[inst]].append(inst)
     for lvl in range(max(level.values()) + 1):
-        for inst in schedule:
-            if level[inst] == lvl and inst not in fused:
-                for call in calls[inst]:
-                    sequence.append(call)
-                    owner[call] = inst
-        for op in by_level[lvl]:
+        for inst in unfused_by_level[lvl]:
+            for call in calls[inst]:
+                sequence.append(call)
+                owner[call] = inst
+        for op in ops_by_level[lvl]:
             for inst, _, _ in op.members:
                 for copy in pre_tick.get(inst, ()):
                     sequence.append(copy)

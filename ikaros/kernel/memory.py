@@ -30,9 +30,13 @@ class Arena:
             n = math.prod(shape) if shape else 1
             total += -(-n // ALIGN) * ALIGN if n else 0
         self.block = np.zeros(max(total, 1), dtype=np.float32)
+        block = self.block
         for (shape, holder), start in zip(self._requests, offsets):
-            n = math.prod(shape) if shape else 1
-            holder.extend((self.block[start:start + n].reshape(shape), start))
+            if len(shape) == 1:
+                holder.extend((block[start:start + shape[0]], start))
+            else:
+                n = math.prod(shape) if shape else 1
+                holder.extend((block[start:start + n].reshape(shape), start))
 
     @property
     def nbytes(self) -> int:
@@ -115,8 +119,8 @@ class BulkCopy:
 
     def __init__(self, block: np.ndarray):
         self.block = block
-        self._src: list[np.ndarray] = []
-        self._dst: list[np.ndarray] = []
+        self._src: list[int] = []       # flat arena indices, element by element
+        self._dst: list[int] = []
 
     def accepts(self, dst: np.ndarray, src: np.ndarray, count: int) -> bool:
         """Whether a copy between these arrays can join (both in the arena, and small)."""
@@ -124,15 +128,15 @@ class BulkCopy:
 
     def add(self, dst_offset: int, dst_index, src_offset: int, src_index) -> None:
         """Add a copy between arena buffers at these offsets (in elements)."""
-        self._dst.append(dst_offset + np.asarray(dst_index, dtype=np.intp))
-        self._src.append(src_offset + np.asarray(src_index, dtype=np.intp))
+        self._dst.extend(_shifted(dst_index, dst_offset))
+        self._src.extend(_shifted(src_index, src_offset))
 
     def compile(self):
         """The copy as a no-argument function, or None when nothing was added."""
         if not self._src:
             return None
-        src = np.ascontiguousarray(np.concatenate(self._src))
-        dst = np.ascontiguousarray(np.concatenate(self._dst))
+        src = np.array(self._src, dtype=np.intp)
+        dst = np.array(self._dst, dtype=np.intp)
         scratch = np.zeros(len(src), dtype=np.float32)
         block = self.block
 
@@ -140,3 +144,10 @@ class BulkCopy:
             np.take(block, src, out=scratch)
             block[dst] = scratch
         return copy
+
+
+def _shifted(index, offset: int):
+    """An element map moved by ``offset`` elements (a range stays a range)."""
+    if isinstance(index, range):
+        return range(index.start + offset, index.stop + offset, index.step)
+    return (np.asarray(index, dtype=np.intp) + offset).tolist()

@@ -165,15 +165,17 @@ class Network:
         self._ring_list = list(self.rings.values())
         tick_of = {inst: module_tick(inst, self.clock) if inst not in self.async_modules
                    else self.async_modules[inst] for inst in self.schedule}
-        cost = {inst: 1 + sum(b.size for b in self._buffers[inst][1].values())
-                for inst in self.schedule}
         block = self.arena.block
 
         def fuser(calls):
             return fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
                         pre_tick)
         self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
-                         self.threads or 1, cost, fuser)
+                         self.threads or 1, self._module_cost, fuser)
+
+    def _module_cost(self, inst: ModuleInstance) -> int:
+        """A module's weight when thread lanes are balanced: its output elements."""
+        return 1 + sum(b.size for b in self._buffers[inst][1].values())
 
     def _init_modules(self) -> None:
         self.clock.tick = -1
