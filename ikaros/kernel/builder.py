@@ -61,6 +61,7 @@ class Builder:
         self.ports: dict[tuple, Buffer] = {}
         self.instances: list[ModuleInstance] = []
         self.buffers: dict[ModuleInstance, tuple[dict, dict]] = {}
+        self._folders: dict[str, str] = {}     # the folder of each file read
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
@@ -82,7 +83,7 @@ class Builder:
                     child_name = f"Group-{anonymous}"
                 if not child_name:
                     raise child.error(f"a <{tag}> needs a name")
-                child_name = self._substitute(child_name, Scope(child, group), child, "name")
+                child_name = self._substitute(child_name, child, group, "name")
                 if not _NAME.match(child_name):
                     raise child.error(f'"{child_name}" is not a valid name (letters, digits, _ '
                                       f'and -, not starting with a digit)')
@@ -118,7 +119,7 @@ class Builder:
         external = node.get("external")
         if not external:
             return self._group(node, parent, name, node.attrs, files)
-        path = self._substitute(external, Scope(node, parent), node, "external")
+        path = self._substitute(external, node, parent, "external")
         merged, file = self._merge_file(node, path, files)
         merged.attrs.pop("external", None)
         return self._group(merged, parent, name, merged.attrs, files + (file,))
@@ -143,11 +144,11 @@ class Builder:
         class_name = node.get("class")
         if not class_name:
             raise node.error("a <module> needs a class")
-        class_name = self._substitute(class_name, Scope(node, group), node, "class")
-        folders = [os.path.dirname(node.file or self.filename)]
+        class_name = self._substitute(class_name, node, group, "class")
+        folders = [self._folder(node.file or self.filename)]
         if node.get("path"):
             folders.insert(0, os.path.join(folders[0], self._substitute(
-                node.get("path"), Scope(node, group), node, "path")))
+                node.get("path"), node, group, "path")))
         entry = self.registry.find(class_name, folders, files)
         if entry is None:
             raise node.error(f'unknown class "{class_name}"')
@@ -159,11 +160,20 @@ class Builder:
         self.instances.append(inst)
         return inst
 
-    def _substitute(self, text: str, scope, node: Node, what: str) -> str:
+    def _substitute(self, text: str, node: Node, group: Group, what: str) -> str:
+        """An attribute's value with its variables resolved in the scope of its element."""
+        if "@" not in text and "{" not in text:
+            return text
         try:
-            return substitute(text, scope)
+            return substitute(text, Scope(node, group))
         except VariableError as e:
             raise node.error(f"{what}: {e}") from None
+
+    def _folder(self, file: str) -> str:
+        folder = self._folders.get(file)
+        if folder is None:
+            folder = self._folders[file] = os.path.dirname(file)
+        return folder
 
     # --- modules -------------------------------------------------------------------------
     def instantiate(self, inst: ModuleInstance) -> None:
@@ -199,6 +209,9 @@ class Builder:
 
     def _run_settings(self, inst: ModuleInstance) -> None:
         """``period``, ``phase`` and ``async`` of a module element."""
+        attrs = inst.attrs
+        if "period" not in attrs and "phase" not in attrs and "async" not in attrs:
+            return                          # the defaults of ModuleInstance
         def setting(key, default, parse):
             text = inst.attrs.get(key)
             if text in (None, ""):
@@ -237,20 +250,25 @@ class Builder:
     def make_buffers(self, inst: ModuleInstance) -> None:
         module: Module = inst.module
         inputs, outputs = {}, {}
-        dotted = any("." in key for key in inst.attrs)     # INPUT.flatten="yes" and the like
+        dotted = "." in "".join(inst.attrs)     # INPUT.flatten="yes" and the like
         for spec in module._ik_inputs.values():
-            flags = {"flatten": spec.flatten, "stack": spec.stack}
-            for key in ("flatten", "stack") if dotted else ():
-                value = inst.attrs.get(f"{spec.name}.{key}")
-                if value:
-                    flags[key] = self._flag(inst, value, key)
+            flatten, stack = spec.flatten, spec.stack
+            if dotted:
+                flatten = self._input_flag(inst, spec.name, "flatten", flatten)
+                stack = self._input_flag(inst, spec.name, "stack", stack)
             inputs[spec.name] = Buffer("input", inst, spec.name, optional=spec.optional,
-                                       fixed=spec.size, node=inst.node, **flags)
+                                       flatten=flatten, stack=stack, fixed=spec.size,
+                                       node=inst.node)
         for spec in module._ik_outputs.values():
             buf = Buffer("output", inst, spec.name, optional=spec.optional, node=inst.node)
             buf.shape = module._ik_output_shapes.get(spec.name)
             outputs[spec.name] = buf
         self.buffers[inst] = (inputs, outputs)
+
+    def _input_flag(self, inst: ModuleInstance, name: str, key: str, default: bool) -> bool:
+        """An input's flag as the module element sets it (``INPUT.flatten="yes"``)."""
+        value = inst.attrs.get(f"{name}.{key}")
+        return self._flag(inst, value, key) if value else default
 
     def _flag(self, inst, text, what) -> bool:
         try:
@@ -296,9 +314,7 @@ class Builder:
         value = node.attrs.get(key)
         if value is None:
             return None
-        if "@" in value or "{" in value:
-            value = self._substitute(value, Scope(node, group), node, key)
-        return value.strip()
+        return self._substitute(value, node, group, key).strip()
 
     def _split(self, group: Group, path: str, node: Node, role: str):
         comp_path, dot, port = path.rpartition(".")

@@ -1,7 +1,6 @@
 """The instance tree: groups and modules as built from the model file, with their paths."""
 from __future__ import annotations
 
-import functools
 from typing import Iterator
 
 from ..language.node import Node
@@ -16,16 +15,11 @@ class Component:
         self.node = node
         self.parent = parent
         self.attrs = node.attrs if attrs is None else attrs
-
-    @functools.cached_property
-    def path(self) -> str:
-        """The dotted path from the top group, without the top group's name."""
-        parts = []
-        c = self
-        while c.parent is not None:
-            parts.append(c.name)
-            c = c.parent
-        return ".".join(reversed(parts))
+        # the dotted path from the top group, without the top group's name
+        if parent is None:
+            self.path = ""
+        else:
+            self.path = f"{parent.path}.{name}" if parent.path else name
 
     def top(self) -> "Group":
         c = self
