@@ -48,14 +48,24 @@ def _piece(link: Link) -> None:
                 raise _link_error(link, f"the source selector is outside its output bounds "
                                         f"(shape {shape})")
             lists.append(idx)
-        grids = np.meshgrid(*[np.array(i, dtype=np.intp) for i in lists], indexing="ij")
-        link.src_index = np.ravel_multi_index([g.ravel() for g in grids], shape) \
-            if all(len(i) for i in lists) else np.zeros((0,), dtype=np.intp)
+        if len(lists) == 1:
+            link.src_index = _index_map(lists[0])
+        else:
+            grids = np.meshgrid(*[np.array(i, dtype=np.intp) for i in lists], indexing="ij")
+            link.src_index = np.ravel_multi_index([g.ravel() for g in grids], shape) \
+                if all(len(i) for i in lists) else np.zeros((0,), dtype=np.intp)
         # Dimensions picked by a single index are dropped; one element is still a vector.
         link.piece_shape = tuple(len(i) for d, i in zip(dims, lists) if d[0] != "index") \
             or (1,)
     if link.window:
         link.piece_shape = (len(link.delays),) + link.piece_shape
+
+
+def _index_map(indices: list[int]):
+    """A list of flat indices as an element map: a range when it is one."""
+    if indices and indices == list(range(indices[0], indices[-1] + 1)):
+        return range(indices[0], indices[-1] + 1)
+    return np.array(indices, dtype=np.intp)
 
 
 def _highest(index) -> int:
