@@ -61,7 +61,8 @@ class _TreeBuilder:
 
     def _add(self, node: Node) -> None:
         if self.open:
-            self._keep_text()
+            if self.text:
+                self._keep_text()
             self.open[-1].children.append(node)
         else:
             self.top.append(node)
@@ -85,7 +86,8 @@ class _TreeBuilder:
     def end(self, tag: str) -> None:
         if not self.open:
             return                          # the wrapper
-        self._keep_text()
+        if self.text:
+            self._keep_text()
         self.open.pop()
         self.text = None
 
