@@ -13,30 +13,28 @@ class Arena:
     """Hands out views into one zero-filled float32 block, allocated once."""
 
     def __init__(self):
-        self._requests: list[tuple[tuple, list]] = []
+        self._shapes: list[tuple] = []
+        self.offsets: list[int] = []          # where each request starts, in elements
+        self.views: list[np.ndarray] = []     # each request's view of the block
         self.block: np.ndarray | None = None
 
-    def request(self, shape: tuple) -> list:
-        """Reserve room for an array; the returned holder gets the view and its offset in
-        the block (in elements) at ``allocate``."""
-        holder: list = []
-        self._requests.append((tuple(shape), holder))
-        return holder
+    def request(self, shape: tuple) -> int:
+        """Reserve room for an array; returns the number of the request, whose view and
+        offset are ``views[k]`` and ``offsets[k]`` after ``allocate``."""
+        self._shapes.append(shape)
+        return len(self._shapes) - 1
 
     def allocate(self) -> None:
-        offsets, total = [], 0
-        for shape, _ in self._requests:
+        offsets, total = self.offsets, 0
+        sizes = [math.prod(shape) for shape in self._shapes]
+        for n in sizes:
             offsets.append(total)
-            n = math.prod(shape) if shape else 1
-            total += -(-n // ALIGN) * ALIGN if n else 0
-        self.block = np.zeros(max(total, 1), dtype=np.float32)
-        block = self.block
-        for (shape, holder), start in zip(self._requests, offsets):
-            if len(shape) == 1:
-                holder.extend((block[start:start + shape[0]], start))
-            else:
-                n = math.prod(shape) if shape else 1
-                holder.extend((block[start:start + n].reshape(shape), start))
+            total += -(-n // ALIGN) * ALIGN
+        block = self.block = np.zeros(max(total, 1), dtype=np.float32)
+        views = self.views
+        for shape, n, start in zip(self._shapes, sizes, offsets):
+            view = block[start:start + n]
+            views.append(view if len(shape) == 1 else view.reshape(shape))
 
     @property
     def nbytes(self) -> int:
@@ -50,12 +48,13 @@ class Ring:
     def __init__(self, output: np.ndarray, depth: int, arena: Arena):
         self.output = output.reshape(-1)
         self.depth = depth               # values kept: x(n-2) ... x(n-1-depth)
-        self._holder = arena.request((depth, self.output.size))
+        self._arena = arena
+        self._request = arena.request((depth, self.output.size))
         self.rows: list[np.ndarray] = []
         self.pos = 0
 
     def bind(self) -> None:
-        block = self._holder[0]
+        block = self._arena.views[self._request]
         self.rows = [block[k] for k in range(self.depth)]
         self.pos = self.depth - 1
 

@@ -50,9 +50,9 @@ class Network:
         self._stopped = False
         self._buffers = builder.buffers
         self.modules = {inst.path: inst for inst in order}
-        builder.notify = self.notify
+        notify = builder.notify = self.notify
         for inst in order:
-            inst.module._ik_notify = self.notify
+            inst.module._ik_notify = notify
         self.clock.tick_duration = self._tick_duration()
         self.stop_tick = self._whole_number("stop", minimum=-1)
         self.threads = self._whole_number("threads", minimum=1)
@@ -88,7 +88,7 @@ class Network:
     def _allocate(self) -> None:
         arena = Arena()
         self.arena = arena
-        holders = []
+        requests = []       # (buffer, request number in the arena)
         runs_by_target: dict = collections.defaultdict(list)
         for run in self.runs:
             runs_by_target[run.target].append(run)
@@ -96,7 +96,7 @@ class Network:
         for inst in self.schedule:
             inputs, outputs = self._buffers[inst]
             for buf in outputs.values():
-                holders.append((buf, arena.request(buf.shape)))
+                requests.append((buf, arena.request(buf.shape)))
         for inst in self.schedule:
             inputs, _ = self._buffers[inst]
             for buf in inputs.values():
@@ -106,13 +106,14 @@ class Network:
                 if len(runs) == 1 and runs[0].delay == 0 and runs[0].whole:
                     self._shared[buf] = runs[0].source
                 else:
-                    holders.append((buf, arena.request(buf.shape)))
+                    requests.append((buf, arena.request(buf.shape)))
         deepest: dict = {}
         for run in self.runs:
             deepest[run.source] = max(deepest.get(run.source, 0), run.delay)
         arena.allocate()
-        for buf, holder in holders:
-            buf.array, buf.offset = holder
+        views, offsets = arena.views, arena.offsets
+        for buf, k in requests:
+            buf.array, buf.offset = views[k], offsets[k]
         for buf, source in self._shared.items():
             buf.array, buf.offset = source.array.reshape(buf.shape), source.offset
         ring_arena = Arena()
