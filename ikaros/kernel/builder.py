@@ -314,7 +314,9 @@ class Builder:
         value = node.attrs.get(key)
         if value is None:
             return None
-        return self._substitute(value, node, group, key).strip()
+        if "@" in value or "{" in value:
+            value = self._substitute(value, node, group, key)
+        return value.strip()
 
     def _split(self, group: Group, path: str, node: Node, role: str):
         comp_path, dot, port = path.rpartition(".")

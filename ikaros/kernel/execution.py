@@ -108,13 +108,13 @@ class Plan:
         self.schedule = schedule
         self.index = {inst: i for i, inst in enumerate(schedule)}
         self.calls = {inst: list(pre_tick.get(inst, ())) + [tick_of[inst]] for inst in schedule}
-        self.sequence = [c for inst in schedule for c in self.calls[inst]]
-        self.owner = {c: inst for inst in schedule for c in self.calls[inst]}
-        self.fused: dict = {}
-        if fuser is not None and threads <= 1:
-            result = fuser(self.calls)
-            if result is not None:
-                self.sequence, self.owner, self.fused = result
+        result = fuser(self.calls) if fuser is not None and threads <= 1 else None
+        if result is not None:
+            self.sequence, self.owner, self.fused = result
+        else:
+            self.sequence = [c for inst in schedule for c in self.calls[inst]]
+            self.owner = {c: inst for inst in schedule for c in self.calls[inst]}
+            self.fused = {}
         n = len(schedule)
         self.count = np.zeros(n, dtype=np.int64)
         self.total = np.zeros(n)

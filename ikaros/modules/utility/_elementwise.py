@@ -15,5 +15,9 @@ class ElementWise(Module):
                 self.fatal_error(f"INPUT1 and INPUT2 must have the same size; {name} has shape "
                                  f"{x.shape}, the output {shape}")
                 return
-        self._a = self.INPUT1.reshape(shape)
-        self._b = None if self.INPUT2 is None else self.INPUT2.reshape(shape)
+        self._a = _as_shape(self.INPUT1, shape)
+        self._b = None if self.INPUT2 is None else _as_shape(self.INPUT2, shape)
+
+
+def _as_shape(x, shape):
+    return x if x.shape == shape else x.reshape(shape)
