@@ -100,7 +100,7 @@ def measure(name: str, path: str, quick: bool) -> dict:
         t = time.perf_counter()
         net = ikaros.load(path)
         builds.append(time.perf_counter() - t)
-        if len(builds) >= (2 if quick else 3) or time.perf_counter() - t_all > budget:
+        if len(builds) >= (3 if quick else 5) or time.perf_counter() - t_all > budget:
             break
     res["build_ms"] = statistics.median(builds) * 1e3
     res["modules"] = len(net.schedule)
@@ -328,7 +328,7 @@ def main(argv=None) -> int:
                  f"{r['us_module_tick']:.3f}", r["ticks_timed"], f"{r['rss_mb']:.1f}",
                  f"{r['traced_mb']:.1f}"] for r in results]
         print(fmt_table(rows, header))
-        print("build ms: ikaros.load() in this process, median of up to 3 builds. start-up "
+        print("build ms: ikaros.load() in this process, median of up to 5 builds. start-up "
               "ms: new process from spawn to the end of tick 0.\nus/tick: median of 3 timed "
               "batches after warm-up; us/module-tick = us/tick / modules.\npeak RSS MB: "
               "ru_maxrss of the start-up process (build + tick 0 + up to 100 more ticks), "
