@@ -62,6 +62,7 @@ class Builder:
         self.instances: list[ModuleInstance] = []
         self.buffers: dict[ModuleInstance, tuple[dict, dict]] = {}
         self._folders: dict[str, str] = {}     # the folder of each file read
+        self._sources: dict[tuple, Buffer] = {}   # (group, address) -> a connection's source
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
@@ -77,7 +78,7 @@ class Builder:
         for child in node.elements():
             tag = child.tag
             if tag in ("module", "group"):
-                child_name = child.get("name")
+                child_name = child.attrs.get("name")
                 if child_name is None and tag == "group":
                     anonymous += 1
                     child_name = f"Group-{anonymous}"
@@ -141,14 +142,15 @@ class Builder:
         return merged, file
 
     def _module(self, node: Node, group: Group, name: str, files: tuple) -> Component:
-        class_name = node.get("class")
+        attrs = node.attrs
+        class_name = attrs.get("class")
         if not class_name:
             raise node.error("a <module> needs a class")
         class_name = self._substitute(class_name, node, group, "class")
         folders = [self._folder(node.file or self.filename)]
-        if node.get("path"):
+        if attrs.get("path"):
             folders.insert(0, os.path.join(folders[0], self._substitute(
-                node.get("path"), node, group, "path")))
+                attrs["path"], node, group, "path")))
         entry = self.registry.find(class_name, folders, files)
         if entry is None:
             raise node.error(f'unknown class "{class_name}"')
@@ -304,7 +306,9 @@ class Builder:
         else:
             src_sel = src_sel and ("selector", src_sel)
             dst_sel = dst_sel and ("selector", dst_sel)
-        src = self._source(group, src_path, node)
+        src = self._sources.get((group, src_path))
+        if src is None:
+            src = self._sources[group, src_path] = self._source(group, src_path, node)
         for dst in self._targets(group, dst_path, node):
             link = Link(src, dst, delays, node, order, src_sel, dst_sel)
             src.outgoing.append(link)
