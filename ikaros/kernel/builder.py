@@ -214,6 +214,7 @@ class Builder:
         attrs = inst.attrs
         if "period" not in attrs and "phase" not in attrs and "async" not in attrs:
             return                          # the defaults of ModuleInstance
+
         def setting(key, default, parse):
             text = inst.attrs.get(key)
             if text in (None, ""):
