@@ -72,6 +72,8 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
     size from the one input that comes from outside the loop).
     """
     rule = spec.rule
+    if len(rule) == 1 and "size_set" in rule:      # the most common rule, alone
+        return _size_set(rule["size_set"], input_shapes, partial)
     if "size_param_x" in rule or "size_param_y" in rule:
         x = _int_param(inst, rule["size_param_x"]) if "size_param_x" in rule else None
         y = _int_param(inst, rule["size_param_y"]) if "size_param_y" in rule else None
@@ -88,28 +90,34 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
     if "size" in rule:
         return shape_expression(inst, rule["size"], input_shapes)
     if "size_set" in rule:
-        names = _input_names(rule["size_set"])
-        shapes = []
-        for name in names:
-            if name not in input_shapes:
-                raise SizeError(f'size_set names "{name}", which is not an input')
-            shape = input_shapes[name]
-            if shape is None:
-                if partial:
-                    continue
-                return WAIT
-            if shape != ():
-                shapes.append(shape)
-        if not shapes:
-            if partial:
-                return WAIT
-            raise SizeError(f"none of the inputs {', '.join(names)} is connected")
-        return max(shapes, key=lambda s: (math.prod(s), len(s)))
+        return _size_set(rule["size_set"], input_shapes, partial)
     if "size_set_x" in rule or "size_set_y" in rule:
         return _axes(inst, rule, input_shapes)
     if "shape" in rule:
         return shape_expression(inst, rule["shape"], input_shapes)
     return WAIT
+
+
+def _size_set(text: str, input_shapes: dict, partial: bool) -> tuple | None:
+    """The largest of the named inputs (most elements, then highest rank)."""
+    shapes = []
+    for name in _input_names(text):
+        if name not in input_shapes:
+            raise SizeError(f'size_set names "{name}", which is not an input')
+        shape = input_shapes[name]
+        if shape is None:
+            if partial:
+                continue
+            return WAIT
+        if shape != ():
+            shapes.append(shape)
+    if not shapes:
+        if partial:
+            return WAIT
+        raise SizeError(f"none of the inputs {', '.join(_input_names(text))} is connected")
+    if len(shapes) == 1 or all(s == shapes[0] for s in shapes):
+        return shapes[0]        # what max would give, without the key calls
+    return max(shapes, key=lambda s: (math.prod(s), len(s)))
 
 
 @functools.lru_cache(maxsize=None)
