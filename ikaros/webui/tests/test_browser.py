@@ -227,10 +227,33 @@ def test_push_button_sets_a_parameter_while_held(page, server):
     wait_for(lambda: server.parameter("Boost.factor") == 1, what="Boost.factor = 1")
 
 
+def test_slider_waits_for_its_parameter(page, server):
+    """A slider cannot be moved before its parameter's value has arrived: moved from where it
+    starts, it would send that position instead of a step from the parameter's value."""
+    context = page.context.browser.new_context(viewport={"width": 1600, "height": 1000})
+    fresh = context.new_page()
+    fresh.set_default_timeout(TIMEOUT)
+    try:
+        fresh.route("**/api/module?path=Sine*", lambda route: route.abort())
+        fresh.goto(server.base + "/")
+        show_view(fresh, "", 0)
+        vertical = fresh.locator(".widget-slider-vertical input[type=range]").first
+        horizontal = fresh.locator(".widget-slider-horizontal input[type=range]").first
+        sync_api.expect(horizontal).to_be_enabled()     # Gain.factor arrives
+        fresh.wait_for_timeout(1200)                     # two more polls without Sine
+        assert vertical.is_disabled()
+        fresh.unroute("**/api/module?path=Sine*")
+        sync_api.expect(vertical).to_be_enabled()
+        assert float(vertical.input_value()) == pytest.approx(server.parameter("Sine.frequency"))
+    finally:
+        context.close()
+
+
 def test_slider_changes_the_output(page, server):
     show_view(page, "", 0)
     pause(page, server)
     slider = page.locator(".widget-slider-horizontal input[type=range]").first
+    sync_api.expect(slider).to_be_enabled()     # its parameter's value has arrived
     box = slider.bounding_box()
     page.mouse.click(box["x"] + box["width"] - 1, box["y"] + box["height"] / 2)
     wait_for(lambda: abs(server.parameter("Gain.factor") - 2.0) < 0.02, what="Gain.factor = 2")
@@ -245,6 +268,8 @@ def test_slider_changes_the_output(page, server):
     # keyboard on the vertical slider: one step up
     before = server.parameter("Sine.frequency")
     v = page.locator(".widget-slider-vertical input[type=range]").first
+    sync_api.expect(v).to_be_enabled()
+    assert float(v.input_value()) == pytest.approx(before)
     v.focus()
     page.keyboard.press("ArrowUp")
     wait_for(lambda: server.parameter("Sine.frequency") > before, what="Sine.frequency up")

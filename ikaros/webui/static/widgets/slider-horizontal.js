@@ -3,6 +3,7 @@
 // Attributes: parameter, command (v3: also sends the command with the value), select|
 // select_x (the first element), count|control_count (sliders for elements select+i),
 // select_y (row), labels, min (0), max (1), step (0.01), show_values, enabled_source.
+// A slider bound to a parameter is disabled until the parameter's value has arrived.
 import { Widget, formatNumber } from "./widget.js";
 
 export default class SliderHorizontal extends Widget {
@@ -47,6 +48,15 @@ export default class SliderHorizontal extends Widget {
         }
         this.pending = new Map();
         this.busy = false;
+        this.enabled = true;
+        this.setDisabled();
+    }
+
+    /** Sliders of a parameter wait for its value: moved before, they would send the
+     *  position they start from instead of a step from the parameter's value. */
+    setDisabled() {
+        const waiting = this.paramValue === null && this.parameters().length > 0;
+        this.inputs.forEach((b) => (b.disabled = !this.enabled || waiting));
     }
 
     isArray() { return Array.isArray(this.paramValue) || this.count > 1 || this.attrs.select !== undefined || this.attrs.select_x !== undefined; }
@@ -91,7 +101,8 @@ export default class SliderHorizontal extends Widget {
             const v = Number(Widget.element(this.paramValue, this.first + i, parseInt(this.row ?? 0, 10)));
             if (Number.isFinite(v)) { input.value = v; this.outputs[i].textContent = formatNumber(v, 2); }
         });
+        this.setDisabled();
     }
 
-    update(frame) { const en = this.enabledFrom(frame); this.inputs.forEach((b) => (b.disabled = !en)); }
+    update(frame) { this.enabled = this.enabledFrom(frame); this.setDisabled(); }
 }
