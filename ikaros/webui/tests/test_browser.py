@@ -227,23 +227,29 @@ def test_push_button_sets_a_parameter_while_held(page, server):
     wait_for(lambda: server.parameter("Boost.factor") == 1, what="Boost.factor = 1")
 
 
-def test_slider_waits_for_its_parameter(page, server):
-    """A slider cannot be moved before its parameter's value has arrived: moved from where it
-    starts, it would send that position instead of a step from the parameter's value."""
+def test_controls_wait_for_their_parameters(page, server):
+    """Sliders, switches and menus cannot be used before their parameter's value has
+    arrived: used earlier, a slider would step from its minimum and a menu might send the
+    wrong kind of value."""
     context = page.context.browser.new_context(viewport={"width": 1600, "height": 1000})
     fresh = context.new_page()
     fresh.set_default_timeout(TIMEOUT)
+    blocked = "**/api/module?path=*"
     try:
-        fresh.route("**/api/module?path=Sine*", lambda route: route.abort())
+        fresh.route(blocked, lambda route: route.abort())
         fresh.goto(server.base + "/")
         show_view(fresh, "", 0)
-        vertical = fresh.locator(".widget-slider-vertical input[type=range]").first
-        horizontal = fresh.locator(".widget-slider-horizontal input[type=range]").first
-        sync_api.expect(horizontal).to_be_enabled()     # Gain.factor arrives
-        fresh.wait_for_timeout(1200)                     # two more polls without Sine
-        assert vertical.is_disabled()
-        fresh.unroute("**/api/module?path=Sine*")
-        sync_api.expect(vertical).to_be_enabled()
+        controls = {"slider-vertical": ".widget-slider-vertical input[type=range]",
+                    "slider-horizontal": ".widget-slider-horizontal input[type=range]",
+                    "switch": ".widget-switch input[type=checkbox]",
+                    "drop-down-menu": ".widget-drop-down-menu select"}
+        fresh.wait_for_timeout(1200)                    # two parameter polls, both refused
+        for css in controls.values():
+            assert fresh.locator(css).first.is_disabled(), css
+        fresh.unroute(blocked)
+        for css in controls.values():
+            sync_api.expect(fresh.locator(css).first).to_be_enabled()
+        vertical = fresh.locator(controls["slider-vertical"]).first
         assert float(vertical.input_value()) == pytest.approx(server.parameter("Sine.frequency"))
     finally:
         context.close()

@@ -39,6 +39,8 @@ export default class Button extends Widget {
         if (param) {
             let v = this.onValue();
             if (this.type === "toggle") {
+                // a toggle flips the value it knows: pressed before the first poll, read it
+                if (this.paramValue === null) this.paramValue = await this.readParameter(param);
                 const cur = this.paramValue === null ? null : Widget.element(this.paramValue, this.x, this.y);
                 v = Number(cur) === this.onValue() ? this.offValue() : this.onValue();
             }

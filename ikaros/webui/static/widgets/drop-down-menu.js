@@ -1,7 +1,8 @@
 // drop-down-menu: selects an option for a parameter.
 // Attributes: parameter, list|options (comma list, "X,Y,Z"), value_type (number: sends the
 // option's index; string: sends its text; by default string for string parameters),
-// index|select_x (element), label, labelWidth|label_width, enabled_source.
+// index|select_x (element), label, labelWidth|label_width, enabled_source. Disabled until
+// the parameter's value has arrived.
 import { Widget } from "./widget.js";
 
 export default class DropDownMenu extends Widget {
@@ -23,6 +24,7 @@ export default class DropDownMenu extends Widget {
         this.x = this.raw(["index", "select_x", "xindex"]);
         this.paramValue = null;
         this.select.addEventListener("change", () => this.changed());
+        this.setControlsDisabled([this.select]);
     }
 
     valueType() {
@@ -51,7 +53,8 @@ export default class DropDownMenu extends Widget {
         const v = Widget.element(this.paramValue, parseInt(this.x ?? 0, 10), 0);
         const i = typeof v === "string" && isNaN(Number(v)) ? this.options.indexOf(v) : Number(v);
         if (i >= 0 && i < this.options.length && document.activeElement !== this.select) this.select.selectedIndex = i;
+        this.setControlsDisabled([this.select]);
     }
 
-    update(frame) { this.select.disabled = !this.enabledFrom(frame); }
+    update(frame) { this.enabled = this.enabledFrom(frame); this.setControlsDisabled([this.select]); }
 }

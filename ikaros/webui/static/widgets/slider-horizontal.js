@@ -48,15 +48,7 @@ export default class SliderHorizontal extends Widget {
         }
         this.pending = new Map();
         this.busy = false;
-        this.enabled = true;
-        this.setDisabled();
-    }
-
-    /** Sliders of a parameter wait for its value: moved before, they would send the
-     *  position they start from instead of a step from the parameter's value. */
-    setDisabled() {
-        const waiting = this.paramValue === null && this.parameters().length > 0;
-        this.inputs.forEach((b) => (b.disabled = !this.enabled || waiting));
+        this.setControlsDisabled(this.inputs);
     }
 
     isArray() { return Array.isArray(this.paramValue) || this.count > 1 || this.attrs.select !== undefined || this.attrs.select_x !== undefined; }
@@ -101,8 +93,8 @@ export default class SliderHorizontal extends Widget {
             const v = Number(Widget.element(this.paramValue, this.first + i, parseInt(this.row ?? 0, 10)));
             if (Number.isFinite(v)) { input.value = v; this.outputs[i].textContent = formatNumber(v, 2); }
         });
-        this.setDisabled();
+        this.setControlsDisabled(this.inputs);
     }
 
-    update(frame) { this.enabled = this.enabledFrom(frame); this.setDisabled(); }
+    update(frame) { this.enabled = this.enabledFrom(frame); this.setControlsDisabled(this.inputs); }
 }

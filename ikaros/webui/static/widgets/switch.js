@@ -1,7 +1,7 @@
 // switch: check boxes bound to parameter elements.
 // Attributes: parameter, label|labels, value (the "on" value, 1), xindex|select_x,
 // yindex|select_y, control_count (several switches on consecutive x), enableSource|
-// enabled_source.
+// enabled_source. Disabled until the parameter's value has arrived.
 import { Widget } from "./widget.js";
 
 export default class Switch extends Widget {
@@ -25,6 +25,7 @@ export default class Switch extends Widget {
             this.body.appendChild(lab);
             this.boxes.push(box);
         }
+        this.setControlsDisabled(this.boxes);
     }
 
     parameters() { const p = this.path("parameter"); return p ? [p] : []; }
@@ -50,7 +51,8 @@ export default class Switch extends Widget {
             const v = Widget.element(this.paramValue, this.x + i, this.y);
             box.checked = v === true || Number(v) === on_ || (typeof v === "string" && /^(yes|true|1)$/i.test(v));
         });
+        this.setControlsDisabled(this.boxes);
     }
 
-    update(frame) { const en = this.enabledFrom(frame); this.boxes.forEach((b) => (b.disabled = !en)); }
+    update(frame) { this.enabled = this.enabledFrom(frame); this.setControlsDisabled(this.boxes); }
 }

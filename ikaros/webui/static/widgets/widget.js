@@ -265,6 +265,15 @@ export class Widget {
         return value.map((e, j) => (j === x ? v : e));
     }
 
+    /** Disable form controls while the enabled source says so (``enabled``, set from
+     *  ``enabledFrom`` each frame) and, for a widget bound to a parameter, until the
+     *  parameter's value has arrived: used before, a control would act on a value it does
+     *  not know (a slider step from its minimum, a menu sending the wrong kind of value). */
+    setControlsDisabled(controls) {
+        const waiting = this.paramValue === null && this.parameters().length > 0;
+        for (const c of controls) c.disabled = this.enabled === false || waiting;
+    }
+
     /** Whether a widget's "enabled" source says it is disabled ([0][0] == 0). */
     enabledFrom(frame) {
         const p = this.path("enabled_source", "enableSource", "enable_source");
