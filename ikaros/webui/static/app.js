@@ -33,6 +33,7 @@ class App {
     constructor() {
         this.network = null;
         this.current = null;           // {group, view}
+        this.built = null;             // the same once that view's widgets are all built
         this.mainView = null;
         this.shapes = new Map();
         this.socket = new Socket();
@@ -184,6 +185,7 @@ class App {
         index = Math.min(Math.max(0, index), views.length - 1);
         const view = views[index];
         this.current = { group: group.path, view: index };
+        this.built = null;
         const hash = `#group=${encodeURIComponent(group.path)}&view=${index}`;
         if (location.hash !== hash) history.replaceState(null, "", hash);
         if (this.mainView) this.mainView.destroy();
@@ -192,6 +194,7 @@ class App {
         this.mainView = renderer;
         await renderer.build();
         if (this.mainView !== renderer) return;
+        this.built = this.current;
         if (!this.editor?.active) this.navigator.show(this.network, this.current);
         this.resubscribe();
         this.pollParameters();

@@ -82,7 +82,7 @@ def widget(page, title=None, cls=None):
 def show_view(page, group: str, index: int):
     page.click(f"#navigator a[data-group='{group}'][data-view='{index}']")
     page.wait_for_function(
-        "([g, v]) => { const c = window.ikaros.current; return c && c.group === g && c.view === v; }",
+        "([g, v]) => { const c = window.ikaros.built; return c && c.group === g && c.view === v; }",
         arg=[group, index])
 
 
@@ -347,7 +347,7 @@ def test_grid_click_toggles_a_parameter_cell(page, server):
 
 def test_space_group_3d_view_and_plot(page, server):
     page.click("#navigator .group-name[data-group='Space']")
-    page.wait_for_function("() => window.ikaros.current.group === 'Space'")
+    page.wait_for_function("() => window.ikaros.built?.group === 'Space'")
     pause(page, server)
     step(page, server, 3)
     scene = widget(page, "Scene", "canvas3d")
@@ -378,7 +378,7 @@ def test_widgets_are_laid_out_as_the_file_says(page, server):
     assert got == expected
     # Space (Ikaros 3 <widget> elements, _x and _y) in its own group
     page.click("#navigator .group-name[data-group='Space']")
-    page.wait_for_function("() => window.ikaros.current.group === 'Space'")
+    page.wait_for_function("() => window.ikaros.built?.group === 'Space'")
     space = net["top"]["groups"][0]["views"][0]["widgets"]
     page.wait_for_function(
         f"() => document.querySelectorAll('#view-host .view > .widget').length === {len(space)}")

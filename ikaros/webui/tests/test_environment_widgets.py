@@ -35,7 +35,7 @@ def in_browser(model: str, view: int, check):
     def open_view(server, page):
         page.click(f"#navigator a[data-group=''][data-view='{view}']")
         page.wait_for_function(
-            "(v) => { const c = window.ikaros.current; return c && c.group === '' && "
+            "(v) => { const c = window.ikaros.built; return c && c.group === '' && "
             "c.view === v; }", arg=view)
         assert server.get("/api/status")["state"] != "play"
 
