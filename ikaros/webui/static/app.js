@@ -229,9 +229,6 @@ class App {
                 try { const a = await api.data([p]); Object.assign(answer.data, a.data); answer.tick = a.tick; } catch { }
             }));
         }
-        if (this.lastFrame && answer.tick !== null && this.lastFrame.tick >= answer.tick && this.lastFrame.buffers.size) {
-            // a real frame already came; only fill in what it lacks
-        }
         const buffers = new Map();
         for (const [path, value] of Object.entries(answer.data || {})) {
             const shape = shapeOf(value);
@@ -241,7 +238,15 @@ class App {
             for (const s of subs) if (s.path === path && s.format !== "raw") buffers.set(path + "|" + s.format, null);
         }
         for (const [k, v] of [...buffers]) if (v === null) buffers.delete(k);
-        const fv = frameView({ tick: answer.tick, time: null, buffers });
+        let tick = answer.tick;
+        const last = this.lastFrame;
+        if (last && tick !== null && last.tick >= tick) {
+            // a frame as new or newer came while this read was on its way: its values win
+            // (the read's would undo it), the read fills in what the frame lacks
+            for (const k of [...buffers.keys()]) if (last.buffers.has(k)) buffers.set(k, last.buffers.get(k));
+            tick = last.tick;
+        }
+        const fv = frameView({ tick, time: null, buffers });
         for (const v of this.views()) v.update(fv);
     }
 

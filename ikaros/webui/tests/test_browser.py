@@ -255,6 +255,39 @@ def test_controls_wait_for_their_parameters(page, server):
         context.close()
 
 
+def test_a_late_first_read_does_not_undo_newer_frames(page, server):
+    """The one-off read that fills a new view at once can answer after frames of later
+    ticks have come: the frames' values must stay."""
+    context = page.context.browser.new_context(viewport={"width": 1600, "height": 1000})
+    fresh = context.new_page()
+    fresh.set_default_timeout(TIMEOUT)
+    held = []
+    try:
+        fresh.route("**/api/data?*", lambda route: held.append(route))
+        fresh.goto(server.base + "/")
+        pause(fresh, server)
+        show_view(fresh, "", 0)
+        wait_for(lambda: held, what="the first read")
+        tick = server.step(2)
+        fresh.wait_for_function("(t) => window.ikaros.lastFrame && window.ikaros.lastFrame.tick >= t",
+                                arg=tick)
+        # the read answers now, as if from before the steps
+        route = held[0]
+        answer = route.fetch().json()
+        answer["tick"] = 0
+        answer["data"]["Mix.OUTPUT"] = [999.0, 999.0, 999.0]
+        route.fulfill(json=answer)
+        fresh.unroute("**/api/data?*")
+        fresh.wait_for_timeout(300)
+        series = fresh.evaluate(
+            "() => window.ikaros.mainView.widgets.find(w => w.attrs.class === 'plot').series")
+        mix = flat(server.data("Mix.OUTPUT")["data"]["Mix.OUTPUT"])
+        assert all(999.0 not in s for s in series)
+        assert series[0][-1] == pytest.approx(mix[0], abs=1e-6)
+    finally:
+        context.close()
+
+
 def test_slider_changes_the_output(page, server):
     show_view(page, "", 0)
     pause(page, server)
