@@ -297,6 +297,85 @@ def test_rename_and_delete_reach_addresses_in_every_group(tmp_path):
         net.close()
 
 
+PORTS = """<?xml version="1.0"?>
+<group name="Top">
+    <module class="Constant" name="C" data="1 2 3"/>
+    <group name="H">
+        <input name="IN"/>
+        <output name="OUT"/>
+        <output name="IN"/>
+        <module class="Scale" name="A" factor="2"/>
+        <connection source="IN" target="A.INPUT" delay="0"/>
+        <connection source="A.OUTPUT" target="OUT" delay="0"/>
+        <connection source="A.OUTPUT" target="IN" delay="0"/>
+        <group name="Deep">
+            <module class="Scale" name="D" factor="10"/>
+            <connection source="H.IN" target="D.INPUT" delay="0"/>
+        </group>
+    </group>
+    <module class="Scale" name="Y"/>
+    <module class="Scale" name="Z"/>
+    <connection source="C.OUTPUT" target="H.IN" delay="0"/>
+    <connection source="H.OUT" target="Y.INPUT" delay="0"/>
+    <connection source="H.IN" target="Z.INPUT" delay="0"/>
+</group>
+"""
+
+
+def test_renaming_group_ports_and_the_open_group_updates_addresses(tmp_path):
+    # H has an input and an output both named IN: renaming the input must leave the
+    # addresses of the output alone (a source outside H or a target inside H)
+    (tmp_path / "ports.ikg").write_text(PORTS)
+
+    def rename_selected(page, new_name):
+        field = page.locator("#editor-inspector input[data-attr='name']")
+        field.fill(new_name)
+        field.press("Tab")
+
+    def check(server, page):
+        wait_boxes(page, ["C", "H", "Y", "Z"])
+        box(page, "H").dblclick()
+        wait_boxes(page, ["A", "Deep", "OUT"])
+        page.locator("#editor-host g.box-group[data-name='IN'][data-kind='input'] rect.box").click()
+        rename_selected(page, "SENSE")
+        wait_boxes(page, ["SENSE"])
+        box(page, "OUT").click()
+        rename_selected(page, "MOTOR")
+        wait_boxes(page, ["MOTOR"])
+        page.locator("#editor-host svg.network-view").click(position={"x": 3, "y": 3})
+        page.wait_for_function(
+            "() => document.querySelector('#editor-inspector .module-class').textContent.includes('(open)')")
+        rename_selected(page, "Arm")
+        page.wait_for_function(
+            "() => document.querySelector('#editor-inspector .module-class').textContent === 'group Arm (open)'")
+        wait_boxes(page, ["A", "Deep", "SENSE", "MOTOR"])        # still inside the group
+        page.click("#ed-save")
+        page.wait_for_function("() => document.querySelector('#editor-status').textContent.includes('Saved')")
+
+    in_browser(str(tmp_path / "ports.ikg"), check)
+
+    import ikaros
+    text = (tmp_path / "ports.ikg").read_text()
+    for element in ('<group name="Arm">', '<input name="SENSE"/>', '<output name="MOTOR"/>',
+                    '<output name="IN"/>',
+                    '<connection source="SENSE" target="A.INPUT" delay="0"/>',
+                    '<connection source="A.OUTPUT" target="MOTOR" delay="0"/>',
+                    '<connection source="A.OUTPUT" target="IN" delay="0"/>',
+                    '<connection source="Arm.SENSE" target="D.INPUT" delay="0"/>',
+                    '<connection source="C.OUTPUT" target="Arm.SENSE" delay="0"/>',
+                    '<connection source="Arm.MOTOR" target="Y.INPUT" delay="0"/>',
+                    '<connection source="Arm.IN" target="Z.INPUT" delay="0"/>'):
+        assert element in text, element
+    net = ikaros.load(str(tmp_path / "ports.ikg"))
+    try:
+        net.step()
+        assert net.output("Y.OUTPUT").tolist() == [2.0, 4.0, 6.0]
+        assert net.output("Z.OUTPUT").tolist() == [2.0, 4.0, 6.0]
+        assert net.output("Arm.Deep.D.OUTPUT").tolist() == [10.0, 20.0, 30.0]
+    finally:
+        net.close()
+
+
 IKAROS3_WIDGETS = """<?xml version="1.0"?>
 <group name="W">
     <module class="Constant" name="C" data="1 2 3"/>

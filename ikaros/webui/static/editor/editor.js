@@ -303,12 +303,25 @@ export class Editor {
         this.netView?.fit();
     }
 
+    /** Rename a module, a group (the top one too) or a group's input or output, with every
+     *  address that reaches it. */
     rename(n, name) {
         const g = this.parentOf(n);
-        if (!g || this.isReadOnly(n)) return;
+        if ((!g && n !== this.model.tree) || this.isReadOnly(n)) return;
         if (name === n.attrs.name) return;
-        if (this.model.names(g).has(name)) { this.setStatus("error", `"${name}" is taken in this group`); this.render(); return; }
-        this.edit("rename", () => { this.freeze(this.group()); EditorModel.rename(this.model.tree, n, name); });
+        const pin = n.tag === "input" || n.tag === "output";
+        const taken = !g ? false : pin ? kids(g, n.tag).some((p) => p !== n && p.attrs.name === name)
+            : this.model.names(g).has(name);
+        if (taken) { this.setStatus("error", `"${name}" is taken in this group`); this.render(); return; }
+        const open = this.group();
+        this.edit("rename", () => {
+            this.freeze(open);
+            if (pin) EditorModel.renamePort(this.model.tree, g, n, name);
+            else EditorModel.rename(this.model.tree, n, name);
+            // the open group, or one around it, may be the one renamed
+            this.groupPath = this.model.chain(open).slice(1).filter((c) => c.tag === "group")
+                .map((c) => c.attrs.name).join(".");
+        });
     }
 
     parentOf(n) {

@@ -179,7 +179,7 @@ export class EditorInspector {
     groupPanel(n, current) {
         this.el.appendChild(h("div", "module-class", current ? `group ${n.attrs.name || ""} (open)` : "group"));
         const t = this.table();
-        this.row(t, "name", current ? this.text(n, "name") : this.nameField(n));
+        this.row(t, "name", this.nameField(n));
         this.row(t, "description", this.text(n, "description", { area: true }));
         this.extraAttributes(n, new Set(["name", "description"]));
     }
@@ -213,7 +213,7 @@ export class EditorInspector {
     pinPanel(n) {
         this.el.appendChild(h("div", "module-class", `group ${n.tag}`));
         const t = this.table();
-        this.row(t, "name", this.text(n, "name"));
+        this.row(t, "name", this.nameField(n));
         if (n.tag === "output") this.row(t, "source", this.text(n, "source", { placeholder: "(set by a connection)" }));
         this.extraAttributes(n, new Set(["name", "source"]));
     }

@@ -238,32 +238,41 @@ export class EditorModel extends EventTarget {
      *  port aliases and widget sources, wherever they are written). */
     static rename(tree, n, name) {
         const old = n.attrs.name;
-        const re = (chain, t, whole = false) => {
-            const a = splitAddress(t);
-            const parts = [...a.parts];
+        rewriteAddresses(tree, (chain, t, role) => {
+            const parts = splitAddress(t).parts;
             let changed = false;
-            for (const s of componentsOf(chain, t, whole)) {
+            for (const s of componentsOf(chain, t, role === "module")) {
                 if (s.node === n && parts[s.index] === old) { parts[s.index] = name; changed = true; }
             }
-            return changed ? parts.join(".") + String(t).trim().slice(a.path.length) : t;
-        };
-        for (const { chain, group } of addressHolders(tree)) {
-            for (const c of group.connections) {
-                if (c.attrs.source) c.attrs.source = re(chain, c.attrs.source);
-                if (c.attrs.target) c.attrs.target = re(chain, c.attrs.target);
-            }
-            for (const o of group.outputs) if (o.attrs.source) o.attrs.source = re(chain, o.attrs.source);
-            for (const i of group.inputs) if (i.attrs.target) i.attrs.target = re(chain, i.attrs.target);
-            for (const w of group.widgets) {
-                for (const k of Object.keys(w.attrs)) {
-                    if (k === "module") w.attrs[k] = re(chain, w.attrs[k], true);
-                    else if (WIDGET_ADDRESS.test(k) || ["red", "green", "blue", "matrix", "index"].includes(k)) {
-                        w.attrs[k] = String(w.attrs[k]).split(",").map((t) => re(chain, t.trim())).join(",");
-                    }
-                }
-            }
-        }
+            return changed ? parts : null;
+        });
         n.attrs.name = name;
+    }
+
+    /** Rename input or output pin of group g, and every address that reaches it: "G.P"
+     *  from outside g (directly or by climbing), "P" from inside. Which of an input and an
+     *  output of the same name an address means follows from where it is read, as in the
+     *  kernel: a source outside g reads an output, inside g an input; a target the other way. */
+    static renamePort(tree, g, pin, name) {
+        const old = pin.attrs.name;
+        rewriteAddresses(tree, (chain, t, role) => {
+            if (role === "module") return null;
+            const parts = splitAddress(t).parts;
+            if (parts[parts.length - 1] !== old) return null;
+            let group = chain[chain.length - 1];
+            if (parts.length > 1) {
+                const found = componentsOf(chain, t);
+                if (found.length !== parts.length - 1) return null;
+                group = found[found.length - 1].node;
+            }
+            if (group !== g) return null;
+            const inside = chain.includes(g);
+            const reads = role === "source" ? (inside ? "input" : "output") : (inside ? "output" : "input");
+            if (reads !== pin.tag) return null;
+            parts[parts.length - 1] = name;
+            return parts;
+        });
+        pin.attrs.name = name;
     }
 
     /** Copies of nodes of g (and the connections among them), as a clipboard. */
@@ -365,6 +374,33 @@ function addressHolders(tree) {
     };
     visit(tree, []);
     return out;
+}
+
+/** Rewrite the editable addresses of the tree. ``change(chain, address, role)`` gets each
+ *  address with the chain of groups it is read from and its role ("source", "target" or,
+ *  for a widget's module attribute, "module") and returns the new parts of its path, or
+ *  null to keep it; selectors and formats after the path are kept. */
+function rewriteAddresses(tree, change) {
+    const re = (chain, t, role) => {
+        const parts = change(chain, t, role);
+        return parts ? parts.join(".") + String(t).trim().slice(splitAddress(t).path.length) : t;
+    };
+    for (const { chain, group } of addressHolders(tree)) {
+        for (const c of group.connections) {
+            if (c.attrs.source) c.attrs.source = re(chain, c.attrs.source, "source");
+            if (c.attrs.target) c.attrs.target = re(chain, c.attrs.target, "target");
+        }
+        for (const o of group.outputs) if (o.attrs.source) o.attrs.source = re(chain, o.attrs.source, "source");
+        for (const i of group.inputs) if (i.attrs.target) i.attrs.target = re(chain, i.attrs.target, "target");
+        for (const w of group.widgets) {
+            for (const k of Object.keys(w.attrs)) {
+                if (k === "module") w.attrs[k] = re(chain, w.attrs[k], "module");
+                else if (WIDGET_ADDRESS.test(k) || ["red", "green", "blue", "matrix", "index"].includes(k)) {
+                    w.attrs[k] = String(w.attrs[k]).split(",").map((t) => re(chain, t.trim(), "source")).join(",");
+                }
+            }
+        }
+    }
 }
 
 /** The tree as the navigator's network: {top: {name, path, groups, modules, views}}. */
