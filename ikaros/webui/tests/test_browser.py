@@ -5,6 +5,7 @@ change parameters and run commands, the inspectors, the messages and the themes.
 Screenshots of the demo views are kept in test-artifacts/."""
 from __future__ import annotations
 
+import contextlib
 import os
 import time
 
@@ -227,15 +228,25 @@ def test_push_button_sets_a_parameter_while_held(page, server):
     wait_for(lambda: server.parameter("Boost.factor") == 1, what="Boost.factor = 1")
 
 
+@contextlib.contextmanager
+def second_page(page):
+    """A page of its own (own context, so its own routes), closed afterwards; it is not
+    opened yet."""
+    context = page.context.browser.new_context(viewport={"width": 1600, "height": 1000})
+    fresh = context.new_page()
+    fresh.set_default_timeout(TIMEOUT)
+    try:
+        yield fresh
+    finally:
+        context.close()
+
+
 def test_controls_wait_for_their_parameters(page, server):
     """Sliders, switches and menus cannot be used before their parameter's value has
     arrived: used earlier, a slider would step from its minimum and a menu might send the
     wrong kind of value."""
-    context = page.context.browser.new_context(viewport={"width": 1600, "height": 1000})
-    fresh = context.new_page()
-    fresh.set_default_timeout(TIMEOUT)
     blocked = "**/api/module?path=*"
-    try:
+    with second_page(page) as fresh:
         fresh.route(blocked, lambda route: route.abort())
         fresh.goto(server.base + "/")
         show_view(fresh, "", 0)
@@ -251,18 +262,13 @@ def test_controls_wait_for_their_parameters(page, server):
             sync_api.expect(fresh.locator(css).first).to_be_enabled()
         vertical = fresh.locator(controls["slider-vertical"]).first
         assert float(vertical.input_value()) == pytest.approx(server.parameter("Sine.frequency"))
-    finally:
-        context.close()
 
 
 def test_a_late_first_read_does_not_undo_newer_frames(page, server):
     """The one-off read that fills a new view at once can answer after frames of later
     ticks have come: the frames' values must stay."""
-    context = page.context.browser.new_context(viewport={"width": 1600, "height": 1000})
-    fresh = context.new_page()
-    fresh.set_default_timeout(TIMEOUT)
     held = []
-    try:
+    with second_page(page) as fresh:
         fresh.route("**/api/data?*", lambda route: held.append(route))
         fresh.goto(server.base + "/")
         pause(fresh, server)
@@ -284,8 +290,6 @@ def test_a_late_first_read_does_not_undo_newer_frames(page, server):
         mix = flat(server.data("Mix.OUTPUT")["data"]["Mix.OUTPUT"])
         assert all(999.0 not in s for s in series)
         assert series[0][-1] == pytest.approx(mix[0], abs=1e-6)
-    finally:
-        context.close()
 
 
 def test_slider_changes_the_output(page, server):
