@@ -9,21 +9,31 @@ from __future__ import annotations
 
 from .description import ClassDescription
 from .errors import ModelError, RunError
+from .language.diagnostics import Diagnostics, ModelWarning
 from .kernel.classes import classes as _classes
 from .kernel.network import Network
 from .module import Input, Module, Output, Parameter
 
 __version__ = "0.1.0"
 __all__ = ["load", "classes", "Network", "Module", "Parameter", "Input", "Output",
-           "ModelError", "RunError", "ClassDescription"]
+           "ModelError", "ModelWarning", "RunError", "ClassDescription"]
 
 
-def load(filename: str, /, **overrides) -> Network:
-    """Read, build and initialise a model file (.ikg). Keyword arguments set attributes of
-    the top group and win over the file. Raises ModelError naming the file, line and
-    element of what is wrong."""
+def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
+         quiet: bool = False, **overrides) -> Network:
+    """Read, build and initialise a model file (.ikg). Other keyword arguments set
+    attributes of the top group and win over the file. Raises ModelError naming the file,
+    line and element of what is wrong.
+
+    What the original Ikaros accepts but a clean file would not say is a warning, printed
+    to stderr as ``file:line: warning: ...`` (not with ``quiet=True``) and kept in
+    ``net.warnings``. ``strict=True`` makes every such warning an error; ``lenient=True``
+    drops connections to modules or ports that do not exist, with a warning, as Ikaros 3
+    does (they are errors by default).
+    """
     from .kernel.builder import Builder
-    return Builder(filename, overrides).build()
+    diagnostics = Diagnostics(strict=strict, lenient=lenient, quiet=quiet)
+    return Builder(filename, overrides, diagnostics=diagnostics).build()
 
 
 def classes(*folders: str) -> dict[str, ClassDescription]:

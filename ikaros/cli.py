@@ -9,7 +9,7 @@ import traceback
 
 from . import classes, load
 from .errors import ModelError, RunError
-from .module import DEBUG, PRINT, WARNING
+from .module import DEBUG, FATAL_ERROR, PRINT
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
 
@@ -83,7 +83,13 @@ def parser() -> argparse.ArgumentParser:
                         "in (default: the model's folder)")
     p.add_argument("-p", "--profile", action="store_true",
                    help="measure per-module time and print the timing figures at exit")
-    p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
+    p.add_argument("-q", "--quiet", action="store_true",
+                   help="print only errors: no warnings, no print messages")
+    p.add_argument("--strict", action="store_true",
+                   help="make every compatibility warning an error (for clean files)")
+    p.add_argument("--lenient", action="store_true",
+                   help="drop connections to modules or ports that do not exist, with a "
+                        "warning, as Ikaros 3 does (by default they are errors)")
     p.add_argument("-v", "--verbose", action="store_true",
                    help="print debug messages and full tracebacks")
     p.add_argument("--classes", action="store_true", help="list every class found")
@@ -190,8 +196,11 @@ def main(argv: list[str] | None = None) -> int:
             except webui.MissingWebDependencies as e:
                 print(f"ikaros: error: {e} (or run in batch mode with -b)", file=sys.stderr)
                 return EXIT_ERROR
-        net = load(model, **overrides)
-        net.log_level = WARNING if opts.quiet else DEBUG if opts.verbose else PRINT
+        if opts.strict and opts.lenient:
+            p.error("--strict and --lenient can not be used together")
+        net = load(model, strict=opts.strict, lenient=opts.lenient, quiet=opts.quiet,
+                   **overrides)
+        net.log_level = FATAL_ERROR if opts.quiet else DEBUG if opts.verbose else PRINT
         if opts.info:
             print(net.info())
         ok = getattr(net, "checksum_ok", True)

@@ -9,11 +9,12 @@ import os
 import re
 
 from ..errors import ModelError
+from ..language.diagnostics import Diagnostics, collecting, warn_at
 from ..language.node import Node
 from ..language.reader import read_file
 from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
                                split_selectors, value_text)
-from ..module import RESERVED, WARNING, Clock, Module
+from ..module import RESERVED, Clock, Module
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
 from .layout import layout, runs_into
@@ -43,11 +44,12 @@ def _collector_paused():
 
 class Builder:
     """Builds one model: a file, the text of one (``text``), or a model tree already read
-    (``model``, as the editor holds it). ``notify`` receives build-time warnings."""
+    (``model``, as the editor holds it). ``diagnostics`` collects the load-time warnings
+    (and says whether the load is strict or lenient)."""
 
     def __init__(self, filename: str, overrides: dict | None = None, text: str | None = None,
-                 notify=None, registry: ClassRegistry | None = None,
-                 model: Node | None = None):
+                 registry: ClassRegistry | None = None, model: Node | None = None,
+                 diagnostics: Diagnostics | None = None):
         self.filename = os.path.abspath(filename)
         if model is not None and model.tag != "group":
             raise model.error(f"the root element is <{model.tag}> but must be <group>")
@@ -55,7 +57,7 @@ class Builder:
         self._text = text
         self.overrides = {k: value_text(v) for k, v in (overrides or {}).items()}
         self.registry = registry or ClassRegistry([os.path.dirname(self.filename)])
-        self.notify = notify or _print_warning
+        self.diagnostics = diagnostics or Diagnostics()
         self.clock = Clock()
         self.connections: list[tuple[Node, Group]] = []
         self.ports: dict[tuple, Buffer] = {}
@@ -183,10 +185,8 @@ class Builder:
         try:
             cls = inst.entry.module_class()
         except ModelError as e:
-            raise inst.node.error(f'class "{inst.entry.name}": {e}') from None
-        for warning in inst.entry.warnings:
-            self.notify(WARNING, inst.path, warning)
-        inst.entry.warnings.clear()
+            reason = e.reason if e.filename is None else f'class "{inst.entry.name}": {e}'
+            raise inst.node.error(reason) from None
         desc = cls.description
         for spec in desc.parameters:
             if spec.name in RESERVED:
@@ -362,8 +362,7 @@ class Builder:
         alias = _alias(decl, "source", "sourcemodule")
         if alias and not inside:
             if decl.get("sourcemodule"):
-                self.notify(WARNING, comp.path, f'{decl.file}:{decl.line}: sourcemodule is '
-                            f'deprecated; write source="{alias}"')
+                warn_at(decl, f'sourcemodule is deprecated; write source="{alias}"')
             return self._source(comp, alias, decl)
         return self._port(comp, "in" if inside else "out", port, decl)
 
@@ -387,8 +386,7 @@ class Builder:
             alias = _alias(decl, "target", "targetmodule")
             if alias and not inside:
                 if decl.get("targetmodule"):
-                    self.notify(WARNING, comp.path, f'{decl.file}:{decl.line}: targetmodule '
-                                f'is deprecated; write target="{alias}"')
+                    warn_at(decl, f'targetmodule is deprecated; write target="{alias}"')
                 elif "." not in alias:
                     raise decl.error(f'target="{alias}" must name a module input '
                                      f'(Module.INPUT)')
@@ -570,7 +568,7 @@ class Builder:
     # --- everything ----------------------------------------------------------------------
     def build(self):
         """Build the network; raises ModelError naming the file, line and element."""
-        with _collector_paused():
+        with _collector_paused(), collecting(self.diagnostics):
             if self.model is None:
                 self.model = read_file(self.filename, self._text, root_tag="group")
             return self._build()
@@ -602,11 +600,6 @@ def _alias(decl: Node, key: str, legacy: str) -> str | None:
     if decl.get(legacy):
         return f"{decl.get(legacy)}.{decl.get(key)}"
     return decl.get(key)
-
-
-def _print_warning(level: int, where: str, message: str) -> None:
-    import sys
-    print(f"warning: {where + ': ' if where else ''}{message}", file=sys.stderr)
 
 
 def _placement(node: Node, offsets: dict, src_sel, dst_sel) -> tuple:

@@ -13,6 +13,7 @@ from importlib.metadata import entry_points
 from ..description import ClassDescription
 from ..errors import ModelError
 from ..language.classfile import read_class_file
+from ..language.diagnostics import warn
 from ..module import Module
 
 STDLIB = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "modules")
@@ -22,14 +23,15 @@ ENTRY_POINT_GROUP = "ikaros.modules"
 @dataclass
 class ClassEntry:
     """Where a class is declared. ``python`` and ``ikc`` are files; ``group`` is an .ikg file
-    used as a class; ``loaded`` is a class object from an entry point."""
+    used as a class; ``loaded`` is a class object from an entry point; ``implementation`` is
+    the entry (a plugin's or the standard library's) that implements an .ikc found alone."""
     name: str
     python: str | None = None
     ikc: str | None = None
     group: str | None = None
     package: str | None = None        # the import name of a standard-library module file
     loaded: type | None = None
-    warnings: list[str] = field(default_factory=list)
+    implementation: "ClassEntry | None" = None
     _cls: type | None = None
     _desc: ClassDescription | None = None
 
@@ -39,7 +41,7 @@ class ClassEntry:
             and self.loaded is None
 
     def module_class(self) -> type[Module]:
-        """The Python class that runs instances (a do-nothing class for an .ikc without code)."""
+        """The Python class that runs instances."""
         if self._cls is None:
             self._cls = self._load()
         return self._cls
@@ -50,6 +52,11 @@ class ClassEntry:
         return self._desc
 
     def _load(self) -> type[Module]:
+        if self.implementation is not None:
+            cls = self.implementation.module_class()
+            _check_interface(read_class_file(self.ikc), cls.description, self.ikc)
+            self._desc = cls.description
+            return cls
         cls = self.loaded
         if cls is None and self.python:
             module = _import_file(self.python, self.package)
@@ -58,11 +65,13 @@ class ClassEntry:
                 raise ModelError(f'file does not define a Module subclass named "{self.name}"',
                                  self.python)
         if self.ikc:
-            desc, warnings = read_class_file(self.ikc)
-            self.warnings.extend(warnings)
             if cls is None:
-                cls = type(self.name, (Module,), {"__doc__": desc.description})
-            elif _declares_anything(cls):
+                raise ModelError(f"class {self.name} is declared in "
+                                 f"{os.path.basename(self.ikc)} but has no implementation "
+                                 f"(no {self.name}.py beside it, no installed plugin and no "
+                                 f"standard class of that name)")
+            desc = read_class_file(self.ikc)
+            if _declares_anything(cls):
                 raise ModelError(f'class "{self.name}" is declared twice: in Python '
                                  f'({self.python}) and in its .ikc file; keep one', self.ikc)
             cls = type(self.name, (cls,), {"__module__": cls.__module__})
@@ -74,6 +83,28 @@ class ClassEntry:
         if not self._desc.source:
             self._desc.source = self.python or self.ikc or getattr(cls, "__module__", "")
         return cls
+
+
+def _check_interface(declared: ClassDescription, implemented: ClassDescription,
+                     ikc: str) -> None:
+    """An .ikc beside a model for a class implemented elsewhere: what the .ikc declares and
+    the implementation lacks is an error (outputs, required inputs) or a warning (parameters
+    and optional inputs, which nothing reads)."""
+    where = f"{os.path.basename(ikc)} declares"
+    have = {s.name for s in implemented.outputs}
+    missing = [s.name for s in declared.outputs if s.name not in have]
+    have = {s.name for s in implemented.inputs}
+    missing += [s.name for s in declared.inputs if s.name not in have and not s.optional]
+    if missing:
+        raise ModelError(f'{where} {", ".join(missing)}, which the implementation of class '
+                         f'{declared.name} ({implemented.source or "standard library"}) does '
+                         f'not have', ikc)
+    extra = [s.name for s in declared.inputs if s.name not in have]
+    have = {s.name for s in implemented.parameters}
+    extra += [s.name for s in declared.parameters if s.name not in have]
+    if extra:
+        warn(f'{where} {", ".join(extra)}, which the implementation of class {declared.name} '
+             f'does not have; ignored', ikc)
 
 
 def _declares_anything(cls: type[Module]) -> bool:
@@ -201,16 +232,30 @@ class ClassRegistry:
             entry = self._in_folder(folder).get(name)
             if entry is None or (entry.is_group and entry.group in skip_files):
                 continue
-            if entry.python is None or entry.ikc or entry.group or _defines_class(entry):
+            if entry.python and not _defines_class(entry):
+                entry.python = None         # a script beside the model, not a module
+            if entry.ikc and entry.python is None:
+                return self._implemented(entry)
+            if entry.python or entry.group:
                 return entry
         return entry_point_classes().get(name) or stdlib_classes().get(name)
+
+    def _implemented(self, entry: ClassEntry) -> ClassEntry:
+        """An .ikc alone declares an interface: a plugin or the standard library may
+        implement it."""
+        found = entry_point_classes().get(name := entry.name) or stdlib_classes().get(name)
+        if found is not None and not found.is_group:
+            entry.implementation = found
+        return entry
 
     def all(self) -> dict[str, ClassEntry]:
         merged = dict(stdlib_classes())
         merged.update(entry_point_classes())
         for folder in self.folders:
-            merged.update({k: v for k, v in self._in_folder(folder).items()
-                           if v.ikc or v.group or _defines_class(v)})
+            for name in self._in_folder(folder):
+                entry = self.find(name)
+                if entry is not None:
+                    merged[name] = entry
         return merged
 
 
@@ -230,7 +275,11 @@ def classes(folders: list[str] = ()) -> dict[str, ClassDescription]:
     for name, entry in sorted(ClassRegistry(folders).all().items()):
         if entry.is_group:
             continue
-        desc = entry.description()
+        try:
+            desc = entry.description()
+        except ModelError as e:     # a broken class beside a model does not hide the rest
+            warn(f"class {name} left out: {e.reason}", e.filename, e.line)
+            continue
         if not desc.internal:
             out[name] = desc
     return out

@@ -5,6 +5,7 @@ import os
 
 from ..description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
                            SIZE_RULE_KEYS, canonical_type)
+from .diagnostics import warn_at
 from .node import Node
 from .reader import read_file
 from .values import ValueError_, parse_bool
@@ -78,17 +79,15 @@ def description_from_node(root: Node, expected_name: str | None = None) -> Class
     return desc
 
 
-def read_class_file(path: str) -> tuple[ClassDescription, list[str]]:
-    """Read an .ikc file. Returns the description and warnings (a name that differs from the
-    file name is reported, not fatal)."""
+def read_class_file(path: str) -> ClassDescription:
+    """Read an .ikc file (a name that differs from the file name is a warning)."""
     root = read_file(path, root_tag="class")
     stem = os.path.splitext(os.path.basename(path))[0]
-    warnings = []
     declared = root.get("name")
     if declared and declared != stem:
-        warnings.append(f'{path}: declared class name "{declared}" does not match the file '
-                        f'name "{stem}"; using "{stem}"')
+        warn_at(root, f'declared class name "{declared}" does not match the file name '
+                      f'"{stem}"; using "{stem}"')
     desc = description_from_node(root, stem)
     desc.name = stem
-    return desc, warnings
+    return desc
 

@@ -24,7 +24,7 @@ SHAPES = {
     "L1.INPUT2": (3, 2),
     "I.OUTPUT": (4,),             # .ikc: size_set="INPUT"
     "I.DOUBLE": (8,),             # .ikc: shape="INPUT.size*2"
-    "J.A": (4,),                  # .ikc without code: size_param="n"
+    "J.A": (4,),                  # .ikc with code in IkcSizes.py: size_param="n"
     "J.B": (6, 6),                # size_set_x / size_set_y
     "J.C": (2, 4),                # "INPUT.rows, @n"
 }
@@ -44,11 +44,13 @@ def test_ikc_class_with_python_code_runs():
     same(net.output("I.DOUBLE"), [3] * 8)
 
 
-def test_ikc_class_without_code_builds_and_ticks():
+def test_ikc_sizes_with_python_code_tick():
     net = load("sizes.ikg")
     assert net.parameter("J.n") == 4
-    net.run(ticks=2)
-    same(net.output("J.A"), [0, 0, 0, 0])
+    net.run(ticks=2)                                # M is [[1, 2, 3], [4, 5, 6]]
+    same(net.output("J.A"), [4, 4, 4, 4])
+    same(net.output("J.B"), [[21] * 6] * 6)
+    same(net.output("J.C"), [[1] * 4] * 2)
 
 
 def test_cascade_values():

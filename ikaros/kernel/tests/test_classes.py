@@ -75,12 +75,85 @@ def test_python_and_ikc_declarations_give_the_same_description(tmp_path):
         assert net.parameter("T.mode") == "fast"
 
 
-def test_ikc_without_code_is_a_class_that_does_nothing(tmp_path):
+def test_ikc_without_code_is_an_error_not_a_do_nothing_class(tmp_path):
     (tmp_path / "Twice.ikc").write_text(IKC_CLASS)
     (tmp_path / "m.ikg").write_text(MODEL)
+    with pytest.raises(ikaros.ModelError) as e:
+        ikaros.load(str(tmp_path / "m.ikg"))
+    assert e.value.line == 3 and e.value.filename == str(tmp_path / "m.ikg")
+    assert e.value.reason.startswith("class Twice is declared in Twice.ikc but has no "
+                                     "implementation")
+
+
+def test_a_script_beside_an_ikc_is_not_its_implementation(tmp_path):
+    (tmp_path / "Twice.ikc").write_text(IKC_CLASS)
+    (tmp_path / "Twice.py").write_text("raise SystemExit('a script for another program')\n")
+    (tmp_path / "m.ikg").write_text(MODEL)
+    with pytest.raises(ikaros.ModelError, match="has no implementation"):
+        ikaros.load(str(tmp_path / "m.ikg"))
+
+
+SCALE_IKC = '''<class name="Scale">
+    <parameter name="factor" type="float" default="1"/>
+    <input name="INPUT"/>
+    <output name="OUTPUT" size_set="INPUT"/>
+</class>
+'''
+
+SCALE_MODEL = '''<group name="M">
+    <module class="Constant" name="C" data="1 2"/>
+    <module class="Scale" name="S" factor="3"/>
+    <connection source="C.OUTPUT" target="S.INPUT" delay="0"/>
+</group>
+'''
+
+
+def test_an_ikc_of_a_standard_class_runs_the_standard_implementation(tmp_path):
+    (tmp_path / "Scale.ikc").write_text(SCALE_IKC)
+    (tmp_path / "m.ikg").write_text(SCALE_MODEL)
+    net = ikaros.load(str(tmp_path / "m.ikg"), quiet=True)
+    net.step()
+    assert net.output("S.OUTPUT").tolist() == [3, 6]
+    assert net.warnings == []
+
+
+def test_an_ikc_parameter_the_implementation_lacks_is_a_warning(tmp_path):
+    ikc = SCALE_IKC.replace("<input", '<parameter name="offset" default="2"/>\n    <input')
+    (tmp_path / "Scale.ikc").write_text(ikc)
+    (tmp_path / "m.ikg").write_text(SCALE_MODEL)
+    net = ikaros.load(str(tmp_path / "m.ikg"), quiet=True)
+    net.step()
+    assert net.output("S.OUTPUT").tolist() == [3, 6]
+    (w,) = net.warnings
+    assert w.filename == str(tmp_path / "Scale.ikc")
+    assert "offset" in w.message and "ignored" in w.message
+    with pytest.raises(ikaros.ModelError, match="offset"):
+        ikaros.load(str(tmp_path / "m.ikg"), strict=True)
+
+
+def test_an_ikc_output_the_implementation_lacks_is_an_error(tmp_path):
+    ikc = SCALE_IKC.replace("</class>", '    <output name="GAIN" size="1"/>\n</class>')
+    (tmp_path / "Scale.ikc").write_text(ikc)
+    (tmp_path / "m.ikg").write_text(SCALE_MODEL)
+    with pytest.raises(ikaros.ModelError) as e:
+        ikaros.load(str(tmp_path / "m.ikg"))
+    assert e.value.line == 3 and "Scale.ikc declares GAIN" in str(e.value)
+
+
+def test_a_script_named_like_a_standard_class_does_not_hide_it(tmp_path):
+    (tmp_path / "Scale.py").write_text("raise SystemExit('a script for another program')\n")
+    (tmp_path / "m.ikg").write_text(SCALE_MODEL)
     net = ikaros.load(str(tmp_path / "m.ikg"))
     net.step()
-    assert net.output("T.OUTPUT").tolist() == [0, 0]
+    assert net.output("S.OUTPUT").tolist() == [3, 6]
+
+
+def test_a_broken_python_file_beside_a_model_is_left_out_of_the_class_list(tmp_path, capsys):
+    (tmp_path / "Plot.py").write_text("import no_such_package\nclass Plot(object): pass\n")
+    (tmp_path / "Twice.py").write_text(PY_CLASS)
+    found = ikaros.classes(str(tmp_path))
+    assert "Twice" in found and "Plot" not in found
+    assert "Plot.py" in capsys.readouterr().err
 
 
 def test_a_class_declared_twice_is_an_error(tmp_path):

@@ -611,6 +611,10 @@ def test_a_class_can_carry_its_own_view(tmp_path):
         <bar-graph x="0" y="0" width="120" height="80" source="OUTPUT" max="5"/>
     </view>
 </class>''')
+    (tmp_path / "Gauge.py").write_text("from ikaros.module import Module\n\n\n"
+                                       "class Gauge(Module):\n"
+                                       "    def tick(self):\n"
+                                       "        self.OUTPUT[...] = self.INPUT\n")
     (tmp_path / "m.ikg").write_text('''<group name="M">
     <module class="Constant" name="K" data="1 2"/>
     <module class="Gauge" name="G"/>

@@ -1,0 +1,82 @@
+"""Load-time warnings: what the original Ikaros accepts but a clean file would not say.
+
+A build runs inside ``collecting(Diagnostics(...))``; the reader, the class files and the
+builder report through ``warn``. Each warning names the file, the line and the element. In
+strict mode a warning is raised as a ModelError instead; lenient mode turns some errors
+(connections to nothing) into warnings.
+"""
+from __future__ import annotations
+
+import contextlib
+import sys
+from contextvars import ContextVar
+from dataclasses import dataclass
+
+from ..errors import ModelError
+
+
+@dataclass(frozen=True)
+class ModelWarning:
+    """One load-time warning: where (file, line, element) and what."""
+    message: str
+    filename: str | None = None
+    line: int | None = None
+    element: str | None = None
+
+    def __str__(self) -> str:
+        where = ""
+        if self.filename:
+            where = f"{self.filename}:{self.line}: " if self.line else f"{self.filename}: "
+        what = f"{self.element}: " if self.element else ""
+        return f"{where}warning: {what}{self.message}"
+
+
+class Diagnostics:
+    """Collects the warnings of one load. ``quiet`` prints nothing; ``strict`` raises each
+    warning as a ModelError; ``lenient`` lets the loader drop what the original drops."""
+
+    def __init__(self, strict: bool = False, lenient: bool = False, quiet: bool = False):
+        self.strict, self.lenient, self.quiet = strict, lenient, quiet
+        self.warnings: list[ModelWarning] = []
+
+    def warn(self, message: str, filename: str | None = None, line: int | None = None,
+             element: str | None = None) -> None:
+        if self.strict:
+            raise ModelError(f"{message} (an error with --strict)", filename, line, element)
+        record = ModelWarning(message, filename, line, element)
+        if record in self.warnings:
+            return
+        self.warnings.append(record)
+        if not self.quiet:
+            print(record, file=sys.stderr, flush=True)
+
+
+_current: ContextVar[Diagnostics | None] = ContextVar("ikaros_diagnostics", default=None)
+
+
+def current() -> Diagnostics:
+    """The diagnostics of the load in progress (outside a load: print to stderr)."""
+    return _current.get() or Diagnostics()
+
+
+def warn(message: str, filename: str | None = None, line: int | None = None,
+         element: str | None = None) -> None:
+    current().warn(message, filename, line, element)
+
+
+def warn_at(node, message: str) -> None:
+    """A warning located at a model-tree element."""
+    current().warn(message, node.file, node.line, node.label())
+
+
+def lenient() -> bool:
+    return current().lenient
+
+
+@contextlib.contextmanager
+def collecting(diagnostics: Diagnostics):
+    token = _current.set(diagnostics)
+    try:
+        yield diagnostics
+    finally:
+        _current.reset(token)
