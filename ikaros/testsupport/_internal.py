@@ -1,0 +1,66 @@
+"""The base of the test-only classes: marks every subclass internal."""
+from ikaros.module import Module
+
+
+class InternalModule(Module):
+    """A module class hidden from class listings and the module reference."""
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        cls.description.internal = True
+
+
+def text(value) -> str:
+    """A parameter value as the test models expect it printed: numbers without a needless
+    ``.0``, booleans as true/false, arrays as nested lists."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:g}"
+    if hasattr(value, "tolist"):
+        return str(_numbers(value.tolist())).replace(" ", "")
+    return str(value)
+
+
+def _numbers(x):
+    if isinstance(x, list):
+        return [_numbers(v) for v in x]
+    return int(x) if float(x).is_integer() else x
+
+
+def sequence(tick: int, offset: float = 0.0) -> float:
+    """What DelaySequenceSource output on ``tick``: tick + offset, and 0 before tick 0
+    (no history yet, or the value of init)."""
+    return tick + offset if tick >= 0 else 0.0
+
+
+def vector(tick: int) -> list[float]:
+    """What DelayVectorSource output on ``tick``: [tick, tick + 100], [0, 0] before tick 0."""
+    return [tick, tick + 100.0] if tick >= 0 else [0.0, 0.0]
+
+
+class WindowCheck(InternalModule):
+    """The base of the delay-window sinks: ``expected()`` gives what INPUT must hold this
+    tick; every tick INPUT is printed as ``WINDOW tick=t: values`` and compared; a
+    difference is a fatal error naming both; at the end ``WINDOW OK`` is printed if
+    every tick matched."""
+
+    def init(self):
+        self._failed = False
+        self._ticks = 0
+
+    def tick(self):
+        import numpy as np
+        t = self.clock.tick
+        got = self.INPUT.reshape(-1)
+        want = np.asarray(self.expected(t), dtype=np.float32).reshape(-1)
+        self.print(f"WINDOW tick={t}: " + " ".join(f"{v:g}" for v in got.tolist()))
+        self._ticks += 1
+        if got.shape != want.shape or not np.array_equal(got, want):
+            self._failed = True
+            self.fatal_error(f"WINDOW MISMATCH at tick {t}: got {got.tolist()}, expected "
+                             f"{want.tolist()}")
+
+    def stop(self):
+        if self._ticks and not self._failed:
+            self.print("WINDOW OK")
