@@ -7,6 +7,7 @@ from xml.parsers import expat
 
 from ..errors import ModelError
 from .node import COMMENT, INCLUDE, Node
+from .repair import repair
 
 MAX_INCLUDE_DEPTH = 32
 _WRAPPER = "ikaros-file"
@@ -116,6 +117,22 @@ def read_items(path: str, text: str | None = None,
     text = _DECLARATION.sub(_keep_lines, text, count=1)
     if "<!DOCTYPE" in text:
         text = _DOCTYPE.sub(_keep_lines, text, count=1)
+    try:
+        return _parse(text, path, stack)
+    except expat.ExpatError as e:
+        error = e
+    repaired = repair(text, path)      # the original parsers' leniency, with warnings
+    if repaired != text:
+        try:
+            return _parse(repaired, path, stack)
+        except expat.ExpatError as e:
+            error = e
+    message = expat.errors.messages[error.code]
+    col = f" (column {error.offset + 1})" if error.lineno != 1 else ""
+    raise ModelError(f"malformed XML: {message}{col}", path, error.lineno) from None
+
+
+def _parse(text: str, path: str, stack: tuple[str, ...] | None) -> list[Node]:
     parser = expat.ParserCreate()
     builder = _TreeBuilder(parser, path, stack if stack is not None else (path,))
     parser.buffer_text = True
@@ -124,12 +141,7 @@ def read_items(path: str, text: str | None = None,
     parser.CharacterDataHandler = builder.data
     parser.CommentHandler = builder.comment
     parser.ProcessingInstructionHandler = builder.instruction
-    try:
-        parser.Parse(f"<{_WRAPPER}>{text}</{_WRAPPER}>", True)
-    except expat.ExpatError as e:
-        message = expat.errors.messages[e.code]
-        col = f" (column {e.offset + 1})" if e.lineno != 1 else ""
-        raise ModelError(f"malformed XML: {message}{col}", path, e.lineno) from None
+    parser.Parse(f"<{_WRAPPER}>{text}</{_WRAPPER}>", True)
     return builder.top
 
 

@@ -27,7 +27,8 @@ def test_save_round_trip(name, tmp_path):
     original = ikaros.load(os.path.join(MODELS, name))
     # the saved file needs the model's classes and group files beside it
     for helper in glob.glob(os.path.join(MODELS, "*")):
-        if os.path.basename(helper) != name and not os.path.basename(helper).startswith("err_"):
+        if os.path.basename(helper) != name and not os.path.basename(helper).startswith("err_") \
+                and os.path.isfile(helper):
             shutil.copy(helper, tmp_path)
     saved = tmp_path / name
     original.save(str(saved))
