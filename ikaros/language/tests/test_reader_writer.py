@@ -1,5 +1,7 @@
 import pytest
 
+from ikaros.language.diagnostics import Diagnostics, collecting
+
 from ikaros.errors import ModelError
 from ikaros.language.node import INCLUDE
 from ikaros.language.reader import read_file
@@ -82,8 +84,14 @@ def test_entities_are_never_expanded(tmp_path):
     secret.write_text("private")
     text = ('<?xml version="1.0"?>\n<!DOCTYPE g [\n <!ENTITY lol "lol">\n'
             f' <!ENTITY xxe SYSTEM "file://{secret}">\n]>\n<group name="&lol;" a="&xxe;"/>\n')
-    with pytest.raises(ModelError, match="undefined entity") as e:
-        read_file(str(tmp_path / "m.ikg"), text)
+    diagnostics = Diagnostics(quiet=True)
+    with collecting(diagnostics):
+        root = read_file(str(tmp_path / "m.ikg"), text)
+    assert root.attrs == {"name": "&lol;", "a": "&xxe;"}     # kept as written (Ikaros 2)
+    assert [w.line for w in diagnostics.warnings] == [6]
+    with pytest.raises(ModelError, match="bare &") as e:
+        with collecting(Diagnostics(strict=True)):
+            read_file(str(tmp_path / "m.ikg"), text)
     assert e.value.line == 6
     root = read_file(str(tmp_path / "m.ikg"), '<group name="a&amp;b&#65;"/>')
     assert root.attrs["name"] == "a&bA"          # XML's own entities and references
