@@ -23,7 +23,7 @@ from .scope import VariableError, convert, from_python, lookup_parameter, substi
 from .sizes import SizeError, WAIT, rule_shape, shape_expression
 from .tree import Component, Group, ModuleInstance, Scope, find_component
 
-_NAME = re.compile(r"[A-Za-z_][\w\-]*$")
+_NAME = re.compile(r"[A-Za-z_](?:[\w\- ]*[\w\-])?$")
 
 
 _ONE_TICK = [1]     # the default delay (link delays are never changed after parsing)
@@ -84,12 +84,14 @@ class Builder:
                 if child_name is None and tag == "group":
                     anonymous += 1
                     child_name = f"Group-{anonymous}"
+                if child_name is None and child.attrs.get("class"):
+                    child_name = self._unnamed_module(child, group)
                 if not child_name:
                     raise child.error(f"a <{tag}> needs a name")
                 child_name = self._substitute(child_name, child, group, "name")
                 if not _NAME.match(child_name):
-                    raise child.error(f'"{child_name}" is not a valid name (letters, digits, _ '
-                                      f'and -, not starting with a digit)')
+                    raise child.error(f'"{child_name}" is not a valid name (letters, digits, _, '
+                                      f'- and inner spaces, not starting with a digit)')
                 if child_name in group.children:
                     raise child.error(f'duplicate name "{child_name}" in group '
                                       f'"{group.path or group.name}"')
@@ -117,6 +119,19 @@ class Builder:
             elif tag in ("view", "widget"):
                 group.views.append(child)
         return group
+
+    def _unnamed_module(self, node: Node, group: Group) -> str:
+        """A <module> without a name takes its class name (Ikaros 2); the file read keeps
+        that name, so saving writes it."""
+        name = self._substitute(node.attrs["class"], node, group, "class")
+        warn_at(node, f'a <module> without a name takes its class name "{name}"')
+        attrs = {}
+        for key, value in node.attrs.items():
+            attrs[key] = value
+            if key == "class":
+                attrs["name"] = name
+        node.attrs = attrs
+        return name
 
     def _subgroup(self, node: Node, parent: Group, name: str, files: tuple) -> Group:
         external = node.get("external")
@@ -240,6 +255,13 @@ class Builder:
         try:
             if found is not None:
                 text, where, _ = found
+                if spec.type not in _EMPTY_IS_A_VALUE and _is_empty(text, where, spec.name):
+                    warn_at(where.node, f'parameter "{spec.name}" of {inst.path} has an empty '
+                                        f'value; the default applies')
+                    if where is inst and not text.strip():
+                        del inst.attrs[spec.name]      # so that saving leaves it out
+                    found = None
+            if found is not None:
                 return convert(text, spec, where, own=spec.name), True
             if spec.default is not None and spec.default != "":
                 if isinstance(spec.default, str):
@@ -594,6 +616,17 @@ class Builder:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)
         order = schedule(self.instances, edges)
         return Network(self, top, order, runs, edges)
+
+
+_EMPTY_IS_A_VALUE = ("string", "matrix", "array")
+
+
+def _is_empty(text: str, scope, name: str) -> bool:
+    """Whether a raw parameter value is empty, or a variable that reads as empty."""
+    stripped = text.strip()
+    if not stripped:
+        return True
+    return stripped[0] == "@" and not substitute(stripped, scope, own=name).strip()
 
 
 def _alias(decl: Node, key: str, legacy: str) -> str | None:

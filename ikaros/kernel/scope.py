@@ -6,6 +6,7 @@ import re
 import numpy as np
 
 from ..description import ParameterSpec
+from ..language.diagnostics import warn, warn_at
 from ..language.expressions import ExpressionError, evaluate_arithmetic, is_arithmetic
 from ..language.values import (ValueError_, format_number, parse_bool, parse_int,
                                parse_matrix, parse_number)
@@ -21,6 +22,10 @@ class VariableError(Exception):
     """A variable that cannot be resolved; the caller names the element."""
 
 
+class UndefinedVariable(VariableError):
+    """A variable that no enclosing element defines."""
+
+
 def lookup_variable(name: str, scope, depth: int = 0, own: str | None = None) -> str:
     """The value of ``@name`` seen from a scope: its own attributes, then enclosing groups.
     A value that itself holds variables is resolved where it is defined. In the value of
@@ -28,7 +33,7 @@ def lookup_variable(name: str, scope, depth: int = 0, own: str | None = None) ->
     for s in scope.chain():
         if name in s.attrs and not (name == own and s is scope):
             return substitute(s.attrs[name], s, depth + 1, own=name)
-    raise VariableError(f'Variable "@{name}" not defined.')
+    raise UndefinedVariable(f'Variable "@{name}" not defined.')
 
 
 def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
@@ -70,7 +75,16 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
                 out = out[:len(out) - len(prefix)] + substitute(target.attrs[name], target,
                                                                 depth + 1)
                 continue
-        out += lookup_variable(name, scope, depth, own)
+        try:
+            out += lookup_variable(name, scope, depth, own)
+        except UndefinedVariable:
+            if text.strip() != m.group(0):
+                raise
+            # Ikaros 2 reads an undefined variable as an empty value (a group file loaded
+            # on its own); where an empty value can not be used, that is the error.
+            message = f'variable "@{name}" is not defined; read as an empty value'
+            node = getattr(scope, "node", None)
+            warn_at(node, message) if node is not None else warn(message)
     return out + text[pos:]
 
 

@@ -73,3 +73,62 @@ def test_a_leniently_read_file_is_saved_clean(tmp_path):
     assert again.warnings == []
     assert (again.parameter("Glued.p"), again.parameter("Twice.p")) == (3, 5)
     assert again.parameter("Named.s") == "<&A&nbsp;"
+
+
+# --- 2. values the original treats as unset ---------------------------------------------
+def test_empty_and_undefined_values_take_the_class_default():
+    net = load("compat_unset.ikg", quiet=True)
+    p = net.parameter
+    assert (p("Empty.p"), p("Empty.k"), p("Empty.flag"), p("Empty.mode")) == (1.0, 4, False, "a")
+    assert p("Empty.s") == ""                  # an empty string is a value
+    assert (p("Inherit.p"), p("Inherit.q")) == (8, 2)     # q="" on the group: unset
+    assert (p("Undefined.p"), p("Undefined.q"), p("Undefined.s")) == (1.0, 3, "")
+
+
+def test_unset_values_warn_with_file_and_line():
+    net = load("compat_unset.ikg", quiet=True)
+    name = "compat_unset.ikg"
+    found = warnings_of(net, name)
+    assert sorted(found) == [line_of(name, m) for m in ("GROUP", "EMPTY", "UNDEFINED",
+                                                        "NAMELESS")]
+    assert len(found[line_of(name, "EMPTY")]) == 4     # p, k, flag, mode (not s)
+    assert 'variable "@gain" is not defined; read as an empty value' in \
+        found[line_of(name, "UNDEFINED")]
+    assert found[line_of(name, "NAMELESS")] == [
+        'a <module> without a name takes its class name "Par"']
+    with pytest.raises(ikaros.ModelError) as e:
+        load(name, strict=True)
+    assert e.value.line == line_of(name, "NAMELESS")     # the tree is built first
+
+
+def test_a_module_without_name_takes_its_class_name_and_names_with_spaces_work():
+    net = load("compat_unset.ikg", quiet=True)
+    net.step()
+    same(net.output("Par.OUTPUT"), [9, 10])
+    same(net.output("Out2.OUTPUT"), [9, 10])
+    same(net.output("Group Inner.In Side.OUTPUT"), [5, 6])
+    same(net.output("Group Inner.Sink.OUTPUT"), [5, 6])
+    same(net.output("Out.OUTPUT"), [5, 6])
+
+
+def test_unset_values_are_saved_clean(tmp_path):
+    net = load("compat_unset.ikg", quiet=True)
+    for helper in ("Par.py", "Sink.py"):
+        with open(model(helper)) as src, open(tmp_path / helper, "w") as dst:
+            dst.write(src.read())
+    net.save(str(tmp_path / "saved.ikg"))
+    text = (tmp_path / "saved.ikg").read_text()
+    assert '<module class="Par" name="Par" p="9" q="10"/>' in text
+    assert '<module class="Par" name="Empty" s=""/>' in text
+    again = ikaros.load(str(tmp_path / "saved.ikg"), quiet=True)
+    lines = text.splitlines()
+    expected = {i for i, t in enumerate(lines, 1) if 'name="Unset"' in t or '"Undefined"' in t}
+    assert {w.line for w in again.warnings} == expected   # q="" on the group, @gain, @label
+    assert again.parameter("Empty.p") == 1.0
+
+
+def test_an_undefined_variable_in_arithmetic_is_an_error():
+    with pytest.raises(ikaros.ModelError) as e:
+        load("err_undefined_arithmetic.ikg")
+    assert e.value.line == line_of("err_undefined_arithmetic.ikg", "HERE")
+    assert 'Variable "@gain" not defined.' in str(e.value)
