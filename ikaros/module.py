@@ -163,6 +163,12 @@ RESERVED = {"name", "path", "clock", "element", "init", "tick", "command", "stop
             "fatal_error", "end_of_file", "description", "parameter_names"}
 
 
+def parameter_attribute(name: str) -> str:
+    """The Python attribute that holds a parameter. A name the module API uses (an .ikc
+    parameter called ``tick``) gets a trailing underscore: ``self.tick_``."""
+    return name + "_" if name in RESERVED else name
+
+
 class Module:
     """Base class of every module. Override ``tick`` (and ``init``, ``command``, ``stop``)."""
 

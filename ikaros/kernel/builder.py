@@ -14,7 +14,7 @@ from ..language.node import Node
 from ..language.reader import read_file
 from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
                                split_selectors, value_text)
-from ..module import RESERVED, Clock, Module
+from ..module import Clock, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
 from .layout import layout, runs_into
@@ -204,9 +204,6 @@ class Builder:
             raise inst.node.error(reason) from None
         desc = cls.description
         for spec in desc.parameters:
-            if spec.name in RESERVED:
-                raise inst.node.error(f'class "{desc.name}" has a parameter named '
-                                      f'"{spec.name}", a reserved name in the module API')
             inst.values[spec.name], inst.has_value[spec.name] = self._parameter(inst, spec)
         try:
             module = cls()
@@ -216,7 +213,7 @@ class Builder:
         module.name, module.path, module.element = inst.name, inst.path, inst.node
         module.clock = self.clock
         for name, value in inst.values.items():
-            setattr(module, name, value)
+            setattr(module, parameter_attribute(name), value)
         inst.module = module
         self._run_settings(inst)
         try:

@@ -12,7 +12,7 @@ from ..errors import RunError
 from ..language.values import ValueError_, format_number, value_text
 from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
-                      attribute_name)
+                      attribute_name, parameter_attribute)
 from .buffers import Run
 from .control import PLAY, REALTIME, Controller
 from .execution import AsyncModule, Plan, module_tick
@@ -378,7 +378,7 @@ class Network:
         """The current value of a module parameter (or a group attribute, as text)."""
         comp, name = self._component(path, "parameter")
         if isinstance(comp, ModuleInstance) and name in comp.values:
-            value = getattr(comp.module, name)
+            value = getattr(comp.module, parameter_attribute(name))
             return value.copy() if isinstance(value, np.ndarray) else value
         if isinstance(comp, Group) and name in comp.attrs:
             return comp.attrs[name]
@@ -396,12 +396,13 @@ class Network:
         except (ValueError_, VariableError, ValueError, TypeError) as e:
             raise ValueError(f'bad value for parameter "{path}": {e}') from None
         def change():
-            old = getattr(comp.module, name)
+            attribute = parameter_attribute(name)
+            old = getattr(comp.module, attribute)
             if isinstance(old, np.ndarray) and isinstance(new, np.ndarray) and \
                     old.shape == new.shape:
                 old[...] = new
             else:
-                setattr(comp.module, name, new)
+                setattr(comp.module, attribute, new)
         self._apply(comp, change)
         self._apply(comp, lambda: self.plan.refresh(comp))
         comp.values[name] = new

@@ -150,6 +150,8 @@ def convert(text, spec: ParameterSpec, scope, own: str | None = None) -> object:
     text = substitute(text, scope, own=own)
     t = spec.type
     if t == "number":
+        if spec.options:            # Ikaros 3: a label or an index; the value is the index
+            return float(option_index(text, spec))
         return parse_number(text)
     if t == "int":
         return parse_int(text)

@@ -81,7 +81,9 @@ def description_from_node(root: Node, expected_name: str | None = None) -> Class
 
 def read_class_file(path: str) -> ClassDescription:
     """Read an .ikc file (a name that differs from the file name is a warning)."""
-    root = read_file(path, root_tag="class")
+    root = read_file(path)
+    if root.tag not in ("class", "group"):      # Ikaros 3 class files may have <group>
+        raise root.error(f"the root element is <{root.tag}> but must be <class>")
     stem = os.path.splitext(os.path.basename(path))[0]
     declared = root.get("name")
     if declared and declared != stem:

@@ -132,3 +132,23 @@ def test_an_undefined_variable_in_arithmetic_is_an_error():
         load("err_undefined_arithmetic.ikg")
     assert e.value.line == line_of("err_undefined_arithmetic.ikg", "HERE")
     assert 'Variable "@gain" not defined.' in str(e.value)
+
+
+# --- 4. Ikaros 3 class-file forms ---------------------------------------------------------
+def test_ikaros_3_class_file_forms():
+    net = load("compat_ikc/compat_ikc_forms.ikg", strict=True)
+    assert net.parameter("Label.type") == 2          # a label gives its index
+    assert net.parameter("Label.tick") == 3          # named like Module.tick
+    net.step()
+    same(net.output("Default.OUTPUT"), [1, 7, 1, 5])
+    same(net.output("Label.OUTPUT"), [2, 3, 0, 7])
+    same(net.output("Index.OUTPUT"), [0, 7, 1, 5])
+    net.set_parameter("Index.type", "sine")
+    net.set_parameter("Index.tick", 9)
+    net.step()
+    same(net.output("Index.OUTPUT"), [0, 9, 1, 5])
+
+
+def test_an_option_that_is_not_listed_is_an_error(tmp_path):
+    with pytest.raises(ikaros.ModelError, match='"saw" is not one of sine/square/triangle'):
+        load("compat_ikc/compat_ikc_forms.ikg", type="saw")
