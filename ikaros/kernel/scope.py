@@ -97,8 +97,9 @@ def lookup_parameter(inst: ModuleInstance, name: str):
 
     Returns (text, scope, from_default) or None. The module's own attribute first; then each
     enclosing group outward, where a renaming ``<parameter target=...>`` (for this module,
-    then for all), a qualified attribute ``Module.p`` and a plain attribute ``p`` are looked
-    at in that order; then a renaming's default.
+    then for all), a qualified attribute (``Path.To.Module.p``, then ``Module.p``, which
+    reaches a module of that name at any depth) and a plain attribute ``p`` are looked at in
+    that order; then a renaming's default.
     """
     if name in inst.attrs:
         return inst.attrs[name], inst, False
@@ -111,7 +112,8 @@ def lookup_parameter(inst: ModuleInstance, name: str):
         if key in seen:
             raise VariableError(f'parameter renaming loops on "{name}"')
         seen.add(key)
-        rename = _renaming(group, f"{relative}.{name}") or _renaming(group, name)
+        rename = _renaming(group, f"{relative}.{name}") or \
+            _renaming(group, f"{inst.name}.{name}") or _renaming(group, name)
         if rename is not None:
             new = rename.get("name")
             if not new or new == name:
@@ -122,6 +124,9 @@ def lookup_parameter(inst: ModuleInstance, name: str):
             name = new
             continue                       # look the new name up, starting at this group
         qualified = f"{relative}.{name}"
+        if qualified in group.attrs:
+            return group.attrs[qualified], group, False
+        qualified = f"{inst.name}.{name}"        # reaches a module of that name at any depth
         if qualified in group.attrs:
             return group.attrs[qualified], group, False
         if name in group.attrs:

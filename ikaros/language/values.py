@@ -64,6 +64,18 @@ def _element(token: str) -> float:
         raise ValueError_(f'"{token}" is not a number') from None
 
 
+def _elements(token: str) -> list[float]:
+    """One element, or several when a comma-separated item holds numbers separated by
+    white space (``1, 2 3``: commas and white space mixed in one row)."""
+    parts = token.split()
+    if len(parts) > 1:
+        try:
+            return [float(p) for p in parts]
+        except ValueError:
+            pass
+    return [_element(token)]
+
+
 def parse_matrix(text: str) -> np.ndarray:
     """A matrix literal as a float32 array.
 
@@ -88,7 +100,10 @@ def parse_matrix(text: str) -> np.ndarray:
             tokens = []
         if any(t == "" for t in tokens):
             raise ValueError_(f'"{text}" has an empty element')
-        parsed.append([_element(t) for t in tokens])
+        row = []
+        for t in tokens:
+            row.extend(_elements(t))
+        parsed.append(row)
     if len(parsed) == 1 and ";" not in s:
         return np.array(parsed[0], dtype=np.float32)
     width = max((len(r) for r in parsed), default=0)

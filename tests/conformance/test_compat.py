@@ -152,3 +152,16 @@ def test_ikaros_3_class_file_forms():
 def test_an_option_that_is_not_listed_is_an_error(tmp_path):
     with pytest.raises(ikaros.ModelError, match='"saw" is not one of sine/square/triangle'):
         load("compat_ikc/compat_ikc_forms.ikg", type="saw")
+
+
+# --- 6. two rules of DESIGN §3 ------------------------------------------------------------
+def test_a_matrix_row_may_mix_commas_and_white_space():
+    net = load("compat_rules.ikg", strict=True)
+    same(net.output("Mixed.OUTPUT"), [[1, 2, 3], [4, 5, 6]])
+
+
+def test_a_qualified_attribute_reaches_a_module_at_any_depth():
+    net = load("compat_rules.ikg", strict=True)
+    assert net.parameter("A.B.Deep.p") == 11       # two groups down
+    assert net.parameter("A.C.Near.p") == 21       # the nearer group wins
+    assert net.parameter("A.D.Par.q") == 31        # a nearer plain attribute wins too
