@@ -180,22 +180,32 @@ class Network:
         return 1 + sum(b.size for b in self._buffers[inst][1].values())
 
     def _init_modules(self) -> None:
+        """Run every init in schedule order. When one fails, the modules already initialised
+        are stopped (in order) before the error is raised; the failing one is not."""
         self.clock.tick = -1
-        for inst in self.schedule:
+        for k, inst in enumerate(self.schedule):
             for copy in self._pre_tick[inst]:
                 copy()
             job = self.async_modules.get(inst)
             if job is not None:
                 job.take_inputs()
+            error = None
             try:
                 inst.module.init()
                 if job is not None:
                     job.publish_init()
             except Exception as e:
-                raise inst.node.error(f"init failed: {type(e).__name__}: {e}") from None
-            if self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
-                raise inst.node.error(f"While initializing module {inst.path}: "
-                                      f"{self.stop_reason[1]}")
+                error = inst.node.error(f"init failed: {type(e).__name__}: {e}")
+            if error is None and self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
+                error = inst.node.error(f"While initializing module {inst.path}: "
+                                        f"{self.stop_reason[1]}")
+            if error is not None:
+                self._stopped = True
+                for job in self.async_modules.values():
+                    job.finish()
+                self.plan.close()
+                self._stop_modules(self.schedule[:k])
+                raise error from None
 
     def _check_checksum(self) -> None:
         text = self.top.attrs.get("checksum")
@@ -262,14 +272,19 @@ class Network:
             for job in self.async_modules.values():
                 job.finish()
             self.plan.close()
-            for inst in self.schedule:
-                try:
-                    inst.module.stop()
-                except Exception as e:
-                    self.notify(EXCEPTION, inst.path, f"stop failed: {type(e).__name__}: {e}")
+            self._stop_modules(self.schedule)
         level, message = self.stop_reason or (TERMINATE, "closed")
         if level == FATAL_ERROR:
             raise RunError(message)
+
+    def _stop_modules(self, modules: list[ModuleInstance]) -> None:
+        """Call stop() of each module once; a stop() that fails is a fatal error (the run
+        ends with an error), and the other modules are still stopped."""
+        for inst in modules:
+            try:
+                inst.module.stop()
+            except Exception as e:
+                self.notify(FATAL_ERROR, inst.path, f"stop failed: {type(e).__name__}: {e}")
 
     def _check_running(self) -> None:
         if self._stopped:
@@ -330,13 +345,16 @@ class Network:
         return "\n".join(lines)
 
     def close(self) -> None:
-        """End the run: every module's stop() is called once."""
+        """End the run: every module's stop() is called once. Raises RunError when a
+        stop() fails."""
         if not self._stopped:
             self.stop_reason = self.stop_reason or (TERMINATE, "closed")
+            reported = self.stop_reason[0] == FATAL_ERROR
             try:
                 self._end()
             except RunError:
-                pass
+                if not reported:        # a stop() failed: the run ends with that error
+                    raise
 
     def __enter__(self):
         return self
