@@ -83,3 +83,29 @@ def test_options_may_stand_between_overrides_and_the_model():
     r = ikaros("gain=3", "-b", "-s", "21", "examples/hello.ikg", "-q")
     assert r.returncode == 0, r.stderr
     assert r.stdout == ""          # -q hides prints
+
+
+def test_compatibility_warnings_quiet_strict_and_lenient():
+    path = os.path.join(MODELS, "lenient.ikg")
+    r = ikaros("-b", "-s", "1", path)
+    assert r.returncode == 1
+    assert r.stderr.splitlines()[-1] == (
+        f'ikaros: error: {path}:5: <connection>: connection target "Gone.INPUT" not found: '
+        f'there is no "Gone" seen from group "L"')
+    r = ikaros("-b", "-s", "1", "--lenient", path)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "P: 2\n"
+    assert r.stderr.splitlines() == [
+        f'{path}:2: warning: <module name="C">: no space before attribute "description"',
+        f'{path}:3: warning: <module name="P">: parameter "interval" of P has an empty value; '
+        f'the default applies',
+        f'{path}:5: warning: <connection>: connection target "Gone.INPUT" not found: there is '
+        f'no "Gone" seen from group "L"; the connection is dropped (lenient)']
+    r = ikaros("-b", "-s", "1", "--lenient", "-q", path)
+    assert (r.returncode, r.stdout, r.stderr) == (0, "", "")
+    r = ikaros("-b", "-s", "1", "--strict", path)
+    assert r.returncode == 1
+    assert r.stderr.splitlines() == [
+        f'ikaros: error: {path}:2: <module name="C">: no space before attribute "description" '
+        f'(an error with --strict)']
+    assert ikaros("-b", "--strict", "--lenient", path).returncode == 2

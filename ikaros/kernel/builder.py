@@ -10,7 +10,7 @@ import re
 
 from ..errors import ModelError
 from ..language.diagnostics import Diagnostics, collecting, warn_at
-from ..language.node import Node
+from ..language.node import INCLUDE, Node
 from ..language.reader import read_file
 from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
                                split_selectors, value_text)
@@ -326,10 +326,20 @@ class Builder:
         else:
             src_sel = src_sel and ("selector", src_sel)
             dst_sel = dst_sel and ("selector", dst_sel)
-        src = self._sources.get((group, src_path))
-        if src is None:
-            src = self._sources[group, src_path] = self._source(group, src_path, node)
-        for dst in self._targets(group, dst_path, node):
+        try:
+            src = self._sources.get((group, src_path))
+            if src is None:
+                src = self._sources[group, src_path] = self._source(group, src_path, node)
+            targets = self._targets(group, dst_path, node)
+        except ModelError as e:
+            if not (self.diagnostics.lenient and getattr(e, "missing_endpoint", False)):
+                raise
+            # Ikaros 3 drops ("prunes") such a connection and runs the rest
+            self.diagnostics.warn(f"{e.reason}; the connection is dropped (lenient)",
+                                  node.file, node.line, node.label())
+            _remove(self.model, node)        # so that saving leaves it out
+            return
+        for dst in targets:
             link = Link(src, dst, delays, node, order, src_sel, dst_sel)
             src.outgoing.append(link)
             dst.incoming.append(link)
@@ -350,7 +360,7 @@ class Builder:
         if comp is None:
             comp = group.top() if comp_path == "" else find_component(group, comp_path)
         if comp is None:
-            raise node.error(f'connection {role} "{path}" not found: there is no '
+            raise _missing(node, f'connection {role} "{path}" not found: there is no '
                              f'"{comp_path}" seen from group "{group.path or group.name}"')
         return comp, port
 
@@ -367,7 +377,7 @@ class Builder:
         if isinstance(comp, ModuleInstance):
             inputs, outputs = self.buffers[comp]
             if port not in outputs:
-                raise node.error(f'connection source "{path}" not found: module '
+                raise _missing(node, f'connection source "{path}" not found: module '
                                  f'{comp.path} has no output named "{port}" '
                                  f'(outputs: {", ".join(outputs) or "none"})')
             return outputs[port]
@@ -375,7 +385,7 @@ class Builder:
         decls = [d for d in (comp.inputs if inside else comp.outputs) if d.get("name") == port]
         if not decls:
             kind = "input" if inside else "output"
-            raise node.error(f'connection source "{path}" not found: group '
+            raise _missing(node, f'connection source "{path}" not found: group '
                              f'"{comp.path or comp.name}" has no {kind} named "{port}"')
         decl = decls[0]
         alias = _alias(decl, "source", "sourcemodule")
@@ -390,7 +400,7 @@ class Builder:
         if isinstance(comp, ModuleInstance):
             inputs, outputs = self.buffers[comp]
             if port not in inputs:
-                raise node.error(f'connection target "{path}" not found: module '
+                raise _missing(node, f'connection target "{path}" not found: module '
                                  f'{comp.path} has no input named "{port}" '
                                  f'(inputs: {", ".join(inputs) or "none"})')
             return [inputs[port]]
@@ -398,7 +408,7 @@ class Builder:
         decls = [d for d in (comp.outputs if inside else comp.inputs) if d.get("name") == port]
         if not decls:
             kind = "output" if inside else "input"
-            raise node.error(f'connection target "{path}" not found: group '
+            raise _missing(node, f'connection target "{path}" not found: group '
                              f'"{comp.path or comp.name}" has no {kind} named "{port}"')
         targets = []
         for decl in decls:
@@ -613,6 +623,25 @@ class Builder:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)
         order = schedule(self.instances, edges)
         return Network(self, top, order, runs, edges)
+
+
+def _missing(node: Node, message: str) -> ModelError:
+    """The error of a connection whose source or target does not exist (such connections
+    are dropped when the load is lenient)."""
+    error = node.error(message)
+    error.missing_endpoint = True
+    return error
+
+
+def _remove(tree: Node, node: Node) -> bool:
+    """Take an element out of the tree read from the file (not out of included files)."""
+    for i, child in enumerate(tree.children):
+        if child is node:
+            del tree.children[i]
+            return True
+        if child.tag != INCLUDE and _remove(child, node):
+            return True
+    return False
 
 
 _EMPTY_IS_A_VALUE = ("string", "matrix", "array")

@@ -35,6 +35,7 @@ class Network:
                  edges: dict):
         self.filename = builder.filename
         self.model = builder.model             # the model tree as read (saved by save())
+        self.diagnostics = builder.diagnostics        # the load's settings and warnings
         self.warnings = builder.diagnostics.warnings   # load-time warnings (ModelWarning)
         self.top = top
         self.clock = builder.clock

@@ -39,6 +39,10 @@ class Diagnostics:
         self.strict, self.lenient, self.quiet = strict, lenient, quiet
         self.warnings: list[ModelWarning] = []
 
+    def fresh(self) -> "Diagnostics":
+        """New, empty diagnostics with the same settings (for building the model again)."""
+        return Diagnostics(self.strict, self.lenient, self.quiet)
+
     def warn(self, message: str, filename: str | None = None, line: int | None = None,
              element: str | None = None) -> None:
         if self.strict:

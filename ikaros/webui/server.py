@@ -573,7 +573,8 @@ class WebUI:
     def _build(self, filename: str, tree, overrides: dict | None):
         """Build a network (in a worker thread, not the kernel's)."""
         from ..kernel.builder import Builder
-        new = Builder(filename, overrides, model=tree).build()
+        new = Builder(filename, overrides, model=tree,
+                      diagnostics=self.net.diagnostics.fresh()).build()
         new.log_level = self.net.log_level
         return new
 

@@ -165,3 +165,35 @@ def test_a_qualified_attribute_reaches_a_module_at_any_depth():
     assert net.parameter("A.B.Deep.p") == 11       # two groups down
     assert net.parameter("A.C.Near.p") == 21       # the nearer group wins
     assert net.parameter("A.D.Par.q") == 31        # a nearer plain attribute wins too
+
+
+# --- 8. connections the original drops ----------------------------------------------------
+DROPPED = "err_dropped_connections.ikg"
+
+
+def test_a_connection_to_nothing_is_an_error_by_default():
+    with pytest.raises(ikaros.ModelError) as e:
+        load(DROPPED)
+    assert e.value.line == line_of(DROPPED, "MODULE") and "Nowhere.OUTPUT" in str(e.value)
+
+
+def test_lenient_drops_connections_to_nothing_with_a_warning():
+    net = load(DROPPED, lenient=True, quiet=True)
+    found = warnings_of(net, DROPPED)
+    assert sorted(found) == [line_of(DROPPED, m) for m in ("MODULE", "PORT", "TARGET")]
+    assert all(m[0].endswith("; the connection is dropped (lenient)") for m in found.values())
+    assert 'connection source "S.NOSUCH" not found' in found[line_of(DROPPED, "PORT")][0]
+    net.run(ticks=2)
+    same(net.output("K.OUTPUT"), [101])             # the one good connection, delay 1
+
+
+def test_a_leniently_loaded_file_is_saved_without_the_dropped_connections(tmp_path):
+    net = load(DROPPED, lenient=True, quiet=True)
+    for helper in ("Seq.py", "Sink.py"):
+        with open(model(helper)) as src, open(tmp_path / helper, "w") as dst:
+            dst.write(src.read())
+    net.save(str(tmp_path / "saved.ikg"))
+    again = ikaros.load(str(tmp_path / "saved.ikg"), strict=True)
+    assert again.warnings == []
+    again.run(ticks=2)
+    same(again.output("K.OUTPUT"), [101])
