@@ -17,7 +17,16 @@ class KalmanFilter(Module):
     and an empty B is zero, where the Ikaros 2 class used all-zero matrices, which keep the
     state at 0. OBSERVATION must have ``observation_size`` elements (the Ikaros 2 class read
     past it otherwise). If S cannot be inverted the correction is skipped for that tick and
-    a warning is given once."""
+    a warning is given once.
+
+    The Ikaros 3 interface adds four optional inputs; left unconnected, the filter works as
+    above (the Ikaros 2 interface). RESET: on a tick when its first element is above 0, the
+    state restarts (x = 0, P = I) before that tick. GATED: on a tick when its first element
+    is 0 or below, the filter does nothing (state and outputs are held). INPUT_VALID: on a
+    tick when its first element is 0 or below, the control input is left out of the
+    prediction. OBSERVATION_VALID (one element for all, or observation_size elements): only
+    the observation elements above 0 correct the state; the others have INNOVATION 0 and a
+    KALMAN_GAIN column of 0, and with none valid the tick is a prediction only."""
 
     A = Parameter(None, "the state transition matrix, state_size × state_size; empty: the "
                   "identity", type="matrix")
@@ -33,6 +42,13 @@ class KalmanFilter(Module):
 
     INPUT = Input("the control input u", optional=True)
     OBSERVATION = Input("the observation z, of observation_size elements")
+    GATED = Input("Ikaros 3: a first element of 0 or below holds the filter for the tick",
+                  optional=True)
+    INPUT_VALID = Input("Ikaros 3: a first element of 0 or below leaves INPUT out",
+                        optional=True)
+    OBSERVATION_VALID = Input("Ikaros 3: which observation elements are used (above 0)",
+                              optional=True)
+    RESET = Input("Ikaros 3: a first element above 0 restarts the state", optional=True)
 
     STATE = Output("the state estimate x", size_param="state_size")
     INNOVATION = Output("the observation minus the predicted observation, z − H·x'",
@@ -51,6 +67,10 @@ class KalmanFilter(Module):
         self._matrices()            # checks the shapes now, so a bad model fails at load
         if self.INPUT is not None and self.B.size == 0:
             self.warning("INPUT is connected but B is empty, so the input has no effect")
+        valid = self.OBSERVATION_VALID
+        if valid is not None and valid.size not in (1, m):
+            raise ValueError(f"OBSERVATION_VALID has {valid.size} elements: it must have 1 "
+                             f"or observation_size ({m})")
         self._x = np.zeros(n)
         self._P = np.eye(n)
         self._warned = False
@@ -74,33 +94,47 @@ class KalmanFilter(Module):
                 self._matrix("B", n, u, np.zeros((n, u))) if u else None,
                 self._matrix("H", m, n, np.eye(m, n)))
 
+    @staticmethod
+    def _on(x) -> bool:
+        """Whether a gate-like input's first element is above 0."""
+        return bool(x.size and x.flat[0] > 0)
+
     def tick(self):
+        if self.RESET is not None and self._on(self.RESET):
+            self._x = np.zeros(self.state_size)
+            self._P = np.eye(self.state_size)
+        if self.GATED is not None and not self._on(self.GATED):
+            return
         n, m = self.state_size, self.observation_size
         A, B, H = self._matrices()
         Q = self.process_noise * np.eye(n)
-        R = self.observation_noise * np.eye(m)
 
         x = A @ self._x
-        if B is not None:
+        if B is not None and (self.INPUT_VALID is None or self._on(self.INPUT_VALID)):
             x += B @ self.INPUT.reshape(-1).astype(np.float64)
         P = A @ self._P @ A.T + Q
-        y = self.OBSERVATION.reshape(-1).astype(np.float64) - H @ x
-        S = H @ P @ H.T + R
-        try:
-            # K = P Hᵀ S⁻¹, computed as the solution of Sᵀ Kᵀ = H Pᵀ
-            K = np.linalg.solve(S.T, H @ P.T).T
-            if not np.all(np.isfinite(K)):
-                raise np.linalg.LinAlgError("non-finite gain")
-        except np.linalg.LinAlgError:
-            if not self._warned:
-                self.warning("the innovation covariance S is singular; the observation is "
-                             "not used on such ticks")
-                self._warned = True
-            K = np.zeros((n, m))
-        else:
-            x = x + K @ y
-            P = (np.eye(n) - K @ H) @ P
-            P = 0.5 * (P + P.T)
+        used = np.ones(m, dtype=bool) if self.OBSERVATION_VALID is None else \
+            np.broadcast_to(self.OBSERVATION_VALID.reshape(-1) > 0, (m,))
+        y = np.where(used, self.OBSERVATION.reshape(-1).astype(np.float64) - H @ x, 0.0)
+        K = np.zeros((n, m))
+        if used.any():
+            Hu = H[used]
+            S = Hu @ P @ Hu.T + self.observation_noise * np.eye(int(used.sum()))
+            try:
+                # K = P Hᵀ S⁻¹, computed as the solution of Sᵀ Kᵀ = H Pᵀ
+                Ku = np.linalg.solve(S.T, Hu @ P.T).T
+                if not np.all(np.isfinite(Ku)):
+                    raise np.linalg.LinAlgError("non-finite gain")
+            except np.linalg.LinAlgError:
+                if not self._warned:
+                    self.warning("the innovation covariance S is singular; the observation "
+                                 "is not used on such ticks")
+                    self._warned = True
+            else:
+                K[:, used] = Ku
+                x = x + Ku @ y[used]
+                P = (np.eye(n) - Ku @ Hu) @ P
+                P = 0.5 * (P + P.T)
         self._x, self._P = x, P
         self.STATE[...] = x.reshape(self.STATE.shape)
         self.INNOVATION[...] = y.reshape(self.INNOVATION.shape)

@@ -17,7 +17,16 @@ class PIDController(Module):
     (anti-windup). OUTPUT is the clipped value smoothed with ``Fc``. Gains are per tick,
     not per second. Unlike the Ikaros 2 class, whose derivative term was the change of the
     filtered input with a sign that pushed the output the wrong way and left ``Fd`` unused,
-    the derivative here is that of the D-filtered error."""
+    the derivative here is that of the D-filtered error.
+
+    The Ikaros 3 interface adds three optional inputs (each of one element, for all
+    controllers, or of the size of INPUT); left unconnected, the controller works as above
+    (the Ikaros 2 interface). RESET: on a tick when its first element is above 0, every
+    controller starts afresh (filters, integral and derivative memory cleared) before that
+    tick is computed. INPUT_VALID: an element whose value is 0 or below is held for the tick
+    (all its outputs and its integral keep their values), for a measurement that is missing.
+    GATED: an element whose value is 0 or below is switched off: its OUTPUT and every signal
+    and memory of it are 0, so it starts afresh when the gate opens again."""
 
     Kb = Parameter(0.0, "the bias: a constant added to the control value")
     Kp = Parameter(0.1, "the proportional gain")
@@ -36,6 +45,12 @@ class PIDController(Module):
 
     INPUT = Input("the measured values, one controller per element")
     SETPOINT = Input("the desired values: the size of INPUT, or one element for all")
+    GATED = Input("Ikaros 3: where 0 or below, the controller is off (output 0, state "
+                  "cleared)", optional=True)
+    INPUT_VALID = Input("Ikaros 3: where 0 or below, the measurement is missing and the "
+                        "controller holds", optional=True)
+    RESET = Input("Ikaros 3: a first element above 0 clears every controller's state",
+                  optional=True)
 
     OUTPUT = Output("the control output", size_set="INPUT,SETPOINT")
     DELTA = Output("the filtered set point minus the filtered input", size_set="INPUT,SETPOINT")
@@ -62,7 +77,24 @@ class PIDController(Module):
         self._control = np.zeros(shape, dtype=np.float32)
         self._work = np.zeros(shape, dtype=np.float32)
         self._clipped = np.zeros(shape, dtype=bool)
-        self._first = True
+        self._fresh = np.ones(shape, dtype=bool)    # no derivative memory yet
+        self._gate = self._mask("GATED")
+        self._valid = self._mask("INPUT_VALID")
+        self._state = (self.OUTPUT, self.DELTA, self.FILTERED_SETPOINT, self.FILTERED_INPUT,
+                       self.FILTERED_ERROR_P, self.FILTERED_ERROR_I, self.FILTERED_ERROR_D,
+                       self.INTEGRAL, self._last_d)
+
+    def _mask(self, name):
+        """A function giving the elements where the input ``name`` is above 0 (None when
+        the input is not connected)."""
+        x = getattr(self, name)
+        if x is None:
+            return None
+        if x.size not in (1, self.OUTPUT.size):
+            raise ValueError(f"{name} has {x.size} elements: it must have 1 or as many as "
+                             f"INPUT ({self.OUTPUT.size})")
+        shape = self.OUTPUT.shape
+        return lambda: np.broadcast_to(x.reshape(shape if x.size > 1 else ()) > 0, shape)
 
     @staticmethod
     def _smooth(state, x, f):
@@ -70,16 +102,34 @@ class PIDController(Module):
         state *= f
         state += (1.0 - f) * x
 
+    def _clear(self, where):
+        for a in self._state:
+            a[where] = 0
+        self._fresh[where] = True
+
     def tick(self):
+        if self.RESET is not None and self.RESET.size and self.RESET.flat[0] > 0:
+            self._clear(Ellipsis)
+        held = None
+        if self._valid is not None:
+            held = ~self._valid()
+            kept = [a[held] for a in self._state] if held.any() else None
+        self._compute()
+        if held is not None and kept is not None:
+            for a, k in zip(self._state, kept):
+                a[held] = k
+        if self._gate is not None:
+            self._clear(~self._gate())
+
+    def _compute(self):
         self._smooth(self.FILTERED_SETPOINT, self._setpoint, self.Fs)
         self._smooth(self.FILTERED_INPUT, self._input, self.Fm)
         np.subtract(self.FILTERED_SETPOINT, self.FILTERED_INPUT, out=self.DELTA)
         self._smooth(self.FILTERED_ERROR_P, self.DELTA, self.Fp)
         self._smooth(self.FILTERED_ERROR_I, self.DELTA, self.Fi)
         self._smooth(self.FILTERED_ERROR_D, self.DELTA, self.Fd)
-        if self._first:
-            self._last_d[...] = self.FILTERED_ERROR_D
-            self._first = False
+        np.copyto(self._last_d, self.FILTERED_ERROR_D, where=self._fresh)
+        self._fresh[...] = False
         self.INTEGRAL += self.FILTERED_ERROR_I
 
         c = self._control

@@ -13,7 +13,9 @@ class FunctionGenerator(Module):
     ticks, otherwise 0; it ignores frequency and shift). The phase within a period is taken
     with floor, so a negative t + shift continues the same periodic wave (Ikaros 2 truncated
     towards zero, which mirrored it). Every element of the output has the value (Ikaros 2
-    wrote only the first); the output is 0 in init. A ``basetime`` below 1 gives f = 0 and a
+    wrote only the first); the output is 0 in init. ``type`` may be given by its label
+    (``type="triangle"``, as Ikaros 3 files do) or by its index (``type="1"``, the Ikaros 2
+    list value). A ``basetime`` below 1 gives f = 0 and a
     warning. An inverted ramp comes from offset = 1 and amplitude = -1."""
 
     size = Parameter(1, "number of elements of the output (all get the same value)",

@@ -8,14 +8,18 @@ class Print(Module):
     """Prints the values of its input through the kernel's log (which shows them as
     ``NAME: values``) on every tick that is a multiple of ``interval``. Each value is
     formatted with ``format`` (printf style); the values of a row are separated by spaces and
-    rows by ``;``; higher ranks are printed as their flattened rows."""
+    rows by ``;``; higher ranks are printed as their flattened rows.
+
+    INPUT is optional, as in Ikaros 3 (in Ikaros 2 it had to be connected): a Print whose
+    INPUT is not connected prints nothing."""
 
     format = Parameter("%.4g", "printf-style format of each value")
     interval = Parameter(1, "ticks between printouts", type="int")
-    INPUT = Input("the values to print")
+    INPUT = Input("the values to print (optional: unconnected, nothing is printed)",
+                  optional=True)
 
     def tick(self):
-        if self.clock.tick % max(1, self.interval) != 0:
+        if self.INPUT is None or self.clock.tick % max(1, self.interval) != 0:
             return
         data = self.INPUT
         rows = data.reshape(-1, data.shape[-1]) if data.ndim >= 2 else data.reshape(1, -1)

@@ -132,3 +132,73 @@ def test_bad_matrix_shape_is_a_build_error(tmp_path):
         load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
                        '<module class="KalmanFilter" name="K" state_size="2" A="1 2 3"/>\n'
                        '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
+
+
+# --- the Ikaros 3 inputs: GATED, INPUT_VALID, OBSERVATION_VALID, RESET -------------------------
+# Scalar filter, A = H = 1, Q = R = 1, observation 3 every tick: a normal first tick gives
+# K = 2/3, x = 2 (P = 2/3), a normal second tick K = 5/8, x = 2.625.
+
+def run_v3(tmp_path, columns, rows, attrs="", links=()):
+    """Steps through the rows; returns (STATE, INNOVATION, KALMAN_GAIN) after each tick."""
+    data_file(tmp_path, columns, rows)
+    body = ('<module class="InputFile" name="D" filename="d.txt"/>\n'
+            f'<module class="KalmanFilter" name="K" {attrs}/>\n'
+            '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>\n' +
+            "".join(f'<connection source="D.{a}" target="K.{b}" delay="0"/>\n'
+                    for a, b in links))
+    net = load(tmp_path, body)
+    out = []
+    try:
+        for _ in rows:
+            net.step()
+            out.append(tuple(net.output(f"K.{n}").astype(float).tolist()
+                             for n in ("STATE", "INNOVATION", "KALMAN_GAIN")))
+    finally:
+        net.close()
+    return out
+
+
+def test_v3_gated_holds_the_filter(tmp_path):
+    out = run_v3(tmp_path, [("Z", 1), ("G", 1)], [[3, 1], [3, 0], [3, 1]],
+                 links=[("G", "GATED")])
+    assert np.allclose(out[0][0], [2]) and np.allclose(out[1][0], [2])
+    assert np.allclose(out[1][2], [[2 / 3]])              # held from tick 0
+    assert np.allclose(out[2][0], [2.625]) and np.allclose(out[2][2], [[5 / 8]])
+
+
+def test_v3_reset_restarts_the_state(tmp_path):
+    out = run_v3(tmp_path, [("Z", 1), ("R", 1)], [[3, 0], [3, 1], [3, 0]],
+                 links=[("R", "RESET")])
+    assert np.allclose(out[1][0], [2]) and np.allclose(out[1][2], [[2 / 3]])
+    assert np.allclose(out[1][1], [3])
+    assert np.allclose(out[2][0], [2.625])
+
+
+def test_v3_observation_valid_zero_is_a_prediction_only(tmp_path):
+    out = run_v3(tmp_path, [("Z", 1), ("V", 1)], [[3, 0], [3, 1]],
+                 links=[("V", "OBSERVATION_VALID")])
+    assert out[0] == ([0.0], [0.0], [[0.0]])
+    # P = 2 after the prediction-only tick: P' = 3, S = 4, K = 3/4, x = 3/4 * 3
+    assert np.allclose(out[1][2], [[0.75]]) and np.allclose(out[1][0], [2.25])
+
+
+def test_v3_observation_valid_per_element(tmp_path):
+    out = run_v3(tmp_path, [("Z", 2), ("V", 2)], [[3, 5, 1, 0]],
+                 attrs='observation_size="2" H="1; 1"', links=[("V", "OBSERVATION_VALID")])
+    state, innovation, gain = out[0]
+    assert np.allclose(state, [2]) and np.allclose(innovation, [3, 0])
+    assert np.allclose(gain, [[2 / 3, 0]])
+
+
+def test_v3_input_valid_leaves_the_control_input_out(tmp_path):
+    out = run_v3(tmp_path, [("Z", 1), ("U", 1), ("I", 1)], [[3, 1, 0], [3, 1, 1]],
+                 attrs='B="1"', links=[("U", "INPUT"), ("I", "INPUT_VALID")])
+    assert np.allclose(out[0][0], [2])                    # as without INPUT
+    # x' = 2 + 1 = 3, P' = 2/3 + 1, S = 8/3, K = 5/8, y = 3 - 3 = 0
+    assert np.allclose(out[1][0], [3]) and np.allclose(out[1][2], [[5 / 8]])
+
+
+def test_v3_observation_valid_of_wrong_size_is_an_error(tmp_path):
+    with pytest.raises(ModelError, match="OBSERVATION_VALID has 3 elements"):
+        run_v3(tmp_path, [("Z", 1), ("V", 3)], [[3, 1, 1, 1]],
+               links=[("V", "OBSERVATION_VALID")])

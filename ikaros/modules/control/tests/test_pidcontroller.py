@@ -136,3 +136,58 @@ def test_mismatched_sizes_are_a_build_error(tmp_path):
     write_inputs(tmp_path, ROWS)
     with pytest.raises(ModelError, match="INPUT has 2 elements and SETPOINT 3"):
         load(tmp_path, body("", setpoint="1 2 3"))
+
+
+# --- the Ikaros 3 inputs: GATED, INPUT_VALID, RESET ------------------------------------------
+# Setpoint 1 and measurement 0 in both elements, Kp=0.5, Ki=0.25: the error is 1 every tick,
+# so an element's output after its k-th counted tick is 0.5 + 0.25 * k.
+
+def run_v3(tmp_path, columns):
+    """Runs the controller with the given Ikaros 3 inputs read from a file, one row per tick
+    ({input name: (rows of values)}); returns OUTPUT and INTEGRAL after each tick."""
+    names = list(columns)
+    rows = zip(*(columns[n] for n in names))
+    header = " ".join(f"{n}/{len(columns[n][0])}" for n in names)
+    (tmp_path / "v3.txt").write_text(
+        header + "\n" + "\n".join(" ".join(str(v) for group in r for v in group)
+                                  for r in rows) + "\n")
+    body = ('<module class="Constant" name="S" data="1 1"/>\n'
+            '<module class="Constant" name="X" data="0 0"/>\n'
+            '<module class="InputFile" name="F" filename="v3.txt"/>\n'
+            '<module class="PIDController" name="P" Kp="0.5" Ki="0.25"/>\n'
+            '<connection source="S.OUTPUT" target="P.SETPOINT" delay="0"/>\n'
+            '<connection source="X.OUTPUT" target="P.INPUT" delay="0"/>\n' +
+            "".join(f'<connection source="F.{n}" target="P.{n}" delay="0"/>\n' for n in names))
+    net = load(tmp_path, body)
+    out = []
+    try:
+        for _ in range(len(columns[names[0]])):
+            net.step()
+            out.append((net.output("P.OUTPUT").tolist(), net.output("P.INTEGRAL").tolist()))
+    finally:
+        net.close()
+    return out
+
+
+def test_v3_reset_clears_the_integral(tmp_path):
+    out = run_v3(tmp_path, {"RESET": [[0], [0], [1], [0]]})
+    assert out == [([0.75, 0.75], [1, 1]), ([1.0, 1.0], [2, 2]),
+                   ([0.75, 0.75], [1, 1]), ([1.0, 1.0], [2, 2])]
+
+
+def test_v3_input_valid_holds_an_element(tmp_path):
+    out = run_v3(tmp_path, {"INPUT_VALID": [[1, 1], [1, 0], [1, 0], [1, 1]]})
+    assert out == [([0.75, 0.75], [1, 1]), ([1.0, 0.75], [2, 1]),
+                   ([1.25, 0.75], [3, 1]), ([1.5, 1.0], [4, 2])]
+
+
+def test_v3_gated_switches_an_element_off(tmp_path):
+    out = run_v3(tmp_path, {"GATED": [[1, 0], [1, 0], [1, 1], [0, 1]]})
+    assert out == [([0.75, 0.0], [1, 0]), ([1.0, 0.0], [2, 0]),
+                   ([1.25, 0.75], [3, 1]), ([0.0, 1.0], [0, 2])]
+
+
+def test_v3_input_of_wrong_size_is_an_error(tmp_path):
+    with pytest.raises(ModelError, match="GATED has 3 elements"):
+        run_v3(tmp_path, {"GATED": [[1, 1, 1]]})
+

@@ -40,3 +40,18 @@ def test_interval_format_and_rows(tmp_path):
         assert messages(net, "M") == [(t, "1 2; 3 4") for t in range(5)]
     finally:
         net.close()
+
+
+def test_unconnected_input_is_allowed_and_prints_nothing(tmp_path):
+    """Ikaros 3 interface: INPUT is optional."""
+    net = load(tmp_path,
+               '<module class="Print" name="P"/>\n'
+               '<module class="Constant" name="C" data="7"/>\n'
+               '<module class="Print" name="Q"/>\n'
+               '<connection source="C.OUTPUT" target="Q.INPUT" delay="0"/>')
+    try:
+        net.run(ticks=2)
+        assert messages(net, "P") == []
+        assert messages(net, "Q") == [(0, "7"), (1, "7")]
+    finally:
+        net.close()
