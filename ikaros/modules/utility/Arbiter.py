@@ -1,7 +1,7 @@
 """Arbiter: selects between, or blends, several inputs."""
 import numpy as np
 
-from ikaros.module import Module, Output, Parameter
+from ikaros.module import Input, Module, Output, Parameter
 
 
 class Arbiter(Module):
@@ -20,7 +20,14 @@ class Arbiter(Module):
     is the sum of the absolute values of SMOOTHED, which without smoothing is the winner's
     amplitude. With ``by_row`` every row of the inputs is arbitrated on its own, as if there
     were one arbiter per row: the state outputs get one row per input row and VALUE_k gives
-    one value per row (a single value is used for every row)."""
+    one value per row (a single value is used for every row).
+
+    Two interfaces: Ikaros 2 connects the inputs to INPUT_1 ... INPUT_n (n is
+    ``no_of_inputs``, and every one must be connected), Ikaros 3 connects them all to the
+    one stacked INPUT, where each connection is one input, in connection order (n is the
+    number of connections and ``no_of_inputs`` is not used). A model uses one or the other.
+    With INPUT the amplitudes are the norms (the VALUE_k inputs belong to the Ikaros 2
+    interface)."""
 
     no_of_inputs = Parameter(2, "the number of inputs (INPUT_1, INPUT_2, ...)", type="int")
     metric = Parameter("1", "the norm used as amplitude when the VALUE inputs are not "
@@ -37,6 +44,8 @@ class Arbiter(Module):
                       "1 means no smoothing")
     debug = Parameter(False, "print the state on every tick")
 
+    INPUT = Input("Ikaros 3: all the inputs, one connection each, stacked", optional=True,
+                  stack=True)
     AMPLITUDES = Output("the amplitude of each input (its value or its norm)")
     ARBITRATION = Output("the amplitudes after arbitration")
     SMOOTHED = Output("the arbitration state smoothed over time")
@@ -48,16 +57,37 @@ class Arbiter(Module):
         if self.no_of_inputs < 1:
             raise ValueError(f"no_of_inputs must be at least 1, not {self.no_of_inputs}")
         for k in range(1, self.no_of_inputs + 1):
-            self.add_input(f"INPUT_{k}", description=f"input number {k}")
+            self.add_input(f"INPUT_{k}", optional=True,
+                           description=f"Ikaros 2: input number {k} (required unless "
+                           f"INPUT is used)")
             self.add_input(f"VALUE_{k}", optional=True,
                            description=f"the value of INPUT_{k}; without it the input's norm "
                            f"is used")
 
+    def _numbered(self, name):
+        return [f"{name}_{k}" for k in range(1, self.no_of_inputs + 1)]
+
     def set_sizes(self):
-        n = self.no_of_inputs
-        shapes = [self.input_shape(f"INPUT_{k}") for k in range(1, n + 1)]
-        if any(s is None for s in shapes):
-            return
+        if self.connected("INPUT"):
+            both = [p for p in self._numbered("INPUT") + self._numbered("VALUE")
+                    if self.connected(p)]
+            if both:
+                raise ValueError(f"connect the inputs either to INPUT (Ikaros 3) or to "
+                                 f"INPUT_1 ... (Ikaros 2), not both: {', '.join(both)} "
+                                 f"is connected")
+            stacked = self.input_shape("INPUT")
+            if stacked is None:
+                return
+            n, shapes = stacked[0], [stacked[1:]] * stacked[0]
+        else:
+            missing = [p for p in self._numbered("INPUT") if not self.connected(p)]
+            if missing:
+                raise ValueError(f'input "{missing[0]}" is not connected (connect '
+                                 f'INPUT_1 ... INPUT_{self.no_of_inputs}, or use INPUT)')
+            n = self.no_of_inputs
+            shapes = [self.input_shape(p) for p in self._numbered("INPUT")]
+            if any(s is None for s in shapes):
+                return
         sizes = [int(np.prod(s)) if s else 0 for s in shapes]
         if len(set(sizes)) != 1:
             raise ValueError(f"the inputs must have the same size; their shapes are {shapes}")
@@ -69,12 +99,17 @@ class Arbiter(Module):
         self.set_output_shape("VALUE", (rows,) if rows is not None else (1,))
 
     def init(self):
-        n = self.no_of_inputs
+        self._n = n = self.AMPLITUDES.shape[-1]
         self._rows = self.VALUE.size
         rows = self._rows
         cols = self.OUTPUT.size // rows
-        self._inputs = [getattr(self, f"INPUT_{k}").reshape(rows, cols) for k in range(1, n + 1)]
-        values = [getattr(self, f"VALUE_{k}") for k in range(1, n + 1)]
+        if self.INPUT is not None:
+            self._inputs = [self.INPUT[k].reshape(rows, cols) for k in range(n)]
+            values = [None] * n
+        else:
+            self._inputs = [getattr(self, p).reshape(rows, cols)
+                            for p in self._numbered("INPUT")]
+            values = [getattr(self, p) for p in self._numbered("VALUE")]
         connected = sum(v is not None for v in values)
         if connected not in (0, n):
             self.fatal_error("connect all VALUE inputs or none of them")
@@ -101,7 +136,7 @@ class Arbiter(Module):
         self._arb[r, index] = self._amp[r, index]
 
     def tick(self):
-        n, rows = self.no_of_inputs, self._rows
+        n, rows = self._n, self._rows
         for k in range(n):
             self._x[k] = self._inputs[k]
         # amplitudes

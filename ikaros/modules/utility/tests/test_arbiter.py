@@ -171,3 +171,62 @@ def test_some_values_connected_is_an_error(tmp_path):
 def test_different_sizes_are_an_error(tmp_path):
     with pytest.raises(ikaros.ModelError, match="same size"):
         load(tmp_path, _body(["1 2", "1 2 3"]))
+
+
+# --- the Ikaros 3 interface: one stacked INPUT ------------------------------------------------
+
+def _stacked_body(inputs, attrs=""):
+    """Constants I1.. all connected to Arbiter A's INPUT, in order."""
+    lines = [f'<module class="Arbiter" name="A" {attrs}/>']
+    for k, data in enumerate(inputs, 1):
+        lines.append(f'<module class="Constant" name="I{k}" data="{data}"/>')
+        lines.append(f'<connection source="I{k}.OUTPUT" target="A.INPUT" delay="0"/>')
+    return "\n".join(lines)
+
+
+def test_v3_stacked_input_gives_the_same_as_numbered_inputs(tmp_path):
+    inputs = ["1 -2", "0.5 0.5", "-3 0.5"]
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    v2 = load(tmp_path / "a", _body(inputs))
+    v3 = load(tmp_path / "b", _stacked_body(inputs))    # no_of_inputs is not needed
+    try:
+        v2.step()
+        v3.step()
+        a, b = _outputs(v2), _outputs(v3)
+        assert np.array_equal(b["AMPLITUDES"], [3, 1, 3.5])
+        assert np.array_equal(b["ARBITRATION"], [0, 0, 3.5])
+        assert np.array_equal(b["OUTPUT"], [-3, 0.5])
+        for name in a:
+            assert np.array_equal(a[name], b[name]), name
+    finally:
+        v2.close()
+        v3.close()
+
+
+def test_v3_stacked_input_softmax_by_row(tmp_path):
+    net = load(tmp_path, _stacked_body(["1 0; 0 2", "0 3; 1 0"],
+                                       'arbitration="softmax" softmax_exponent="1" '
+                                       'by_row="yes"'))
+    try:
+        net.step()
+        o = _outputs(net)
+        assert np.array_equal(o["AMPLITUDES"], [[1, 3], [2, 1]])
+        assert np.allclose(o["NORMALIZED"], [[0.25, 0.75], [2 / 3, 1 / 3]])
+        assert np.allclose(o["OUTPUT"], [[0.25, 2.25], [1 / 3, 4 / 3]])
+        assert np.array_equal(o["VALUE"], [4, 3])
+    finally:
+        net.close()
+
+
+def test_both_interfaces_at_once_is_an_error(tmp_path):
+    body = _stacked_body(["1", "2"]) + \
+        '\n<connection source="I1.OUTPUT" target="A.INPUT_1" delay="0"/>'
+    with pytest.raises(ikaros.ModelError, match="not both: INPUT_1 is connected"):
+        load(tmp_path, body)
+
+
+def test_v2_numbered_input_left_unconnected_is_an_error(tmp_path):
+    body = _body(["1", "2"]).replace('target="A.INPUT_2"', 'target="A.VALUE_2"')
+    with pytest.raises(ikaros.ModelError, match='input "INPUT_2" is not connected'):
+        load(tmp_path, body)
