@@ -44,7 +44,13 @@ class PlanarArm(Module):
     tick. DISTANCE is from the hand to the target of the same tick and CONTACT is 1 when it
     is below ``target_size``. (Ikaros 2 reported the distance to the previous tick's
     target, and with a random target let the noise accumulate as a random walk; here the
-    noise does not accumulate.)"""
+    noise does not accumulate.)
+
+    Two interfaces: Ikaros 2 gives the angles on DESIRED_ANGLES, Ikaros 3 on JOINT_COMMAND
+    (the same meaning; a model connects one of them). The Ikaros 3 GRIPPER input, when
+    connected, decides grasps: the hand grasps the target on a tick when GRIPPER's first
+    element is above 0 (closed) and the hand touches the target (CONTACT); ``grasp_limit``
+    is then not used."""
 
     target_behavior = Parameter("random", "how the target moves",
                                 options="random/linear/circular/lisajous/square")
@@ -60,7 +66,12 @@ class PlanarArm(Module):
     seed = Parameter(None, "seed of the random generator; unset (or 0) gives a different "
                      "run every time", type="int")
 
-    DESIRED_ANGLES = Input("the three joint angles the arm moves towards", optional=True)
+    DESIRED_ANGLES = Input("Ikaros 2: the three joint angles the arm moves towards",
+                           optional=True)
+    JOINT_COMMAND = Input("Ikaros 3: the three joint angles the arm moves towards",
+                          optional=True)
+    GRIPPER = Input("Ikaros 3: above 0 closes the gripper, which grasps a touched target",
+                    optional=True)
 
     TARGET = Output("the target position (x, y)", size="2")
     JOINTS = Output("positions (x, y) of the base, the two inner joints and the hand, "
@@ -74,9 +85,13 @@ class PlanarArm(Module):
     def init(self):
         if self.segment_length.size != 3:
             raise ValueError("segment_length needs three values")
-        if self.DESIRED_ANGLES is not None and self.DESIRED_ANGLES.size < 3:
-            raise ValueError(f"DESIRED_ANGLES has {self.DESIRED_ANGLES.size} elements; it "
-                             f"needs 3")
+        if self.DESIRED_ANGLES is not None and self.JOINT_COMMAND is not None:
+            raise ValueError("connect DESIRED_ANGLES (Ikaros 2) or JOINT_COMMAND (Ikaros 3), "
+                             "not both")
+        self._command, name = (self.JOINT_COMMAND, "JOINT_COMMAND") \
+            if self.JOINT_COMMAND is not None else (self.DESIRED_ANGLES, "DESIRED_ANGLES")
+        if self._command is not None and self._command.size < 3:
+            raise ValueError(f"{name} has {self._command.size} elements; it needs 3")
         self._rng = np.random.default_rng(self.seed or None)
         self._angles = np.full(3, 0.4)
         self._t = 0
@@ -101,9 +116,14 @@ class PlanarArm(Module):
         self._since_new = 0
 
     def tick(self):
-        if self.DESIRED_ANGLES is not None:
+        if self._command is not None:
             self._move_arm()
-        grasped = float(np.hypot(*(self.HAND_POSITION - self.TARGET))) < self.grasp_limit
+        distance = float(np.hypot(*(self.HAND_POSITION - self.TARGET)))
+        if self.GRIPPER is not None:
+            grasped = bool(self.GRIPPER.size and self.GRIPPER.flat[0] > 0) and \
+                distance < self.target_size
+        else:
+            grasped = distance < self.grasp_limit
         self._since_new += 1
         if self.target_behavior == "random":
             if grasped or self._since_new >= _RANDOM_INTERVAL:
@@ -115,7 +135,7 @@ class PlanarArm(Module):
         self._write_target()
 
     def _move_arm(self):
-        desired = np.asarray(self.DESIRED_ANGLES, np.float64).reshape(-1)[:3]
+        desired = np.asarray(self._command, np.float64).reshape(-1)[:3]
         movement = desired - self._angles
         largest = np.max(np.abs(movement))
         if largest > self.speed:

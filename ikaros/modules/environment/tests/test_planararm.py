@@ -159,3 +159,51 @@ def test_target_noise_does_not_accumulate(tmp_path):
         assert np.abs(targets - targets.mean(axis=0)).max() < 0.05
     finally:
         net.close()
+
+
+# --- the Ikaros 3 interface: JOINT_COMMAND and GRIPPER -----------------------------------------
+
+def test_v3_joint_command_moves_the_arm_as_desired_angles(tmp_path):
+    (tmp_path / "v3").mkdir()
+    v2 = arm(tmp_path, "0.2 0.5 1", speed=0.3, seed=1)
+    v3 = load(tmp_path / "v3", '<module class="Constant" name="D" data="0.2 0.5 1"/>'
+                               '<module class="PlanarArm" name="A" speed="0.3" seed="1"/>'
+                               '<connection source="D.OUTPUT" target="A.JOINT_COMMAND" '
+                               'delay="0"/>')
+    try:
+        for _ in range(3):
+            v2.step()
+            v3.step()
+            assert np.array_equal(v2.output("A.ANGLES"), v3.output("A.ANGLES"))
+        assert np.allclose(v3.output("A.ANGLES"), [0.2, 0.5, 1.0])
+        assert np.allclose(v3.output("A.JOINTS"), joints(0.2, 0.5, 1.0), atol=1e-6)
+    finally:
+        v2.close()
+        v3.close()
+
+
+def test_v3_both_angle_inputs_is_an_error(tmp_path):
+    import ikaros
+    with pytest.raises(ikaros.ModelError, match="not both"):
+        load(tmp_path, '<module class="Constant" name="D" data="0 0 0"/>'
+                       '<module class="PlanarArm" name="A"/>'
+                       '<connection source="D.OUTPUT" target="A.DESIRED_ANGLES"/>'
+                       '<connection source="D.OUTPUT" target="A.JOINT_COMMAND"/>')
+
+
+def test_v3_gripper_grasps_only_when_closed(tmp_path):
+    """target_size 2 keeps the hand in contact, so the random target is redrawn exactly on
+    the ticks the gripper is closed."""
+    (tmp_path / "g.txt").write_text("G/1\n0\n0\n1\n0\n1\n")
+    net = load(tmp_path, '<module class="InputFile" name="F" filename="g.txt"/>'
+                         '<module class="PlanarArm" name="A" seed="5" target_size="2"/>'
+                         '<connection source="F.G" target="A.GRIPPER" delay="0"/>')
+    try:
+        targets = [net.output("A.TARGET").copy()]
+        for _ in range(5):
+            net.step()
+            targets.append(net.output("A.TARGET").copy())
+        changed = [not np.array_equal(a, b) for a, b in zip(targets, targets[1:])]
+        assert changed == [False, False, True, False, True]
+    finally:
+        net.close()
