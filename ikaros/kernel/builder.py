@@ -205,6 +205,10 @@ class Builder:
         desc = cls.description
         for spec in desc.parameters:
             inst.values[spec.name], inst.has_value[spec.name] = self._parameter(inst, spec)
+        for key in ("shape", "size"):
+            if key in inst.attrs and key not in inst.values:
+                inst.shape_attribute = inst.attrs[key]
+                break
         try:
             module = cls()
         except Exception as e:

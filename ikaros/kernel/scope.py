@@ -16,6 +16,7 @@ MAX_DEPTH = 64
 _VAR = re.compile(r"@([A-Za-z_]\w*)")
 _BRACES = re.compile(r"\{([^{}]*)\}")
 _PATH_CHARS = re.compile(r"[\w.\-]*$")
+_NAME_OR_PATH = re.compile(r"\.?[A-Za-z_][\w\-]*(\.[A-Za-z_][\w\-]*)*")
 
 
 class VariableError(Exception):
@@ -39,9 +40,10 @@ def lookup_variable(name: str, scope, depth: int = 0, own: str | None = None) ->
 def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
     """Replace ``{expr}`` and ``@name`` in a value, resolving each in ``scope``.
 
-    ``Path.@name`` at the end of a value reads attribute ``name`` of the component at
-    ``Path`` when that component has it (Ikaros 3 data blocks); otherwise ``@name`` is looked
-    up from ``scope`` and the path is kept (Ikaros 2 path variables).
+    ``Path.@name`` reads attribute ``name`` of the component at ``Path`` when that component
+    has it (Ikaros 3 data blocks): at the end of the value that attribute's value is the
+    result, inside a path it is the next segment (``outer.@which.@value``). Otherwise
+    ``@name`` is looked up from ``scope`` and the path is kept (Ikaros 2 path variables).
     """
     if "@" not in text and "{" not in text:
         return text
@@ -57,6 +59,8 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
                 inner = format_number(evaluate_arithmetic(inner))
             except ExpressionError as e:
                 raise VariableError(str(e)) from None
+        elif _NAME_OR_PATH.fullmatch(inner):
+            inner = _path_value(inner, scope, depth)
         text = text[:m.start()] + inner + text[m.end():]
     if "}" in text or "{" in text:
         raise VariableError(f'unmatched brace in "{text}"')
@@ -68,12 +72,14 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
         name = m.group(1)
         at_end = pos == len(text) or not re.match(r"[\w.]", text[pos])
         prefix = _PATH_CHARS.search(out).group(0) if out.endswith(".") else ""
-        if prefix and at_end:
+        if prefix:
             start = group_of(scope)
             target = find_component(start, prefix[:-1]) if start and prefix[:-1] else None
             if target is not None and name in target.attrs:
-                out = out[:len(out) - len(prefix)] + substitute(target.attrs[name], target,
-                                                                depth + 1)
+                value = substitute(target.attrs[name], target, depth + 1)
+                # at the end the attribute's value is the result; inside a path it is the
+                # next segment (``outer.@which.@value``)
+                out = (out[:len(out) - len(prefix)] if at_end else out) + value
                 continue
         try:
             out += lookup_variable(name, scope, depth, own)
@@ -86,6 +92,20 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
             node = getattr(scope, "node", None)
             warn_at(node, message) if node is not None else warn(message)
     return out + text[pos:]
+
+
+def _path_value(text: str, scope, depth: int) -> str:
+    """Ikaros 3 ``{name}`` and ``{Path.To.Element.name}`` (``{.Top.Block.x}``): the value
+    of a variable, or of an attribute of the element at a path."""
+    path, dot, name = text.rpartition(".")
+    if not dot:
+        return lookup_variable(name, scope, depth)
+    start = group_of(scope)
+    target = find_component(start, path) if start is not None and path else \
+        (start.top() if start is not None else None)
+    if target is None or name not in target.attrs:
+        raise VariableError(f'"{text}" names no element attribute')
+    return substitute(target.attrs[name], target, depth + 1)
 
 
 def _has_operator(text: str) -> bool:

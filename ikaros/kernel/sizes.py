@@ -8,6 +8,7 @@ import re
 import numpy as np
 
 from ..description import OutputSpec
+from ..language.diagnostics import warn_at
 from ..language.expressions import ExpressionError, evaluate_arithmetic
 from ..language.values import format_number
 from .scope import VariableError, substitute
@@ -18,6 +19,9 @@ _REFERENCE = re.compile(
 _PARAM = re.compile(r"@([A-Za-z_]\w*)")
 
 WAIT = None   # a rule that cannot be evaluated yet
+# rules that size an output from parameters; an element's size="..." or shape="..." (Ikaros 3)
+# replaces them when the class has no parameter of that name
+_PARAMETER_SIZED = frozenset(("size_param", "size_param_x", "size_param_y"))
 
 
 class SizeError(Exception):
@@ -73,7 +77,9 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
     """
     rule = spec.rule
     if len(rule) == 1 and "size_set" in rule:      # the most common rule, alone
-        return _size_set(rule["size_set"], input_shapes, partial)
+        return _size_set(rule["size_set"], input_shapes, partial, inst)
+    if inst.shape_attribute is not None and not _PARAMETER_SIZED.isdisjoint(rule):
+        return shape_expression(inst, inst.shape_attribute, input_shapes)
     if "size_param_x" in rule or "size_param_y" in rule:
         x = _int_param(inst, rule["size_param_x"]) if "size_param_x" in rule else None
         y = _int_param(inst, rule["size_param_y"]) if "size_param_y" in rule else None
@@ -90,7 +96,7 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
     if "size" in rule:
         return shape_expression(inst, rule["size"], input_shapes)
     if "size_set" in rule:
-        return _size_set(rule["size_set"], input_shapes, partial)
+        return _size_set(rule["size_set"], input_shapes, partial, inst)
     if "size_set_x" in rule or "size_set_y" in rule:
         return _axes(inst, rule, input_shapes)
     if "shape" in rule:
@@ -98,8 +104,10 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
     return WAIT
 
 
-def _size_set(text: str, input_shapes: dict, partial: bool) -> tuple | None:
-    """The largest of the named inputs (most elements, then highest rank)."""
+def _size_set(text: str, input_shapes: dict, partial: bool,
+              inst: ModuleInstance) -> tuple | None:
+    """The largest of the named inputs (most elements, then highest rank); inputs of
+    different sizes are a warning, as in Ikaros 2."""
     shapes = []
     for name in _input_names(text):
         if name not in input_shapes:
@@ -117,7 +125,10 @@ def _size_set(text: str, input_shapes: dict, partial: bool) -> tuple | None:
         raise SizeError(f"none of the inputs {', '.join(_input_names(text))} is connected")
     if len(shapes) == 1 or all(s == shapes[0] for s in shapes):
         return shapes[0]        # what max would give, without the key calls
-    return max(shapes, key=lambda s: (math.prod(s), len(s)))
+    largest = max(shapes, key=lambda s: (math.prod(s), len(s)))
+    warn_at(inst.node, f'size_set="{text}": the inputs have different sizes '
+                       f'({", ".join(str(s) for s in shapes)}); the largest, {largest}, is used')
+    return largest
 
 
 @functools.lru_cache(maxsize=None)

@@ -69,6 +69,7 @@ class ModuleInstance(Component):
         self.period = 1                    # ticks only when tick % period == phase
         self.phase = 0
         self.asynchronous = False          # tick runs in the background
+        self.shape_attribute = None        # Ikaros 3 size="..."/shape="..." on the element
 
 
 class Scope:

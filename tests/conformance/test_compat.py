@@ -197,3 +197,38 @@ def test_a_leniently_loaded_file_is_saved_without_the_dropped_connections(tmp_pa
     assert again.warnings == []
     again.run(ticks=2)
     same(again.output("K.OUTPUT"), [101])
+
+
+# --- 5. sizing as the original sizes; data blocks ---------------------------------------
+def test_a_loop_of_modules_with_several_inputs_is_sized_and_runs():
+    net = load("compat_sizes.ikg", quiet=True)
+    for name in "ABC":
+        assert net.output(f"{name}.OUTPUT").shape == (3,)
+    z = [1, 2, 3]
+    # by hand: tick 0: A=Z, B=Z, C=0; tick 1: A=Z, B=2Z, C=2Z; tick 2: A=3Z, B=2Z, C=3Z
+    net.run(ticks=3)
+    same(net.output("A.OUTPUT"), [3 * v for v in z])
+    same(net.output("B.OUTPUT"), [2 * v for v in z])
+    same(net.output("C.OUTPUT"), [3 * v for v in z])
+
+
+def test_size_set_over_different_sizes_takes_the_largest_with_a_warning():
+    net = load("compat_sizes.ikg", quiet=True)
+    assert net.output("D.OUTPUT").shape == (3,)
+    net.step()
+    same(net.output("D.OUTPUT"), [16, 16, 16])
+    (message,) = warnings_of(net, "compat_sizes.ikg")[line_of("compat_sizes.ikg", "DIFFERENT")]
+    assert message == ('size_set="INPUT1,INPUT2": the inputs have different sizes ((3,), (1,)); '
+                       'the largest, (3,), is used')
+
+
+def test_size_and_shape_on_the_element():
+    net = load("compat_sizes.ikg", quiet=True)
+    assert net.output("R1.OUTPUT").shape == (4,)
+    assert net.output("R2.OUTPUT").shape == (2, 3)
+
+
+def test_data_blocks():
+    net = load("compat_sizes.ikg", quiet=True)
+    p = net.parameter
+    assert (p("L1.p"), p("L2.p"), p("L3.p"), p("L4.p"), p("L5.p")) == (1, 2, 33, 32, 999)

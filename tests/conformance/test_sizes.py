@@ -74,3 +74,11 @@ def test_checksum_mismatch_is_reported(capsys):
     text = captured.out + captured.err
     assert "mismatch" in text.lower() and "144" in text and "145" in text
     assert net.checksum_ok is False
+
+
+def test_an_ikaros_3_check_sum_is_reported_as_not_verified(capsys):
+    net = load("checksum.ikg", check_sum=4312)
+    text = capsys.readouterr().out
+    assert 'check_sum="4312" (Ikaros 3) is not verified' in text
+    assert "Checksum match (144)" in text          # the Ikaros 2 checksum is still checked
+    assert net.checksum_ok is True
