@@ -232,3 +232,28 @@ def test_data_blocks():
     net = load("compat_sizes.ikg", quiet=True)
     p = net.parameter
     assert (p("L1.p"), p("L2.p"), p("L3.p"), p("L4.p"), p("L5.p")) == (1, 2, 33, 32, 999)
+
+
+# --- the editor saves clean files ---------------------------------------------------------
+def test_the_editor_saves_a_leniently_loaded_file_clean(tmp_path):
+    testclient = pytest.importorskip("starlette.testclient")
+    from ikaros.webui.server import create_app
+    for name in ("Seq.py", "Sink.py", "Par.py"):
+        with open(model(name)) as src, open(tmp_path / name, "w") as dst:
+            dst.write(src.read())
+    text = open(model(DROPPED)).read().replace(
+        '<module class="Sink" name="K"/>',
+        '<module class="Par"p="4" p="5"/>\n    <module class="Sink" name="K"/>')
+    (tmp_path / "m.ikg").write_text(text)
+    net = ikaros.load(str(tmp_path / "m.ikg"), lenient=True, quiet=True)
+    assert len(net.warnings) == 6       # glued, repeated, nameless, and three connections
+    try:
+        with testclient.TestClient(create_app(net)) as client:
+            tree = client.get("/api/model").json()["tree"]
+            assert client.post("/api/save", json={"tree": tree}).status_code == 200
+    finally:
+        net.close()
+    again = ikaros.load(str(tmp_path / "m.ikg"), strict=True)
+    assert again.warnings == [] and again.parameter("Par.p") == 4
+    again.run(ticks=2)
+    same(again.output("K.OUTPUT"), [101])
