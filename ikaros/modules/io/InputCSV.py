@@ -1,12 +1,9 @@
 """InputCSV: reads a CSV table with a header row, one row per tick."""
-import csv
-
-import numpy as np
-
 from ikaros.module import Module, Parameter, attribute_name
 
-from ._csvnames import csv_delimiter, parse_column, port_name
+from ._csvnames import csv_delimiter
 from ._files import build_error, resolve
+from ._tables import RowPlayer, read_csv
 
 
 class InputCSV(Module):
@@ -40,115 +37,15 @@ class InputCSV(Module):
         if not self.filename:
             raise build_error(self, "InputCSV needs a filename")
         path = resolve(self, self.filename)
-        delimiter = csv_delimiter(self)
-        try:
-            with open(path, encoding="utf-8-sig", newline="") as f:
-                rows = list(enumerate(csv.reader(f, delimiter=delimiter), 1))
-        except OSError as e:
-            raise build_error(self, f'cannot read CSV file "{self.filename}": '
-                              f'{e.strerror}') from None
-        except (UnicodeDecodeError, csv.Error) as e:
-            raise build_error(self, f'cannot read CSV file "{self.filename}": {e}') from None
-        rows = [(n, r) for n, r in rows if any(cell.strip() for cell in r)]
-        if not rows:
-            raise build_error(self, f'CSV file "{self.filename}" is empty')
-        header_line, header = rows[0]
-        self._groups = self._group_columns(path, header_line, header)
-        width = len(header)
-        data = np.zeros((len(rows) - 1, width), dtype=np.float32)
-        for r, (line, cells) in enumerate(rows[1:]):
-            if len(cells) > width:
-                raise build_error(self, f"{path}:{line}: {len(cells)} values but the header "
-                                  f"has {width} columns")
-            for c, cell in enumerate(cells):
-                cell = cell.strip()
-                if cell:
-                    try:
-                        data[r, c] = float(cell)
-                    except ValueError:
-                        raise build_error(self, f'{path}:{line}: "{cell}" in column '
-                                          f'"{header[c]}" is not a number') from None
-        self._data = data
+        self._groups, self._data = read_csv(self, path, f"CSV file {self.filename}",
+                                            csv_delimiter(self))
         for name, shape, _ in self._groups:
             self.add_output(name, shape, description=f"the columns {name} of the current row")
 
-    def _group_columns(self, path, line, header):
-        def fail(message):
-            return build_error(self, f"{path}:{line}: {message}")
-        try:
-            parsed = [parse_column(cell) for cell in header]
-        except ValueError as e:
-            raise fail(str(e)) from None
-        if all(_is_number(cell) for cell in header):
-            raise fail("the first row must be a header of column names")
-        groups: dict[str, list] = {}
-        for column, (base, index) in enumerate(parsed):
-            groups.setdefault(port_name(base), []).append((index, column))
-        result = []
-        for name, members in groups.items():
-            ranks = {len(index) for index, _ in members}
-            if len(ranks) > 1:
-                raise fail(f'the columns of "{name}" mix names with different numbers of '
-                           f'indices')
-            rank = ranks.pop()
-            if rank == 0:
-                if len(members) > 1:
-                    raise fail(f'the column "{name}" appears {len(members)} times')
-                result.append((name, (1,), np.array([members[0][1]])))
-                continue
-            shape = tuple(max(index[d] for index, _ in members) + 1 for d in range(rank))
-            order = np.full(shape, -1, dtype=np.int64)
-            for index, column in members:
-                if order[index] >= 0:
-                    raise fail(f'the column "{header[column]}" appears twice')
-                order[index] = column
-            if (order < 0).any():
-                missing = tuple(int(i) for i in np.argwhere(order < 0)[0])
-                raise fail(f'the columns of "{name}" have no element '
-                           f'{name}{"".join(f"[{i}]" for i in missing)}')
-            result.append((name, shape, order.reshape(-1)))
-        return result
-
     def init(self):
-        self._outputs = [(getattr(self, attribute_name(name)).reshape(-1), columns)
-                         for name, _, columns in self._groups]
-        for out, _ in self._outputs:
-            out.fill(0)
-        self._step = 0                 # rows output so far, counting repetitions
-        self._extend_left = None
-        self._eof_sent = False
+        outputs = [(getattr(self, attribute_name(name)).reshape(-1), columns)
+                   for name, _, columns in self._groups]
+        self._player = RowPlayer(self, self._data, outputs, f'CSV file "{self.filename}"')
 
     def tick(self):
-        rows = len(self._data)
-        reps = max(1, self.repetitions)
-        total = rows * reps * self.iterations if self.iterations > 0 else None
-        if rows and (total is None or self._step < total):
-            row = self._data[(self._step // reps) % rows]
-            for out, columns in self._outputs:
-                np.take(row, columns, out=out)
-            self._step += 1
-            if total is not None and self._step == total:
-                self._extend_left = self.extend
-                if self.extend <= 0:
-                    self._send_end_of_file()
-            return
-        for out, _ in self._outputs:
-            out.fill(0)
-        if self._extend_left is None:              # a table without data rows
-            self._extend_left = self.extend + 1
-        self._extend_left -= 1
-        if self._extend_left <= 0:
-            self._send_end_of_file()
-
-    def _send_end_of_file(self):
-        if self.send_end_of_file and not self._eof_sent:
-            self._eof_sent = True
-            self.end_of_file(f'end of CSV file "{self.filename}"')
-
-
-def _is_number(text):
-    try:
-        float(text)
-        return True
-    except ValueError:
-        return False
+        self._player.tick()

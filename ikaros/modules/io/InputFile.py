@@ -1,4 +1,5 @@
-"""InputFile: reads an Ikaros 2 text table, one line per tick."""
+"""InputFile: reads a table of values, one row per tick: the Ikaros 2 text format, CSV,
+JSON or JSON Lines."""
 import os
 import re
 
@@ -6,6 +7,12 @@ import numpy as np
 
 from ikaros.errors import ModelError
 from ikaros.module import Module, Parameter, attribute_name
+
+from ._csvnames import csv_delimiter
+from ._tables import RowPlayer, read_csv, read_json
+
+_EXTENSIONS = {".csv": "csv", ".tsv": "tsv", ".json": "json", ".jsonl": "jsonl",
+               ".ndjson": "jsonl"}
 
 _HEADER_ITEM = re.compile(r"^([A-Za-z_][\w\-]*)(?:/(\d+))?$")
 
@@ -22,7 +29,22 @@ class InputFile(Module):
     times (0 means forever). After the last line the outputs are 0; ``extend`` ticks later
     the module sends end-of-file, which stops the run, unless ``send_end_of_file`` is no. In
     ``static`` mode the whole file is output at once and never changes: an output NAME/n is
-    a matrix of one row per data line and n columns."""
+    a matrix of one row per data line and n columns.
+
+    ``format`` chooses the file format; ``auto`` (the default) goes by the file's extension:
+    ``.csv`` is csv, ``.tsv`` tsv, ``.json`` json, ``.jsonl`` and ``.ndjson`` jsonl, anything
+    else the Ikaros 2 text format above (``ikaros``). The other formats are those of
+    Ikaros 3, read whole when the model loads. csv and tsv: values separated by
+    ``delimiter`` (csv: "," unless set; tsv: a tab; a space means runs of spaces); with
+    ``header`` (the default) the first row names the columns: ``X`` is an output of one
+    element, ``X[0]``, ``X[1]`` ... form a vector and ``X[i][j]`` a matrix (as InputCSV), or,
+    when a cell of the first data row holds several values separated by spaces, each column
+    is an output of that many elements; without a header all columns form one output,
+    OUTPUT. Empty cells are 0. json: an array of objects, one per tick; jsonl: one object per
+    line. Each key is an output whose shape is that of its value (a number is one element; a
+    nested list a vector, matrix, ...), the same in every record; true, false and null are
+    1, 0 and NaN. A name that is not a valid port name has its other characters replaced by
+    ``_``. In static mode an output gets a leading axis of one row per record."""
 
     filename = Parameter("", "the file to read; relative to the model file's folder")
     type = Parameter("dynamic", "dynamic: one line per tick; static: the whole file as a "
@@ -34,10 +56,22 @@ class InputFile(Module):
     send_end_of_file = Parameter(True, "send end-of-file (stopping the run) when the data "
                                  "is exhausted; with no, the outputs are 0 forever")
     print_iteration = Parameter(False, "print the number of each iteration as it starts")
+    format = Parameter("auto", "the file format (auto: by the file's extension)",
+                       options="auto/ikaros/csv/tsv/json/jsonl")
+    delimiter = Parameter("", 'csv and tsv: the character between values ("tab" for a tab); '
+                          'empty: "," for csv, a tab for tsv')
+    header = Parameter(True, "csv and tsv: the first row names the columns")
 
     # --- build time -----------------------------------------------------------------------
     def configure(self):
         self._file_path = self._resolve(self.filename)
+        kind = self.format
+        if kind == "auto":
+            kind = _EXTENSIONS.get(os.path.splitext(self.filename)[1].lower(), "ikaros")
+        self._table = None
+        if kind != "ikaros":
+            self._configure_table(kind)
+            return
         try:
             with open(self._file_path, encoding="utf-8") as f:
                 header, header_line = None, 0
@@ -89,6 +123,23 @@ class InputFile(Module):
                 self.add_output(name, (b - a,),
                                 description=f"column group {name} of the current line")
 
+    def _configure_table(self, kind):
+        """Reads a CSV, TSV, JSON or JSONL file whole and declares its outputs."""
+        shown = f"input file {self.filename}"
+        if kind in ("json", "jsonl"):
+            groups, data = read_json(self, self._file_path, shown, lines=kind == "jsonl")
+        else:
+            if not self.delimiter:
+                self.delimiter = "," if kind == "csv" else "tab"
+            groups, data = read_csv(self, self._file_path, shown, csv_delimiter(self),
+                                    header=self.header, multi_value=True)
+        self._table = (groups, data)
+        static = self.type == "static"
+        for name, shape, _ in groups:
+            self.add_output(name, (len(data),) + shape if static else shape,
+                            description=f"{name} of the current row" if not static else
+                            f"{name} of every row")
+
     def _resolve(self, filename):
         if not filename:
             raise self._build_error("InputFile needs a filename")
@@ -118,9 +169,23 @@ class InputFile(Module):
 
     # --- run time -------------------------------------------------------------------------
     def init(self):
+        self._file = None
+        if self._table is not None:
+            groups, data = self._table
+            if self.type == "static":
+                for name, _, columns in groups:
+                    out = getattr(self, attribute_name(name))
+                    out[...] = data[:, columns].reshape(out.shape)
+                self._player = None
+            else:
+                outputs = [(getattr(self, attribute_name(name)).reshape(-1), columns)
+                           for name, _, columns in groups]
+                self._player = RowPlayer(
+                    self, data, outputs, f'input file "{self.filename}"',
+                    self._show_iteration if self.print_iteration else None)
+            return
         self._outputs = [(getattr(self, attribute_name(name)), a, b)
                          for name, a, b in self._columns]
-        self._file = None
         if self.type == "static":
             self._write(self._data)
             return
@@ -177,7 +242,14 @@ class InputFile(Module):
             self._eof_sent = True
             self.end_of_file(f'end of input file "{self.filename}"')
 
+    def _show_iteration(self, number):
+        self.print(f"iteration {number}")
+
     def tick(self):
+        if self._table is not None:
+            if self._player is not None:
+                self._player.tick()
+            return
         if self.type == "static":
             self._write(self._data)
             return

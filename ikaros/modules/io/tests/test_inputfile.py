@@ -205,3 +205,100 @@ def test_example_runs(tmp_path):
         assert net.tick == 5
     finally:
         net.close()
+
+
+# --- the Ikaros 3 formats: CSV, TSV, JSON, JSON Lines -------------------------------------------
+
+def load_file(tmp_path, filename, text, attributes=""):
+    (tmp_path / filename).write_text(text)
+    path = tmp_path / "model.ikg"
+    path.write_text(f'<group name="Test">\n<module class="InputFile" name="F" '
+                    f'filename="{filename}" {attributes}/>\n</group>\n')
+    return ikaros.load(str(path))
+
+
+def ticks(net, names, n):
+    out = []
+    try:
+        for _ in range(n):
+            net.step()
+            out.append(tuple(net.output(f"F.{name}").tolist() for name in names))
+    finally:
+        net.close()
+    return out
+
+
+def test_v3_csv_by_extension_with_grouped_columns(tmp_path):
+    net = load_file(tmp_path, "d.csv", "time,pos[0],pos[1]\n0.5,1,2\n1.5,3,4\n")
+    assert net.output("F.time").shape == (1,) and net.output("F.pos").shape == (2,)
+    assert ticks(net, ["time", "pos"], 2) == [([0.5], [1, 2]), ([1.5], [3, 4])]
+
+
+def test_v3_csv_cells_of_several_values_and_legal_names(tmp_path):
+    net = load_file(tmp_path, "d.csv", "joint angles,speed (m/s)\n1 2,3\n4 5,6\n")
+    assert ticks(net, ["joint_angles", "speed__m_s_"], 2) == [([1, 2], [3]), ([4, 5], [6])]
+
+
+def test_v3_tsv_custom_space_and_headerless(tmp_path):
+    assert ticks(load_file(tmp_path, "d.tsv", "a\tb\n1\t2\n"), ["a", "b"], 1) == [([1], [2])]
+    net = load_file(tmp_path, "d.txt", "a;b\n7;8\n", 'format="csv" delimiter=";"')
+    assert ticks(net, ["a", "b"], 1) == [([7], [8])]
+    net = load_file(tmp_path, "s.txt", "a  b\n1   2\n", 'format="csv" delimiter=" "')
+    assert ticks(net, ["a", "b"], 1) == [([1], [2])]
+    net = load_file(tmp_path, "h.csv", "1,2,3\n4,5,6\n", 'header="no"')
+    assert ticks(net, ["OUTPUT"], 2) == [([1, 2, 3],), ([4, 5, 6],)]
+
+
+def test_v3_json_array_of_records_with_shapes(tmp_path):
+    text = ('[{"x": 1, "weights": [[1, 2], [3, 4]], "on": true},\n'
+            ' {"x": 2.5, "weights": [[5, 6], [7, 8]], "on": null}]')
+    net = load_file(tmp_path, "d.json", text)
+    assert net.output("F.weights").shape == (2, 2)
+    got = ticks(net, ["x", "weights", "on"], 2)
+    assert got[0] == ([1], [[1, 2], [3, 4]], [1])
+    assert got[1][:2] == ([2.5], [[5, 6], [7, 8]]) and np.isnan(got[1][2][0])
+
+
+def test_v3_jsonl_and_repetitions(tmp_path):
+    net = load_file(tmp_path, "d.jsonl", '{"a-b": [1, 2]}\n\n{"a-b": [3, 4]}\n',
+                    'repetitions="2"')
+    assert ticks(net, ["a-b"], 4) == [([1, 2],), ([1, 2],), ([3, 4],), ([3, 4],)]
+
+
+def test_v3_static_json_has_a_row_per_record(tmp_path):
+    net = load_file(tmp_path, "d.json", '[{"v": [1, 2]}, {"v": [3, 4]}, {"v": [5, 6]}]',
+                    'type="static"')
+    try:
+        net.step()
+        assert net.output("F.v").tolist() == [[1, 2], [3, 4], [5, 6]]
+    finally:
+        net.close()
+
+
+def test_v3_end_of_file_after_the_last_record(tmp_path):
+    net = load_file(tmp_path, "d.jsonl", '{"a": 1}\n{"a": 2}\n')
+    try:
+        net.run()
+        assert net.tick == 2 and net.output("F.a").tolist() == [2]
+    finally:
+        net.close()
+
+
+@pytest.mark.parametrize("filename, text, message", [
+    ("d.json", '[{"a": [1, 2]}, {"a": [1, 2, 3]}]',
+     r'd.json: record 2: "a" has shape \(3,\), but \(2,\) in the first record'),
+    ("d.jsonl", '{"a": 1}\n{"b": 1}\n', r"d.jsonl:2: the keys \['b'\] differ"),
+    ("d.jsonl", '{"a": 1}\n{"a": \n', r"d.jsonl:2: not valid JSON"),
+    ("d.json", '{"a": 1}', "must hold an array of objects"),
+    ("d.json", '[{"a": "text"}]', '"a" is not a number'),
+    ("d.csv", "a,b\n1,x\n", r'd.csv:2: "x" in column "b" is not a number'),
+    ("d.csv", "a,b\n1 2,3\n4,5\n", r'd.csv:3: column "a" holds 1 values, 2 in the first row'),
+])
+def test_v3_bad_files_are_build_errors(tmp_path, filename, text, message):
+    with pytest.raises(ModelError, match=message):
+        load_file(tmp_path, filename, text)
+
+
+def test_v2_text_format_is_still_the_default_for_other_names(tmp_path):
+    net = load_file(tmp_path, "d.dat", "X/2\n1 2\n")
+    assert ticks(net, ["X"], 1) == [([1, 2],)]
