@@ -1,10 +1,13 @@
 """Tests of the OutputFile module."""
+import json
 import shutil
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import ikaros
+from ikaros.errors import ModelError
 
 EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "OutputFile_example.ikg"
 
@@ -129,3 +132,135 @@ def test_example_runs(tmp_path):
     lines = (tmp_path / "outputfile_example.txt").read_text().splitlines()
     assert len(lines) == 6
     assert np.array(lines[1].split("\t"), float)[0] == 0
+
+
+# --- the Ikaros 3 interface: INPUT, formats, timestamp modes -------------------------------------
+# W is 1, 2, 3 ... on ticks 0, 1, 2 ...; C is [1.5, -2.25].
+V3 = ('<module class="Sweep" name="W" min="0" max="100" step="1"/>\n'
+      '<module class="Constant" name="C" data="1.5 -2.25"/>\n'
+      '<module class="Constant" name="M" data="1 2; 3 4"/>\n')
+
+
+def run_v3(tmp_path, attributes, connections, ticks=2, **overrides):
+    path = tmp_path / "model.ikg"
+    path.write_text(f'<group name="Test">\n{V3}'
+                    f'<module class="OutputFile" name="O" {attributes}/>\n'
+                    + "".join(f'<connection source="{s}" target="O.INPUT" delay="0"/>\n'
+                              for s in connections) + '</group>\n')
+    net = ikaros.load(str(path), **overrides)
+    try:
+        net.run(ticks=ticks)
+    finally:
+        net.close()
+
+
+def test_v3_csv_with_tick_stamps(tmp_path):
+    run_v3(tmp_path, 'filename="out.csv" decimals="2"', ["W.OUTPUT", "C.OUTPUT"])
+    assert (tmp_path / "out.csv").read_text() == (
+        "tick,INPUT[0],INPUT[1],INPUT[2]\n"
+        "0,1.00,1.50,-2.25\n"
+        "1,2.00,1.50,-2.25\n")
+
+
+def test_v3_csv_is_read_back_by_inputfile(tmp_path):
+    run_v3(tmp_path, 'filename="out.csv" timestamp="none"', ["C.OUTPUT"])
+    (tmp_path / "back").mkdir()
+    model = tmp_path / "back" / "model.ikg"
+    model.write_text('<group name="Back"><module class="InputFile" name="F" '
+                     'filename="../out.csv"/></group>')
+    net = ikaros.load(str(model))
+    try:
+        net.step()
+        assert net.output("F.INPUT").tolist() == [1.5, -2.25]
+    finally:
+        net.close()
+
+
+@pytest.mark.parametrize("stamp, first, second", [
+    ("line", "0", "1"), ("tick", "0", "1"), ("time", "0", "0.25"),
+])
+def test_v3_timestamp_modes(tmp_path, stamp, first, second):
+    run_v3(tmp_path, f'filename="out.tsv" timestamp="{stamp}" decimals="0"', ["W.OUTPUT"],
+           tick_duration="0.25")
+    assert (tmp_path / "out.tsv").read_text() == (
+        f"{stamp}\tINPUT\n{first}\t1\n{second}\t2\n")
+
+
+def test_v3_timestamp_none_and_headerless_custom_delimiter(tmp_path):
+    run_v3(tmp_path, 'filename="out.csv" timestamp="none" header="no" delimiter=";" '
+                     'decimals="1"', ["C.OUTPUT"])
+    assert (tmp_path / "out.csv").read_text() == "1.5;-2.2\n1.5;-2.2\n"
+
+
+def test_v3_full_precision(tmp_path):
+    path = tmp_path / "model.ikg"
+    path.write_text('<group name="Test"><module class="Constant" name="K" '
+                    'data="1.23456 1e-20 1e20"/>'
+                    '<module class="OutputFile" name="O" filename="out.csv" '
+                    'number_format="full" timestamp="none"/>'
+                    '<connection source="K.OUTPUT" target="O.INPUT" delay="0"/></group>')
+    net = ikaros.load(str(path))
+    net.run(ticks=1)
+    net.close()
+    assert (tmp_path / "out.csv").read_text().splitlines()[1] == "1.23456,1e-20,1e+20"
+
+
+def test_v3_jsonl_keeps_shapes_and_writes_null(tmp_path):
+    run_v3(tmp_path, 'filename="out.jsonl"', ["M.OUTPUT"])
+    lines = (tmp_path / "out.jsonl").read_text().splitlines()
+    assert lines == ['{"tick": 0, "INPUT": [[1, 2], [3, 4]]}',
+                     '{"tick": 1, "INPUT": [[1, 2], [3, 4]]}']
+    path = tmp_path / "nan.ikg"
+    path.write_text('<group name="Test"><module class="Constant" name="K" '
+                    'data="nan inf -inf"/>'
+                    '<module class="OutputFile" name="O" filename="nan.jsonl"/>'
+                    '<connection source="K.OUTPUT" target="O.INPUT" delay="0"/></group>')
+    net = ikaros.load(str(path))
+    net.run(ticks=1)
+    net.close()
+    assert json.loads((tmp_path / "nan.jsonl").read_text()) == {"tick": 0, "INPUT":
+                                                                 [None, None, None]}
+
+
+def test_v3_json_array_is_valid_while_written_and_after(tmp_path):
+    run_v3(tmp_path, 'filename="out.json" timestamp="line"', ["W.OUTPUT"], ticks=3)
+    assert json.loads((tmp_path / "out.json").read_text()) == [
+        {"line": 0, "INPUT": 1}, {"line": 1, "INPUT": 2}, {"line": 2, "INPUT": 3}]
+
+
+def test_v3_empty_json_recording_is_an_empty_array(tmp_path):
+    (tmp_path / "g.txt").write_text("G/1\n0\n0\n")
+    path = tmp_path / "model.ikg"
+    path.write_text('<group name="Test"><module class="InputFile" name="G" filename="g.txt"/>'
+                    '<module class="Constant" name="C" data="1"/>'
+                    '<module class="OutputFile" name="O" filename="out.json"/>'
+                    '<connection source="C.OUTPUT" target="O.INPUT" delay="0"/>'
+                    '<connection source="G.G" target="O.WRITE" delay="0"/></group>')
+    net = ikaros.load(str(path))
+    net.run(ticks=2)
+    net.close()
+    assert json.loads((tmp_path / "out.json").read_text()) == []
+
+
+def test_v2_columns_and_v3_input_together_in_csv(tmp_path):
+    path = tmp_path / "model.ikg"
+    path.write_text(f'<group name="Test">\n{SOURCES}'
+                    '<module class="OutputFile" name="O" filename="out.csv" decimals="1">'
+                    f'{COLUMNS}</module>\n'
+                    '<connection source="C.OUTPUT" target="O.INPUT" delay="0"/></group>')
+    net = ikaros.load(str(path))
+    net.run(ticks=1)
+    net.close()
+    assert (tmp_path / "out.csv").read_text() == (
+        "tick,A,B[0],B[1],INPUT[0],INPUT[1]\n0,1.0,1.50,-2.25,1.5,-2.2\n")
+
+
+@pytest.mark.parametrize("attributes, message", [
+    ('timestamp="sometimes"', 'timestamp "sometimes" must be tick'),
+    ('filename="o.csv" delimiter=";;"', 'delimiter ";;" must be one character'),
+    ('filename="o.csv" delimiter="&quot;"', "not a quote"),
+    ('format="xml"', '"xml" is not one of'),
+])
+def test_v3_bad_settings_are_build_errors(tmp_path, attributes, message):
+    with pytest.raises(ModelError, match=message):
+        run_v3(tmp_path, attributes, ["C.OUTPUT"])
