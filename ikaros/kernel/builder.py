@@ -236,7 +236,8 @@ class Builder:
             if text in (None, ""):
                 return default
             try:
-                return parse(substitute(text, inst, own=key))
+                text = substitute(text, inst, own=key)
+                return parse(text) if text.strip() else default
             except (ValueError_, VariableError) as e:
                 raise inst.node.error(f"{key}: {e}") from None
 
@@ -318,7 +319,14 @@ class Builder:
             if delay is None or delay == "1":
                 delays = _ONE_TICK
             else:
-                delays = parse_delays(self._connection_attr(node, group, "delay"))
+                delay = self._connection_attr(node, group, "delay")
+                if delay:
+                    delays = parse_delays(delay)
+                else:               # unset, as in Ikaros 2: the default delay
+                    warn_at(node, "an empty delay means the default, 1")
+                    if not attrs["delay"].strip():
+                        del attrs["delay"]          # so that saving leaves it out
+                    delays = _ONE_TICK
             offsets = {}
             if "sourceoffset" in attrs or "targetoffset" in attrs or "size" in attrs:
                 offsets = {k: parse_int(v) for k in ("sourceoffset", "targetoffset", "size")

@@ -14,6 +14,7 @@ from ..description import ClassDescription
 from ..errors import ModelError
 from ..language.classfile import read_class_file
 from ..language.diagnostics import warn
+from ..language.reader import read_file
 from ..module import Module
 
 STDLIB = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "modules")
@@ -242,7 +243,10 @@ class ClassRegistry:
 
     def _implemented(self, entry: ClassEntry) -> ClassEntry:
         """An .ikc alone declares an interface: a plugin or the standard library may
-        implement it."""
+        implement it. An .ikc whose <group> root holds modules is a group class (Ikaros 3)."""
+        if _is_composite(entry.ikc):
+            entry.group, entry.ikc = entry.ikc, None
+            return entry
         found = entry_point_classes().get(name := entry.name) or stdlib_classes().get(name)
         if found is not None and not found.is_group:
             entry.implementation = found
@@ -257,6 +261,11 @@ class ClassRegistry:
                 if entry is not None:
                     merged[name] = entry
         return merged
+
+
+def _is_composite(ikc: str) -> bool:
+    root = read_file(ikc)
+    return root.tag == "group" and next(root.elements("module"), None) is not None
 
 
 def _defines_class(entry: ClassEntry) -> bool:

@@ -90,7 +90,8 @@ def test_unset_values_warn_with_file_and_line():
     name = "compat_unset.ikg"
     found = warnings_of(net, name)
     assert sorted(found) == [line_of(name, m) for m in ("GROUP", "EMPTY", "UNDEFINED",
-                                                        "NAMELESS")]
+                                                        "NAMELESS", "DELAY")]
+    assert found[line_of(name, "DELAY")] == ["an empty delay means the default, 1"]
     assert len(found[line_of(name, "EMPTY")]) == 4     # p, k, flag, mode (not s)
     assert 'variable "@gain" is not defined; read as an empty value' in \
         found[line_of(name, "UNDEFINED")]
@@ -109,11 +110,12 @@ def test_a_module_without_name_takes_its_class_name_and_names_with_spaces_work()
     same(net.output("Group Inner.In Side.OUTPUT"), [5, 6])
     same(net.output("Group Inner.Sink.OUTPUT"), [5, 6])
     same(net.output("Out.OUTPUT"), [5, 6])
+    same(net.output("QS.OUTPUT"), [100])           # delay="": the default delay, 1
 
 
 def test_unset_values_are_saved_clean(tmp_path):
     net = load("compat_unset.ikg", quiet=True)
-    for helper in ("Par.py", "Sink.py"):
+    for helper in ("Par.py", "Sink.py", "Seq.py"):
         with open(model(helper)) as src, open(tmp_path / helper, "w") as dst:
             dst.write(src.read())
     net.save(str(tmp_path / "saved.ikg"))
@@ -147,6 +149,8 @@ def test_ikaros_3_class_file_forms():
     net.set_parameter("Index.tick", 9)
     net.step()
     same(net.output("Index.OUTPUT"), [0, 9, 1, 5])
+    same(net.output("S.OUTPUT"), [15, 30])          # Pair.ikc: a group used as a class
+    assert net.parameter("P.K2.data").tolist() == [10]
 
 
 def test_an_option_that_is_not_listed_is_an_error(tmp_path):
