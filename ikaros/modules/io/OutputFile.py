@@ -13,7 +13,7 @@ from ikaros.module import Input, Parameter
 from ._columns import ColumnWriter
 from ._csvnames import column_names
 
-_COUNTER = re.compile(r"%(0?\d*)d")
+_COUNTER = re.compile(r"%(0?\d*)d|#+")
 _EXTENSIONS = {".csv": "csv", ".tsv": "tsv", ".json": "json", ".jsonl": "jsonl",
                ".ndjson": "jsonl"}
 _STAMPS = {"yes": "tick", "true": "tick", "on": "tick", "1": "tick",
@@ -27,8 +27,9 @@ class OutputFile(ColumnWriter):
     ``<column name="X" decimals="2"/>`` child elements, each of which becomes an input X
     (the Ikaros 2 interface), and from INPUT (the Ikaros 3 interface: connect what is to be
     written to INPUT); columns come first, then INPUT. A relative ``filename`` is relative to
-    the model file's folder; a ``%d`` in it (or ``%03d`` and so on) is replaced by the file
-    number, which starts at 0.
+    the model file's folder; a ``%d`` in it (or ``%03d`` and so on, Ikaros 2) or a run of
+    ``#`` (Ikaros 3: ``##`` is two digits, zero-padded) is replaced by the file number,
+    which starts at 0.
 
     ``format`` ``auto`` (the default) goes by the file's extension: ``.csv`` is csv, ``.tsv``
     tsv, ``.json`` json, ``.jsonl`` and ``.ndjson`` jsonl, anything else the Ikaros 2 text
@@ -50,7 +51,8 @@ class OutputFile(ColumnWriter):
     (seconds since the run started) or ``none``; Ikaros 2's yes and no are tick and none.
 
     When WRITE is connected a record is written only on ticks when its first element is
-    above 0 (with ``single_trig``, only on ticks when it rises from 0 or below to above 0).
+    above 0 (with ``single_trig``, or its Ikaros 3 name ``single_trigger``, only on ticks
+    when it rises from 0 or below to above 0).
     When NEWFILE is connected, a rise of its first element from 0 or below to above 0
     closes the file, adds 1 to the file number and opens the next file (the same file again,
     rewritten, when the name has no %d); that tick's record goes into the new file. When
@@ -58,7 +60,7 @@ class OutputFile(ColumnWriter):
     (``name_0``, ``name_1``, ...: the first that does not exist), created at the start of
     each run."""
 
-    filename = Parameter("output.txt", "the file to write; may contain %d for the file "
+    filename = Parameter("output.txt", "the file to write; may contain %d or ## for the file "
                          "number; relative to the model file's folder")
     format = Parameter("auto", "the file format (auto: by the file's extension)",
                        options="auto/text/csv/tsv/json/jsonl")
@@ -75,6 +77,7 @@ class OutputFile(ColumnWriter):
                           "created for the files of each run")
     single_trig = Parameter(False, "write only when WRITE rises from 0 to above 0, not on "
                             "every tick it is above 0")
+    single_trigger = Parameter(False, "Ikaros 3 name of single_trig")
     use_old_format = Parameter(False, "accepted for compatibility and has no effect: the "
                                "text header is always written in the NAME/n form that "
                                "InputFile reads")
@@ -195,8 +198,14 @@ class OutputFile(ColumnWriter):
         return None
 
     def _path(self):
-        name = _COUNTER.sub(lambda m: ("%" + m.group(1) + "d") % self._number, self.filename)
+        name = _COUNTER.sub(self._numbered, self.filename)
         return name if os.path.isabs(name) else os.path.join(self._folder, name)
+
+    def _numbered(self, match):
+        text = match.group(0)
+        if text.startswith("#"):
+            return f"{self._number:0{len(text)}d}"
+        return ("%" + match.group(1) + "d") % self._number
 
     def _open(self):
         self._close()
@@ -227,7 +236,8 @@ class OutputFile(ColumnWriter):
             self._last_newfile = rise
         if self.WRITE is not None:
             on = bool(self.WRITE.flat[0] > 0)
-            write = on and not (self.single_trig and self._last_write)
+            single = self.single_trig or self.single_trigger
+            write = on and not (single and self._last_write)
             self._last_write = on
             if not write:
                 return

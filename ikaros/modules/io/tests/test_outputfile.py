@@ -264,3 +264,21 @@ def test_v2_columns_and_v3_input_together_in_csv(tmp_path):
 def test_v3_bad_settings_are_build_errors(tmp_path, attributes, message):
     with pytest.raises(ModelError, match=message):
         run_v3(tmp_path, attributes, ["C.OUTPUT"])
+
+
+def test_v3_hash_numbering_and_single_trigger(tmp_path):
+    # G: 0, 1, 1, 0, 1 -> single_trigger writes on ticks 1 and 4; NEWFILE rises on tick 3
+    (tmp_path / "g.txt").write_text("G/1 N/1\n0 0\n1 0\n1 0\n0 1\n1 1\n")
+    path = tmp_path / "model.ikg"
+    path.write_text('<group name="Test"><module class="InputFile" name="F" filename="g.txt"/>'
+                    '<module class="Constant" name="C" data="7"/>'
+                    '<module class="OutputFile" name="O" filename="out_##.csv" '
+                    'single_trigger="yes" decimals="0"/>'
+                    '<connection source="C.OUTPUT" target="O.INPUT" delay="0"/>'
+                    '<connection source="F.G" target="O.WRITE" delay="0"/>'
+                    '<connection source="F.N" target="O.NEWFILE" delay="0"/></group>')
+    net = ikaros.load(str(path))
+    net.run(ticks=5)
+    net.close()
+    assert (tmp_path / "out_00.csv").read_text() == "tick,INPUT\n1,7\n"
+    assert (tmp_path / "out_01.csv").read_text() == "tick,INPUT\n4,7\n"
