@@ -256,13 +256,17 @@ class Builder:
         where = inst
         try:
             if found is not None:
-                text, where, _ = found
-                if spec.type not in _EMPTY_IS_A_VALUE and _is_empty(text, where, spec.name):
-                    warn_at(where.node, f'parameter "{spec.name}" of {inst.path} has an empty '
-                                        f'value; the default applies')
-                    if where is inst and not text.strip():
-                        del inst.attrs[spec.name]      # so that saving leaves it out
-                    found = None
+                raw, where, _ = found
+                text = raw
+                if spec.type not in _EMPTY_IS_A_VALUE:
+                    if "@" in text or "{" in text:
+                        text = substitute(text, where, own=spec.name)
+                    if not text.strip():    # unset, as in Ikaros 2
+                        warn_at(where.node, f'parameter "{spec.name}" of {inst.path} has an '
+                                            f'empty value; the default applies')
+                        if where is inst and not raw.strip():
+                            del inst.attrs[spec.name]      # so that saving leaves it out
+                        found = None
             if found is not None:
                 return convert(text, spec, where, own=spec.name), True
             if spec.default is not None and spec.default != "":
@@ -373,7 +377,7 @@ class Builder:
             comp = group.top() if comp_path == "" else find_component(group, comp_path)
         if comp is None:
             raise _missing(node, f'connection {role} "{path}" not found: there is no '
-                             f'"{comp_path}" seen from group "{group.path or group.name}"')
+                                 f'"{comp_path}" seen from group "{group.path or group.name}"')
         return comp, port
 
     def _port(self, group: Group, direction: str, name: str, decl: Node) -> Buffer:
@@ -390,15 +394,15 @@ class Builder:
             inputs, outputs = self.buffers[comp]
             if port not in outputs:
                 raise _missing(node, f'connection source "{path}" not found: module '
-                                 f'{comp.path} has no output named "{port}" '
-                                 f'(outputs: {", ".join(outputs) or "none"})')
+                                     f'{comp.path} has no output named "{port}" '
+                                     f'(outputs: {", ".join(outputs) or "none"})')
             return outputs[port]
         inside = comp is group or comp in set(group.chain())
         decls = [d for d in (comp.inputs if inside else comp.outputs) if d.get("name") == port]
         if not decls:
             kind = "input" if inside else "output"
             raise _missing(node, f'connection source "{path}" not found: group '
-                             f'"{comp.path or comp.name}" has no {kind} named "{port}"')
+                                 f'"{comp.path or comp.name}" has no {kind} named "{port}"')
         decl = decls[0]
         alias = _alias(decl, "source", "sourcemodule")
         if alias and not inside:
@@ -413,15 +417,15 @@ class Builder:
             inputs, outputs = self.buffers[comp]
             if port not in inputs:
                 raise _missing(node, f'connection target "{path}" not found: module '
-                                 f'{comp.path} has no input named "{port}" '
-                                 f'(inputs: {", ".join(inputs) or "none"})')
+                                     f'{comp.path} has no input named "{port}" '
+                                     f'(inputs: {", ".join(inputs) or "none"})')
             return [inputs[port]]
         inside = comp is group or comp in set(group.chain())
         decls = [d for d in (comp.outputs if inside else comp.inputs) if d.get("name") == port]
         if not decls:
             kind = "output" if inside else "input"
             raise _missing(node, f'connection target "{path}" not found: group '
-                             f'"{comp.path or comp.name}" has no {kind} named "{port}"')
+                                 f'"{comp.path or comp.name}" has no {kind} named "{port}"')
         targets = []
         for decl in decls:
             alias = _alias(decl, "target", "targetmodule")
@@ -657,14 +661,6 @@ def _remove(tree: Node, node: Node) -> bool:
 
 
 _EMPTY_IS_A_VALUE = ("string", "matrix", "array")
-
-
-def _is_empty(text: str, scope, name: str) -> bool:
-    """Whether a raw parameter value is empty, or a variable that reads as empty."""
-    stripped = text.strip()
-    if not stripped:
-        return True
-    return stripped[0] == "@" and not substitute(stripped, scope, own=name).strip()
 
 
 def _alias(decl: Node, key: str, legacy: str) -> str | None:
