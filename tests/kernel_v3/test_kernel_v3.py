@@ -59,7 +59,10 @@ def test_kernel_model(name, tmp_path, capsys):
     argv = ["-b"] + [expand(a) for a in shlex.split(attrs.get("cli_args", ""))]
     if "stop" not in attrs:
         argv += ["-s", "0"]
-    code = cli.main(argv + [path])
+    try:
+        code = cli.main(argv + [path])
+    except SystemExit as e:             # a usage error (exit status 2)
+        code = e.code
     out = capsys.readouterr()
     output = out.out + out.err
     assert code == int(attrs.get("expected_exit", "0")), output
