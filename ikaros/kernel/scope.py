@@ -10,7 +10,7 @@ from ..language.diagnostics import warn, warn_at
 from ..language.expressions import ExpressionError, evaluate_arithmetic, is_arithmetic
 from ..language.values import (ValueError_, format_number, parse_bool, parse_int,
                                parse_matrix, parse_number)
-from .tree import Group, ModuleInstance, find_component, group_of
+from .tree import Group, ModuleInstance, Scope, find_component, group_of
 
 MAX_DEPTH = 64
 _VAR = re.compile(r"@([A-Za-z_]\w*)")
@@ -74,7 +74,7 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
         prefix = _PATH_CHARS.search(out).group(0) if out.endswith(".") else ""
         if prefix:
             start = group_of(scope)
-            target = find_component(start, prefix[:-1]) if start and prefix[:-1] else None
+            target = _data_element(start, prefix[:-1]) if start and prefix[:-1] else None
             if target is not None and name in target.attrs:
                 value = substitute(target.attrs[name], target, depth + 1)
                 # at the end the attribute's value is the result; inside a path it is the
@@ -101,11 +101,28 @@ def _path_value(text: str, scope, depth: int) -> str:
     if not dot:
         return lookup_variable(name, scope, depth)
     start = group_of(scope)
-    target = find_component(start, path) if start is not None and path else \
+    target = _data_element(start, path) if start is not None and path else \
         (start.top() if start is not None else None)
     if target is None or name not in target.attrs:
         raise VariableError(f'"{text}" names no element attribute')
     return substitute(target.attrs[name], target, depth + 1)
+
+
+def _data_element(start: Group, path: str):
+    """The group or module at a path, or else another element with that name (a data
+    block such as ``<data name="Arm" x="1"/>``) as a scope."""
+    found = find_component(start, path)
+    if found is not None:
+        return found
+    parent_path, _, name = path.rpartition(".")
+    parent = find_component(start, parent_path) if parent_path else \
+        (start.top() if path.startswith(".") else start)
+    if not isinstance(parent, Group):
+        return None
+    for element in parent.node.elements():
+        if element.attrs.get("name") == name and element.tag not in ("module", "group"):
+            return Scope(element, parent)
+    return None
 
 
 def _has_operator(text: str) -> bool:

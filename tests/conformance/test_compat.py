@@ -236,6 +236,7 @@ def test_data_blocks():
     net = load("compat_sizes.ikg", quiet=True)
     p = net.parameter
     assert (p("L1.p"), p("L2.p"), p("L3.p"), p("L4.p"), p("L5.p")) == (1, 2, 33, 32, 999)
+    assert (p("L6.p"), p("L6.q")) == (2, 2)          # an element that is only data
 
 
 # --- the editor saves clean files ---------------------------------------------------------
