@@ -270,12 +270,14 @@ def _is_composite(ikc: str) -> bool:
 
 def _defines_class(entry: ClassEntry) -> bool:
     """Whether a user folder's Python file defines a Module class of its own name (a cheap
-    text check, so helper scripts beside a model are not imported)."""
+    text check, so helper scripts and scripts for other programs beside a model are not
+    imported: a module of this project uses ikaros)."""
     try:
         with open(entry.python, encoding="utf-8") as f:
-            return f"class {entry.name}(" in f.read()
-    except OSError:
+            text = f.read()
+    except (OSError, UnicodeDecodeError):
         return False
+    return f"class {entry.name}(" in text and "ikaros" in text
 
 
 def classes(folders: list[str] = ()) -> dict[str, ClassDescription]:

@@ -141,7 +141,8 @@ def test_an_ikc_output_the_implementation_lacks_is_an_error(tmp_path):
 
 
 def test_a_script_named_like_a_standard_class_does_not_hide_it(tmp_path):
-    (tmp_path / "Scale.py").write_text("raise SystemExit('a script for another program')\n")
+    (tmp_path / "Scale.py").write_text("class Scale(object):\n    pass\n\n"
+                                       "raise SystemExit('a script for another program')\n")
     (tmp_path / "m.ikg").write_text(SCALE_MODEL)
     net = ikaros.load(str(tmp_path / "m.ikg"))
     net.step()
@@ -149,10 +150,12 @@ def test_a_script_named_like_a_standard_class_does_not_hide_it(tmp_path):
 
 
 def test_a_broken_python_file_beside_a_model_is_left_out_of_the_class_list(tmp_path, capsys):
-    (tmp_path / "Plot.py").write_text("import no_such_package\nclass Plot(object): pass\n")
+    (tmp_path / "Plot.py").write_text("import no_such_package\nfrom ikaros.module import "
+                                      "Module\n\n\nclass Plot(Module):\n    pass\n")
+    (tmp_path / "Chart.py").write_text("class Chart(object):\n    pass\n")   # not a module
     (tmp_path / "Twice.py").write_text(PY_CLASS)
     found = ikaros.classes(str(tmp_path))
-    assert "Twice" in found and "Plot" not in found
+    assert "Twice" in found and "Plot" not in found and "Chart" not in found
     assert "Plot.py" in capsys.readouterr().err
 
 
