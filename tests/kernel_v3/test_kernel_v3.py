@@ -12,23 +12,31 @@ expectations are read from root attributes, as the original harness does (TESTS.
 
 ``${TEST_DIR}`` is the models folder and ``${TMP}`` a fresh temporary folder. Where our
 documented semantics differ from Ikaros 3 (first tick 0, default delay 1, ...), the models
-expect our result; docs/language.md lists the differences.
+expect our result; docs/language.md lists the differences. Models that wait for a loader fix
+are listed in WAITING with the reason, and a test checks that they still fail.
+
+The test-only classes the models use live in ikaros/testsupport; the models reach them with
+``path="@support"`` on the module and ``support`` on the top group.
 """
 import os
 import shlex
 
 import pytest
 
+import ikaros
 from ikaros import cli
+from ikaros.kernel.classes import ClassRegistry
 from ikaros.language.reader import read_file
 
 MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
 
 # Models that need loader work not merged yet: file -> what they wait for.
+_SPLICED = ("a variable whose value is an expression (c=\"@b+2\") is spliced into {...} as "
+            "text ({@c*1000} gives 1+2*1000), not evaluated first in the scope that "
+            "defines it")
 WAITING: dict[str, str] = {
-    "test_44_inherited_then_local_matrix_expression.ikg":
-        "an inherited expression (c=\"@b+2\") is substituted into {@c*1000} as text, "
-        "giving 1+2*1000, not evaluated first in its own scope",
+    "test_40_matrix_expressions.ikg": _SPLICED,
+    "test_44_inherited_then_local_matrix_expression.ikg": _SPLICED,
     "test_12_connections_indexed_w_delays.ikg":
         "a delay window into a target selector (P.INPUT[] with delay=\"[10:20]\") is "
         "refused: the selector is sized as if the window were applied twice (400 vs 40)",
@@ -48,8 +56,8 @@ def _texts(attrs, key):
     return [t.strip() for t in value.split("||")] if value else []
 
 
-@pytest.mark.parametrize("name", _models())
-def test_kernel_model(name, tmp_path, capsys):
+def _run(name: str, tmp_path, capsys) -> list[str]:
+    """Runs one model through the CLI; returns its unmet expectations (none: it passes)."""
     path = os.path.join(MODELS, name)
     attrs = read_file(path, root_tag="group").attrs
 
@@ -65,24 +73,54 @@ def test_kernel_model(name, tmp_path, capsys):
         code = e.code
     out = capsys.readouterr()
     output = out.out + out.err
-    assert code == int(attrs.get("expected_exit", "0")), output
+    unmet = []
+    if code != int(attrs.get("expected_exit", "0")):
+        unmet.append(f"exit status {code}")
     for text in _texts(attrs, "expected_output_contains"):
-        assert expand(text) in output, f"{text!r} not in:\n{output}"
+        if expand(text) not in output:
+            unmet.append(f"{text!r} not in the output")
     for text in _texts(attrs, "expected_output_not_contains"):
-        assert expand(text) not in output, f"{text!r} in:\n{output}"
+        if expand(text) in output:
+            unmet.append(f"{text!r} in the output")
     for key, count in (("expected_output_contains_once", 1),
                        ("expected_output_contains_twice", 2)):
         for text in _texts(attrs, key):
-            assert output.count(expand(text)) == count, f"{text!r} not {count}x in:\n{output}"
+            if output.count(expand(text)) != count:
+                unmet.append(f"{text!r} not {count} times in the output")
     for file in _texts(attrs, "expected_file_exists"):
-        assert os.path.exists(expand(file)), file
+        if not os.path.exists(expand(file)):
+            unmet.append(f"no file {file}")
     for item in _texts(attrs, "expected_file_contains"):
         file, _, text = item.partition("::")
-        with open(expand(file), encoding="utf-8") as f:
-            assert expand(text) in f.read(), item
+        try:
+            with open(expand(file), encoding="utf-8") as f:
+                found = expand(text) in f.read()
+        except OSError:
+            found = False
+        if not found:
+            unmet.append(f"{text!r} not in {file}")
+    return unmet + ([f"output:\n{output}"] if unmet else [])
 
 
-def test_waiting_models_exist():
-    """Every model waiting for a point of issue 11 is in the folder (and named there)."""
-    for name in WAITING:
-        assert os.path.isfile(os.path.join(MODELS, name)), name
+@pytest.mark.parametrize("name", _models())
+def test_kernel_model(name, tmp_path, capsys):
+    unmet = _run(name, tmp_path, capsys)
+    assert not unmet, "\n".join(unmet)
+
+
+@pytest.mark.parametrize("name", sorted(WAITING))
+def test_waiting_model_still_waits(name, tmp_path, capsys):
+    """A model kept out of the run list still fails; once the loader is fixed this test
+    fails, and the model moves to the run list."""
+    assert _run(name, tmp_path, capsys), f"{name} passes now: take it out of WAITING"
+
+
+def test_support_classes_are_found_but_internal():
+    """The test-only classes are found in their folder but listed nowhere."""
+    support = os.path.join(os.path.dirname(ikaros.__file__), "testsupport")
+    registry = ClassRegistry([support])
+    names = ["KernelTestModule", "DelaySequenceSource", "TaskLifecycleTestModule"]
+    for name in names:
+        assert registry.find(name).description().internal, name
+    listed = ikaros.classes(support)
+    assert not set(names) & set(listed) and "Constant" in listed
