@@ -90,7 +90,10 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
             # on its own); where an empty value can not be used, that is the error.
             message = f'variable "@{name}" is not defined; read as an empty value'
             node = getattr(scope, "node", None)
-            warn_at(node, message) if node is not None else warn(message)
+            if node is not None:
+                warn_at(node, message)
+            else:
+                warn(message)
     return out + text[pos:]
 
 
