@@ -13,7 +13,7 @@ from importlib.metadata import entry_points
 from ..description import ClassDescription
 from ..errors import ModelError
 from ..language.classfile import read_class_file
-from ..language.diagnostics import warn
+from ..language.diagnostics import warn, warn_at
 from ..language.reader import read_file
 from ..module import Module
 
@@ -55,7 +55,7 @@ class ClassEntry:
     def _load(self) -> type[Module]:
         if self.implementation is not None:
             cls = self.implementation.module_class()
-            _check_interface(read_class_file(self.ikc), cls.description, self.ikc)
+            _check_interface(self.ikc, cls.description)
             self._desc = cls.description
             return cls
         cls = self.loaded
@@ -86,26 +86,27 @@ class ClassEntry:
         return cls
 
 
-def _check_interface(declared: ClassDescription, implemented: ClassDescription,
-                     ikc: str) -> None:
+def _check_interface(ikc: str, implemented: ClassDescription) -> None:
     """An .ikc beside a model for a class implemented elsewhere: what the .ikc declares and
     the implementation lacks is an error (outputs, required inputs) or a warning (parameters
-    and optional inputs, which nothing reads)."""
-    where = f"{os.path.basename(ikc)} declares"
-    have = {s.name for s in implemented.outputs}
-    missing = [s.name for s in declared.outputs if s.name not in have]
-    have = {s.name for s in implemented.inputs}
-    missing += [s.name for s in declared.inputs if s.name not in have and not s.optional]
-    if missing:
-        raise ModelError(f'{where} {", ".join(missing)}, which the implementation of class '
-                         f'{declared.name} ({implemented.source or "standard library"}) does '
-                         f'not have', ikc)
-    extra = [s.name for s in declared.inputs if s.name not in have]
-    have = {s.name for s in implemented.parameters}
-    extra += [s.name for s in declared.parameters if s.name not in have]
-    if extra:
-        warn(f'{where} {", ".join(extra)}, which the implementation of class {declared.name} '
-             f'does not have; ignored', ikc)
+    and optional inputs, which nothing reads), naming the .ikc element."""
+    declared = read_class_file(ikc)
+    root = read_file(ikc)
+    has = {"output": {s.name for s in implemented.outputs},
+           "input": {s.name for s in implemented.inputs},
+           "parameter": {s.name for s in implemented.parameters}}
+    optional = {s.name for s in declared.inputs if s.optional}
+    source = implemented.source or "the standard library"
+    for tag in ("output", "input", "parameter"):
+        for element in root.elements(tag):
+            name = element.get("name")
+            if name in has[tag]:
+                continue
+            message = (f"the implementation of class {declared.name} ({source}) has no "
+                       f'{tag} "{name}"')
+            if tag == "output" or (tag == "input" and name not in optional):
+                raise element.error(message)
+            warn_at(element, f"{message}; ignored")
 
 
 def _declares_anything(cls: type[Module]) -> bool:

@@ -125,8 +125,9 @@ def test_an_ikc_parameter_the_implementation_lacks_is_a_warning(tmp_path):
     net.step()
     assert net.output("S.OUTPUT").tolist() == [3, 6]
     (w,) = net.warnings
-    assert w.filename == str(tmp_path / "Scale.ikc")
-    assert "offset" in w.message and "ignored" in w.message
+    assert (w.filename, w.line, w.element) == (str(tmp_path / "Scale.ikc"), 3,
+                                               '<parameter name="offset">')
+    assert w.message.endswith('has no parameter "offset"; ignored')
     with pytest.raises(ikaros.ModelError, match="offset"):
         ikaros.load(str(tmp_path / "m.ikg"), strict=True)
 
@@ -137,7 +138,9 @@ def test_an_ikc_output_the_implementation_lacks_is_an_error(tmp_path):
     (tmp_path / "m.ikg").write_text(SCALE_MODEL)
     with pytest.raises(ikaros.ModelError) as e:
         ikaros.load(str(tmp_path / "m.ikg"))
-    assert e.value.line == 3 and "Scale.ikc declares GAIN" in str(e.value)
+    assert (e.value.filename, e.value.line) == (str(tmp_path / "m.ikg"), 3)
+    assert f'{tmp_path / "Scale.ikc"}:5: <output name="GAIN">: ' in str(e.value)
+    assert str(e.value).endswith('has no output "GAIN"')
 
 
 def test_a_script_named_like_a_standard_class_does_not_hide_it(tmp_path):
