@@ -9,7 +9,9 @@ class Normalize(Module):
     to 1; ``euclidean`` divides by the Euclidean (L2) norm, so the output has length 1;
     ``cityblock`` divides by the sum of absolute values (L1 norm); ``max`` divides by the
     largest element. When the divisor is 0 (a constant input for ``range``, an all-zero
-    input otherwise) the output is 0 and a warning is given once."""
+    input otherwise) the output is 0 and a warning is given once. The arithmetic is done in
+    double precision, so inputs up to the float32 extremes (a range from -3e38 to 3e38)
+    normalise without overflow."""
 
     type = Parameter("range", "how to normalise: range (min..max to 0..1), euclidean (L2 "
                      "norm 1), cityblock (L1 norm 1) or max (divide by the maximum)",
@@ -19,9 +21,14 @@ class Normalize(Module):
 
     def init(self):
         self._input = self.INPUT.reshape(self.OUTPUT.shape)
+        self._work = np.zeros(self.OUTPUT.shape, dtype=np.float64)
         self._warned = False
 
     def tick(self):
+        with np.errstate(invalid="ignore", over="ignore"):    # NaN and inf are reported
+            self._normalize()
+
+    def _normalize(self):
         x = self._input
         offset = 0.0
         if self.type == "range":
@@ -40,5 +47,6 @@ class Normalize(Module):
                              f"the output is 0")
             self.OUTPUT.fill(0)
             return
-        np.subtract(x, np.float32(offset), out=self.OUTPUT)
-        self.OUTPUT /= np.float32(divisor)
+        np.subtract(x, offset, out=self._work, dtype=np.float64)
+        self._work /= divisor
+        self.OUTPUT[...] = self._work

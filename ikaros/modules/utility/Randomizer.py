@@ -8,7 +8,9 @@ class Randomizer(Module):
     """Outputs uniform random values in [min, max). New values are drawn in init and on every
     tick that is a multiple of ``interval`` (tick 0, interval, 2*interval, ...); in between the
     output keeps its values. The size comes from ``outputsize`` or ``outputsize_x`` and
-    ``outputsize_y``. The same ``seed`` gives the same values."""
+    ``outputsize_y``. The same ``seed`` gives the same values. ``min`` and ``max`` must be
+    finite (an infinite or NaN bound is an error, as in Ikaros 3); min above max is allowed
+    and gives values in (max, min]."""
 
     outputsize = Parameter(1, "number of elements of a 1-D output", type="int")
     outputsize_x = Parameter(None, "columns of a 2-D output", type="int")
@@ -23,14 +25,16 @@ class Randomizer(Module):
                     size_param="outputsize")
 
     def init(self):
+        if not (np.isfinite(self.min) and np.isfinite(self.max)):
+            raise ValueError(f"min ({self.min}) and max ({self.max}) must be finite numbers")
         # An unset seed reads as 0, so 0 also means "a different run every time".
         self._rng = np.random.default_rng(self.seed or None)
         self._draw()
 
     def _draw(self):
+        # in float64, so a range wider than float32 holds (-3e38 to 3e38) gives no overflow
         self._rng.random(out=self.OUTPUT, dtype=np.float32)
-        self.OUTPUT *= np.float32(self.max - self.min)
-        self.OUTPUT += np.float32(self.min)
+        self.OUTPUT[...] = self.min + self.OUTPUT.astype(np.float64) * (self.max - self.min)
 
     def tick(self):
         if self.clock.tick % max(1, self.interval) == 0:

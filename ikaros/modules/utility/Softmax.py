@@ -10,7 +10,8 @@ class Softmax(Module):
     (negative elements count by their magnitude, which for even exponents is the same as
     Ikaros 2 and for other exponents avoids NaN); with type ``exponential`` it is exp(x)
     (computed as exp(x - max) so large inputs cannot overflow; the result is the same). When
-    the sum is 0 the output is 0, with a warning the first time. Ikaros 2 declared the
+    the sum is 0, or not finite (an input that is NaN or infinite), the output is 0, with a
+    warning the first time. Ikaros 2 declared the
     exponent as ``exponenet`` but read ``exponent``; both names are accepted here and
     ``exponenet`` is used when it is given a non-zero value."""
 
@@ -27,6 +28,10 @@ class Softmax(Module):
         self._warned = False
 
     def tick(self):
+        with np.errstate(invalid="ignore", over="ignore"):    # NaN and inf are reported
+            self._normalize()
+
+    def _normalize(self):
         x, out = self._x, self.OUTPUT
         if self.type == "exponential":
             np.subtract(x, np.max(x), out=out)

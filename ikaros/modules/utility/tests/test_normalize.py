@@ -70,3 +70,8 @@ def test_random_input_over_several_ticks(tmp_path):
             assert np.allclose(net.output("E.OUTPUT"), r / np.linalg.norm(r), atol=1e-6)
     finally:
         net.close()
+
+
+def test_float32_extremes_normalise_without_overflow(tmp_path):
+    out, warnings = normalize(tmp_path, "-3e38 3e38 0", "range")
+    assert out.tolist() == [0, 1, 0.5] and warnings == []

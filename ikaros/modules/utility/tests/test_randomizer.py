@@ -1,7 +1,9 @@
 """Tests of the Randomizer module."""
 
 import numpy as np
+import pytest
 
+from ikaros.errors import ModelError
 from ikaros.testing import load_body as load
 
 
@@ -75,5 +77,24 @@ def test_unseeded_default_size_and_range(tmp_path):
         values = np.array(values)
         assert np.all(values >= 0) and np.all(values < 1)
         assert len(np.unique(values)) > 40
+    finally:
+        net.close()
+
+
+def test_bounds_must_be_finite(tmp_path):
+    """As Ikaros 3: an infinite or NaN bound is an error."""
+    for attrs in ('max="inf"', 'min="nan"'):
+        with pytest.raises(ModelError, match=r"must be finite numbers"):
+            load(tmp_path, f'<module class="Randomizer" name="R" {attrs}/>')
+
+
+def test_a_range_wider_than_float32_does_not_overflow(tmp_path):
+    net = load(tmp_path, '<module class="Randomizer" name="R" min="-3e38" max="3e38" '
+                         'outputsize="1000" seed="2"/>')
+    try:
+        net.step()
+        out = net.output("R.OUTPUT")
+        assert np.all(np.isfinite(out))
+        assert out.min() < -1e38 and out.max() > 1e38
     finally:
         net.close()

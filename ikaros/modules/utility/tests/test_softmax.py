@@ -1,6 +1,7 @@
 """Tests of the Softmax module."""
 import numpy as np
 
+from ikaros.module import WARNING
 from ikaros.testing import load_body as load
 
 RANDOM = ('<module class="Randomizer" name="R" outputsize_x="3" outputsize_y="2" min="-2" '
@@ -68,5 +69,19 @@ def test_zero_sum_gives_zero_and_one_warning(tmp_path):
         assert np.array_equal(net.output("S.OUTPUT"), np.zeros(4))
         warnings = [m for (_, level, where, m) in net.log if where == "S" and level == 5]
         assert len(warnings) == 1
+    finally:
+        net.close()
+
+
+def test_nan_or_inf_input_gives_zeros_and_one_warning(tmp_path, capfd):
+    net = load(tmp_path, '<module class="Constant" name="C" data="1 nan inf"/>'
+                         '<module class="Softmax" name="S"/>'
+                         '<connection source="C.OUTPUT" target="S.INPUT" delay="0"/>')
+    try:
+        net.run(ticks=3)
+        assert net.output("S.OUTPUT").tolist() == [0, 0, 0]
+        assert net.output("C.OUTPUT")[0] == 1          # the input is not changed
+        assert sum(e[1] == WARNING for e in net.log) == 1
+        assert "RuntimeWarning" not in capfd.readouterr().err
     finally:
         net.close()
