@@ -3,7 +3,6 @@ CSV, TSV, JSON or JSON Lines."""
 import json
 import math
 import os
-import re
 
 import numpy as np
 
@@ -12,8 +11,7 @@ from ikaros.module import Input, Parameter
 
 from ._columns import ColumnWriter
 from ._csvnames import column_names
-
-_COUNTER = re.compile(r"%(0?\d*)d|#+")
+from ._files import numbered
 _EXTENSIONS = {".csv": "csv", ".tsv": "tsv", ".json": "json", ".jsonl": "jsonl",
                ".ndjson": "jsonl"}
 _STAMPS = {"yes": "tick", "true": "tick", "on": "tick", "1": "tick",
@@ -198,14 +196,8 @@ class OutputFile(ColumnWriter):
         return None
 
     def _path(self):
-        name = _COUNTER.sub(self._numbered, self.filename)
+        name = numbered(self.filename, self._number)
         return name if os.path.isabs(name) else os.path.join(self._folder, name)
-
-    def _numbered(self, match):
-        text = match.group(0)
-        if text.startswith("#"):
-            return f"{self._number:0{len(text)}d}"
-        return ("%" + match.group(1) + "d") % self._number
 
     def _open(self):
         self._close()

@@ -4,7 +4,7 @@ import re
 
 from ikaros.errors import ModelError
 
-_COUNTER = re.compile(r"%(0?\d*)d")
+_COUNTER = re.compile(r"%(0?\d*)d|#+")
 
 
 def model_folder(module) -> str:
@@ -19,12 +19,24 @@ def resolve(module, filename: str) -> str:
 
 
 def numbered(pattern: str, number: int) -> str:
-    """The file name with ``%d`` (or ``%03d`` and so on) replaced by ``number``."""
-    return _COUNTER.sub(lambda m: ("%" + m.group(1) + "d") % number, pattern)
+    """The file name with ``%d`` (or ``%03d`` and so on, Ikaros 2) or a run of ``#``
+    (Ikaros 3: ``###`` is three digits, zero-padded) replaced by ``number``."""
+    def one(m):
+        text = m.group(0)
+        if text.startswith("#"):
+            return f"{number:0{len(text)}d}"
+        return ("%" + m.group(1) + "d") % number
+    return _COUNTER.sub(one, pattern)
 
 
 def has_counter(pattern: str) -> bool:
     return _COUNTER.search(pattern) is not None
+
+
+def counter_capacity(pattern: str) -> int | None:
+    """How many file numbers a run of ``#`` can hold (``##``: 100), or None for no limit."""
+    runs = [len(m.group(0)) for m in _COUNTER.finditer(pattern) if m.group(0)[0] == "#"]
+    return 10 ** min(runs) if runs else None
 
 
 def build_error(module, message: str) -> ModelError:
