@@ -8,7 +8,8 @@ expectations are read from root attributes, as the original harness does (TESTS.
 * ``expected_exit`` (default 0);
 * ``expected_output_contains`` / ``_not_contains`` / ``_once`` / ``_twice``: ``||``-separated
   texts matched against stdout plus stderr;
-* ``expected_file_exists`` / ``expected_file_contains`` (``path::text``).
+* ``expected_file_exists`` / ``_not_exists`` / ``expected_file_contains``
+  (``path::text``).
 
 ``${TEST_DIR}`` is the models folder and ``${TMP}`` a fresh temporary folder. Where our
 documented semantics differ from Ikaros 3 (first tick 0, default delay 1, ...), the models
@@ -90,6 +91,9 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
     for file in _texts(attrs, "expected_file_exists"):
         if not os.path.exists(expand(file)):
             unmet.append(f"no file {file}")
+    for file in _texts(attrs, "expected_file_not_exists"):
+        if os.path.exists(expand(file)):
+            unmet.append(f"a file {file}")
     for item in _texts(attrs, "expected_file_contains"):
         file, _, text = item.partition("::")
         try:
