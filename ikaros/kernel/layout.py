@@ -156,9 +156,10 @@ def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
     coords_per_link = []
     for link in links:
         dims = list(link.dst_sel[1])
-        if link.window:
-            dims = [("range", 0, len(link.delays), 1)] + dims
         piece = list(link.piece_shape)
+        if link.window:             # the window's axis leads, before the selected ones
+            dims = [("range", 0, len(link.delays), 1)] + dims
+            piece = piece[1:]
         lists, extents = [], []
         holes = [i for i, d in enumerate(dims) if d[0] == "all"]
         for i, d in enumerate(dims):

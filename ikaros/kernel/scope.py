@@ -33,7 +33,16 @@ def lookup_variable(name: str, scope, depth: int = 0, own: str | None = None) ->
     attribute ``own``, ``@own`` means the same name further out (``factor="@factor"``)."""
     for s in scope.chain():
         if name in s.attrs and not (name == own and s is scope):
-            return substitute(s.attrs[name], s, depth + 1, own=name)
+            raw = s.attrs[name]
+            value = substitute(raw, s, depth + 1, own=name)
+            if "@" in raw and _has_operator(value) and is_arithmetic(value):
+                # arithmetic with variables is computed where it is defined, so that
+                # {@c*1000} with c="@b+2" multiplies the sum
+                try:
+                    return format_number(evaluate_arithmetic(value))
+                except ExpressionError as e:
+                    raise VariableError(f'"{raw}": {e}') from None
+            return value
     raise UndefinedVariable(f'Variable "@{name}" not defined.')
 
 

@@ -58,8 +58,10 @@ def _substitute(inst: ModuleInstance, text: str) -> str:
     """Replace @p by the module's parameter values (else by variables in scope)."""
     def one(m):
         name = m.group(1)
-        if name in inst.values and not isinstance(inst.values[name], str):
+        if name in inst.values:
             value = _param_number(inst, name)
+            if isinstance(value, str):          # a string parameter: a size list ("3,4")
+                return value
             if isinstance(value, np.ndarray):
                 return ",".join(format_number(v) for v in value.reshape(-1))
             return format_number(float(value))

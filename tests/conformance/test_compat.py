@@ -262,3 +262,25 @@ def test_the_editor_saves_a_leniently_loaded_file_clean(tmp_path):
     assert again.warnings == [] and again.parameter("Par.p") == 4
     again.run(ticks=2)
     same(again.output("K.OUTPUT"), [101])
+
+
+# --- forms of the Ikaros 3 kernel tests ---------------------------------------------------
+def test_a_variable_holding_arithmetic_is_computed_where_it_is_defined():
+    net = load("compat_rules.ikg", strict=True)
+    assert net.parameter("Spliced.S.p") == 3000          # (1+2)*1000, not 1+2*1000
+    same(net.parameter("Spliced.S.m"), [[1001, 4], [6, 30]])
+
+
+def test_a_shape_expression_naming_a_string_parameter():
+    net = load("compat_rules.ikg", strict=True)
+    net.step()
+    same(net.output("SL1.OUTPUT"), [[6, 6, 6], [6, 6, 6]])     # the class default "2,3"
+    same(net.output("SL2.OUTPUT"), [4, 4, 4, 4])
+
+
+def test_a_delay_window_into_a_target_selector():
+    net = load("compat_window_selector.ikg", strict=True)
+    assert net.output("K.OUTPUT").shape == (2, 2)
+    net.run(ticks=3)                        # after tick 2: [v(1), v(0)] and [v(2)[1], v(1)[1]]
+    same(net.output("K.OUTPUT"), [[102, 202], [101, 201]])
+    same(net.output("L.OUTPUT"), [[203], [202]])
