@@ -12,7 +12,7 @@ from ..errors import RunError
 from ..language.values import ValueError_, format_number, value_text
 from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
-                      attribute_name, parameter_attribute)
+                      WARNING, attribute_name, parameter_attribute)
 from .buffers import Run
 from .control import PLAY, REALTIME, Controller
 from .execution import AsyncModule, Plan, module_tick
@@ -43,6 +43,7 @@ class Network:
         self.runs = runs
         self.zero_delay_edges = edges
         self.log: collections.deque = collections.deque(maxlen=1000)
+        self.log.extend((0, WARNING, "", w.located()) for w in self.warnings)
         self.log_level = PRINT
         self.tick = 0
         self._started = time.perf_counter()

@@ -24,11 +24,19 @@ class ModelWarning:
     element: str | None = None
 
     def __str__(self) -> str:
-        where = ""
+        return f"{self._where()}warning: {self._what()}"
+
+    def located(self) -> str:
+        """The warning without the word "warning": ``file:line: <element>: message``."""
+        return self._where() + self._what()
+
+    def _where(self) -> str:
         if self.filename:
-            where = f"{self.filename}:{self.line}: " if self.line else f"{self.filename}: "
-        what = f"{self.element}: " if self.element else ""
-        return f"{where}warning: {what}{self.message}"
+            return f"{self.filename}:{self.line}: " if self.line else f"{self.filename}: "
+        return ""
+
+    def _what(self) -> str:
+        return f"{self.element}: {self.message}" if self.element else self.message
 
 
 class Diagnostics:

@@ -5,6 +5,7 @@ import os
 import pytest
 
 import ikaros
+import ikaros.module
 from conformance_util import line_of, load, model, same
 
 
@@ -46,6 +47,14 @@ def test_xml_leniency_warns_with_file_and_line():
     assert str(repeated) == (f'{model(name)}:{line_of(name, "REPEATED")}: warning: '
                              f'<module name="Twice">: attribute "p" repeated; the first '
                              f'value, "5", is kept')
+
+
+def test_load_warnings_are_in_the_log_the_web_ui_shows():
+    net = load("compat_xml.ikg", quiet=True)
+    warnings = [entry for entry in net.log if entry[1] == ikaros.module.WARNING]
+    assert [message for _, _, _, message in warnings] == [w.located() for w in net.warnings]
+    assert (f'{model("compat_xml.ikg")}:{line_of("compat_xml.ikg", "GLUED")}: '
+            f'<module name="Glued">: no space before attribute "q"') in [w[3] for w in warnings]
 
 
 def test_xml_leniency_is_an_error_when_strict():
