@@ -353,16 +353,14 @@ class Network:
         return "\n".join(lines)
 
     def close(self) -> None:
-        """End the run: every module's stop() is called once. Raises RunError when a
-        stop() fails."""
+        """End the run: every module's stop() is called once. A stop() that fails is
+        reported and makes ``stop_reason`` a fatal error."""
         if not self._stopped:
             self.stop_reason = self.stop_reason or (TERMINATE, "closed")
-            reported = self.stop_reason[0] == FATAL_ERROR
             try:
                 self._end()
             except RunError:
-                if not reported:        # a stop() failed: the run ends with that error
-                    raise
+                pass            # reported; a failed stop() leaves stop_reason fatal
 
     def __enter__(self):
         return self
