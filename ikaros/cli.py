@@ -213,6 +213,8 @@ def main(argv: list[str] | None = None) -> int:
             net.close()
             if opts.profile:
                 print(net.profile_text())
+        if net.stop_reason and net.stop_reason[0] == FATAL_ERROR:     # a stop() failed
+            return EXIT_ERROR
         return EXIT_OK if ok or not opts.batch else EXIT_ERROR
     except ModelError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
