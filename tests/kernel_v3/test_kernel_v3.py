@@ -12,9 +12,8 @@ expectations are read from root attributes, as the original harness does (TESTS.
   (``path::text``).
 
 ``${TEST_DIR}`` is the models folder and ``${TMP}`` a fresh temporary folder. Where our
-documented semantics differ from Ikaros 3 (first tick 0, default delay 1, ...), the models
-expect our result; docs/language.md lists the differences. Models that wait for a loader fix
-are listed in WAITING with the reason, and a test checks that they still fail.
+documented semantics differ from Ikaros 3 (first tick 0, concatenation, ...), the models
+expect our result; docs/language.md lists the differences.
 
 The test-only classes the models use live in ikaros/testsupport; the models reach them with
 ``path="@support"`` on the module and ``support`` on the top group.
@@ -31,25 +30,9 @@ from ikaros.language.reader import read_file
 
 MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
 
-# Models that need loader work not merged yet: file -> what they wait for.
-_SPLICED = ("a variable whose value is an expression (c=\"@b+2\") is spliced into {...} as "
-            "text ({@c*1000} gives 1+2*1000), not evaluated first in the scope that "
-            "defines it")
-WAITING: dict[str, str] = {
-    "test_40_matrix_expressions.ikg": _SPLICED,
-    "test_44_inherited_then_local_matrix_expression.ikg": _SPLICED,
-    "test_12_connections_indexed_w_delays.ikg":
-        "a delay window into a target selector (P.INPUT[] with delay=\"[10:20]\") is "
-        "refused: the selector is sized as if the window were applied twice (400 vs 40)",
-    "test_30b_size_expression_class_default.ikg":
-        "a shape expression naming a string parameter (shape=\"@size\") ignores the "
-        "parameter's class default and looks for a variable instead",
-}
-
-
 def _models():
     return sorted(f for f in os.listdir(MODELS)
-                  if f.startswith("test") and f.endswith(".ikg") and f not in WAITING)
+                  if f.startswith("test") and f.endswith(".ikg"))
 
 
 def _texts(attrs, key):
@@ -110,13 +93,6 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
 def test_kernel_model(name, tmp_path, capsys):
     unmet = _run(name, tmp_path, capsys)
     assert not unmet, "\n".join(unmet)
-
-
-@pytest.mark.parametrize("name", sorted(WAITING))
-def test_waiting_model_still_waits(name, tmp_path, capsys):
-    """A model kept out of the run list still fails; once the loader is fixed this test
-    fails, and the model moves to the run list."""
-    assert _run(name, tmp_path, capsys), f"{name} passes now: take it out of WAITING"
 
 
 def test_support_classes_are_found_but_internal():
