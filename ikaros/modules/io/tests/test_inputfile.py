@@ -302,3 +302,17 @@ def test_v3_bad_files_are_build_errors(tmp_path, filename, text, message):
 def test_v2_text_format_is_still_the_default_for_other_names(tmp_path):
     net = load_file(tmp_path, "d.dat", "X/2\n1 2\n")
     assert ticks(net, ["X"], 1) == [([1, 2],)]
+
+
+def test_v3_iterations_and_print_iteration(tmp_path):
+    net = load_file(tmp_path, "d.csv", "a\n1\n2\n", 'iterations="2" print_iteration="yes"')
+    try:
+        got = []
+        for _ in range(4):
+            net.step()
+            got.append(net.output("F.a").tolist())
+        assert got == [[1], [2], [1], [2]]
+        assert [e[3] for e in net.log if e[3].startswith("iteration")] == \
+            ["iteration 1", "iteration 2"]
+    finally:
+        net.close()
