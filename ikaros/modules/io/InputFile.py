@@ -33,7 +33,8 @@ class InputFile(Module):
 
     ``format`` chooses the file format; ``auto`` (the default) goes by the file's extension:
     ``.csv`` is csv, ``.tsv`` tsv, ``.json`` json, ``.jsonl`` and ``.ndjson`` jsonl, anything
-    else the Ikaros 2 text format above (``ikaros``). The other formats are those of
+    else the Ikaros 2 text format above (``ikaros``); a .csv or .tsv file whose header is in
+    the Ikaros 2 form (``X/2 Y/1``) is read in that format, as Ikaros 2 did. The other formats are those of
     Ikaros 3, read whole when the model loads. csv and tsv: values separated by
     ``delimiter`` (csv: "," unless set; tsv: a tab; a space means runs of spaces); with
     ``header`` (the default) the first row names the columns: ``X`` is an output of one
@@ -68,6 +69,8 @@ class InputFile(Module):
         kind = self.format
         if kind == "auto":
             kind = _EXTENSIONS.get(os.path.splitext(self.filename)[1].lower(), "ikaros")
+            if kind in ("csv", "tsv") and self._ikaros_header():
+                kind = "ikaros"
         self._table = None
         if kind != "ikaros":
             self._configure_table(kind)
@@ -122,6 +125,22 @@ class InputFile(Module):
             for name, a, b in self._columns:
                 self.add_output(name, (b - a,),
                                 description=f"column group {name} of the current line")
+
+    def _ikaros_header(self) -> bool:
+        """Whether the file starts with an Ikaros 2 header (``X/2 Y/1``, white space between
+        the items and no comma or tab), as Ikaros 2 files named .csv do."""
+        try:
+            with open(self._file_path, encoding="utf-8-sig") as f:
+                for line in f:
+                    text = line.split("#", 1)[0].strip()
+                    if text:
+                        items = text.split()
+                        return "," not in text and "\t" not in text and \
+                            any("/" in i for i in items) and \
+                            all(_HEADER_ITEM.match(i) for i in items)
+        except (OSError, UnicodeDecodeError):
+            pass            # reported when the file is read
+        return False
 
     def _configure_table(self, kind):
         """Reads a CSV, TSV, JSON or JSONL file whole and declares its outputs."""

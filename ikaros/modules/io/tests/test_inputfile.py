@@ -316,3 +316,8 @@ def test_v3_iterations_and_print_iteration(tmp_path):
             ["iteration 1", "iteration 2"]
     finally:
         net.close()
+
+
+def test_v2_table_named_csv_is_still_read_as_ikaros_2(tmp_path):
+    net = load_file(tmp_path, "old.csv", "X/2 Y/1\n1 2 3\n")
+    assert ticks(net, ["X", "Y"], 1) == [([1, 2], [3])]
