@@ -29,9 +29,10 @@ class OutputFile(ColumnWriter):
     ``#`` (Ikaros 3: ``##`` is two digits, zero-padded) is replaced by the file number,
     which starts at 0.
 
-    ``format`` ``auto`` (the default) goes by the file's extension: ``.csv`` is csv, ``.tsv``
-    tsv, ``.json`` json, ``.jsonl`` and ``.ndjson`` jsonl, anything else the Ikaros 2 text
-    table (``text``):
+    ``format`` ``auto`` (the default) writes the Ikaros 2 text table when there are
+    ``<column>`` elements (whatever the file is called, as Ikaros 2 did), and otherwise goes
+    by the file's extension: ``.csv`` is csv, ``.tsv`` tsv, ``.json`` json, ``.jsonl`` and
+    ``.ndjson`` jsonl, anything else the text table (``text``):
 
     * text: tab-separated, the header ``T/1`` (the stamp) followed by ``X/n`` for each
       column (n elements of X, written flattened), as InputFile reads it;
@@ -91,7 +92,9 @@ class OutputFile(ColumnWriter):
         self._read_columns(("NEWFILE", "WRITE", "INPUT"), "the values of column",
                            self._build_error)
         kind = self.format
-        if kind == "auto":
+        if kind == "auto" and self._columns:        # the Ikaros 2 interface: its format
+            kind = "text"
+        elif kind == "auto":
             kind = _EXTENSIONS.get(os.path.splitext(self.filename)[1].lower(), "text")
         self._kind = kind
         self._stamp = _STAMPS.get(str(self.timestamp).strip().lower())

@@ -245,14 +245,20 @@ def test_v3_empty_json_recording_is_an_empty_array(tmp_path):
 def test_v2_columns_and_v3_input_together_in_csv(tmp_path):
     path = tmp_path / "model.ikg"
     path.write_text(f'<group name="Test">\n{SOURCES}'
-                    '<module class="OutputFile" name="O" filename="out.csv" decimals="1">'
+                    '<module class="OutputFile" name="O" filename="out.csv" decimals="1" '
+                    f'format="csv">{COLUMNS}</module>\n'
+                    '<module class="OutputFile" name="V2" filename="v2.csv" decimals="1">'
                     f'{COLUMNS}</module>\n'
+                    '<connection source="W.OUTPUT" target="V2.A" delay="0"/>\n'
+                    '<connection source="C.OUTPUT" target="V2.B" delay="0"/>\n'
                     '<connection source="C.OUTPUT" target="O.INPUT" delay="0"/></group>')
     net = ikaros.load(str(path))
     net.run(ticks=1)
     net.close()
     assert (tmp_path / "out.csv").read_text() == (
         "tick,A,B[0],B[1],INPUT[0],INPUT[1]\n0,1.0,1.50,-2.25,1.5,-2.2\n")
+    # with <column> elements and no format, the Ikaros 2 text table, whatever the name
+    assert (tmp_path / "v2.csv").read_text() == "T/1\tA/1\tB/2\n0\t1.0\t1.50\t-2.25\n"
 
 
 @pytest.mark.parametrize("attributes, message", [
