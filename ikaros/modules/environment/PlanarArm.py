@@ -36,7 +36,8 @@ class PlanarArm(Module):
     |a_0| <= 2π/3 and 0 <= a_1, a_2 <= π; a move that would take the hand outside
     0.01..0.99 in x or y is refused (unless it brings an outside hand closer to the frame:
     the start pose has the hand at x = 1.002, where Ikaros 2 could leave the arm stuck).
-    The TARGET is redrawn uniformly in 0.1..0.9 at the start, every 100 ticks and whenever the hand comes within ``grasp_limit`` of it
+    The TARGET is redrawn uniformly in 0.1..0.9 at the start, every 100 ticks and whenever
+    the hand comes within ``grasp_limit`` of it
     (``random``), or follows a path of radius ``target_range`` around (0.5, 0.5): ``linear``
     (x = 0.5 + range·sin(speed·t)), ``circular``, ``lisajous`` (y at 0.3 times the
     frequency) or ``square``; a grasp moves the time t of a path to a random point of its

@@ -34,8 +34,8 @@ class InputFile(Module):
     ``format`` chooses the file format; ``auto`` (the default) goes by the file's extension:
     ``.csv`` is csv, ``.tsv`` tsv, ``.json`` json, ``.jsonl`` and ``.ndjson`` jsonl, anything
     else the Ikaros 2 text format above (``ikaros``); a .csv or .tsv file whose header is in
-    the Ikaros 2 form (``X/2 Y/1``) is read in that format, as Ikaros 2 did. The other formats are those of
-    Ikaros 3, read whole when the model loads. csv and tsv: values separated by
+    the Ikaros 2 form (``X/2 Y/1``) is read in that format, as Ikaros 2 did. The other
+    formats are those of Ikaros 3, read whole when the model loads. csv and tsv: values separated by
     ``delimiter`` (csv: "," unless set; tsv: a tab; a space means runs of spaces); with
     ``header`` (the default) the first row names the columns: ``X`` is an output of one
     element, ``X[0]``, ``X[1]`` ... form a vector and ``X[i][j]`` a matrix (as InputCSV), or,
