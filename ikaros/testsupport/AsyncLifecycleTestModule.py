@@ -1,26 +1,40 @@
-"""AsyncLifecycleTestModule: a slow tick for asynchronous runs."""
+"""AsyncLifecycleTestModule: a slow tick that checks its view of the run stays still."""
 import time
 
-from ikaros.module import Output, Parameter
+import numpy as np
+
+from ikaros.module import Input, Output, Parameter
 
 from ikaros.testsupport._internal import InternalModule
 
 
 class AsyncLifecycleTestModule(InternalModule):
-    """Each tick sleeps ``duration`` seconds, then adds 1 to OUTPUT (the ticks completed).
-    Prints ``ASYNC completed=n`` when the run ends. With ``async="yes"`` the kernel
-    runs the tick in the background and publishes OUTPUT when it is done."""
+    """Each tick takes ``duration`` seconds and then adds 1 to OUTPUT (the ticks completed).
+    With ``async="yes"`` the kernel runs the tick in the background while the network goes
+    on; the tick checks that what it sees does not change meanwhile: its clock and its INPUT
+    (optional) are the same at the end of the tick as at the start, or it reports
+    ``ASYNC_RUNTIME_SNAPSHOT_CHANGED`` as a fatal error. When the run ends it prints
+    ``ASYNC completed=n`` and, if n > 0 and nothing changed, ``ASYNC_RUNTIME_SNAPSHOT_STABLE``."""
 
     duration = Parameter(0.01, "seconds each tick takes")
+    INPUT = Input("anything; it must not change during a tick", optional=True)
     OUTPUT = Output("ticks completed", shape="1")
 
     def init(self):
         self._completed = 0
+        self._changed = False
 
     def tick(self):
+        tick, seen = self.clock.tick, None if self.INPUT is None else self.INPUT.copy()
         time.sleep(self.duration)
+        if self.clock.tick != tick or (seen is not None and
+                                       not np.array_equal(seen, self.INPUT)):
+            self._changed = True
+            self.fatal_error(f"ASYNC_RUNTIME_SNAPSHOT_CHANGED during tick {tick}")
         self._completed += 1
         self.OUTPUT[0] = self._completed
 
     def stop(self):
         self.print(f"ASYNC completed={self._completed}")
+        if self._completed and not self._changed:
+            self.print("ASYNC_RUNTIME_SNAPSHOT_STABLE")
