@@ -1,6 +1,7 @@
 """The Ikaros 3 kernel tests, re-written as our own models (reference TESTS.md §2).
 
-Every ``models/test_*.ikg`` is run through the CLI in batch mode, in this process, and its
+Every ``models/<section>/test_*.ikg`` (sections as in the catalogue: parameters,
+expressions, ..., modules) is run through the CLI in batch mode, in this process, and its
 expectations are read from root attributes, as the original harness does (TESTS.md §2.1):
 
 * ``stop`` runs that many ticks; without it ``-s 0`` is added (build and init only);
@@ -11,7 +12,7 @@ expectations are read from root attributes, as the original harness does (TESTS.
 * ``expected_file_exists`` / ``_not_exists`` / ``expected_file_contains``
   (``path::text``).
 
-``${TEST_DIR}`` is the models folder and ``${TMP}`` a fresh temporary folder. Where our
+``${TEST_DIR}`` is the model's folder and ``${TMP}`` a fresh temporary folder. Where our
 documented semantics differ from Ikaros 3 (first tick 0, concatenation, ...), the models
 expect our result; docs/language.md lists the differences.
 
@@ -31,7 +32,10 @@ from ikaros.language.reader import read_file
 MODELS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "models")
 
 def _models():
-    return sorted(f for f in os.listdir(MODELS)
+    """section/file of every test model."""
+    return sorted(f"{section}/{f}" for section in os.listdir(MODELS)
+                  if os.path.isdir(os.path.join(MODELS, section))
+                  for f in os.listdir(os.path.join(MODELS, section))
                   if f.startswith("test") and f.endswith(".ikg"))
 
 
@@ -46,7 +50,8 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
     attrs = read_file(path, root_tag="group").attrs
 
     def expand(text):
-        return text.replace("${TEST_DIR}", MODELS).replace("${TMP}", str(tmp_path))
+        return text.replace("${TEST_DIR}", os.path.dirname(path)).replace("${TMP}",
+                                                                         str(tmp_path))
 
     argv = ["-b"] + [expand(a) for a in shlex.split(attrs.get("cli_args", ""))]
     if "stop" not in attrs:
