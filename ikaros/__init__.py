@@ -18,12 +18,18 @@ __all__ = ["load", "classes", "Network", "Module", "Parameter", "Input", "Output
            "ModelError", "RunError", "ClassDescription"]
 
 
-def load(filename: str, /, **overrides) -> Network:
+def load(filename: str, /, *, max_memory: int | str | None = None, **overrides) -> Network:
     """Read, build and initialise a model file (.ikg). Keyword arguments set attributes of
-    the top group and win over the file. Raises ModelError naming the file, line and
-    element of what is wrong."""
+    the top group and win over the file. ``max_memory`` limits the memory of all buffers
+    (bytes, or text such as ``"512M"``; default half the physical memory). Raises
+    ModelError naming the file, line and element of what is wrong."""
     from .kernel.builder import Builder
-    return Builder(filename, overrides).build()
+    from .limits import LimitError, Limits
+    try:
+        limits = Limits().with_memory(max_memory)
+    except LimitError as e:
+        raise ModelError(f"max_memory: {e}") from None
+    return Builder(filename, overrides, limits=limits).build()
 
 
 def classes(*folders: str) -> dict[str, ClassDescription]:

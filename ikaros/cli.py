@@ -39,6 +39,20 @@ def _port(text: str) -> int:
     return int(text)
 
 
+def _token(text: str) -> str:
+    if not text.strip():
+        raise argparse.ArgumentTypeError("the access token must not be empty")
+    return text
+
+
+def _memory(text: str) -> int:
+    from .limits import LimitError, parse_bytes
+    try:
+        return parse_bytes(text)
+    except LimitError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
 def _seconds(text: str) -> float:
     try:
         value = float(text)
@@ -75,12 +89,15 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--bind", metavar="ADDRESS", default="127.0.0.1",
                    help="address the web UI listens on (default 127.0.0.1, this machine "
                         "only); any other address requires an access token")
-    p.add_argument("--token", metavar="TOKEN",
+    p.add_argument("--token", metavar="TOKEN", type=_token,
                    help="the web UI's access token (one is made up when --bind serves "
                         "other machines)")
     p.add_argument("--models", metavar="DIR",
                    help="web UI editor: the folder to save, list, open and create models "
                         "in (default: the model's folder)")
+    p.add_argument("--max-memory", type=_memory, metavar="SIZE",
+                   help="the most memory the model's buffers may take, in bytes or with "
+                        "K, M, G (default: half the physical memory)")
     p.add_argument("-p", "--profile", action="store_true",
                    help="measure per-module time and print the timing figures at exit")
     p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
@@ -190,7 +207,7 @@ def main(argv: list[str] | None = None) -> int:
             except webui.MissingWebDependencies as e:
                 print(f"ikaros: error: {e} (or run in batch mode with -b)", file=sys.stderr)
                 return EXIT_ERROR
-        net = load(model, **overrides)
+        net = load(model, max_memory=opts.max_memory, **overrides)
         net.log_level = WARNING if opts.quiet else DEBUG if opts.verbose else PRINT
         if opts.info:
             print(net.info())

@@ -10,6 +10,7 @@ import re
 
 from ..errors import ModelError
 from ..language.node import Node
+from ..limits import LimitError, Limits, applied, check_shape, current as current_limits
 from ..language.reader import read_file
 from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
                                split_selectors, value_text)
@@ -17,6 +18,7 @@ from ..module import RESERVED, WARNING, Clock, Module
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
 from .layout import layout, runs_into
+from .ranges import check_parameter
 from .schedule import schedule
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
 from .sizes import SizeError, WAIT, rule_shape, shape_expression
@@ -47,7 +49,8 @@ class Builder:
 
     def __init__(self, filename: str, overrides: dict | None = None, text: str | None = None,
                  notify=None, registry: ClassRegistry | None = None,
-                 model: Node | None = None):
+                 model: Node | None = None, limits: Limits | None = None):
+        self.limits = limits
         self.filename = os.path.abspath(filename)
         if model is not None and model.tag != "group":
             raise model.error(f"the root element is <{model.tag}> but must be <group>")
@@ -73,6 +76,7 @@ class Builder:
 
     def _group(self, node: Node, parent: Group | None, name: str, attrs: dict,
                files: tuple) -> Group:
+        _check_depth(node, parent)
         group = Group(name, node, parent, dict(attrs))
         anonymous = 0
         for child in node.elements():
@@ -240,12 +244,16 @@ class Builder:
         try:
             if found is not None:
                 text, where, _ = found
-                return convert(text, spec, where, own=spec.name), True
-            if spec.default is not None and spec.default != "":
+                value = convert(text, spec, where, own=spec.name)
+            elif spec.default is not None and spec.default != "":
                 if isinstance(spec.default, str):
-                    return convert(spec.default, spec, inst), True
-                return from_python(spec.default, spec), True
-            return from_python(None, spec), False
+                    value = convert(spec.default, spec, inst)
+                else:
+                    value = from_python(spec.default, spec)
+            else:
+                return from_python(None, spec), False
+            check_parameter(value, spec)
+            return value, True
         except (ValueError_, VariableError, ValueError) as e:
             node = where.node if hasattr(where, "node") else inst.node
             raise node.error(f'parameter "{spec.name}" of {inst.path}: {e}') from None
@@ -530,7 +538,9 @@ class Builder:
             spec = module._ik_outputs[name]
             try:
                 shape = rule_shape(inst, spec, shapes, partial) if spec.rule else WAIT
-            except SizeError as e:
+                if shape is not WAIT:
+                    check_shape(shape)
+            except (SizeError, LimitError) as e:
                 raise inst.node.error(f'size of output "{name}": {e}') from None
             if shape is WAIT:
                 waiting = True
@@ -545,7 +555,12 @@ class Builder:
                 raise inst.node.error(f"set_sizes failed: {type(e).__name__}: {e}") from None
             for name, buf in outputs.items():
                 if buf.shape is None and module._ik_output_shapes.get(name) is not None:
-                    buf.shape = module._ik_output_shapes[name]
+                    shape = module._ik_output_shapes[name]
+                    try:
+                        check_shape(shape)
+                    except LimitError as e:
+                        raise inst.node.error(f'size of output "{name}": {e}') from None
+                    buf.shape = shape
                     sized.append(buf)
         return sized
 
@@ -570,7 +585,7 @@ class Builder:
     # --- everything ----------------------------------------------------------------------
     def build(self):
         """Build the network; raises ModelError naming the file, line and element."""
-        with _collector_paused():
+        with _collector_paused(), applied(self.limits or current_limits()):
             if self.model is None:
                 self.model = read_file(self.filename, self._text, root_tag="group")
             return self._build()
@@ -596,6 +611,17 @@ class Builder:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)
         order = schedule(self.instances, edges)
         return Network(self, top, order, runs, edges)
+
+
+def _check_depth(node: Node, parent: Group | None) -> None:
+    """Refuse groups nested deeper than the limit (across group files and classes too)."""
+    limit = current_limits().max_group_depth
+    depth = 0
+    while parent is not None:
+        depth += 1
+        parent = parent.parent
+    if depth >= limit:
+        raise node.error(f"groups nest deeper than {limit} levels")
 
 
 def _alias(decl: Node, key: str, legacy: str) -> str | None:

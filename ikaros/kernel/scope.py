@@ -9,6 +9,7 @@ from ..description import ParameterSpec
 from ..language.expressions import ExpressionError, evaluate_arithmetic, is_arithmetic
 from ..language.values import (ValueError_, format_number, parse_bool, parse_int,
                                parse_matrix, parse_number)
+from ..limits import Expansion, LimitError
 from .tree import Group, ModuleInstance, find_component, group_of
 
 MAX_DEPTH = 64
@@ -42,6 +43,8 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
         return text
     if depth > MAX_DEPTH:
         raise VariableError(f'variables nest deeper than {MAX_DEPTH} levels in "{text}"')
+    if depth == 0:
+        Expansion.start()
     while True:
         m = _BRACES.search(text)
         if not m:
@@ -53,6 +56,7 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
             except ExpressionError as e:
                 raise VariableError(str(e)) from None
         text = text[:m.start()] + inner + text[m.end():]
+        _spend(len(text))
     if "}" in text or "{" in text:
         raise VariableError(f'unmatched brace in "{text}"')
     out = ""
@@ -71,7 +75,16 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
                                                                 depth + 1)
                 continue
         out += lookup_variable(name, scope, depth, own)
+        _spend(len(out))
     return out + text[pos:]
+
+
+def _spend(length: int) -> None:
+    """Count one step of resolving a value (see ikaros.limits.Expansion)."""
+    try:
+        Expansion.step(length)
+    except LimitError as e:
+        raise VariableError(str(e)) from None
 
 
 def _has_operator(text: str) -> bool:

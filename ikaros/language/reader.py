@@ -6,6 +6,7 @@ import re
 from xml.parsers import expat
 
 from ..errors import ModelError
+from ..limits import current as current_limits
 from .node import COMMENT, INCLUDE, Node
 
 MAX_INCLUDE_DEPTH = 32
@@ -58,6 +59,7 @@ class _TreeBuilder:
         self.open: list[Node] = []         # elements not yet closed, the wrapper excluded
         self.text: list[str] | None = None  # text of the innermost element before a child
         self.in_wrapper = False
+        self.max_depth = current_limits().max_element_depth
 
     def _add(self, node: Node) -> None:
         if self.open:
@@ -79,6 +81,8 @@ class _TreeBuilder:
             self.in_wrapper = True
             return
         node = Node(tag, attrs, [], self.path, self.parser.CurrentLineNumber)
+        if len(self.open) >= self.max_depth:
+            raise node.error(f"elements nest deeper than {self.max_depth} levels")
         self._add(node)
         self.open.append(node)
         self.text = []

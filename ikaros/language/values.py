@@ -1,10 +1,12 @@
 """Parsing attribute values: booleans, numbers, matrix literals, delays and selectors."""
 from __future__ import annotations
 
+import math
 import re
 
 import numpy as np
 
+from ..limits import current as current_limits
 from .expressions import ExpressionError, evaluate_arithmetic
 
 TRUE_WORDS = {"true", "yes", "on", "1"}
@@ -44,6 +46,8 @@ def parse_int(text: str) -> int:
     if re.fullmatch(r"[+-]?\d+", s):
         return int(s)
     value = parse_number(s)
+    if not math.isfinite(value):
+        raise ValueError_(f'"{text}" is not a finite integer')
     if value != int(value):
         raise ValueError_(f'"{text}" is not an integer')
     return int(value)
@@ -141,7 +145,7 @@ def parse_delays(text: str) -> list[int]:
     """
     s = str(text).strip()
     if s.isdigit():
-        return [int(s)]
+        return [_delay_int(s, text)]
     if s == "":
         raise ValueError_("delay must not be empty")
     if s.startswith("["):
@@ -165,7 +169,7 @@ def parse_delays(text: str) -> list[int]:
         _check_nonnegative([a, b], text)
         if b <= a:
             raise ValueError_(f'delay range "{text}" must be an ascending, non-empty range')
-        return list(range(a, b, step))
+        return _check_count(list(range(a, b, step)), text)
     delays: list[int] = []
     for part in s.split(","):
         part = part.strip()
@@ -180,15 +184,26 @@ def parse_delays(text: str) -> list[int]:
             if b < a:
                 raise ValueError_(f'delay range "{text}" must be an ascending, non-empty range')
             delays.extend(range(a, b + 1))
+            _check_count(delays, text)
         else:
             delays.append(_check_nonnegative([_delay_int(part, text)], text)[0])
-    return delays
+    return _check_count(delays, text)
 
 
 def _delay_int(part: str, text: str) -> int:
     if not re.fullmatch(r"[+-]?\d+", part):
         raise ValueError_(f'delay "{text}" is not a whole number or range')
-    return int(part)
+    value, limit = int(part), current_limits().max_delay
+    if value > limit:
+        raise ValueError_(f'delay "{text}" is longer than the limit of {limit} ticks')
+    return value
+
+
+def _check_count(delays: list[int], text: str) -> list[int]:
+    limit = current_limits().max_delays
+    if len(delays) > limit:
+        raise ValueError_(f'delay "{text}" lists more than {limit} delays')
+    return delays
 
 
 def _check_nonnegative(values: list[int], text: str) -> list[int]:
