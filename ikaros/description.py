@@ -37,6 +37,8 @@ class ParameterSpec:
     description: str = ""
     options: list[str] = field(default_factory=list)
     control: str | None = None   # a UI hint: menu, checkbox, slider, textedit
+    range: tuple | None = None   # (lowest, highest) a number may be; None for no bound
+    finite: bool = True          # whether nan and inf are refused
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "type": self.type, "default": _plain(self.default),
@@ -45,6 +47,10 @@ class ParameterSpec:
             d["options"] = list(self.options)
         if self.control:
             d["control"] = self.control
+        if self.range:
+            d["range"] = list(self.range)
+        if not self.finite:
+            d["finite"] = False
         return d
 
 

@@ -65,11 +65,13 @@ class Parameter:
     """Declares a parameter. The type follows the default unless given.
 
     Types: number, int, bool, string, list (one of ``options``), array, matrix.
+    ``range=(lowest, highest)`` bounds a number (or every element of an array); either end
+    may be None. Values that are nan or infinite are refused unless ``finite=False``.
     """
 
     def __init__(self, default: Any = None, description: str = "", *, type: str | None = None,
                  options: list[str] | str | None = None, control: str | None = None,
-                 name: str | None = None):
+                 name: str | None = None, range: tuple | None = None, finite: bool = True):
         if isinstance(options, str):
             options = [o.strip() for o in re.split(r"[,/]", options) if o.strip()]
         self.options = list(options or [])
@@ -80,13 +82,15 @@ class Parameter:
         self.description = description
         self.control = control
         self.name = name
+        self.range = tuple(range) if range is not None else None
+        self.finite = finite
 
     def __set_name__(self, owner, name):
         self.name = self.name or name
 
     def spec(self) -> ParameterSpec:
         return ParameterSpec(self.name, self.type, self.default, self.description,
-                             self.options, self.control)
+                             self.options, self.control, self.range, self.finite)
 
 
 class Input:
