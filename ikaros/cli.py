@@ -159,6 +159,9 @@ def _serve(net, opts) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    if argv is None:            # the command itself (not a call from Python code)
+        from .interrupt import install
+        install()
     p = parser()
     opts = p.parse_intermixed_args(argv)
     model, overrides = _split_args(p, opts.args)
@@ -221,7 +224,7 @@ def main(argv: list[str] | None = None) -> int:
             net.close()
             if opts.profile:
                 print(net.profile_text())
-        return EXIT_OK if ok or not opts.batch else EXIT_ERROR
+        return EXIT_OK if ok and net.stop_error is None else EXIT_ERROR
     except ModelError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
         if opts.verbose:

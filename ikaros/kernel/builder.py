@@ -9,6 +9,7 @@ import os
 import re
 
 from ..errors import ModelError
+from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.node import Node
 from ..limits import LimitError, Limits, applied, check_shape, current as current_limits
 from ..language.reader import read_file
@@ -138,7 +139,10 @@ class Builder:
             raise node.error(f'"{os.path.basename(file)}" includes itself')
         if not os.path.isfile(file):
             raise node.error(f'group file "{path}" not found')
-        root = read_file(file, root_tag="group")
+        try:
+            root = read_file(file, root_tag="group")
+        except ModelError as e:
+            raise node.error(f'group file "{path}" is not a model: {e}') from None
         attrs = dict(root.attrs)
         attrs.update({k: v for k, v in node.attrs.items() if k != "class"})
         merged = Node("group", attrs, list(root.children) + list(node.children), root.file,
@@ -157,6 +161,11 @@ class Builder:
                 attrs["path"], node, group, "path")))
         entry = self.registry.find(class_name, folders, files)
         if entry is None:
+            itself = self.registry.find(class_name, folders)
+            if itself is not None and itself.is_group and itself.group in files:
+                raise node.error(f'class "{class_name}" is the group file '
+                                 f'"{os.path.basename(itself.group)}", which this module is '
+                                 f'part of: a group file cannot be used inside itself')
             raise node.error(f'unknown class "{class_name}"')
         if entry.is_group:
             merged, file = self._merge_file(node, entry.group, files)
@@ -199,8 +208,10 @@ class Builder:
             inst.values[spec.name], inst.has_value[spec.name] = self._parameter(inst, spec)
         try:
             module = cls()
-        except Exception as e:
-            raise inst.node.error(f"creating the module failed: {type(e).__name__}: {e}") \
+        except module_faults() as e:
+            if is_interrupt(e):
+                raise
+            raise inst.node.error(f"creating the module failed: {fault_text(e)}") \
                 from None
         module.name, module.path, module.element = inst.name, inst.path, inst.node
         module.clock = self.clock
@@ -210,8 +221,10 @@ class Builder:
         self._run_settings(inst)
         try:
             module.configure()
-        except Exception as e:
-            raise inst.node.error(f"configure failed: {type(e).__name__}: {e}") from None
+        except module_faults() as e:
+            if is_interrupt(e):
+                raise
+            raise inst.node.error(f"configure failed: {fault_text(e)}") from None
 
     def _run_settings(self, inst: ModuleInstance) -> None:
         """``period``, ``phase`` and ``async`` of a module element."""
@@ -551,8 +564,10 @@ class Builder:
         if waiting and type(module).set_sizes is not Module.set_sizes:
             try:
                 module.set_sizes()
-            except Exception as e:
-                raise inst.node.error(f"set_sizes failed: {type(e).__name__}: {e}") from None
+            except module_faults() as e:
+                if is_interrupt(e):
+                    raise
+                raise inst.node.error(f"set_sizes failed: {fault_text(e)}") from None
             for name, buf in outputs.items():
                 if buf.shape is None and module._ik_output_shapes.get(name) is not None:
                     shape = module._ik_output_shapes[name]

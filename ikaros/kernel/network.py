@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ModelError, RunError
+from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.values import ValueError_, format_number, value_text
 from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
@@ -51,6 +52,7 @@ class Network:
         self._controller: Controller | None = None
         self.stop_reason: tuple[int, str] | None = None
         self._stopped = False
+        self.stop_error: str | None = None     # a module's stop() that failed
         self._buffers = builder.buffers
         self.modules = {inst.path: inst for inst in order}
         notify = builder.notify = self.notify
@@ -202,8 +204,10 @@ class Network:
                 inst.module.init()
                 if job is not None:
                     job.publish_init()
-            except Exception as e:
-                raise inst.node.error(f"init failed: {type(e).__name__}: {e}") from None
+            except module_faults() as e:
+                if is_interrupt(e):
+                    raise
+                raise inst.node.error(f"init failed: {fault_text(e)}") from None
             if self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
                 raise inst.node.error(f"While initializing module {inst.path}: "
                                       f"{self.stop_reason[1]}")
@@ -232,6 +236,7 @@ class Network:
                 self.stop_reason is None or
                 (level == FATAL_ERROR and self.stop_reason[0] != FATAL_ERROR)):
             self.stop_reason = (level, message)      # a fatal error wins over a clean end
+            self._stop_where = where
         if level <= self.log_level:
             text = f"{where}: {message}" if where else message
             if level == PRINT:
@@ -260,7 +265,7 @@ class Network:
         if failure is not None:
             inst, error = failure
             self.notify(FATAL_ERROR, inst.path if inst else "kernel",
-                        f"{type(error).__name__}: {error}")
+                        f"{fault_text(error)}")
         self.tick += 1
         self.timing.tick_done(time.perf_counter() - start)
         if self.stop_reason is not None:
@@ -276,11 +281,15 @@ class Network:
             for inst in self.schedule:
                 try:
                     inst.module.stop()
-                except Exception as e:
-                    self.notify(EXCEPTION, inst.path, f"stop failed: {type(e).__name__}: {e}")
+                except module_faults() as e:
+                    if is_interrupt(e):
+                        raise
+                    self.stop_error = f"{inst.path}: stop failed: {fault_text(e)}"
+                    self.notify(EXCEPTION, inst.path, f"stop failed: {fault_text(e)}")
         level, message = self.stop_reason or (TERMINATE, "closed")
         if level == FATAL_ERROR:
-            raise RunError(message)
+            where = getattr(self, "_stop_where", "")
+            raise RunError(f"{where}: {message}" if where else message)
 
     def _check_running(self) -> None:
         if self._stopped:

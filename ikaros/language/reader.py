@@ -98,6 +98,9 @@ class _TreeBuilder:
     def data(self, text: str) -> None:
         if self.text is not None:
             self.text.append(text)
+        elif not self.open and text.strip():
+            raise ModelError(f'text outside the elements: "{text.strip()[:40]}"', self.path,
+                             self.parser.CurrentLineNumber)
 
     def comment(self, text: str) -> None:
         self._add(Node(COMMENT, file=self.path, line=self.parser.CurrentLineNumber, text=text))
@@ -148,7 +151,14 @@ def _include(file: str | None, path: str, line: int, stack: tuple[str, ...]) -> 
         raise ModelError(f"includes nest deeper than {MAX_INCLUDE_DEPTH} levels", path, line)
     if not os.path.isfile(target):
         raise ModelError(f'included file "{file}" not found', path, line)
-    node.children.extend(read_items(target, stack=stack + (target,)))
+    try:
+        items = read_items(target, stack=stack + (target,))
+    except ModelError as e:
+        if e.filename != target:
+            raise                       # the error of a file that one includes
+        raise ModelError(f'included file "{file}" is not model text: {e}', path,
+                         line) from None
+    node.children.extend(items)
     return node
 
 
