@@ -37,7 +37,8 @@ def parse_number(text: str) -> float:
     try:
         return evaluate_arithmetic(s)
     except ExpressionError as e:
-        raise ValueError_(f'"{text}" is not a number ({e})') from None
+        shown = s if len(s) <= 60 else f"{s[:40]}..."
+        raise ValueError_(f'"{shown}" is not a number ({e})') from None
 
 
 def parse_int(text: str) -> int:
@@ -68,6 +69,7 @@ def _element(token: str) -> float:
         raise ValueError_(f'"{token}" is not a number') from None
 
 
+@np.errstate(over="ignore")     # a number too big for float32 is inf, refused later
 def parse_matrix(text: str) -> np.ndarray:
     """A matrix literal as a float32 array.
 
