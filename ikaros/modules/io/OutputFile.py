@@ -102,6 +102,7 @@ class OutputFile(ColumnWriter):
         self._close()
         path = self._path()
         try:
+            os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
             self._file = open(path, "w", encoding="utf-8")
             self._file.write(self._header)
             self._file.flush()
