@@ -145,7 +145,7 @@ def _serve(net, opts) -> int:
     try:
         net.profiling = opts.profile
         serve(net, host, 8000 if opts.port is None else opts.port, token, state,
-              on_ready=ready, models_dir=opts.models)
+              on_ready=ready, models_dir=opts.models, max_memory=opts.max_memory)
     except ServeError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
         return EXIT_ERROR
@@ -155,7 +155,19 @@ def _serve(net, opts) -> int:
         net.close()
         if opts.profile:
             print(net.profile_text())
+        _leave_stuck_builds()
     return EXIT_OK
+
+
+def _leave_stuck_builds() -> None:
+    """Exit now when builds started from the web UI never returned (their threads cannot
+    be stopped, and would hold up the exit)."""
+    from .webui.builds import stuck
+    if stuck():
+        from .interrupt import force_exit
+        print("ikaros: leaving a build from the web UI that never returned",
+              file=sys.stderr)
+        force_exit(EXIT_OK)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -39,6 +39,7 @@ class ParameterSpec:
     control: str | None = None   # a UI hint: menu, checkbox, slider, textedit
     range: tuple | None = None   # (lowest, highest) a number may be; None for no bound
     finite: bool = True          # whether nan and inf are refused
+    file: bool = False           # whether the value names a file or folder
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "type": self.type, "default": _plain(self.default),
@@ -51,6 +52,8 @@ class ParameterSpec:
             d["range"] = list(self.range)
         if not self.finite:
             d["finite"] = False
+        if self.file:
+            d["file"] = True
         return d
 
 

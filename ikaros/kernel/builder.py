@@ -8,6 +8,7 @@ import gc
 import os
 import re
 
+from ..access import AccessRefused, check_file_parameter, current as access_now
 from ..errors import ModelError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.node import Node
@@ -126,6 +127,7 @@ class Builder:
         if not external:
             return self._group(node, parent, name, node.attrs, files)
         path = self._substitute(external, node, parent, "external")
+        _confined(node, path, "group file")
         merged, file = self._merge_file(node, path, files)
         merged.attrs.pop("external", None)
         return self._group(merged, parent, name, merged.attrs, files + (file,))
@@ -157,8 +159,9 @@ class Builder:
         class_name = self._substitute(class_name, node, group, "class")
         folders = [self._folder(node.file or self.filename)]
         if attrs.get("path"):
-            folders.insert(0, os.path.join(folders[0], self._substitute(
-                attrs["path"], node, group, "path")))
+            class_path = self._substitute(attrs["path"], node, group, "path")
+            _confined(node, class_path, "class path")
+            folders.insert(0, os.path.join(folders[0], class_path))
         entry = self.registry.find(class_name, folders, files)
         if entry is None:
             itself = self.registry.find(class_name, folders)
@@ -266,7 +269,10 @@ class Builder:
             else:
                 return from_python(None, spec), False
             check_parameter(value, spec)
+            check_file_parameter(spec, value, self._folder(inst.node.file or self.filename))
             return value, True
+        except AccessRefused as e:
+            raise inst.node.error(f"{e}") from None
         except (ValueError_, VariableError, ValueError) as e:
             node = where.node if hasattr(where, "node") else inst.node
             raise node.error(f'parameter "{spec.name}" of {inst.path}: {e}') from None
@@ -626,6 +632,16 @@ class Builder:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)
         order = schedule(self.instances, edges)
         return Network(self, top, order, runs, edges)
+
+
+def _confined(node: Node, name: str, what: str) -> None:
+    """Refuse a file or folder outside the models folder in a confined build."""
+    confinement = access_now()
+    if confinement is not None:
+        try:
+            confinement.check(name, os.path.dirname(node.file or "."), what)
+        except AccessRefused as e:
+            raise node.error(str(e)) from None
 
 
 def _check_depth(node: Node, parent: Group | None) -> None:

@@ -5,6 +5,7 @@ import os
 import re
 from xml.parsers import expat
 
+from .. import access
 from ..errors import ModelError
 from ..limits import current as current_limits
 from .node import COMMENT, INCLUDE, Node
@@ -144,6 +145,12 @@ def _include(file: str | None, path: str, line: int, stack: tuple[str, ...]) -> 
     node = Node(INCLUDE, {"file": file or ""}, [], path, line)
     if not file:
         raise ModelError('<?include?> needs a file="..." attribute', path, line)
+    confinement = access.current()
+    if confinement is not None:
+        try:
+            confinement.check(file, os.path.dirname(path), "included file")
+        except access.AccessRefused as e:
+            raise ModelError(str(e), path, line) from None
     target = os.path.normpath(os.path.join(os.path.dirname(path), file))
     if target in stack:
         raise ModelError(f'<?include file="{file}"?> includes itself', path, line)

@@ -43,6 +43,7 @@ import os
 import re
 from dataclasses import dataclass
 
+from .. import access
 from ..errors import ModelError
 from ..language.node import COMMENT, INCLUDE, Node
 from ..language.reader import MAX_INCLUDE_DEPTH, read_items
@@ -261,6 +262,12 @@ def _json_index(kids: list[EditorNode], folder: str, index: dict) -> dict:
 def _read_include(inc: EditorNode, containing: str, folder: str, kids: list,
                   stack: tuple) -> list[EditorNode]:
     file = inc.attrs["file"]
+    confinement = access.current()
+    if confinement is not None:
+        try:
+            confinement.check(file, os.path.dirname(containing), "included file")
+        except access.AccessRefused as e:
+            raise inc.error(str(e)) from None
     target = os.path.normpath(os.path.join(os.path.dirname(containing), file))
     if target in stack:
         raise inc.error(f'<?include file="{file}"?> includes itself')
