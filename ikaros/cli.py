@@ -53,6 +53,16 @@ def _memory(text: str) -> int:
         raise argparse.ArgumentTypeError(str(e)) from None
 
 
+def _timeout(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f'"{text}" is not a finite number of seconds > 0')
+    return value
+
+
 def _seconds(text: str) -> float:
     try:
         value = float(text)
@@ -98,6 +108,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--max-memory", type=_memory, metavar="SIZE",
                    help="the most memory the model's buffers may take, in bytes or with "
                         "K, M, G (default: half the physical memory)")
+    p.add_argument("--build-timeout", type=_timeout, metavar="SECONDS", default=30.0,
+                   help="web UI: how long a build from the editor may take before it is "
+                        "abandoned with an error (default 30)")
     p.add_argument("-p", "--profile", action="store_true",
                    help="measure per-module time and print the timing figures at exit")
     p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
@@ -145,7 +158,8 @@ def _serve(net, opts) -> int:
     try:
         net.profiling = opts.profile
         serve(net, host, 8000 if opts.port is None else opts.port, token, state,
-              on_ready=ready, models_dir=opts.models, max_memory=opts.max_memory)
+              on_ready=ready, models_dir=opts.models, max_memory=opts.max_memory,
+              build_timeout=opts.build_timeout)
     except ServeError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
         return EXIT_ERROR
