@@ -11,6 +11,7 @@ import asyncio
 import contextlib
 import ipaddress
 import json
+import logging
 import math
 import os
 import secrets
@@ -175,14 +176,22 @@ def _host_name(scope) -> str:
     return ""
 
 
+_SECURE = {"http": "http", "ws": "http", "https": "https", "wss": "https"}
+
+
 def _same_origin(scope) -> bool:
-    headers = {k.decode("latin-1").lower(): v.decode("latin-1")
-               for k, v in scope.get("headers", [])}
-    origin = headers.get("origin")
-    if origin is None or origin == "null" and scope["type"] == "http":
-        return origin is None
-    host = headers.get("host", "")
-    return origin.split("://", 1)[-1].rstrip("/") == host
+    """No Origin header, or exactly one naming this server's scheme, host and port."""
+    headers = [(k.decode("latin-1").lower(), v.decode("latin-1"))
+               for k, v in scope.get("headers", [])]
+    origins = [v for k, v in headers if k == "origin"]
+    if not origins:
+        return True
+    if len(origins) > 1:
+        return False
+    scheme, sep, rest = origins[0].strip().partition("://")
+    host = next((v for k, v in headers if k == "host"), "")
+    return bool(sep) and scheme.lower() == _SECURE.get(scope.get("scheme", "http"), "") \
+        and rest.rstrip("/").lower() == host.strip().lower()
 
 
 # --- validation helpers ------------------------------------------------------------------
@@ -366,7 +375,8 @@ class WebUI:
                                 f'{json.dumps(state)[:40]}')
         net, ctrl = self.net, self.net.controller
         if net.stopped:
-            raise ApiError(409, "the run has ended; restart ikaros to run again")
+            raise ApiError(409, "the run has ended; apply, open or reload a model to run "
+                                "again")
         if state in ("step", "play", "realtime") and not kernel_thread_alive(ctrl):
             ctrl.start(state)
         else:
@@ -859,6 +869,20 @@ def listen(host: str, port: int) -> socket.socket:
     return sock
 
 
+class _RefusedWebSocket(logging.Filter):
+    """uvicorn logs an error when a WebSocket is answered with an HTTP response (as
+    AccessMiddleware refuses one); that is no error of the server."""
+
+    def filter(self, record) -> bool:
+        return record.getMessage() != "ASGI callable returned without completing handshake."
+
+
+def _quiet_refused_websockets() -> None:
+    log = logging.getLogger("uvicorn.error")
+    if not any(isinstance(f, _RefusedWebSocket) for f in log.filters):
+        log.addFilter(_RefusedWebSocket())
+
+
 def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = None,
           state: str = "pause", static_dir: str | None = None, sock=None,
           on_ready=None, **app_options) -> None:
@@ -879,6 +903,7 @@ def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = No
                             timeout_graceful_shutdown=3, ws_per_message_deflate=False,
                             ws_max_size=app_options.get("max_body", DEFAULT_MAX_BODY))
     server = uvicorn.Server(config)
+    _quiet_refused_websockets()
     ctrl = net.controller
     previous_hook = threading.excepthook
 

@@ -82,7 +82,7 @@ def server(folder):
     s = Server(folder, "--build-timeout", "2")
     yield s
     status, _, err = s.stop()
-    assert "Traceback" not in err
+    assert err == ""                # no traceback, no error logged (refused WebSockets too)
     assert status == 0, err
 
 
@@ -148,6 +148,14 @@ def test_a_websocket_frame_nested_too_deep_gets_an_error_frame(server):
                                       "512 levels"}
         ws.send(json.dumps({"type": "ping", "t": 1}))     # the connection stays open
         assert _next(ws, "pong") == {"type": "pong", "t": 1}
+
+
+def test_a_refused_websocket_is_answered_403(server):
+    from websockets.exceptions import InvalidStatus
+    from websockets.sync.client import connect
+    with pytest.raises(InvalidStatus) as refused:
+        connect(server.url.replace("http", "ws") + "/api/ws", origin="http://evil.example")
+    assert refused.value.response.status_code == 403
 
 
 def _next(ws, kind):
