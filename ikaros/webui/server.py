@@ -251,6 +251,9 @@ def _check_value(path: str, ptype: str, value) -> None:
         raise ApiError(400, f'"value" for parameter "{path}" must not be null')
     if isinstance(value, str):
         return
+    if not (_is_number(value) or isinstance(value, bool) or _numbers(value)):
+        raise ApiError(400, f'"value" must be a number, a boolean, a string or a (nested) '
+                            f'list of numbers, not {json.dumps(value)[:80]}')
     ok = {
         "number": _is_number(value),
         "int": _is_number(value) and float(value) == int(value),
@@ -261,7 +264,7 @@ def _check_value(path: str, ptype: str, value) -> None:
         "matrix": _numbers(value),
     }.get(ptype, False)
     if not ok:
-        raise ApiError(400, f'bad value {json.dumps(value)[:80]} for {ptype} parameter '
+        raise ApiError(422, f'bad value {json.dumps(value)[:80]} for {ptype} parameter '
                             f'"{path}"')
 
 
@@ -395,10 +398,10 @@ class WebUI:
                                           and v >= 0):
                     raise ApiError(400, f'"{key}" must be a whole number >= 0')
             if spec.type not in ("array", "matrix"):
-                raise ApiError(400, f'"x"/"y" need an array or matrix parameter; "{path}" '
+                raise ApiError(422, f'"x"/"y" need an array or matrix parameter; "{path}" '
                                     f'is a {spec.type}')
             if not _is_number(value) and not isinstance(value, bool):
-                raise ApiError(400, f'"value" for one element of "{path}" must be a number')
+                raise ApiError(422, f'"value" for one element of "{path}" must be a number')
         else:
             _check_value(path, spec.type, value)
             try:
@@ -416,7 +419,7 @@ class WebUI:
                 elif arr.ndim == 2 and yi < arr.shape[0] and xi < arr.shape[1]:
                     arr[yi, xi] = float(value)
                 else:
-                    raise ApiError(400, f'no element x={xi}, y={yi} in "{path}" of shape '
+                    raise ApiError(422, f'no element x={xi}, y={yi} in "{path}" of shape '
                                         f'{list(arr.shape)}')
                 net.set_parameter(path, arr)
             else:
@@ -425,7 +428,7 @@ class WebUI:
         try:
             new = await self._call(change)
         except ValueError as e:
-            raise ApiError(400, str(e)) from None
+            raise ApiError(422, str(e)) from None
         except KeyError as e:
             raise ApiError(404, str(e.args[0]) if e.args else str(e)) from None
         return Json({"path": path, "value": new})
@@ -439,14 +442,14 @@ class WebUI:
             if not _is_number(v):
                 raise ApiError(400, f'"{key}" must be a number')
         if type(inst.module).command is Module.command:
-            raise ApiError(400, f'module "{path}" ({inst.entry.name}) takes no commands')
+            raise ApiError(422, f'module "{path}" ({inst.entry.name}) takes no commands')
         try:
             await self._call(self.net.command, path, name, float(x), float(y),
                              body.get("value"))
         except KeyError as e:
             raise ApiError(404, str(e.args[0]) if e.args else str(e)) from None
         except Exception as e:
-            raise ApiError(400, f'command "{name}" of "{path}" failed: '
+            raise ApiError(422, f'command "{name}" of "{path}" failed: '
                                 f'{type(e).__name__}: {e}') from None
         return Json({"ok": True})
 

@@ -81,7 +81,7 @@ def test_a_streamed_body_over_the_limit_is_413(client):
 ])
 def test_parameters_set_from_the_ui_must_be_finite(client, value, reason):
     r = client.post("/api/parameter", json={"path": "S.step", "value": value})
-    assert (r.status_code, r.json()) == (400, {
+    assert (r.status_code, r.json()) == (422, {
         "error": f'bad value for parameter "S.step": {reason}'})
     assert client.app.state.ui.net.parameter("S.step") == 0.5
 
