@@ -15,7 +15,7 @@ class Randomizer(Module):
     outputsize_y = Parameter(None, "rows of a 2-D output", type="int")
     min = Parameter(0.0, "the smallest value")
     max = Parameter(1.0, "the upper bound of the values")
-    interval = Parameter(1, "ticks between new values", type="int")
+    interval = Parameter(1, "ticks between new values", type="int", range=(1, None))
     seed = Parameter(None, "seed of the random generator; unset (or 0) gives a different run "
                      "every time", type="int")
     OUTPUT = Output("the random values",
