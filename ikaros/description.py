@@ -139,6 +139,9 @@ class ClassDescription:
         lines.append("Parameters:" if self.parameters else "Parameters: none")
         for p in self.parameters:
             opts = f" options={'/'.join(p.options)}" if p.options else ""
+            if p.range:
+                low, high = ("" if v is None else f"{v:g}" for v in p.range)
+                opts += f", range {low}..{high}"
             lines.append(f"  {p.name} ({p.type}, default {_plain(p.default)!r}{opts}): "
                          f"{p.description}")
         lines.append("Inputs:" if self.inputs else "Inputs: none")
