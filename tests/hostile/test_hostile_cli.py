@@ -112,3 +112,24 @@ def test_ctrl_c_ends_even_a_module_that_swallows_it(folder, tmp_path):
     assert status == 130
     assert err == "ikaros: interrupted; forced to exit (not done 2 s after Ctrl-C)\n"
     assert seconds < 3.5
+
+
+def test_the_profile_table_keeps_its_columns_for_long_names(tmp_path):
+    name = "A_module_with_a_name_far_longer_than_thirty_two"
+    (tmp_path / "p.ikg").write_text(
+        f'<group name="P"><module class="Constant" name="{name}" data="1"/>'
+        f'<module class="M02_SensoryCortex" name="S"/>'
+        f'<connection source="{name}.OUTPUT" target="S.INPUT"/></group>')
+    r, _ = ikaros("-b", "-s", "2", "-p", str(tmp_path / "p.ikg"))
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    table = lines[lines.index(next(x for x in lines if x.startswith("module "))):]
+    assert len(table) == 3
+    header = table[0]
+    for row in table[1:]:
+        cells = row.split()
+        assert len(cells) == 5
+        # every column starts where its header does
+        assert row.index(cells[1]) == header.index("class")
+        assert row.rindex(cells[4]) + len(cells[4]) == len(header)
+    assert {row.split()[0] for row in table[1:]} == {name, "S"}
