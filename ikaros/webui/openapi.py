@@ -113,7 +113,8 @@ def openapi() -> dict:
             "Change the run mode",
             {"type": "object", "required": ["state"], "additionalProperties": False,
              "properties": {"state": {"enum": ["stop", "pause", "step", "play",
-                                               "realtime"]}}}, _STATUS),
+                                               "realtime"]}}}, _STATUS,
+            **{"409": "the run has ended: apply, open or reload a model"}),
         "/api/parameter": _post(
             "Set a module parameter (or one element of an array or matrix parameter)",
             {"type": "object", "required": ["path", "value"], "additionalProperties": False,

@@ -72,8 +72,9 @@ class ApiError(Exception):
 
 class Json(JSONResponse):
     def render(self, content) -> bytes:
+        # a lone surrogate sent by a client and quoted back stays a JSON escape (\ud800)
         return json.dumps(plain(content), ensure_ascii=False, allow_nan=False,
-                          separators=(",", ":")).encode("utf-8")
+                          separators=(",", ":")).encode("utf-8", "backslashreplace")
 
 
 def _error(status: int, message: str, headers: dict | None = None) -> Json:

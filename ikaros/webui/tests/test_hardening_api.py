@@ -98,6 +98,14 @@ def test_a_saved_file_keeps_its_mode_and_a_new_one_gets_the_umask(client, folder
     assert stat.S_IMODE(os.stat(folder / "copy.ikg").st_mode) == 0o666 & ~umask
 
 
+def test_lone_surrogates_quoted_back_are_json_escapes_not_500(client):
+    r = client.post("/api/parameter", content=b'{"path": "\\ud800.x", "value": 1}',
+                    headers={"content-type": "application/json"})
+    assert r.status_code == 404
+    assert r.content == b'{"error":"no parameter \\"\\ud800.x\\" in H"}'
+    assert r.json() == {"error": 'no parameter "\ud800.x" in H'}
+
+
 def test_after_the_run_has_ended_the_ui_is_told_what_to_do(client):
     net = client.app.state.ui.net
     net.controller.stop()
