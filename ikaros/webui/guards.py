@@ -1,7 +1,9 @@
 """Guards on what clients send: the size of request bodies and the nesting of JSON, both
-checked before anything is decoded (so no request can exhaust memory or the stack)."""
+checked before anything is decoded (so no request can exhaust memory or the stack); and
+quiet logs for WebSockets refused on purpose."""
 from __future__ import annotations
 
+import logging
 import re
 
 import numpy as np
@@ -65,3 +67,18 @@ class BodyLimit:
                     raise BodyTooLarge(limit)
             return message
         return await self.app(scope, counted, send)
+
+
+class _RefusedWebSocket(logging.Filter):
+    """uvicorn logs an error when a WebSocket is answered with an HTTP response (as
+    AccessMiddleware refuses one); that is no error of the server."""
+
+    def filter(self, record) -> bool:
+        return record.getMessage() != "ASGI callable returned without completing handshake."
+
+
+def quiet_refused_websockets() -> None:
+    """Keep refused WebSockets out of the server's error log."""
+    log = logging.getLogger("uvicorn.error")
+    if not any(isinstance(f, _RefusedWebSocket) for f in log.filters):
+        log.addFilter(_RefusedWebSocket())

@@ -11,7 +11,6 @@ import asyncio
 import contextlib
 import ipaddress
 import json
-import logging
 import math
 import os
 import secrets
@@ -39,7 +38,8 @@ from . import editing
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
-from .guards import DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, json_depth
+from .guards import (DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, json_depth,
+                     quiet_refused_websockets)
 from .openapi import openapi
 from .snapshot import (DEFAULT_BUDGET, DEFAULT_MAX_RATE, STATUS_INTERVAL, Client, Hub,
                        LogBook, between_ticks, kernel_thread_alive, plain)
@@ -873,20 +873,6 @@ def listen(host: str, port: int) -> socket.socket:
     return sock
 
 
-class _RefusedWebSocket(logging.Filter):
-    """uvicorn logs an error when a WebSocket is answered with an HTTP response (as
-    AccessMiddleware refuses one); that is no error of the server."""
-
-    def filter(self, record) -> bool:
-        return record.getMessage() != "ASGI callable returned without completing handshake."
-
-
-def _quiet_refused_websockets() -> None:
-    log = logging.getLogger("uvicorn.error")
-    if not any(isinstance(f, _RefusedWebSocket) for f in log.filters):
-        log.addFilter(_RefusedWebSocket())
-
-
 def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = None,
           state: str = "pause", static_dir: str | None = None, sock=None,
           on_ready=None, **app_options) -> None:
@@ -907,7 +893,7 @@ def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = No
                             timeout_graceful_shutdown=3, ws_per_message_deflate=False,
                             ws_max_size=app_options.get("max_body", DEFAULT_MAX_BODY))
     server = uvicorn.Server(config)
-    _quiet_refused_websockets()
+    quiet_refused_websockets()
     ctrl = net.controller
     previous_hook = threading.excepthook
 
