@@ -20,7 +20,7 @@ from ikaros.module import WARNING  # noqa: E402
 from ikaros.webui.server import create_app  # noqa: E402
 
 pytestmark = pytest.mark.filterwarnings("ignore")
-EXAMPLES = 150  # per operation: about 30 s on one core
+EXAMPLES = 100  # per operation: 20 to 40 s in all
 
 MODEL = '''<group name="F">
     <module class="Constant" name="C" data="1 2; 3 4" />
