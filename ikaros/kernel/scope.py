@@ -9,7 +9,7 @@ from ..description import ParameterSpec
 from ..language.expressions import ExpressionError, evaluate_arithmetic, is_arithmetic
 from ..language.values import (ValueError_, format_number, parse_bool, parse_int,
                                parse_matrix, parse_number)
-from ..limits import Expansion, LimitError
+from ..limits import Expansion, LimitError, current as current_limits
 from .tree import Group, ModuleInstance, find_component, group_of
 
 MAX_DEPTH = 64
@@ -45,6 +45,8 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
         raise VariableError(f'variables nest deeper than {MAX_DEPTH} levels in "{text}"')
     if depth == 0:
         Expansion.start()
+        if "{" in text:
+            _check_braces(text)
     while True:
         m = _BRACES.search(text)
         if not m:
@@ -77,6 +79,19 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
         out += lookup_variable(name, scope, depth, own)
         _spend(len(out))
     return out + text[pos:]
+
+
+def _check_braces(text: str) -> None:
+    """Refuse ``{...}`` nested deeper than the expression limit (each level is a pass)."""
+    limit = current_limits().max_expression_depth
+    depth = 0
+    for ch in text:
+        if ch == "{":
+            depth += 1
+            if depth > limit:
+                raise VariableError(f"braces nest deeper than {limit} levels")
+        elif ch == "}":
+            depth -= 1
 
 
 def _spend(length: int) -> None:

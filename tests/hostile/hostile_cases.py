@@ -83,6 +83,8 @@ BUILD_ERRORS = {
     "parentheses": '{dir}/parentheses.ikg:1: <module name="C">: parameter "outputsize" of C: '
                    f'"{"(" * 40}..." is not a number (the expression nests deeper than 100 '
                    f'levels: "{"(" * 40}...")',
+    "braces": '{dir}/braces.ikg:1: <module name="C">: parameter "outputsize" of C: braces nest '
+              'deeper than 100 levels',
     "expansion": '{dir}/expansion.ikg:1: <module name="C">: parameter "data" of C: the value '
                  'grows longer than 1000000 characters as its variables are resolved',
     "lookups": '{dir}/lookups.ikg:1: <module name="C">: parameter "data" of C: resolving the '
@@ -118,6 +120,8 @@ def generate(folder: str) -> None:
     write("files_nest.ikg", '<group name="H"><group name="G" external="chain_0.ikg"/></group>')
     write("parentheses.ikg", '<group name="H"><module class="Constant" name="C" outputsize="'
           + "(" * 5000 + "1" + ")" * 5000 + '"/></group>')
+    write("braces.ikg", '<group name="H"><module class="Constant" name="C" outputsize="'
+          + "{" * 20000 + "1" + "}" * 20000 + '"/></group>')
     # each variable twice the one before: 1000 * 2^39 characters
     attrs = f'a0="{"x" * 1000}" ' + " ".join(f'a{i}="@a{i - 1}@a{i - 1}"' for i in range(1, 40))
     write("expansion.ikg", f'<group name="H" {attrs}><module class="Constant" name="C" '
