@@ -104,8 +104,16 @@ def parse_matrix(text: str) -> np.ndarray:
     return out
 
 
+MAX_RANK = 32      # brackets nested in a matrix literal (NumPy allows 64 dimensions)
+
+
 def _parse_nested(s: str) -> np.ndarray:
     tokens = re.findall(r"\[|\]|,|[^\[\],\s]+", s)
+    depth = 0
+    for tok in tokens:                  # before the recursive parse
+        depth += (tok == "[") - (tok == "]")
+        if depth > MAX_RANK:
+            raise ValueError_(f"brackets nest deeper than {MAX_RANK} levels")
     pos = 0
 
     def value():

@@ -83,6 +83,8 @@ BUILD_ERRORS = {
     "parentheses": '{dir}/parentheses.ikg:1: <module name="C">: parameter "outputsize" of C: '
                    f'"{"(" * 40}..." is not a number (the expression nests deeper than 100 '
                    f'levels: "{"(" * 40}...")',
+    "brackets": '{dir}/brackets.ikg:1: <module name="C">: parameter "data" of C: brackets nest '
+                'deeper than 32 levels',
     "braces": '{dir}/braces.ikg:1: <module name="C">: parameter "outputsize" of C: braces nest '
               'deeper than 100 levels',
     "expansion": '{dir}/expansion.ikg:1: <module name="C">: parameter "data" of C: the value '
@@ -120,6 +122,8 @@ def generate(folder: str) -> None:
     write("files_nest.ikg", '<group name="H"><group name="G" external="chain_0.ikg"/></group>')
     write("parentheses.ikg", '<group name="H"><module class="Constant" name="C" outputsize="'
           + "(" * 5000 + "1" + ")" * 5000 + '"/></group>')
+    write("brackets.ikg", '<group name="H"><module class="Constant" name="C" data="'
+          + "[" * 5000 + "1" + "]" * 5000 + '"/></group>')
     write("braces.ikg", '<group name="H"><module class="Constant" name="C" outputsize="'
           + "{" * 20000 + "1" + "}" * 20000 + '"/></group>')
     # each variable twice the one before: 1000 * 2^39 characters
