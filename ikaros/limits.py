@@ -33,6 +33,7 @@ def default_max_memory() -> int:
 class Limits:
     """The limits of one build. ``max_memory`` is in bytes."""
     max_memory: int = field(default_factory=default_max_memory)  # all buffers and rings
+    max_file_size: int = 128 << 20    # bytes of one model, group or class file
     max_element_depth: int = 200      # nesting of elements in one file
     max_group_depth: int = 100        # nesting of groups, across files
     max_expression_depth: int = 100   # nesting of parentheses in an arithmetic expression

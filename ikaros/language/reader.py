@@ -7,7 +7,7 @@ from xml.parsers import expat
 
 from .. import access
 from ..errors import ModelError
-from ..limits import current as current_limits
+from ..limits import current as current_limits, format_bytes
 from .node import COMMENT, INCLUDE, Node
 
 MAX_INCLUDE_DEPTH = 32
@@ -34,11 +34,14 @@ def _keep_lines(match: re.Match) -> str:
 
 
 def _file_text(path: str) -> str:
+    limit = current_limits().max_file_size
     try:
         with open(path, "rb") as f:
-            raw = f.read()
+            raw = f.read(limit + 1)
     except OSError as e:
         raise ModelError(f"cannot read file: {e.strerror}", path) from None
+    if len(raw) > limit:
+        raise ModelError(f"the file is larger than the limit of {format_bytes(limit)}", path)
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as e:

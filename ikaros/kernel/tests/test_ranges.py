@@ -99,6 +99,18 @@ def test_max_memory_of_load(folder):
         ikaros.load(str(folder / "big.ikg"), max_memory="lots")
 
 
+def test_a_file_larger_than_the_limit_is_not_read(tmp_path):
+    from ikaros.language.reader import read_file
+    from ikaros.limits import applied
+    path = tmp_path / "big.ikg"
+    path.write_text("<group>" + " " * 2000 + "</group>")
+    with applied(Limits(max_file_size=1000)):
+        with pytest.raises(ikaros.ModelError) as e:
+            read_file(str(path))
+    assert str(e.value) == f"{path}: the file is larger than the limit of 1000 bytes"
+    assert read_file(str(path)).tag == "group"
+
+
 def test_parse_bytes():
     assert [parse_bytes(t) for t in ("512", "2K", "1.5M", "2G", "1t", "3GiB")] == \
         [512, 2048, 1572864, 2 << 30, 1 << 40, 3 << 30]
