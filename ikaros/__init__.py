@@ -20,7 +20,7 @@ __all__ = ["load", "classes", "Network", "Module", "Parameter", "Input", "Output
 
 
 def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
-         quiet: bool = False, **overrides) -> Network:
+         quiet: bool = False, max_memory: int | str | None = None, **overrides) -> Network:
     """Read, build and initialise a model file (.ikg). Other keyword arguments set
     attributes of the top group and win over the file. Raises ModelError naming the file,
     line and element of what is wrong.
@@ -29,11 +29,17 @@ def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
     to stderr as ``file:line: warning: ...`` (not with ``quiet=True``) and kept in
     ``net.warnings``. ``strict=True`` makes every such warning an error; ``lenient=True``
     drops connections to modules or ports that do not exist, with a warning, as Ikaros 3
-    does (they are errors by default).
+    does (they are errors by default). ``max_memory`` limits the memory of all buffers
+    (bytes, or text such as ``"512M"``; default half the physical memory).
     """
     from .kernel.builder import Builder
+    from .limits import LimitError, Limits
+    try:
+        limits = Limits().with_memory(max_memory)
+    except LimitError as e:
+        raise ModelError(f"max_memory: {e}") from None
     diagnostics = Diagnostics(strict=strict, lenient=lenient, quiet=quiet)
-    return Builder(filename, overrides, diagnostics=diagnostics).build()
+    return Builder(filename, overrides, diagnostics=diagnostics, limits=limits).build()
 
 
 def classes(*folders: str) -> dict[str, ClassDescription]:

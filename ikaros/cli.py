@@ -39,6 +39,30 @@ def _port(text: str) -> int:
     return int(text)
 
 
+def _token(text: str) -> str:
+    if not text.strip():
+        raise argparse.ArgumentTypeError("the access token must not be empty")
+    return text
+
+
+def _memory(text: str) -> int:
+    from .limits import LimitError, parse_bytes
+    try:
+        return parse_bytes(text)
+    except LimitError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
+def _timeout(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f'"{text}" is not a finite number of seconds > 0')
+    return value
+
+
 def _seconds(text: str) -> float:
     try:
         value = float(text)
@@ -75,12 +99,18 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--bind", metavar="ADDRESS", default="127.0.0.1",
                    help="address the web UI listens on (default 127.0.0.1, this machine "
                         "only); any other address requires an access token")
-    p.add_argument("--token", metavar="TOKEN",
+    p.add_argument("--token", metavar="TOKEN", type=_token,
                    help="the web UI's access token (one is made up when --bind serves "
                         "other machines)")
     p.add_argument("--models", metavar="DIR",
                    help="web UI editor: the folder to save, list, open and create models "
                         "in (default: the model's folder)")
+    p.add_argument("--max-memory", type=_memory, metavar="SIZE",
+                   help="the most memory the model's buffers may take, in bytes or with "
+                        "K, M, G (default: half the physical memory)")
+    p.add_argument("--build-timeout", type=_timeout, metavar="SECONDS", default=30.0,
+                   help="web UI: how long a build from the editor may take before it is "
+                        "abandoned with an error (default 30)")
     p.add_argument("-p", "--profile", action="store_true",
                    help="measure per-module time and print the timing figures at exit")
     p.add_argument("-q", "--quiet", action="store_true",
@@ -134,7 +164,8 @@ def _serve(net, opts) -> int:
     try:
         net.profiling = opts.profile
         serve(net, host, 8000 if opts.port is None else opts.port, token, state,
-              on_ready=ready, models_dir=opts.models)
+              on_ready=ready, models_dir=opts.models, max_memory=opts.max_memory,
+              build_timeout=opts.build_timeout)
     except ServeError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
         return EXIT_ERROR
@@ -144,10 +175,25 @@ def _serve(net, opts) -> int:
         net.close()
         if opts.profile:
             print(net.profile_text())
+        _leave_stuck_builds()
     return EXIT_OK
 
 
+def _leave_stuck_builds() -> None:
+    """Exit now when builds started from the web UI never returned (their threads cannot
+    be stopped, and would hold up the exit)."""
+    from .webui.builds import stuck
+    if stuck():
+        from .interrupt import force_exit
+        print("ikaros: leaving a build from the web UI that never returned",
+              file=sys.stderr)
+        force_exit(EXIT_OK)
+
+
 def main(argv: list[str] | None = None) -> int:
+    if argv is None:            # the command itself (not a call from Python code)
+        from .interrupt import install
+        install()
     p = parser()
     opts = p.parse_intermixed_args(argv)
     model, overrides = _split_args(p, opts.args)
@@ -199,7 +245,7 @@ def main(argv: list[str] | None = None) -> int:
         if opts.strict and opts.lenient:
             p.error("--strict and --lenient can not be used together")
         net = load(model, strict=opts.strict, lenient=opts.lenient, quiet=opts.quiet,
-                   **overrides)
+                   max_memory=opts.max_memory, **overrides)
         net.log_level = FATAL_ERROR if opts.quiet else DEBUG if opts.verbose else PRINT
         if opts.info:
             print(net.info())

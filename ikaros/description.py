@@ -37,6 +37,9 @@ class ParameterSpec:
     description: str = ""
     options: list[str] = field(default_factory=list)
     control: str | None = None   # a UI hint: menu, checkbox, slider, textedit
+    range: tuple | None = None   # (lowest, highest) a number may be; None for no bound
+    finite: bool = True          # whether nan and inf are refused
+    file: bool = False           # whether the value names a file or folder
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "type": self.type, "default": _plain(self.default),
@@ -45,6 +48,12 @@ class ParameterSpec:
             d["options"] = list(self.options)
         if self.control:
             d["control"] = self.control
+        if self.range:
+            d["range"] = list(self.range)
+        if not self.finite:
+            d["finite"] = False
+        if self.file:
+            d["file"] = True
         return d
 
 
@@ -130,6 +139,9 @@ class ClassDescription:
         lines.append("Parameters:" if self.parameters else "Parameters: none")
         for p in self.parameters:
             opts = f" options={'/'.join(p.options)}" if p.options else ""
+            if p.range:
+                low, high = ("" if v is None else f"{v:g}" for v in p.range)
+                opts += f", range {low}..{high}"
             lines.append(f"  {p.name} ({p.type}, default {_plain(p.default)!r}{opts}): "
                          f"{p.description}")
         lines.append("Inputs:" if self.inputs else "Inputs: none")

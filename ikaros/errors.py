@@ -1,6 +1,8 @@
 """The errors the public API raises."""
 from __future__ import annotations
 
+MAX_REASON = 600    # characters of a reason shown (a hostile value may be megabytes long)
+
 
 class ModelError(Exception):
     """A model cannot be read or built. The message names the file, the line and the element.
@@ -10,6 +12,8 @@ class ModelError(Exception):
 
     def __init__(self, message: str, filename: str | None = None, line: int | None = None,
                  element: str | None = None):
+        if len(message) > MAX_REASON:
+            message = f"{message[:MAX_REASON]}... ({len(message) - MAX_REASON} more characters)"
         self.reason = message
         self.filename = filename
         self.line = line

@@ -15,9 +15,10 @@ def ikaros(*args, timeout=60):
 def test_hello_runs_100_ticks_in_batch_mode():
     r = ikaros("-b", "-s", "100", "examples/hello.ikg")
     assert r.returncode == 0, r.stderr
-    assert r.stdout.splitlines() == ["Show: 0.5"] * 5
+    assert r.stdout.splitlines() == [f"Show: {v:g}" for v in
+                                     (0.25, 0.5, 0.75, 1, 1.25, 1.5, 1.75, 2, 0, 0.25)]
     r = ikaros("-b", "-s", "21", "examples/hello.ikg", "gain=3")
-    assert r.stdout.splitlines() == ["Show: 0.75"] * 2
+    assert r.stdout.splitlines() == ["Show: 0.375", "Show: 0.75", "Show: 1.125"]
 
 
 def test_info_prints_the_schedule_of_nested_groups():

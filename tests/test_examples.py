@@ -28,3 +28,23 @@ def test_example_runs(path, tmp_path):
                 assert np.all(np.isfinite(net.output(f"{inst.path}.{name}"))), name
     finally:
         net.close()
+
+
+OUTPUT_CLASSES = ("OutputCSV", "OutputFile", "OutputJPEG", "OutputPNG", "OutputRawImage",
+                  "OutputVideoFile")
+
+
+def test_examples_write_files_only_into_their_ignored_output_folder():
+    from ikaros.language.reader import read_file
+    written = []
+    for path in EXAMPLES:
+        stack = [read_file(path)]
+        while stack:
+            node = stack.pop()
+            stack.extend(node.elements())
+            if node.tag == "module" and node.get("class") in OUTPUT_CLASSES:
+                written.append(node.get("filename"))
+    assert len(written) == 7
+    assert all(name.startswith("output/") for name in written), written
+    with open(os.path.join(ROOT, ".gitignore")) as f:
+        assert "examples/**/output/" in f.read().split()

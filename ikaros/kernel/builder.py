@@ -8,9 +8,12 @@ import gc
 import os
 import re
 
+from ..access import AccessRefused, check_file_parameter, current as access_now
 from ..errors import ModelError
+from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.diagnostics import Diagnostics, collecting, warn_at
 from ..language.node import INCLUDE, Node
+from ..limits import LimitError, Limits, applied, check_shape, current as current_limits
 from ..language.reader import read_file
 from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
                                split_selectors, value_text)
@@ -18,6 +21,7 @@ from ..module import Clock, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
 from .layout import layout, runs_into
+from .ranges import check_parameter
 from .schedule import schedule
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
 from .sizes import SizeError, WAIT, rule_shape, shape_expression
@@ -48,8 +52,10 @@ class Builder:
     (and says whether the load is strict or lenient)."""
 
     def __init__(self, filename: str, overrides: dict | None = None, text: str | None = None,
-                 registry: ClassRegistry | None = None, model: Node | None = None,
-                 diagnostics: Diagnostics | None = None):
+                 notify=None, registry: ClassRegistry | None = None,
+                 model: Node | None = None, diagnostics: Diagnostics | None = None,
+                 limits: Limits | None = None):
+        self.limits = limits
         self.filename = os.path.abspath(filename)
         if model is not None and model.tag != "group":
             raise model.error(f"the root element is <{model.tag}> but must be <group>")
@@ -75,6 +81,7 @@ class Builder:
 
     def _group(self, node: Node, parent: Group | None, name: str, attrs: dict,
                files: tuple) -> Group:
+        _check_depth(node, parent)
         group = Group(name, node, parent, dict(attrs))
         anonymous = 0
         for child in node.elements():
@@ -138,6 +145,7 @@ class Builder:
         if not external:
             return self._group(node, parent, name, node.attrs, files)
         path = self._substitute(external, node, parent, "external")
+        _confined(node, path, "group file")
         merged, file = self._merge_file(node, path, files)
         merged.attrs.pop("external", None)
         return self._group(merged, parent, name, merged.attrs, files + (file,))
@@ -151,7 +159,10 @@ class Builder:
             raise node.error(f'"{os.path.basename(file)}" includes itself')
         if not os.path.isfile(file):
             raise node.error(f'group file "{path}" not found')
-        root = read_file(file, root_tag="group")
+        try:
+            root = read_file(file, root_tag="group")
+        except ModelError as e:
+            raise node.error(f'group file "{path}" is not a model: {e}') from None
         attrs = dict(root.attrs)
         attrs.update({k: v for k, v in node.attrs.items() if k != "class"})
         merged = Node("group", attrs, list(root.children) + list(node.children), root.file,
@@ -166,10 +177,16 @@ class Builder:
         class_name = self._substitute(class_name, node, group, "class")
         folders = [self._folder(node.file or self.filename)]
         if attrs.get("path"):
-            folders.insert(0, os.path.join(folders[0], self._substitute(
-                attrs["path"], node, group, "path")))
+            class_path = self._substitute(attrs["path"], node, group, "path")
+            _confined(node, class_path, "class path")
+            folders.insert(0, os.path.join(folders[0], class_path))
         entry = self.registry.find(class_name, folders, files)
         if entry is None:
+            itself = self.registry.find(class_name, folders)
+            if itself is not None and itself.is_group and itself.group in files:
+                raise node.error(f'class "{class_name}" is the group file '
+                                 f'"{os.path.basename(itself.group)}", which this module is '
+                                 f'part of: a group file cannot be used inside itself')
             raise node.error(f'unknown class "{class_name}"')
         if entry.is_group:
             merged, file = self._merge_file(node, entry.group, files)
@@ -211,8 +228,10 @@ class Builder:
                 break
         try:
             module = cls()
-        except Exception as e:
-            raise inst.node.error(f"creating the module failed: {type(e).__name__}: {e}") \
+        except module_faults() as e:
+            if is_interrupt(e):
+                raise
+            raise inst.node.error(f"creating the module failed: {fault_text(e)}") \
                 from None
         module.name, module.path, module.element = inst.name, inst.path, inst.node
         module.clock = self.clock
@@ -222,8 +241,10 @@ class Builder:
         self._run_settings(inst)
         try:
             module.configure()
-        except Exception as e:
-            raise inst.node.error(f"configure failed: {type(e).__name__}: {e}") from None
+        except module_faults() as e:
+            if is_interrupt(e):
+                raise
+            raise inst.node.error(f"configure failed: {fault_text(e)}") from None
 
     def _run_settings(self, inst: ModuleInstance) -> None:
         """``period``, ``phase`` and ``async`` of a module element."""
@@ -268,12 +289,19 @@ class Builder:
                             del inst.attrs[spec.name]      # so that saving leaves it out
                         found = None
             if found is not None:
-                return convert(text, spec, where, own=spec.name), True
-            if spec.default is not None and spec.default != "":
+                value = convert(text, spec, where, own=spec.name)
+            elif spec.default is not None and spec.default != "":
                 if isinstance(spec.default, str):
-                    return convert(spec.default, spec, inst), True
-                return from_python(spec.default, spec), True
-            return from_python(None, spec), False
+                    value = convert(spec.default, spec, inst)
+                else:
+                    value = from_python(spec.default, spec)
+            else:
+                return from_python(None, spec), False
+            check_parameter(value, spec)
+            check_file_parameter(spec, value, self._folder(inst.node.file or self.filename))
+            return value, True
+        except AccessRefused as e:
+            raise inst.node.error(f"{e}") from None
         except (ValueError_, VariableError, ValueError) as e:
             node = where.node if hasattr(where, "node") else inst.node
             raise node.error(f'parameter "{spec.name}" of {inst.path}: {e}') from None
@@ -573,7 +601,9 @@ class Builder:
             spec = module._ik_outputs[name]
             try:
                 shape = rule_shape(inst, spec, shapes, partial) if spec.rule else WAIT
-            except SizeError as e:
+                if shape is not WAIT:
+                    check_shape(shape)
+            except (SizeError, LimitError) as e:
                 raise inst.node.error(f'size of output "{name}": {e}') from None
             if shape is WAIT:
                 waiting = True
@@ -584,11 +614,18 @@ class Builder:
         if waiting and type(module).set_sizes is not Module.set_sizes:
             try:
                 module.set_sizes()
-            except Exception as e:
-                raise inst.node.error(f"set_sizes failed: {type(e).__name__}: {e}") from None
+            except module_faults() as e:
+                if is_interrupt(e):
+                    raise
+                raise inst.node.error(f"set_sizes failed: {fault_text(e)}") from None
             for name, buf in outputs.items():
                 if buf.shape is None and module._ik_output_shapes.get(name) is not None:
-                    buf.shape = module._ik_output_shapes[name]
+                    shape = module._ik_output_shapes[name]
+                    try:
+                        check_shape(shape)
+                    except LimitError as e:
+                        raise inst.node.error(f'size of output "{name}": {e}') from None
+                    buf.shape = shape
                     sized.append(buf)
         return sized
 
@@ -613,7 +650,8 @@ class Builder:
     # --- everything ----------------------------------------------------------------------
     def build(self):
         """Build the network; raises ModelError naming the file, line and element."""
-        with _collector_paused(), collecting(self.diagnostics):
+        with _collector_paused(), collecting(self.diagnostics), \
+                applied(self.limits or current_limits()):
             if self.model is None:
                 self.model = read_file(self.filename, self._text, root_tag="group")
             return self._build()
@@ -661,6 +699,25 @@ def _remove(tree: Node, node: Node) -> bool:
 
 
 _EMPTY_IS_A_VALUE = ("string", "matrix", "array")
+def _confined(node: Node, name: str, what: str) -> None:
+    """Refuse a file or folder outside the models folder in a confined build."""
+    confinement = access_now()
+    if confinement is not None:
+        try:
+            confinement.check(name, os.path.dirname(node.file or "."), what)
+        except AccessRefused as e:
+            raise node.error(str(e)) from None
+
+
+def _check_depth(node: Node, parent: Group | None) -> None:
+    """Refuse groups nested deeper than the limit (across group files and classes too)."""
+    limit = current_limits().max_group_depth
+    depth = 0
+    while parent is not None:
+        depth += 1
+        parent = parent.parent
+    if depth >= limit:
+        raise node.error(f"groups nest deeper than {limit} levels")
 
 
 def _alias(decl: Node, key: str, legacy: str) -> str | None:

@@ -12,6 +12,7 @@ from importlib.metadata import entry_points
 
 from ..description import ClassDescription
 from ..errors import ModelError
+from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.classfile import read_class_file
 from ..language.diagnostics import warn, warn_at
 from ..language.reader import read_file
@@ -118,8 +119,10 @@ def _import_file(path: str, package: str | None):
     if package:
         try:
             return importlib.import_module(package)
-        except Exception as e:  # a broken module file is a model error that names the file
-            raise ModelError(f"cannot import: {type(e).__name__}: {e}", path) from None
+        except module_faults() as e:  # a broken module file is a model error naming it
+            if is_interrupt(e):
+                raise
+            raise _import_error(e, path) from None
     key = "ikaros_user_" + hashlib.sha1(os.path.abspath(path).encode()).hexdigest()[:12] + \
         "_" + os.path.splitext(os.path.basename(path))[0]
     if key in sys.modules:
@@ -129,10 +132,19 @@ def _import_file(path: str, package: str | None):
     sys.modules[key] = module
     try:
         spec.loader.exec_module(module)
-    except Exception as e:
+    except module_faults() as e:
         del sys.modules[key]
-        raise ModelError(f"cannot import: {type(e).__name__}: {e}", path) from None
+        if is_interrupt(e):
+            raise
+        raise _import_error(e, path) from None
     return module
+
+
+def _import_error(e: BaseException, path: str) -> ModelError:
+    """A module file that cannot be imported, with the package it misses if that is why."""
+    missing = getattr(e, "name", None) if isinstance(e, ImportError) else None
+    hint = f" (the package may be installed with: pip install {missing})" if missing else ""
+    return ModelError(f"cannot import: {fault_text(e)}{hint}", path)
 
 
 def _scan(folder: str, recursive: bool, package_root: str | None = None) -> dict[str, ClassEntry]:

@@ -8,6 +8,7 @@ from concurrent.futures import ThreadPoolExecutor, wait
 
 import numpy as np
 
+from ..interrupt import is_interrupt
 from ..module import Clock
 from .schedule import thread_groups
 
@@ -145,7 +146,9 @@ class Plan:
         try:
             for step in self.sequence:
                 step()
-        except Exception as e:
+        except BaseException as e:
+            if is_interrupt(e):
+                raise
             return self.owner.get(step), e
         return None
 
@@ -157,7 +160,9 @@ class Plan:
             try:
                 for call in self.calls[inst]:
                     call()
-            except Exception as e:
+            except BaseException as e:
+                if is_interrupt(e):
+                    raise
                 return inst, e
             if self.profiling:
                 spent = perf() - start

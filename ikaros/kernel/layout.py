@@ -11,6 +11,7 @@ import numpy as np
 
 from ..errors import ModelError
 from ..language.values import selector_indices
+from ..limits import max_elements
 from .buffers import Buffer, Link, Run
 
 
@@ -43,6 +44,9 @@ def _piece(link: Link) -> None:
         dims = list(dims) + [("all",)] * (len(shape) - len(dims))
         lists = []
         for dim, extent in zip(dims, shape):
+            if _reaches_past(dim, extent):
+                raise _link_error(link, f"the source selector is outside its output bounds "
+                                        f"(shape {shape})")
             idx = selector_indices(dim, extent)
             if any(i < 0 or i >= extent for i in idx):
                 raise _link_error(link, f"the source selector is outside its output bounds "
@@ -59,6 +63,17 @@ def _piece(link: Link) -> None:
             or (1,)
     if link.window:
         link.piece_shape = (len(link.delays),) + link.piece_shape
+
+
+def _reaches_past(dim: tuple, extent: int) -> bool:
+    """Whether a selector dimension picks an index at or beyond ``extent`` (checked before
+    its index list is made, which may be huge)."""
+    if dim[0] == "index":
+        return dim[1] >= extent
+    if dim[0] != "range" or dim[2] <= dim[1]:
+        return False
+    _, a, b, step = dim
+    return a + (b - 1 - a) // abs(step) * abs(step) >= extent
 
 
 def _index_map(indices: list[int]):
@@ -175,6 +190,9 @@ def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
                 lists.append(list(range(n)))
                 extents.append(n)
             else:
+                if _reaches_past(d, max_elements()):
+                    raise _link_error(link, f"the target selector reaches past the largest "
+                                            f"buffer allowed ({max_elements()} elements)")
                 lists.append(selector_indices(d, 0))
                 # a range reaches to its end, so [0:6:2] spans 6 elements
                 extents.append(d[1] + 1 if d[0] == "index" else max(d[2], 1))

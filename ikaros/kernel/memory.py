@@ -24,6 +24,10 @@ class Arena:
         self._shapes.append(shape)
         return len(self._shapes) - 1
 
+    def planned_bytes(self) -> int:
+        """The size the block will have, in bytes (before ``allocate``)."""
+        return sum(-(-math.prod(shape) // ALIGN) * ALIGN for shape in self._shapes) * 4
+
     def allocate(self) -> None:
         offsets, total = self.offsets, 0
         sizes = [math.prod(shape) for shape in self._shapes]

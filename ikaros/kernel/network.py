@@ -8,7 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import RunError
+from ..errors import ModelError, RunError
+from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.values import ValueError_, format_number, value_text
 from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
@@ -18,6 +19,8 @@ from .control import PLAY, REALTIME, Controller
 from .execution import AsyncModule, Plan, module_tick
 from .fusion import fuse
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
+from .limits import check_memory as _check_memory
+from .ranges import check_parameter
 from .timing import Timing
 from .scope import VariableError, from_python
 from .tree import Group, ModuleInstance, find_component
@@ -37,6 +40,7 @@ class Network:
         self.model = builder.model             # the model tree as read (saved by save())
         self.diagnostics = builder.diagnostics        # the load's settings and warnings
         self.warnings = builder.diagnostics.warnings   # load-time warnings (ModelWarning)
+        self._overrides = builder.overrides
         self.top = top
         self.clock = builder.clock
         self.schedule = order
@@ -74,9 +78,16 @@ class Network:
         except ValueError:
             value = float("nan")
         if not np.isfinite(value) or value <= 0:
-            raise self.model.error(f'tick_duration "{text}" must be a finite number of '
-                                   f'seconds > 0')
+            raise self._setting_error("tick_duration", f'tick_duration "{text}" must be a '
+                                      f'finite number of seconds > 0')
         return value
+
+    def _setting_error(self, key: str, message: str):
+        """An error in a top-group setting, blamed on the command line (or the keyword of
+        ``ikaros.load``) when it was given there, else on the file."""
+        if key in self._overrides:
+            return ModelError(f"{message} (given on the command line)")
+        return self.model.error(message)
 
     def _whole_number(self, key: str, minimum: int) -> int | None:
         """A top-group setting that must be a whole number >= minimum (None when unset)."""
@@ -85,7 +96,8 @@ class Network:
             return None
         stripped = text.strip().lstrip("+")
         if not (stripped.lstrip("-").isdigit() and int(stripped) >= minimum):
-            raise self.model.error(f'{key}="{text}" must be a whole number >= {minimum}')
+            raise self._setting_error(key, f'{key}="{text}" must be a whole number >= '
+                                           f'{minimum}')
         return int(stripped)
 
     def _allocate(self) -> None:
@@ -113,6 +125,7 @@ class Network:
         deepest: dict = {}
         for run in self.runs:
             deepest[run.source] = max(deepest.get(run.source, 0), run.delay)
+        _check_memory(arena, requests, deepest)
         arena.allocate()
         views, offsets = arena.views, arena.offsets
         for buf, k in requests:
@@ -196,8 +209,10 @@ class Network:
                 inst.module.init()
                 if job is not None:
                     job.publish_init()
-            except Exception as e:
-                error = inst.node.error(f"init failed: {type(e).__name__}: {e}")
+            except module_faults() as e:
+                if is_interrupt(e):
+                    raise
+                error = inst.node.error(f"init failed: {fault_text(e)}")
             if error is None and self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
                 error = inst.node.error(f"While initializing module {inst.path}: "
                                         f"{self.stop_reason[1]}")
@@ -239,6 +254,7 @@ class Network:
                 self.stop_reason is None or
                 (level == FATAL_ERROR and self.stop_reason[0] != FATAL_ERROR)):
             self.stop_reason = (level, message)      # a fatal error wins over a clean end
+            self._stop_where = where
         if level <= self.log_level:
             text = f"{where}: {message}" if where else message
             if level == PRINT:
@@ -267,7 +283,7 @@ class Network:
         if failure is not None:
             inst, error = failure
             self.notify(FATAL_ERROR, inst.path if inst else "kernel",
-                        f"{type(error).__name__}: {error}")
+                        f"{fault_text(error)}")
         self.tick += 1
         self.timing.tick_done(time.perf_counter() - start)
         if self.stop_reason is not None:
@@ -283,7 +299,8 @@ class Network:
             self._stop_modules(self.schedule)
         level, message = self.stop_reason or (TERMINATE, "closed")
         if level == FATAL_ERROR:
-            raise RunError(message)
+            where = getattr(self, "_stop_where", "")
+            raise RunError(f"{where}: {message}" if where else message)
 
     def _stop_modules(self, modules: list[ModuleInstance]) -> None:
         """Call stop() of each module once; a stop() that fails is a fatal error (the run
@@ -291,8 +308,10 @@ class Network:
         for inst in modules:
             try:
                 inst.module.stop()
-            except Exception as e:
-                self.notify(FATAL_ERROR, inst.path, f"stop failed: {type(e).__name__}: {e}")
+            except module_faults() as e:
+                if is_interrupt(e):
+                    raise
+                self.notify(FATAL_ERROR, inst.path, f"stop failed: {fault_text(e)}")
 
     def _check_running(self) -> None:
         if self._stopped:
@@ -346,9 +365,14 @@ class Network:
                  f"Lag: now {f['lag'] * ms:.3f} ms, max {f['lag_max'] * ms:.3f} ms, 99th "
                  f"percentile {f['lag_p99'] * ms:.3f} ms; resynchronised {f['resyncs']} times",
                  f"CPU usage: {f['cpu_usage'] * 100:.1f} %; idle: {f['idle'] * 100:.1f} %",
-                 "", f"{'module':32} {'class':16} {'count':>8} {'mean ms':>10} {'max ms':>10}"]
-        for m in sorted(self.module_figures(), key=lambda m: -m["mean"]):
-            lines.append(f"{m['module']:32} {m['class']:16} {m['count']:>8} "
+                 ""]
+        rows = sorted(self.module_figures(), key=lambda m: -m["mean"])
+        wm = max([32] + [len(m["module"]) for m in rows])     # long names widen the column
+        wc = max([16] + [len(m["class"]) for m in rows])
+        lines.append(f"{'module':{wm}} {'class':{wc}} {'count':>8} {'mean ms':>10} "
+                     f"{'max ms':>10}")
+        for m in rows:
+            lines.append(f"{m['module']:{wm}} {m['class']:{wc}} {m['count']:>8} "
                          f"{m['mean'] * ms:>10.4f} {m['max'] * ms:>10.4f}")
         return "\n".join(lines)
 
@@ -417,6 +441,7 @@ class Network:
         spec = comp.module.description.parameter(name)
         try:
             new = from_python(value, spec)
+            check_parameter(new, spec)
         except (ValueError_, VariableError, ValueError, TypeError) as e:
             raise ValueError(f'bad value for parameter "{path}": {e}') from None
         def change():

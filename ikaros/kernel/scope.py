@@ -10,6 +10,7 @@ from ..language.diagnostics import warn, warn_at
 from ..language.expressions import ExpressionError, evaluate_arithmetic, is_arithmetic
 from ..language.values import (ValueError_, format_number, parse_bool, parse_int,
                                parse_matrix, parse_number)
+from ..limits import Expansion, LimitError, current as current_limits
 from .tree import Group, ModuleInstance, Scope, find_component, group_of
 
 MAX_DEPTH = 64
@@ -58,6 +59,10 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
         return text
     if depth > MAX_DEPTH:
         raise VariableError(f'variables nest deeper than {MAX_DEPTH} levels in "{text}"')
+    if depth == 0:
+        Expansion.start()
+        if "{" in text:
+            _check_braces(text)
     while True:
         m = _BRACES.search(text)
         if not m:
@@ -71,6 +76,7 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
         elif _NAME_OR_PATH.fullmatch(inner):
             inner = _path_value(inner, scope, depth)
         text = text[:m.start()] + inner + text[m.end():]
+        _spend(len(text))
     if "}" in text or "{" in text:
         raise VariableError(f'unmatched brace in "{text}"')
     out = ""
@@ -92,6 +98,7 @@ def substitute(text: str, scope, depth: int = 0, own: str | None = None) -> str:
                 continue
         try:
             out += lookup_variable(name, scope, depth, own)
+            _spend(len(out))
         except UndefinedVariable:
             if text.strip() != m.group(0):
                 raise
@@ -135,6 +142,27 @@ def _data_element(start: Group, path: str):
         if element.attrs.get("name") == name and element.tag not in ("module", "group"):
             return Scope(element, parent)
     return None
+
+
+def _check_braces(text: str) -> None:
+    """Refuse ``{...}`` nested deeper than the expression limit (each level is a pass)."""
+    limit = current_limits().max_expression_depth
+    depth = 0
+    for ch in text:
+        if ch == "{":
+            depth += 1
+            if depth > limit:
+                raise VariableError(f"braces nest deeper than {limit} levels")
+        elif ch == "}":
+            depth -= 1
+
+
+def _spend(length: int) -> None:
+    """Count one step of resolving a value (see ikaros.limits.Expansion)."""
+    try:
+        Expansion.step(length)
+    except LimitError as e:
+        raise VariableError(str(e)) from None
 
 
 def _has_operator(text: str) -> bool:

@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import re
 
+from ..limits import current as current_limits
+
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][+-]?\d+)?|\.\d+(?:[eE][+-]?\d+)?)|(.))")
 
 
@@ -28,6 +30,7 @@ def evaluate_arithmetic(text: str) -> float:
             tokens.append(m.group(2))
     if not tokens:
         raise ExpressionError("empty expression")
+    _check_nesting(tokens, text)
     pos = 0
 
     def peek():
@@ -82,3 +85,16 @@ def evaluate_arithmetic(text: str) -> float:
     if pos != len(tokens):
         raise ExpressionError(f'"{text}" is not an arithmetic expression')
     return value
+
+
+def _check_nesting(tokens: list, text: str) -> None:
+    """Refuse parentheses or signs nested deeper than the limit (before the recursive parse)."""
+    limit = current_limits().max_expression_depth
+    depth = run = 0
+    for tok in tokens:
+        depth += tok == "("
+        depth -= tok == ")"
+        run = run + 1 if tok in ("-", "+", "(") else 0
+        if depth > limit or run > limit:
+            raise ExpressionError(f"the expression nests deeper than {limit} levels: "
+                                  f"\"{text[:40]}...\"")

@@ -5,7 +5,9 @@ import os
 import re
 from xml.parsers import expat
 
+from .. import access
 from ..errors import ModelError
+from ..limits import current as current_limits, format_bytes
 from .node import COMMENT, INCLUDE, Node
 from .repair import repair
 
@@ -33,11 +35,14 @@ def _keep_lines(match: re.Match) -> str:
 
 
 def _file_text(path: str) -> str:
+    limit = current_limits().max_file_size
     try:
         with open(path, "rb") as f:
-            raw = f.read()
+            raw = f.read(limit + 1)
     except OSError as e:
         raise ModelError(f"cannot read file: {e.strerror}", path) from None
+    if len(raw) > limit:
+        raise ModelError(f"the file is larger than the limit of {format_bytes(limit)}", path)
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as e:
@@ -59,6 +64,7 @@ class _TreeBuilder:
         self.open: list[Node] = []         # elements not yet closed, the wrapper excluded
         self.text: list[str] | None = None  # text of the innermost element before a child
         self.in_wrapper = False
+        self.max_depth = current_limits().max_element_depth
 
     def _add(self, node: Node) -> None:
         if self.open:
@@ -80,6 +86,8 @@ class _TreeBuilder:
             self.in_wrapper = True
             return
         node = Node(tag, attrs, [], self.path, self.parser.CurrentLineNumber)
+        if len(self.open) >= self.max_depth:
+            raise node.error(f"elements nest deeper than {self.max_depth} levels")
         self._add(node)
         self.open.append(node)
         self.text = []
@@ -95,6 +103,9 @@ class _TreeBuilder:
     def data(self, text: str) -> None:
         if self.text is not None:
             self.text.append(text)
+        elif not self.open and text.strip():
+            raise ModelError(f'text outside the elements: "{text.strip()[:40]}"', self.path,
+                             self.parser.CurrentLineNumber)
 
     def comment(self, text: str) -> None:
         self._add(Node(COMMENT, file=self.path, line=self.parser.CurrentLineNumber, text=text))
@@ -149,6 +160,12 @@ def _include(file: str | None, path: str, line: int, stack: tuple[str, ...]) -> 
     node = Node(INCLUDE, {"file": file or ""}, [], path, line)
     if not file:
         raise ModelError('<?include?> needs a file="..." attribute', path, line)
+    confinement = access.current()
+    if confinement is not None:
+        try:
+            confinement.check(file, os.path.dirname(path), "included file")
+        except access.AccessRefused as e:
+            raise ModelError(str(e), path, line) from None
     target = os.path.normpath(os.path.join(os.path.dirname(path), file))
     if target in stack:
         raise ModelError(f'<?include file="{file}"?> includes itself', path, line)
@@ -156,7 +173,14 @@ def _include(file: str | None, path: str, line: int, stack: tuple[str, ...]) -> 
         raise ModelError(f"includes nest deeper than {MAX_INCLUDE_DEPTH} levels", path, line)
     if not os.path.isfile(target):
         raise ModelError(f'included file "{file}" not found', path, line)
-    node.children.extend(read_items(target, stack=stack + (target,)))
+    try:
+        items = read_items(target, stack=stack + (target,))
+    except ModelError as e:
+        if e.filename != target:
+            raise                       # the error of a file that one includes
+        raise ModelError(f'included file "{file}" is not model text: {e}', path,
+                         line) from None
+    node.children.extend(items)
     return node
 
 

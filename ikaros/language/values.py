@@ -1,10 +1,12 @@
 """Parsing attribute values: booleans, numbers, matrix literals, delays and selectors."""
 from __future__ import annotations
 
+import math
 import re
 
 import numpy as np
 
+from ..limits import current as current_limits
 from .expressions import ExpressionError, evaluate_arithmetic
 
 TRUE_WORDS = {"true", "yes", "on", "1"}
@@ -35,7 +37,8 @@ def parse_number(text: str) -> float:
     try:
         return evaluate_arithmetic(s)
     except ExpressionError as e:
-        raise ValueError_(f'"{text}" is not a number ({e})') from None
+        shown = s if len(s) <= 60 else f"{s[:40]}..."
+        raise ValueError_(f'"{shown}" is not a number ({e})') from None
 
 
 def parse_int(text: str) -> int:
@@ -44,6 +47,8 @@ def parse_int(text: str) -> int:
     if re.fullmatch(r"[+-]?\d+", s):
         return int(s)
     value = parse_number(s)
+    if not math.isfinite(value):
+        raise ValueError_(f'"{text}" is not a finite integer')
     if value != int(value):
         raise ValueError_(f'"{text}" is not an integer')
     return int(value)
@@ -55,9 +60,13 @@ def _strip_comments(text: str) -> str:
 
 def _element(token: str) -> float:
     try:
-        return float(token)
+        number = float(token)
     except ValueError:
         pass
+    else:
+        if math.isinf(number) and "inf" not in token.lower():
+            raise ValueError_(f'"{token}" is outside the range of a number')
+        return number
     try:
         return evaluate_arithmetic(token)
     except ExpressionError:
@@ -76,6 +85,7 @@ def _elements(token: str) -> list[float]:
     return [_element(token)]
 
 
+@np.errstate(over="ignore")     # a number too big for float32 is inf, refused later
 def parse_matrix(text: str) -> np.ndarray:
     """A matrix literal as a float32 array.
 
@@ -105,16 +115,34 @@ def parse_matrix(text: str) -> np.ndarray:
             row.extend(_elements(t))
         parsed.append(row)
     if len(parsed) == 1 and ";" not in s:
-        return np.array(parsed[0], dtype=np.float32)
+        return _refuse_overflow(np.array(parsed[0], dtype=np.float32), parsed)
     width = max((len(r) for r in parsed), default=0)
     out = np.zeros((len(parsed), width), dtype=np.float32)
     for i, r in enumerate(parsed):
         out[i, :len(r)] = r
+    return _refuse_overflow(out, parsed)
+
+
+def _refuse_overflow(out: np.ndarray, parsed: list[list[float]]) -> np.ndarray:
+    """Refuse a finite number too large for float32 (written nan and inf stay as they are,
+    for the classes that accept them)."""
+    if np.isinf(out).any():
+        for number in (x for row in parsed for x in row):
+            if math.isfinite(number) and math.isinf(np.float32(number)):
+                raise ValueError_(f"{number:g} is outside the float32 range")
     return out
+
+
+MAX_RANK = 32      # brackets nested in a matrix literal (NumPy allows 64 dimensions)
 
 
 def _parse_nested(s: str) -> np.ndarray:
     tokens = re.findall(r"\[|\]|,|[^\[\],\s]+", s)
+    depth = 0
+    for tok in tokens:                  # before the recursive parse
+        depth += (tok == "[") - (tok == "]")
+        if depth > MAX_RANK:
+            raise ValueError_(f"brackets nest deeper than {MAX_RANK} levels")
     pos = 0
 
     def value():
@@ -156,7 +184,7 @@ def parse_delays(text: str) -> list[int]:
     """
     s = str(text).strip()
     if s.isdigit():
-        return [int(s)]
+        return [_delay_int(s, text)]
     if s == "":
         raise ValueError_("delay must not be empty")
     if s.startswith("["):
@@ -180,7 +208,7 @@ def parse_delays(text: str) -> list[int]:
         _check_nonnegative([a, b], text)
         if b <= a:
             raise ValueError_(f'delay range "{text}" must be an ascending, non-empty range')
-        return list(range(a, b, step))
+        return _check_count(list(range(a, b, step)), text)
     delays: list[int] = []
     for part in s.split(","):
         part = part.strip()
@@ -195,15 +223,26 @@ def parse_delays(text: str) -> list[int]:
             if b < a:
                 raise ValueError_(f'delay range "{text}" must be an ascending, non-empty range')
             delays.extend(range(a, b + 1))
+            _check_count(delays, text)
         else:
             delays.append(_check_nonnegative([_delay_int(part, text)], text)[0])
-    return delays
+    return _check_count(delays, text)
 
 
 def _delay_int(part: str, text: str) -> int:
     if not re.fullmatch(r"[+-]?\d+", part):
         raise ValueError_(f'delay "{text}" is not a whole number or range')
-    return int(part)
+    value, limit = int(part), current_limits().max_delay
+    if value > limit:
+        raise ValueError_(f'delay "{text}" is longer than the limit of {limit} ticks')
+    return value
+
+
+def _check_count(delays: list[int], text: str) -> list[int]:
+    limit = current_limits().max_delays
+    if len(delays) > limit:
+        raise ValueError_(f'delay "{text}" lists more than {limit} delays')
+    return delays
 
 
 def _check_nonnegative(values: list[int], text: str) -> list[int]:

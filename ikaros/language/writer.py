@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+import stat
 import tempfile
 
 from lxml import etree
@@ -35,14 +36,38 @@ def to_text(root: Node) -> str:
     return '<?xml version="1.0"?>\n' + "\n".join(parts) + "\n"
 
 
+def _mode_for(filename: str) -> int:
+    """The permission bits of the file that will be replaced, else 0666 less the umask."""
+    try:
+        return stat.S_IMODE(os.stat(filename).st_mode)
+    except OSError:
+        return 0o666 & ~_umask()
+
+
+def _umask() -> int:
+    try:                     # read without setting it (os.umask would, for all threads)
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError):
+        pass
+    umask = os.umask(0o022)
+    os.umask(umask)
+    return umask
+
+
 def write_file(root: Node, filename: str) -> None:
-    """Write the tree to a file (written whole, then renamed, so a failure loses nothing)."""
+    """Write the tree to a file (written whole, then renamed, so a failure loses nothing).
+    The file keeps the permissions of the one it replaces; a new file gets those the umask
+    gives."""
     text = to_text(root)
     folder = os.path.dirname(os.path.abspath(filename))
     fd, tmp = tempfile.mkstemp(dir=folder, suffix=".tmp")
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as f:
             f.write(text)
+        os.chmod(tmp, _mode_for(filename))
         os.replace(tmp, filename)
     except BaseException:
         if os.path.exists(tmp):

@@ -43,6 +43,7 @@ import os
 import re
 from dataclasses import dataclass
 
+from .. import access
 from ..errors import ModelError
 from ..language.node import COMMENT, INCLUDE, Node
 from ..language.reader import MAX_INCLUDE_DEPTH, read_items
@@ -51,7 +52,7 @@ MAX_NODES = 100_000
 MAX_DEPTH = 100
 NODE_KEYS = ("id", "tag", "attrs", "text", "children", "file", "line", "outside")
 _XML_NAME = re.compile(r"[A-Za-z_][\w.\-]*\Z", re.ASCII)
-_BAD_CHARS = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]")
+_BAD_CHARS = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff\ud800-\udfff]")
 _FILE_NAME = re.compile(r"[^\W][\w\-. ]*\.ikg\Z")
 _MODEL_NAME = re.compile(r"[A-Za-z_][\w\-]*\Z")
 
@@ -125,6 +126,12 @@ def _text(value, what: str) -> str:
     return value
 
 
+def _whole(value) -> bool:
+    """A JSON whole number (2 and 2.0 alike, as JSON Schema counts them)."""
+    return (isinstance(value, int) and not isinstance(value, bool)) or \
+        (isinstance(value, float) and value.is_integer())
+
+
 def _check(data, path: tuple, depth: int, count: list) -> dict:
     """Validate one JSON node (not its children); returns the cleaned fields."""
     where = "the tree" if not path else "node at path " + "/".join(map(str, path))
@@ -143,13 +150,13 @@ def _check(data, path: tuple, depth: int, count: list) -> dict:
     if not isinstance(tag, str) or not (tag in (COMMENT, INCLUDE) or _XML_NAME.match(tag)):
         raise TreeError(f'{where}: "tag" must be an element name, "#comment" or "#include"')
     node_id = data.get("id")
-    if node_id is not None and not (isinstance(node_id, int) and not isinstance(node_id, bool)
-                                    and node_id >= 0):
+    if node_id is not None and not (_whole(node_id) and node_id >= 0):
         raise TreeError(f'{where}: "id" must be a whole number >= 0 or absent')
+    node_id = None if node_id is None else int(node_id)
     line = data.get("line")
-    if line is not None and not (isinstance(line, int) and not isinstance(line, bool)
-                                 and line >= 1):
+    if line is not None and not (_whole(line) and line >= 1):
         raise TreeError(f'{where}: "line" must be a whole number >= 1 or absent')
+    line = None if line is None else int(line)
     file = data.get("file")
     if file is not None and not isinstance(file, str):
         raise TreeError(f'{where}: "file" must be a string or absent')
@@ -186,7 +193,7 @@ def _check(data, path: tuple, depth: int, count: list) -> dict:
             raise TreeError(f'{where}: a comment must not contain "--" or end with "-"')
     if tag == INCLUDE:
         inc = clean.get("file", "")
-        if set(clean) != {"file"} or not inc.strip() or '"' in inc or "?>" in inc:
+        if set(clean) != {"file"} or not inc.strip(" \t\r\n") or '"' in inc or "?>" in inc:
             raise TreeError(f'{where}: an include needs just attrs.file, a file name '
                             f'without quotes')
     return {"tag": tag, "id": node_id, "line": line, "file": file, "attrs": clean,
@@ -261,6 +268,12 @@ def _json_index(kids: list[EditorNode], folder: str, index: dict) -> dict:
 def _read_include(inc: EditorNode, containing: str, folder: str, kids: list,
                   stack: tuple) -> list[EditorNode]:
     file = inc.attrs["file"]
+    confinement = access.current()
+    if confinement is not None:
+        try:
+            confinement.check(file, os.path.dirname(containing), "included file")
+        except access.AccessRefused as e:
+            raise inc.error(str(e)) from None
     target = os.path.normpath(os.path.join(os.path.dirname(containing), file))
     if target in stack:
         raise inc.error(f'<?include file="{file}"?> includes itself')

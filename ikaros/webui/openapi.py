@@ -13,6 +13,7 @@ _ERRORS = {"400": _json(_ERROR, "bad request: a bad field, type or value"),
            "404": _json(_ERROR, "unknown path, module, buffer or parameter")}
 _STATUS = {"$ref": "#/components/schemas/Status"}
 _NODE = {"$ref": "#/components/schemas/Node"}
+_ROOT = {"$ref": "#/components/schemas/Root"}
 _CHANGED = {"type": "object", "properties": {"ok": {"type": "boolean"},
                                              "file": {"type": "string"},
                                              "network": {"$ref": "#/components/schemas/"
@@ -30,10 +31,13 @@ def _get(summary: str, answer: dict, params: list | None = None) -> dict:
     return {"get": op}
 
 
-def _post(summary: str, body: dict, answer: dict) -> dict:
-    return {"post": {"summary": summary, "requestBody": _body(body),
-                     "responses": {"200": _json(answer), **_ERRORS,
-                                   "415": _json(_ERROR, "the body is not JSON")}}}
+def _post(summary: str, body: dict, answer: dict, **more: str) -> dict:
+    responses = {"200": _json(answer), **_ERRORS,
+                 "403": _json(_ERROR, "cross-origin"),
+                 "413": _json(_ERROR, "the body is larger than the limit"),
+                 "415": _json(_ERROR, "the body is not JSON")}
+    responses.update({code: _json(_ERROR, text) for code, text in more.items()})
+    return {"post": {"summary": summary, "requestBody": _body(body), "responses": responses}}
 
 
 def _editor_post(summary: str, body: dict, answer: dict) -> dict:
@@ -51,8 +55,50 @@ def _q(name: str, description: str, schema: dict, required: bool = False) -> dic
             "schema": schema}
 
 
+_NUMBERS = {"$ref": "#/components/schemas/Numbers"}
 _VALUE = {"description": "a number, bool, string, or (nested) list of numbers; text is "
-                         "read as in a model file"}
+                         "read as in a model file",
+          "anyOf": [{"type": "number"}, {"type": "boolean"}, {"type": "string"}, _NUMBERS]}
+# what the server strips (Python's whitespace) must leave some text
+_NONBLANK = {"type": "string", "pattern": r"[^\s\x1c-\x1f\x85\xa0\u1680\u2000-\u200a"
+                                         r"\u2028\u2029\u202f\u205f\u3000]"}
+# Characters XML allows (the server refuses the others, and lone surrogates cannot be saved)
+_XML_TEXT = r"^[^\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]*$"
+_XML_NAME = "^[A-Za-z_][A-Za-z0-9_.-]*$"
+_INCLUDE_FILE = (r'^[^"?\s\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]'
+                 r'[^"?\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]*$')
+_COMMENT = r"^[^\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff-]*$"   # no "-"
+
+
+_NODE_FIELDS = {
+    "id": {"type": ["integer", "null"], "minimum": 0,
+           "description": "given by GET /api/model; none on new nodes"},
+    "file": {"type": ["string", "null"]},
+    "line": {"type": ["integer", "null"], "minimum": 1}}
+
+
+def _element(root: bool) -> dict:
+    """An element node; the root is a <group> and may carry the comments outside it."""
+    props = {
+        **_NODE_FIELDS,
+        "tag": {"const": "group"} if root else
+        {"type": "string", "pattern": _XML_NAME, "description": "the element name"},
+        "attrs": {"type": "object", "propertyNames": {"pattern": _XML_NAME},
+                  "additionalProperties": {"anyOf": [{"type": "string", "pattern": _XML_TEXT},
+                                                     {"type": "number"}]},
+                  "description": "every attribute, in file order"},
+        "text": {"type": ["string", "null"], "pattern": _XML_TEXT},
+        "children": {"type": "array", "items": _NODE}}
+    if root:
+        props["outside"] = {
+            "type": "object", "additionalProperties": False,
+            "description": "comments before and after the root",
+            "properties": {k: {"type": "array", "items": {"type": "string",
+                                                          "pattern": _COMMENT}}
+                           for k in ("before", "after")}}
+    return {"type": "object", "required": ["tag"], "additionalProperties": False,
+            "properties": props,
+            "description": "a model tree: its root is a <group>" if root else "an element"}
 
 
 def openapi() -> dict:
@@ -67,22 +113,28 @@ def openapi() -> dict:
             "Change the run mode",
             {"type": "object", "required": ["state"], "additionalProperties": False,
              "properties": {"state": {"enum": ["stop", "pause", "step", "play",
-                                               "realtime"]}}}, _STATUS),
+                                               "realtime"]}}}, _STATUS,
+            **{"409": "the run has ended: apply, open or reload a model"}),
         "/api/parameter": _post(
             "Set a module parameter (or one element of an array or matrix parameter)",
             {"type": "object", "required": ["path", "value"], "additionalProperties": False,
-             "properties": {"path": {"type": "string", "example": "Arm.PID.gain"},
+             "properties": {"path": {**_NONBLANK, "example": "Arm.PID.gain"},
                             "value": _VALUE,
                             "x": {"type": "integer", "minimum": 0,
                                   "description": "column (or index)"},
                             "y": {"type": "integer", "minimum": 0, "description": "row"}}},
-            {"type": "object", "properties": {"path": {"type": "string"}, "value": {}}}),
+            {"type": "object", "properties": {"path": {"type": "string"}, "value": {}}},
+            **{"403": "a file parameter naming a file outside the models folder, or "
+                      "cross-origin",
+               "422": "a value this parameter does not take (its type, range, or an "
+                      "element outside it)"}),
         "/api/command": _post(
             "Call a module's command(name, x, y, value)",
             {"type": "object", "required": ["module", "name"], "additionalProperties": False,
-             "properties": {"module": {"type": "string"}, "name": {"type": "string"},
+             "properties": {"module": _NONBLANK, "name": _NONBLANK,
                             "x": num, "y": num, "value": {}}},
-            {"type": "object", "properties": {"ok": {"type": "boolean"}}}),
+            {"type": "object", "properties": {"ok": {"type": "boolean"}}},
+            **{"422": "the module takes no commands, or the command failed"}),
         "/api/module": _get("One module: parameters, inputs, outputs, descriptions",
                             {"$ref": "#/components/schemas/ModuleDetail"},
                             [_q("path", "the module's dotted path", {"type": "string"},
@@ -90,8 +142,7 @@ def openapi() -> dict:
         "/api/data": _get("One-off read of buffers as nested lists",
                           {"type": "object", "properties": {"tick": {"type": "integer"},
                                                             "data": obj}},
-                          [_q("paths", "comma-separated buffer paths", {"type": "string"},
-                              True)]),
+                          [_q("paths", "comma-separated buffer paths", _NONBLANK, True)]),
         "/api/log": _get("Notifications since a sequence number",
                          {"type": "object", "properties": {
                              "next": {"type": "integer"},
@@ -107,7 +158,7 @@ def openapi() -> dict:
             "Rebuild the network from an edited tree and run it from tick 0 (module state "
             "is reset); an invalid tree changes nothing (422)",
             {"type": "object", "required": ["tree"], "additionalProperties": False,
-             "properties": {"tree": _NODE, "state": {
+             "properties": {"tree": _ROOT, "state": {
                  "enum": ["pause", "step", "play", "realtime"],
                  "description": "the run state after the rebuild (default: as before)"}}},
             {"type": "object", "properties": {"ok": {"type": "boolean"},
@@ -117,7 +168,7 @@ def openapi() -> dict:
             "Write the tree to the model's file, or save as a plain .ikg name in the models "
             "folder (does not rebuild)",
             {"type": "object", "required": ["tree"], "additionalProperties": False,
-             "properties": {"tree": _NODE, "filename": {"type": "string",
+             "properties": {"tree": _ROOT, "filename": {"type": "string",
                                                         "example": "copy.ikg"}}},
             {"type": "object", "properties": {"ok": {"type": "boolean"},
                                               "file": {"type": "string"}}}),
@@ -133,7 +184,9 @@ def openapi() -> dict:
         "/api/new": _editor_post(
             "A new empty model (one group) in the models folder, not yet saved (paused)",
             {"type": "object", "additionalProperties": False,
-             "properties": {"name": {"type": "string", "default": "Untitled"}}}, _CHANGED),
+             "properties": {"name": {"type": "string", "default": "Untitled",
+                                     "pattern": "^[A-Za-z_][A-Za-z0-9_-]*$",
+                                     "maxLength": 100}}}, _CHANGED),
         "/api/openapi.json": _get("This description", obj),
     }
     schemas = {
@@ -172,18 +225,26 @@ def openapi() -> dict:
             "widgets": {"type": "array", "items": {"type": "object", "properties": {
                 "class": {"type": "string"}, "x": num, "y": num, "width": num,
                 "height": num}, "additionalProperties": True}}}},
-        "Node": {"type": "object", "required": ["tag"], "additionalProperties": False,
-                 "properties": {
-                     "id": {"type": ["integer", "null"], "minimum": 0,
-                            "description": "given by GET /api/model; none on new nodes"},
-                     "tag": {"type": "string",
-                             "description": "an element name, #comment or #include"},
-                     "attrs": {"type": "object", "additionalProperties": {"type": "string"},
-                               "description": "every attribute, in file order"},
-                     "text": {"type": ["string", "null"]},
-                     "children": {"type": "array", "items": _NODE},
-                     "file": {"type": ["string", "null"]},
-                     "line": {"type": ["integer", "null"]}}},
+        "Numbers": {"type": "array", "items": {"anyOf": [num, _NUMBERS]},
+                    "description": "a (nested) list of numbers"},
+        "Root": _element(root=True),
+        "Node": {"anyOf": [{"$ref": "#/components/schemas/Element"},
+                           {"$ref": "#/components/schemas/Comment"},
+                           {"$ref": "#/components/schemas/Include"}]},
+        "Element": _element(root=False),
+        "Comment": {"type": "object", "required": ["tag"], "additionalProperties": False,
+                    "properties": {**_NODE_FIELDS, "tag": {"const": "#comment"},
+                                   "text": {"type": ["string", "null"],
+                                            "pattern": _COMMENT}}},
+        "Include": {"type": "object", "required": ["tag", "attrs"],
+                    "additionalProperties": False, "properties": {
+                        **_NODE_FIELDS, "tag": {"const": "#include"},
+                        "attrs": {"type": "object", "required": ["file"],
+                                  "additionalProperties": False, "properties": {
+                                      "file": {"type": "string",
+                                               "pattern": _INCLUDE_FILE}}},
+                        "children": {"type": "array", "items": _NODE,
+                                     "description": "the included elements (read-only)"}}},
         "ModelError": {"type": "object", "required": ["error"], "properties": {
             "error": {"type": "string"},
             "node": {"type": ["integer", "null"], "description": "id of the element at fault"},

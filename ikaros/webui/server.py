@@ -29,12 +29,17 @@ from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
+from .. import access, limits
 from ..errors import ModelError, RunError
 from ..kernel.control import PAUSE, STATES, STEP, STOP
 from ..language.writer import write_file
 from ..module import Module
 from . import editing
+from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
+from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
+from .guards import (DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, json_depth,
+                     quiet_refused_websockets)
 from .openapi import openapi
 from .snapshot import (DEFAULT_BUDGET, DEFAULT_MAX_RATE, STATUS_INTERVAL, Client, Hub,
                        LogBook, between_ticks, kernel_thread_alive, plain)
@@ -67,8 +72,9 @@ class ApiError(Exception):
 
 class Json(JSONResponse):
     def render(self, content) -> bytes:
+        # a lone surrogate sent by a client and quoted back stays a JSON escape (\ud800)
         return json.dumps(plain(content), ensure_ascii=False, allow_nan=False,
-                          separators=(",", ":")).encode("utf-8")
+                          separators=(",", ":")).encode("utf-8", "backslashreplace")
 
 
 def _error(status: int, message: str, headers: dict | None = None) -> Json:
@@ -80,6 +86,8 @@ def _reject_constant(name):
 
 
 def _loads(text):
+    if json_depth(text) > MAX_JSON_DEPTH:       # before the decoder's recursion can overflow
+        raise ValueError(f"arrays and objects nest deeper than {MAX_JSON_DEPTH} levels")
     return json.loads(text, parse_constant=_reject_constant)
 
 
@@ -169,14 +177,22 @@ def _host_name(scope) -> str:
     return ""
 
 
+_SECURE = {"http": "http", "ws": "http", "https": "https", "wss": "https"}
+
+
 def _same_origin(scope) -> bool:
-    headers = {k.decode("latin-1").lower(): v.decode("latin-1")
-               for k, v in scope.get("headers", [])}
-    origin = headers.get("origin")
-    if origin is None or origin == "null" and scope["type"] == "http":
-        return origin is None
-    host = headers.get("host", "")
-    return origin.split("://", 1)[-1].rstrip("/") == host
+    """No Origin header, or exactly one naming this server's scheme, host and port."""
+    headers = [(k.decode("latin-1").lower(), v.decode("latin-1"))
+               for k, v in scope.get("headers", [])]
+    origins = [v for k, v in headers if k == "origin"]
+    if not origins:
+        return True
+    if len(origins) > 1:
+        return False
+    scheme, sep, rest = origins[0].strip().partition("://")
+    host = next((v for k, v in headers if k == "host"), "")
+    return bool(sep) and scheme.lower() == _SECURE.get(scope.get("scheme", "http"), "") \
+        and rest.rstrip("/").lower() == host.strip().lower()
 
 
 # --- validation helpers ------------------------------------------------------------------
@@ -236,6 +252,9 @@ def _check_value(path: str, ptype: str, value) -> None:
         raise ApiError(400, f'"value" for parameter "{path}" must not be null')
     if isinstance(value, str):
         return
+    if not (_is_number(value) or isinstance(value, bool) or _numbers(value)):
+        raise ApiError(400, f'"value" must be a number, a boolean, a string or a (nested) '
+                            f'list of numbers, not {json.dumps(value)[:80]}')
     ok = {
         "number": _is_number(value),
         "int": _is_number(value) and float(value) == int(value),
@@ -246,7 +265,7 @@ def _check_value(path: str, ptype: str, value) -> None:
         "matrix": _numbers(value),
     }.get(ptype, False)
     if not ok:
-        raise ApiError(400, f'bad value {json.dumps(value)[:80]} for {ptype} parameter '
+        raise ApiError(422, f'bad value {json.dumps(value)[:80]} for {ptype} parameter '
                             f'"{path}"')
 
 
@@ -271,13 +290,19 @@ class WebUI:
     """The state behind the routes of one app."""
 
     def __init__(self, net, static_dir: str, budget: float, max_rate: float,
-                 status_interval: float, models_dir: str | None = None):
+                 status_interval: float, models_dir: str | None = None,
+                 build_timeout: float = DEFAULT_BUILD_TIMEOUT,
+                 build_limits: limits.Limits | None = None):
         self.net = net
         self.static_dir = os.path.abspath(static_dir)
         self.model_dir = os.path.dirname(os.path.abspath(net.filename)) if net.filename \
             else None
         # The one folder the editor saves, lists, opens and creates models in.
         self.models_dir = os.path.abspath(models_dir) if models_dir else self.model_dir
+        # What a model from the editor may touch (docs/webui.md, "Who can do what").
+        self.confinement = editor_confinement(self.models_dir, self.model_dir)
+        self.build_timeout = build_timeout
+        self.build_limits = build_limits
         self.logbook = LogBook(net)
         self.hub = Hub(net, self.status, self.logbook, budget, max_rate, status_interval)
         self._classes = None
@@ -354,7 +379,8 @@ class WebUI:
                                 f'{json.dumps(state)[:40]}')
         net, ctrl = self.net, self.net.controller
         if net.stopped:
-            raise ApiError(409, "the run has ended; restart ikaros to run again")
+            raise ApiError(409, "the run has ended; apply, open or reload a model to run "
+                                "again")
         if state in ("step", "play", "realtime") and not kernel_thread_alive(ctrl):
             ctrl.start(state)
         else:
@@ -373,12 +399,16 @@ class WebUI:
                                           and v >= 0):
                     raise ApiError(400, f'"{key}" must be a whole number >= 0')
             if spec.type not in ("array", "matrix"):
-                raise ApiError(400, f'"x"/"y" need an array or matrix parameter; "{path}" '
+                raise ApiError(422, f'"x"/"y" need an array or matrix parameter; "{path}" '
                                     f'is a {spec.type}')
             if not _is_number(value) and not isinstance(value, bool):
-                raise ApiError(400, f'"value" for one element of "{path}" must be a number')
+                raise ApiError(422, f'"value" for one element of "{path}" must be a number')
         else:
             _check_value(path, spec.type, value)
+            try:
+                check_parameter_value(self.confinement, spec, value, self.net.filename)
+            except AccessRefused as e:
+                raise ApiError(403, str(e)) from None
 
         def change():
             net = self.net
@@ -390,7 +420,7 @@ class WebUI:
                 elif arr.ndim == 2 and yi < arr.shape[0] and xi < arr.shape[1]:
                     arr[yi, xi] = float(value)
                 else:
-                    raise ApiError(400, f'no element x={xi}, y={yi} in "{path}" of shape '
+                    raise ApiError(422, f'no element x={xi}, y={yi} in "{path}" of shape '
                                         f'{list(arr.shape)}')
                 net.set_parameter(path, arr)
             else:
@@ -399,7 +429,7 @@ class WebUI:
         try:
             new = await self._call(change)
         except ValueError as e:
-            raise ApiError(400, str(e)) from None
+            raise ApiError(422, str(e)) from None
         except KeyError as e:
             raise ApiError(404, str(e.args[0]) if e.args else str(e)) from None
         return Json({"path": path, "value": new})
@@ -413,14 +443,14 @@ class WebUI:
             if not _is_number(v):
                 raise ApiError(400, f'"{key}" must be a number')
         if type(inst.module).command is Module.command:
-            raise ApiError(400, f'module "{path}" ({inst.entry.name}) takes no commands')
+            raise ApiError(422, f'module "{path}" ({inst.entry.name}) takes no commands')
         try:
             await self._call(self.net.command, path, name, float(x), float(y),
                              body.get("value"))
         except KeyError as e:
             raise ApiError(404, str(e.args[0]) if e.args else str(e)) from None
         except Exception as e:
-            raise ApiError(400, f'command "{name}" of "{path}" failed: '
+            raise ApiError(422, f'command "{name}" of "{path}" failed: '
                                 f'{type(e).__name__}: {e}') from None
         return Json({"ok": True})
 
@@ -466,10 +496,10 @@ class WebUI:
         _query(request)
         return Json(await self._call(self._model_json))
 
-    @staticmethod
-    def _tree(body: dict, filename: str, reread: bool = True):
+    def _tree(self, body: dict, filename: str, reread: bool = True):
         try:
-            return editing.tree_from_json(body["tree"], filename, reread)
+            with access.applied(self.confinement):
+                return editing.tree_from_json(body["tree"], filename, reread)
         except editing.TreeError as e:
             raise ApiError(400, f'"tree": {e}') from None
 
@@ -484,9 +514,11 @@ class WebUI:
             try:
                 tree = self._tree(body, filename)
                 overrides = self._overrides
-                new = await run_in_threadpool(self._build, filename, tree, overrides)
+                new = await self._build(filename, tree, overrides)
             except ModelError as e:
                 return Json(editing.error_json(e), status_code=422)
+            except BuildTimeout as e:
+                return Json({"error": str(e), "node": None, "path": None}, status_code=422)
             await self._swap(new, state)
         return Json({"ok": True, "network": await self._call(network_json, self.net)})
 
@@ -535,8 +567,8 @@ class WebUI:
             raise ApiError(404, f'no model "{name}" in the models folder')
         with self._change():
             try:
-                new = await run_in_threadpool(self._build, path, None, None)
-            except ModelError as e:
+                new = await self._build(path, None, None)
+            except (ModelError, BuildTimeout) as e:
                 return Json({"error": str(e), "node": None, "path": None},
                             status_code=422)
             self._overrides, self._cli_stop = None, None
@@ -552,9 +584,11 @@ class WebUI:
             raise ApiError(400, str(e)) from None
         with self._change():
             try:
-                new = await run_in_threadpool(self._build, path, tree, None)
+                new = await self._build(path, tree, None)
             except ModelError as e:
                 return Json(editing.error_json(e), status_code=422)
+            except BuildTimeout as e:
+                return Json({"error": str(e), "node": None, "path": None}, status_code=422)
             self._overrides, self._cli_stop = None, None
             await self._swap(new, PAUSE)
         return Json({"ok": True, "file": os.path.basename(path),
@@ -570,13 +604,20 @@ class WebUI:
         finally:
             self._changing.release()
 
-    def _build(self, filename: str, tree, overrides: dict | None):
-        """Build a network (in a worker thread, not the kernel's)."""
+    async def _build(self, filename: str, tree, overrides: dict | None):
+        """Build a network in a thread of its own, confined to the editor's folders, within
+        the build time limit (BuildTimeout)."""
         from ..kernel.builder import Builder
-        new = Builder(filename, overrides, model=tree,
-                      diagnostics=self.net.diagnostics.fresh()).build()
-        new.log_level = self.net.log_level
-        return new
+        log_level = self.net.log_level
+        diagnostics = self.net.diagnostics.fresh()
+
+        def build():
+            with access.applied(self.confinement):
+                new = Builder(filename, overrides, model=tree, diagnostics=diagnostics,
+                              limits=self.build_limits).build()
+            new.log_level = log_level
+            return new
+        return await run_build(build, self.build_timeout)
 
     async def _swap(self, new, state: str | None) -> None:
         """Stop and close the running network; run ``new`` in its place."""
@@ -724,15 +765,21 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
                hosts: tuple | None = None, budget: float = DEFAULT_BUDGET,
                max_rate: float = DEFAULT_MAX_RATE,
                status_interval: float = STATUS_INTERVAL,
-               models_dir: str | None = None) -> Starlette:
+               models_dir: str | None = None, max_body: int = DEFAULT_MAX_BODY,
+               build_timeout: float = DEFAULT_BUILD_TIMEOUT,
+               max_memory: int | None = None) -> Starlette:
     """The ASGI app serving ``net``. With ``token``, every request must carry it. With
     ``hosts``, requests whose ``Host`` names another host are refused (a guard against DNS
     rebinding when no token is required). ``budget`` is the time in seconds the kernel may
     spend copying data for clients after one tick; ``max_rate`` caps the data frames per
     second. ``models_dir`` is the folder the editor saves, lists, opens and creates models
     in (default: the model's folder). The editor may replace the running network:
-    ``app.state.ui.net`` is the current one."""
-    ui = WebUI(net, static_dir or STATIC_DIR, budget, max_rate, status_interval, models_dir)
+    ``app.state.ui.net`` is the current one. ``max_body`` limits request bodies and
+    WebSocket messages (bytes); the editor's builds are abandoned after ``build_timeout``
+    seconds and may use ``max_memory`` bytes of buffers."""
+    build_limits = limits.Limits().with_memory(max_memory)
+    ui = WebUI(net, static_dir or STATIC_DIR, budget, max_rate, status_interval, models_dir,
+               build_timeout, build_limits)
     routes = [
         Route("/", ui.index, methods=["GET"]),
         Route("/api/network", ui.network, methods=["GET"]),
@@ -773,12 +820,18 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
             message = str(exc.detail)
         return _error(exc.status_code, message, getattr(exc, "headers", None))
 
+    async def body_too_large(request, exc: BodyTooLarge):
+        return _error(413, str(exc))
+
     async def server_error(request, exc: Exception):
         return _error(500, f"internal error: {type(exc).__name__}: {exc}")
 
     app = Starlette(routes=routes, exception_handlers={
-        ApiError: api_error, HTTPException: http_error, Exception: server_error})
+        ApiError: api_error, HTTPException: http_error, BodyTooLarge: body_too_large,
+        Exception: server_error})
     app.state.ui = ui
+    app.add_middleware(BodyLimit, limit=max_body,
+                       too_large=_error(413, str(BodyTooLarge(max_body))))
     app.add_middleware(AccessMiddleware, token=token, hosts=hosts)
     return app
 
@@ -838,8 +891,10 @@ def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = No
     sock = sock or listen(host, port)
     port = sock.getsockname()[1]
     config = uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off",
-                            timeout_graceful_shutdown=3, ws_per_message_deflate=False)
+                            timeout_graceful_shutdown=3, ws_per_message_deflate=False,
+                            ws_max_size=app_options.get("max_body", DEFAULT_MAX_BODY))
     server = uvicorn.Server(config)
+    quiet_refused_websockets()
     ctrl = net.controller
     previous_hook = threading.excepthook
 

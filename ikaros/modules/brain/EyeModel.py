@@ -18,7 +18,7 @@ class EyeModel(Module):
     pupil_min = Parameter(2.0, "the smallest pupil diameter (mm)")
     pupil_max = Parameter(8.0, "the largest pupil diameter (mm)")
     epsilon = Parameter(0.5, "fraction of the way to the target diameter moved each tick; 1 "
-                         "means immediately")
+                         "means immediately", range=(0, 1))
     m3 = Parameter(1.0, "sensitivity of the sphincter's muscarinic (M3) receptors")
     alpha1a = Parameter(1.0, "sensitivity of the dilator's alpha-1a receptors")
     amplifier = Parameter(1.0, "gain of the dilator - sphincter difference")

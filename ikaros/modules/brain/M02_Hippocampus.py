@@ -23,8 +23,8 @@ class M02_Hippocampus(Module):
     context active on BIND and reported the shortage one context early.)"""
 
     bindsize = Parameter(4, "number of binding nodes (distinct stimulus-location patterns)",
-                         type="int")
-    contextsize = Parameter(4, "number of context nodes", type="int")
+                         type="int", range=(1, None))
+    contextsize = Parameter(4, "number of context nodes", type="int", range=(1, None))
     STIMULUS = Input("the observed stimuli", flatten=True)
     LOCATION = Input("the observed location (its largest element is the place)", flatten=True)
     BIND = Output("the binding of the current stimulus and location, one-hot",

@@ -24,7 +24,8 @@ class NeuralArray(Module):
     psi = Parameter(1.0, "weight of the shunting inhibition")
     scale = Parameter(True, "yes: the shunting input is pooled as the mean of its elements; "
                       "no: as their sum")
-    epsilon = Parameter(0.1, "rate (0..1) at which the activity approaches its drive")
+    epsilon = Parameter(0.1, "rate (0..1) at which the activity approaches its drive",
+                        range=(0, 1))
     noise = Parameter(0.0, "standard deviation of Gaussian noise added to the activity each "
                       "tick")
     seed = Parameter(None, "seed of the noise; unset (or 0) gives a different run every time",

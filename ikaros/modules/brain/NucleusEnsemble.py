@@ -42,7 +42,7 @@ class NucleusEnsemble(Module):
     divided atan by tan(1); these are fixed here."""
 
     debug = Parameter(False, "print the state of the ensemble every tick")
-    size = Parameter(1, "number of nuclei", type="int")
+    size = Parameter(1, "number of nuclei", type="int", range=(1, None))
     alpha = Parameter(0.0, "output offset (the output of an inactive nucleus)")
     beta = Parameter(1.0, "output gain")
     phi = Parameter(1.0, "weight of the excitation")
@@ -51,13 +51,13 @@ class NucleusEnsemble(Module):
     tau = Parameter(1.0, "weight of the recurrent connection")
     scale = Parameter(True, "divide each weighted input sum by the number of inputs connected "
                       "to the nucleus")
-    epsilon = Parameter(0.1, "rate (0..1) at which the state approaches the drive")
+    epsilon = Parameter(0.1, "rate (0..1) at which the state approaches the drive", range=(0, 1))
     sigma = Parameter(1.0, "weight of DOPAMINE, which lowers the threshold")
     rho = Parameter(1.0, "weight of ADENO_INPUT, which raises the threshold")
     threshold = Parameter(0.0, "the tetanus needed for a nucleus to be active")
     tetanus_factor = Parameter(1.0, "how much the drive adds to the tetanus trace")
     tetanus_leak = Parameter(1.0, "fraction of the tetanus trace lost each tick (1: the trace "
-                             "is the current drive)")
+                             "is the current drive)", range=(0, 1))
     excitation_topology = Parameter("one_to_one", "how EXCITATION reaches the nuclei",
                                     options="one_to_one/all_to_all")
     inhibition_topology = Parameter("one_to_one", "how INHIBITION reaches the nuclei",

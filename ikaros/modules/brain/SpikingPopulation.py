@@ -36,7 +36,7 @@ class SpikingPopulation(Module):
     model_type = Parameter("Izhikevich", "the spiking neuron model", options="Izhikevich")
     neuron_type = Parameter("regular_spiking", "the Izhikevich neuron type",
                             options=list(NEURON_TYPES))
-    population_size = Parameter(50, "number of neurons", type="int")
+    population_size = Parameter(50, "number of neurons", type="int", range=(1, None))
     substeps = Parameter(2, "Euler steps per tick (1 ms) for the membrane potential",
                          type="int")
     threshold = Parameter(30.0, "spike threshold (mV): v is reset once it reaches this, and "

@@ -26,7 +26,8 @@ class ValueAccumulator(Module):
     gamma = Parameter(0.0, "self-excitation (feedback) of each state")
     delta = Parameter(0.0, "inhibition of each state by the sum of the others")
     # 'lambda' is a Python keyword: the value is read with getattr(self, "lambda")
-    lambda_ = Parameter(0.0, "leak: fraction of each state lost per tick", name="lambda")
+    lambda_ = Parameter(0.0, "leak: fraction of each state lost per tick", name="lambda",
+                        range=(0, 1))
     mean = Parameter(0.0, "mean of the noise added each tick")
     sigma = Parameter(0.0, "standard deviation of the noise added each tick")
     seed = Parameter(None, "seed of the noise; unset (or 0) gives a different run every time",

@@ -35,7 +35,8 @@ class ScalarNucleus(Module):
     psi = Parameter(1.0, "weight of the shunting inhibition")
     scale = Parameter(True, "yes: each input is pooled as the mean of its elements; no: as "
                       "their sum")
-    epsilon = Parameter(0.1, "rate (0..1) at which the state approaches its drive each tick")
+    epsilon = Parameter(0.1, "rate (0..1) at which the state approaches its drive each tick",
+                        range=(0, 1))
     EXCITATION = Input("excitatory input; all elements are pooled", optional=True,
                        flatten=True)
     INHIBITION = Input("subtractive inhibitory input; all elements are pooled", optional=True,

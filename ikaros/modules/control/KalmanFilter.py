@@ -34,8 +34,9 @@ class KalmanFilter(Module):
                   "zero", type="matrix")
     H = Parameter(None, "the observation matrix, observation_size × state_size; empty: ones "
                   "on the diagonal", type="matrix")
-    state_size = Parameter(1, "number of elements of the state", type="int")
-    observation_size = Parameter(1, "number of elements of the observation", type="int")
+    state_size = Parameter(1, "number of elements of the state", type="int", range=(1, None))
+    observation_size = Parameter(1, "number of elements of the observation", type="int",
+                                 range=(1, None))
     process_noise = Parameter(1.0, "the variance of the process noise (Q = process_noise·I)")
     observation_noise = Parameter(1.0, "the variance of the observation noise "
                                   "(R = observation_noise·I)")

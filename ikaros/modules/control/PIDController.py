@@ -32,12 +32,17 @@ class PIDController(Module):
     Kp = Parameter(0.1, "the proportional gain")
     Ki = Parameter(0.0, "the integral gain")
     Kd = Parameter(0.0, "the derivative gain")
-    Fs = Parameter(0.0, "set-point filter constant, 0..1 (0: no smoothing)")
-    Fm = Parameter(0.0, "measurement (INPUT) filter constant, 0..1 (0: no smoothing)")
-    Fp = Parameter(0.0, "filter constant of the error used by the proportional term, 0..1")
-    Fi = Parameter(0.0, "filter constant of the error used by the integral term, 0..1")
-    Fd = Parameter(0.0, "filter constant of the error used by the derivative term, 0..1")
-    Fc = Parameter(0.0, "filter constant of the control output, 0..1 (0: no smoothing)")
+    Fs = Parameter(0.0, "set-point filter constant, 0..1 (0: no smoothing)", range=(0, 1))
+    Fm = Parameter(0.0, "measurement (INPUT) filter constant, 0..1 (0: no smoothing)",
+                   range=(0, 1))
+    Fp = Parameter(0.0, "filter constant of the error used by the proportional term, 0..1",
+                   range=(0, 1))
+    Fi = Parameter(0.0, "filter constant of the error used by the integral term, 0..1",
+                   range=(0, 1))
+    Fd = Parameter(0.0, "filter constant of the error used by the derivative term, 0..1",
+                   range=(0, 1))
+    Fc = Parameter(0.0, "filter constant of the control output, 0..1 (0: no smoothing)",
+                   range=(0, 1))
     Cmin = Parameter(-1000.0, "the smallest control value; below it the output is clipped "
                      "and integration stops")
     Cmax = Parameter(1000.0, "the largest control value; above it the output is clipped "

@@ -17,7 +17,8 @@ class MazeGenerator(Module):
     random seed from the command line, left the output empty until its first tick when
     regenerating, and made only perfect mazes whatever ``type`` said.)"""
 
-    size = Parameter(8, "number of rooms along each side; the matrix is 2*size+1 square")
+    size = Parameter(8, "number of rooms along each side; the matrix is 2*size+1 square",
+                     range=(1, None))
     type = Parameter("perfect", "the kind of maze", options="perfect/l-maze/t-maze")
     regenerate = Parameter(0, "make a new maze every this many ticks (0 = never)")
     seed = Parameter(None, "seed of the random generator; unset (or 0) gives a different "

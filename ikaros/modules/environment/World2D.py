@@ -47,7 +47,7 @@ class World2D(Module):
     elasticity = Parameter(0.5, "elasticity of every shape: 0 inelastic .. 1 elastic")
     friction = Parameter(0.5, "friction coefficient between shapes")
     damping = Parameter(0.5, "fraction of velocity a body keeps after one second (1: none "
-                        "lost)")
+                        "lost)", range=(0, 1))
     gravity = Parameter("0 0", "gravity (gx, gy) in m/s^2; 0 0 for a world seen from above",
                         type="array")
     sensor_angles = Parameter("-1.2 -0.6 0 0.6 1.2", "directions of the range sensors, "

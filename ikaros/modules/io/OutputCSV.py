@@ -51,7 +51,7 @@ class OutputCSV(ColumnWriter):
             header.extend(column_names(name, x.shape))
         formats.extend(value_formats)
         self._format = self._delimiter.join(formats) + "\r\n"
-        path = resolve(self, self.filename)
+        path = resolve(self, self.filename, write=True)
         try:
             self._file = open(path, "w", encoding="utf-8", newline="")
         except OSError as e:

@@ -207,6 +207,7 @@ class OutputFile(ColumnWriter):
         path = self._path()
         self._line = 0
         try:
+            os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
             self._file = open(path, "w", encoding="utf-8")
             self._file.write(self._header())
             self._end_json()

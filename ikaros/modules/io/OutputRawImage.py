@@ -50,7 +50,7 @@ class OutputRawImage(Module):
             self.warning("some values are outside 0..255 after scaling and are clipped "
                          "(this warning is given once)")
         data = np.clip(self._scaled, 0, 255).astype(np.uint8)
-        path = resolve(self, numbered(self.filename, number))
+        path = resolve(self, numbered(self.filename, number), write=True)
         try:
             data.tofile(path)
         except OSError as e:

@@ -36,7 +36,7 @@ class OutputVideoFile(ImageInputs):
     def init(self):
         self._writer = self._plugin = None
         self._image = self.image_source()
-        path = resolve(self, self.filename)
+        path = resolve(self, self.filename, write=True)
         self._plugin = self._iio.imopen(path, "w", plugin="FFMPEG")
         try:
             self._writer = self._plugin.legacy_get_writer(

@@ -13,9 +13,13 @@ def model_folder(module) -> str:
     return os.path.dirname(os.path.abspath(model_file)) if model_file else os.getcwd()
 
 
-def resolve(module, filename: str) -> str:
-    """A file name relative to the model file's folder, as an absolute path."""
-    return filename if os.path.isabs(filename) else os.path.join(model_folder(module), filename)
+def resolve(module, filename: str, write: bool = False) -> str:
+    """A file name relative to the model file's folder, as an absolute path. With
+    ``write``, the file's folder is made if it is missing (so ``output/x.csv`` works)."""
+    path = filename if os.path.isabs(filename) else os.path.join(model_folder(module), filename)
+    if write:
+        os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    return path
 
 
 def numbered(pattern: str, number: int) -> str:

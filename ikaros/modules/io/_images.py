@@ -259,6 +259,7 @@ class ImageFileWriter(ImageInputs):
         self.check_range(image)
         path = resolve(self, name)
         try:
+            resolve(self, name, write=True)
             to_pillow(self._Image, image).save(path, format=self.pillow_format,
                                                **self.save_options())
         except (OSError, ValueError) as e:

@@ -23,9 +23,9 @@ class QLearning(Module):
     horizon = Parameter("infinite", "infinite: reinforcement adds to the discounted value of "
                         "the next state; finite: only a positive reinforcement (a goal) counts",
                         options="infinite/finite")
-    alpha = Parameter(0.1, "the learning rate")
-    gamma = Parameter(0.9, "the discount factor")
-    epsilon = Parameter(0.0, "the probability of choosing a random action")
+    alpha = Parameter(0.1, "the learning rate", range=(0, 1))
+    gamma = Parameter(0.9, "the discount factor", range=(0, 1))
+    epsilon = Parameter(0.0, "the probability of choosing a random action", range=(0, 1))
     initial = Parameter(0.1, "the initial Q value of every state and action; a positive value "
                         "makes the agent explore actions it has not tried")
     seed = Parameter(None, "seed of the random generator; unset (or 0) gives a different run "

@@ -32,7 +32,7 @@ class Autoassociator(Module):
     AUX-INPUT - 1))); ERROR-OUTPUT is W^T TOP-DOWN-ERROR, the error passed to lower layers.
     Outputs that need an unconnected input stay 0."""
 
-    learning_rate = Parameter(0.001, "the Hebbian learning rate")
+    learning_rate = Parameter(0.001, "the Hebbian learning rate", range=(0, None))
     depression_rate = Parameter(0.01, "how fast the depression traces follow the co-activity "
                                 "(0: no depression)")
     activation_gain = Parameter(1.0, "the slope of the units' logistic activation function")

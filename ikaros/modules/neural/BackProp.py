@@ -14,8 +14,9 @@ class BackProp(Module):
     T_INPUT before the step. The initial weights are uniform in [-0.5, 0.5]; the same ``seed``
     gives the same run. (Ikaros 2 declared ``lr`` as a list; here it is a number.)"""
 
-    lr = Parameter(0.2, "the learning rate")
-    momentum = Parameter(0.0, "the part of the previous weight change added to the current one")
+    lr = Parameter(0.2, "the learning rate", range=(0, None))
+    momentum = Parameter(0.0, "the part of the previous weight change added to the current one",
+                         range=(0, 1))
     hidden_units = Parameter(10, "the number of hidden units")
     seed = Parameter(None, "seed of the random initial weights; unset (or 0) gives a "
                      "different run every time", type="int")

@@ -32,7 +32,7 @@ class Perceptron(Module):
     rand_weights_min = Parameter(-0.5, "lower limit of the random initial weights")
     rand_weights_max = Parameter(0.5, "upper limit of the random initial weights")
     learning_rate = Parameter(0.1, "the learning rate r of the rosenblatt, margin, may and "
-                              "delta rules")
+                              "delta rules", range=(0, None))
     learning_rate_mod = Parameter("none", "how the learning rate decreases with time: none, "
                                   "sqrt (r / (0.1 sqrt(tick + 100))) or log "
                                   "(r / (0.42 ln(tick + 10)))", options="none,sqrt,log")
@@ -40,7 +40,7 @@ class Perceptron(Module):
     learning_type = Parameter("instant", "when changes are applied: instant (default), batch "
                               "or momentum", options="default,instant,batch,momentum")
     momentum_ratio = Parameter(0.42, "with momentum learning, the part of the previous change "
-                               "that is added to the current one")
+                               "that is added to the current one", range=(0, 1))
     activation_type = Parameter("step", "the units' activation: step (default), sign, "
                                 "sigmoid or tanh", options="default,step,sign,sigmoid,tanh")
     learning_rule = Parameter("rosenblatt", "the learning rule: rosenblatt (default), "

@@ -20,7 +20,7 @@ class Average(Module):
                           options="none/abs/sqr")
     sqrt = Parameter(False, "output the square root of the absolute average")
     window_size = Parameter(100, "the number of ticks averaged by SMA", type="int")
-    alpha = Parameter(0.1, "the weight of the new input for EMA")
+    alpha = Parameter(0.1, "the weight of the new input for EMA", range=(0, 1))
     termination_criterion = Parameter(0.0, "stop the run when the absolute average at select "
                                       "falls below this value")
     select = Parameter(0, "the output element checked against termination_criterion",

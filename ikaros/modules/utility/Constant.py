@@ -10,7 +10,8 @@ class Constant(Module):
     ``outputsize_y``, in which case the data fill the output row by row (missing elements are
     0). The value is written in init and on every tick, so edits to ``data`` take effect."""
 
-    data = Parameter("0", "the values to output", type="matrix")
+    data = Parameter("0", "the values to output (nan and inf allowed)", type="matrix",
+                     finite=False)
     outputsize = Parameter(None, "number of elements of a 1-D output", type="int")
     outputsize_x = Parameter(None, "columns of a 2-D output", type="int")
     outputsize_y = Parameter(None, "rows of a 2-D output", type="int")

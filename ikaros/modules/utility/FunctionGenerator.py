@@ -19,7 +19,7 @@ class FunctionGenerator(Module):
     warning. An inverted ramp comes from offset = 1 and amplitude = -1."""
 
     size = Parameter(1, "number of elements of the output (all get the same value)",
-                     type="int")
+                     type="int", range=(1, None))
     type = Parameter("sin", "the function", options="sin/triangle/ramp/square/ticksquare")
     offset = Parameter(0.0, "a constant added to the output")
     amplitude = Parameter(1.0, "the factor f is multiplied by")
@@ -27,7 +27,7 @@ class FunctionGenerator(Module):
                           "ticks (the default gives 40 ticks)")
     shift = Parameter(0.0, "a shift of the time, in ticks, added before multiplying by the "
                       "frequency")
-    duty = Parameter(0.5, "the fraction of each period the square wave is 1")
+    duty = Parameter(0.5, "the fraction of each period the square wave is 1", range=(0, 1))
     basetime = Parameter(2, "the period of ticksquare, in ticks", type="int")
     tickduty = Parameter(1, "the number of ticks of each period ticksquare is 1", type="int")
     OUTPUT = Output("the value of the function, in every element", size_param="size")

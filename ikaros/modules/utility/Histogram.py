@@ -15,7 +15,7 @@ class Histogram(Module):
     just below min in the first bin). With max equal to min nothing is counted and a warning
     is given once. The command ``reset`` sets all counts to 0."""
 
-    size = Parameter(15, "number of bins", type="int")
+    size = Parameter(15, "number of bins", type="int", range=(1, None))
     min = Parameter(0.0, "the lower end of the first bin")
     max = Parameter(1.0, "the upper end of the last bin")
     ignore_outliers = Parameter(True, "ignore values outside min .. max; otherwise count them "

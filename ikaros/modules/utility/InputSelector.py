@@ -12,7 +12,7 @@ class InputSelector(Module):
     warning (once until a valid value comes back); Ikaros 2 read past its inputs or
     stopped."""
 
-    inputs = Parameter(2, "number of inputs", type="int")
+    inputs = Parameter(2, "number of inputs", type="int", range=(1, None))
     debug = Parameter(False, "print the selected input on every tick")
     SELECT = Input("the index of the input to pass on: 0 for INPUT1, 1 for INPUT2, ...")
     OUTPUT = Output("a copy of the selected input")

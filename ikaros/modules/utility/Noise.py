@@ -9,7 +9,7 @@ class Noise(Module):
     independent sample for every element on every tick. The same ``seed`` gives the same
     noise."""
 
-    sigma = Parameter(1.0, "standard deviation of the noise")
+    sigma = Parameter(1.0, "standard deviation of the noise", range=(0, None))
     mean = Parameter(0.0, "mean of the noise")
     seed = Parameter(None, "seed of the random generator; unset (or 0) gives different noise "
                      "on every run", type="int")

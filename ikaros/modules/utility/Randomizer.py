@@ -17,7 +17,7 @@ class Randomizer(Module):
     outputsize_y = Parameter(None, "rows of a 2-D output", type="int")
     min = Parameter(0.0, "the smallest value")
     max = Parameter(1.0, "the upper bound of the values")
-    interval = Parameter(1, "ticks between new values", type="int")
+    interval = Parameter(1, "ticks between new values", type="int", range=(1, None))
     seed = Parameter(None, "seed of the random generator; unset (or 0) gives a different run "
                      "every time", type="int")
     OUTPUT = Output("the random values",
@@ -25,8 +25,6 @@ class Randomizer(Module):
                     size_param="outputsize")
 
     def init(self):
-        if not (np.isfinite(self.min) and np.isfinite(self.max)):
-            raise ValueError(f"min ({self.min}) and max ({self.max}) must be finite numbers")
         # An unset seed reads as 0, so 0 also means "a different run every time".
         self._rng = np.random.default_rng(self.seed or None)
         self._draw()

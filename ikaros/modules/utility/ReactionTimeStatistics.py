@@ -21,7 +21,8 @@ class ReactionTimeStatistics(Module):
     go to RT-OUTLIER (Ikaros 2 added them to CHOICE-COUNT). The command ``reset`` clears the
     statistics."""
 
-    bins = Parameter(40, "number of bins of the reaction-time histogram", type="int")
+    bins = Parameter(40, "number of bins of the reaction-time histogram", type="int",
+                     range=(1, None))
     max_rt = Parameter(1.0, "the reaction time, in ticks, at the upper end of the last bin")
     START = Input("a trial starts when any element is above 0")
     STOP = Input("one element per response channel; a response is recorded for the channel "

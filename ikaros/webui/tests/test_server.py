@@ -282,22 +282,22 @@ def test_set_parameter(client, net):
     ({"path": 5, "value": 1}, 400),
     ({"path": "S.factor", "value": 1, "extra": 1}, 400),
     ({"path": "S.factor", "value": None}, 400),
-    ({"path": "S.factor", "value": True}, 400),
-    ({"path": "S.factor", "value": [1, 2]}, 400),
-    ({"path": "S.factor", "value": "abc"}, 400),
+    ({"path": "S.factor", "value": True}, 422),
+    ({"path": "S.factor", "value": [1, 2]}, 422),
+    ({"path": "S.factor", "value": "abc"}, 422),
     ({"path": "S.factor", "value": {"a": 1}}, 400),
-    ({"path": "G.open", "value": "maybe"}, 400),
-    ({"path": "G.open", "value": 2}, 400),
-    ({"path": "F.type", "value": "cosine"}, 400),
-    ({"path": "F.type", "value": 9}, 400),
-    ({"path": "N.outputsize", "value": 1.5}, 400),
-    ({"path": "C.data", "value": 1, "x": 3, "y": 0}, 400),
-    ({"path": "C.data", "value": 1, "x": 0, "y": 2}, 400),
+    ({"path": "G.open", "value": "maybe"}, 422),
+    ({"path": "G.open", "value": 2}, 422),
+    ({"path": "F.type", "value": "cosine"}, 422),
+    ({"path": "F.type", "value": 9}, 422),
+    ({"path": "N.outputsize", "value": 1.5}, 422),
+    ({"path": "C.data", "value": 1, "x": 3, "y": 0}, 422),
+    ({"path": "C.data", "value": 1, "x": 0, "y": 2}, 422),
     ({"path": "C.data", "value": 1, "x": -1}, 400),
     ({"path": "C.data", "value": 1, "x": 1.5}, 400),
-    ({"path": "C.data", "value": "a", "x": 0}, 400),
+    ({"path": "C.data", "value": "a", "x": 0}, 422),
     ({"path": "C.data", "value": [[1, "a"]]}, 400),
-    ({"path": "S.factor", "value": 1, "x": 0}, 400),
+    ({"path": "S.factor", "value": 1, "x": 0}, 422),
 ])
 def test_bad_parameter_requests_change_nothing(client, net, body, status):
     before = {p: net.parameter(p) for p in ("S.factor", "G.open", "F.type", "C.data",
@@ -316,7 +316,7 @@ def test_command(client, net):
     assert client.post("/api/command", json={"module": "H", "name": "reset", "x": 1,
                                              "y": 2, "value": "v"}).status_code == 200
     _error(client.post("/api/command", json={"module": "Nope", "name": "reset"}), 404)
-    _error(client.post("/api/command", json={"module": "S", "name": "reset"}), 400)
+    _error(client.post("/api/command", json={"module": "S", "name": "reset"}), 422)
     _error(client.post("/api/command", json={"module": "H"}), 400)
     _error(client.post("/api/command", json={"module": "H", "name": ""}), 400)
     _error(client.post("/api/command", json={"module": "H", "name": "reset", "x": "a"}),

@@ -129,7 +129,7 @@ def test_example_runs(tmp_path):
         assert net.tick == 5
     finally:
         net.close()
-    lines = (tmp_path / "outputfile_example.txt").read_text().splitlines()
+    lines = (tmp_path / "output" / "outputfile_example.txt").read_text().splitlines()
     assert len(lines) == 6
     assert np.array(lines[1].split("\t"), float)[0] == 0
 

@@ -95,6 +95,7 @@ def test_needs_a_filename_and_a_connected_image(tmp_path):
 
 
 def test_unwritable_file_warns_and_the_run_goes_on(tmp_path):
+    (tmp_path / "nofolder").write_text("a file where the folder would be")
     net = load(tmp_path, '<module class="Constant" name="C" data="0.5"/>\n'
                          '<module class="OutputJPEG" name="O" filename="nofolder/x.jpg"/>\n'
                          '<connection source="C.OUTPUT" target="O.INPUT" delay="0"/>')

@@ -84,7 +84,7 @@ def test_unseeded_default_size_and_range(tmp_path):
 def test_bounds_must_be_finite(tmp_path):
     """As Ikaros 3: an infinite or NaN bound is an error."""
     for attrs in ('max="inf"', 'min="nan"'):
-        with pytest.raises(ModelError, match=r"must be finite numbers"):
+        with pytest.raises(ModelError, match=r"is not a finite number"):
             load(tmp_path, f'<module class="Randomizer" name="R" {attrs}/>')
 
 
