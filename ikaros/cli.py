@@ -8,6 +8,7 @@ import sys
 import traceback
 
 from . import classes, load
+from .experiments import commandline as experiment_options
 from .errors import ModelError, RunError
 from .module import DEBUG, FATAL_ERROR, PRINT
 
@@ -98,6 +99,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--modules-doc", nargs="?", const="docs/modules.md", metavar="FILE",
                    help="write the standard module reference (Markdown) to FILE "
                         "(default docs/modules.md); - prints it")
+    experiment_options.add_arguments(p)
     return p
 
 
@@ -148,8 +150,13 @@ def _serve(net, opts) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["sweep"]:
+        from .experiments.sweepcli import main as sweep_main
+        return sweep_main(argv[1:])
     p = parser()
     opts = p.parse_intermixed_args(argv)
+    experiment_options.check_arguments(p, opts)
     model, overrides = _split_args(p, opts.args)
     folders = [os.path.dirname(os.path.abspath(model))] if model else []
     try:
@@ -204,11 +211,18 @@ def main(argv: list[str] | None = None) -> int:
         if opts.info:
             print(net.info())
         ok = getattr(net, "checksum_ok", True)
+        try:
+            recording = experiment_options.start_recording(net, opts, argv)
+        except (ValueError, ImportError, OSError) as e:
+            net.close()
+            print(f"ikaros: error: --record: {e}", file=sys.stderr)
+            return EXIT_ERROR
         if not opts.batch:
             return _serve(net, opts)
         try:
             net.profiling = opts.profile
-            net.run(ticks=opts.stop, real_time=opts.real_time)
+            with experiment_options.batch_session(net, opts, recording):
+                net.run(ticks=opts.stop, real_time=opts.real_time)
         finally:
             net.close()
             if opts.profile:
