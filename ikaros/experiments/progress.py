@@ -1,10 +1,19 @@
 """A progress bar for long batch runs (tqdm): ticks done, ticks per second, time left."""
 from __future__ import annotations
 
+import os
 import sys
 import time
 
 UPDATES_PER_SECOND = 4
+
+
+def _columns(stream) -> int:
+    """The terminal's width (80 when it does not say, as a new pseudo-terminal)."""
+    try:
+        return os.get_terminal_size(stream.fileno()).columns or 80
+    except (OSError, ValueError, AttributeError):
+        return 80
 
 
 class Progress:
@@ -32,8 +41,9 @@ class Progress:
             from tqdm import tqdm
         except ImportError:
             return self               # no tqdm: no bar (it is an optional extra)
-        self._bar = tqdm(total=self.total, unit="tick", file=self.stream, dynamic_ncols=True,
-                         smoothing=0.1, mininterval=1 / UPDATES_PER_SECOND)
+        self._bar = tqdm(total=self.total, unit="tick", file=self.stream,
+                         ncols=_columns(self.stream), smoothing=0.1,
+                         mininterval=1 / UPDATES_PER_SECOND)
         self._start = self.net.tick
         self._last = time.perf_counter()
         self.net.controller.tick_hooks.append(self.hook)
