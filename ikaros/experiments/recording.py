@@ -154,7 +154,7 @@ class Recorder:
         """After every tick: keep the outputs of the tick just done when it is due."""
         net = self.net
         tick = net.tick - 1
-        if tick < self._next:
+        if tick < self._next or self._closed:
             return
         self._next = tick + self.every
         n = self._n
@@ -187,6 +187,11 @@ class Recorder:
             error, self._error = self._error, None
             raise OSError(f"writing the recording {self.filename} failed: {error}")
         self._queue.put(item)
+
+    @property
+    def closed(self) -> bool:
+        """Whether the recording has ended."""
+        return self._closed
 
     def close(self) -> None:
         """Write what is left, mark the recording finished and close the file."""

@@ -19,6 +19,11 @@ _CHANGED = {"type": "object", "properties": {"ok": {"type": "boolean"},
                                                                  "Network"}}}
 
 
+_RECORDING = {"type": "object", "properties": {
+    "recording": {"type": "boolean"}, "file": {"type": ["string", "null"]},
+    "folder": {"type": ["string", "null"]}}}
+
+
 def _body(schema: dict) -> dict:
     return {"required": True, "content": {"application/json": {"schema": schema}}}
 
@@ -134,6 +139,12 @@ def openapi() -> dict:
             "A new empty model (one group) in the models folder, not yet saved (paused)",
             {"type": "object", "additionalProperties": False,
              "properties": {"name": {"type": "string", "default": "Untitled"}}}, _CHANGED),
+        "/api/record": {**_get("Whether the running network is being recorded", _RECORDING),
+                        **_post("Start recording every output into a new HDF5 file in the "
+                                "models folder (on: true), or end the recording (on: false)",
+                                {"type": "object", "required": ["on"],
+                                 "additionalProperties": False,
+                                 "properties": {"on": {"type": "boolean"}}}, _RECORDING)},
         "/api/openapi.json": _get("This description", obj),
     }
     schemas = {

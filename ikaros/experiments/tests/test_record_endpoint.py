@@ -1,0 +1,57 @@
+"""The web UI's record button endpoint: /api/record starts and ends a recording in the
+models folder."""
+import os
+import warnings
+
+import numpy as np
+import pytest
+
+pytest.importorskip("h5py")
+pytest.importorskip("xarray")
+pytest.importorskip("starlette")
+warnings.filterwarnings("ignore", message=".*httpx.*")
+
+from starlette.testclient import TestClient  # noqa: E402
+
+from ikaros.experiments import open_recording  # noqa: E402
+from ikaros.testing import load_body  # noqa: E402
+from ikaros.webui.server import create_app  # noqa: E402
+
+pytestmark = pytest.mark.filterwarnings("ignore:.*httpx.*")
+
+
+def test_record_on_and_off(tmp_path):
+    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>')
+    models = tmp_path / "models"
+    models.mkdir()
+    with TestClient(create_app(net, models_dir=str(models))) as client:
+        assert client.get("/api/record").json() == {"recording": False, "file": None,
+                                                    "folder": str(models)}
+        net.run(ticks=5)
+        state = client.post("/api/record", json={"on": True}).json()
+        assert state["recording"] is True
+        assert state["file"].startswith("model-") and state["file"].endswith(".h5")
+        net.run(ticks=20)
+        assert client.get("/api/record").json()["recording"] is True
+        assert client.post("/api/record", json={"on": False}).json()["recording"] is False
+        net.run(ticks=3)
+        assert client.post("/api/record", json={"on": "yes"}).status_code == 400
+        assert client.post("/api/record", json={}).status_code == 400
+        assert "/api/record" in client.get("/api/openapi.json").json()["paths"]
+    net.close()
+    ds = open_recording(str(models / state["file"]))
+    np.testing.assert_array_equal(ds["tick"].values, np.arange(5, 25))
+    np.testing.assert_array_equal(ds["Counter.OUTPUT"].values[:, 0], np.arange(6, 26))
+    assert ds.attrs["finished"] is True
+    assert os.listdir(models) == [state["file"]]
+
+
+def test_a_second_recording_never_overwrites_the_first(tmp_path):
+    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>')
+    with TestClient(create_app(net, models_dir=str(tmp_path))) as client:
+        first = client.post("/api/record", json={"on": True}).json()["file"]
+        second = client.post("/api/record", json={"on": True}).json()["file"]
+        client.post("/api/record", json={"on": False})
+    net.close()
+    assert first != second
+    assert {first, second} <= set(os.listdir(tmp_path))
