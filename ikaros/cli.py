@@ -188,6 +188,9 @@ def main(argv: list[str] | None = None) -> int:
                 return EXIT_ERROR
             print(found.to_text())
             return EXIT_OK
+        if opts.replay:
+            net = experiment_options.replay_network(p, opts, model)
+            return EXIT_ERROR if net is None else _serve(net, opts)
         if model is None:
             p.error("no model file given")
         if opts.tick_duration is not None:

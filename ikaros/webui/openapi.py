@@ -24,6 +24,11 @@ _RECORDING = {"type": "object", "properties": {
     "folder": {"type": ["string", "null"]}}}
 
 
+_REPLAY = {"type": "object", "properties": {
+    "replay": {"type": "boolean"}, "file": {"type": "string"}, "rows": {"type": "integer"},
+    "row": {"type": "integer"}, "tick": {"type": ["integer", "null"]}}}
+
+
 def _body(schema: dict) -> dict:
     return {"required": True, "content": {"application/json": {"schema": schema}}}
 
@@ -145,6 +150,14 @@ def openapi() -> dict:
                                 {"type": "object", "required": ["on"],
                                  "additionalProperties": False,
                                  "properties": {"on": {"type": "boolean"}}}, _RECORDING)},
+        "/api/replay": {**_get("Whether a recording is replayed (ikaros --replay), its rows "
+                               "and the row shown", _REPLAY),
+                        **_post("Show row k of the recording (its tick number is in the "
+                                "answer)", {"type": "object", "required": ["row"],
+                                            "additionalProperties": False,
+                                            "properties": {"row": {"type": "integer",
+                                                                   "minimum": 0}}},
+                                _REPLAY)},
         "/api/openapi.json": _get("This description", obj),
     }
     schemas = {

@@ -1,7 +1,8 @@
-"""The record button's endpoint: ``GET /api/record`` says whether the running network is
-being recorded; ``POST /api/record {"on": true|false}`` starts a recording of every output
-into a new HDF5 file in the models folder, or ends it. A recording also ends when its
-network does (the editor's apply, open and new build a new one)."""
+"""Recordings in the web UI. The record button's endpoint: ``GET /api/record`` says whether
+the running network is being recorded; ``POST /api/record {"on": true|false}`` starts a
+recording of every output into a new HDF5 file in the models folder, or ends it. A
+recording also ends when its network does (the editor's apply, open and new build a new
+one). And the replay bar's endpoint, ``/api/replay``, for ``ikaros --replay``."""
 from __future__ import annotations
 
 import os
@@ -67,3 +68,71 @@ class RecordButton:
             raise ApiError(501, str(e)) from None
         except OSError as e:
             raise ApiError(500, str(e)) from None
+
+
+class ReplayBar:
+    """``GET /api/replay``: whether the network replays a recording (``ikaros --replay``),
+    its rows and the row shown; ``POST /api/replay {"row": k}`` shows row k (the Replay
+    modules seek to it and one tick runs)."""
+
+    def __init__(self, ui):
+        self.ui = ui
+        self._ticks: tuple[str, list] | None = None     # (recording, its tick numbers)
+
+    def _recorded_ticks(self, path: str) -> list:
+        if self._ticks is None or self._ticks[0] != path:
+            from ..experiments.reading import _open
+            from ..experiments.recording import h5py_module
+            with _open(h5py_module(), path) as f:
+                n = min(f["tick"].shape[0], f["data"].shape[0])
+                self._ticks = (path, [int(t) for t in f["tick"][:n]])
+        return self._ticks[1]
+
+    def _replays(self) -> list:
+        return [inst for inst in self.ui.net.modules.values() if inst.entry.name == "Replay"]
+
+    def _answer(self):
+        path = getattr(self.ui.net, "replayed", None)
+        if path is None:
+            return Json({"replay": False})
+        ticks = self._recorded_ticks(path)
+        replays = self._replays()
+        row = replays[0].module.row if replays else -1
+        return Json({"replay": True, "file": os.path.basename(path), "rows": len(ticks),
+                     "row": row, "tick": ticks[row] if 0 <= row < len(ticks) else None})
+
+    async def endpoint(self, request: Request):
+        if request.method == "GET":
+            _query(request)
+            return await run_in_threadpool(self._answer)
+        body = await _body(request, ("row",))
+        path = getattr(self.ui.net, "replayed", None)
+        if path is None:
+            raise ApiError(409, "not replaying a recording (start ikaros with --replay)")
+        rows = len(await run_in_threadpool(self._recorded_ticks, path))
+        row = body["row"]
+        if not isinstance(row, int) or isinstance(row, bool) or not 0 <= row < rows:
+            raise ApiError(400, f'"row" must be a whole number from 0 to {rows - 1}')
+        if self.ui.net.stopped:
+            raise ApiError(409, "the run has ended; restart ikaros to replay again")
+        await run_in_threadpool(self._show, row)
+        return await run_in_threadpool(self._answer)
+
+    def _show(self, row: int) -> None:
+        net = self.ui.net
+
+        def seek():
+            for inst in self._replays():
+                net.command(inst.path, "seek", x=row)
+        between_ticks(net, seek)
+        ctrl = net.controller
+        if not ctrl.running:
+            net.step()
+            return
+        if ctrl.state in ("play", "realtime"):
+            return              # the next tick shows it
+        done = net.tick
+        ctrl.step()
+        deadline = time.monotonic() + 2
+        while net.tick == done and time.monotonic() < deadline:
+            time.sleep(0.005)

@@ -55,3 +55,37 @@ def test_a_second_recording_never_overwrites_the_first(tmp_path):
     net.close()
     assert first != second
     assert {first, second} <= set(os.listdir(tmp_path))
+
+
+def test_the_replay_bar_shows_any_recorded_row(tmp_path):
+    from ikaros.experiments.replay import replay_network
+    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>')
+    with net.record(str(tmp_path / "run.h5"), every=2):
+        net.run(ticks=40)
+    net.close()
+    replayed = replay_network(str(tmp_path / "run.h5"))
+    with TestClient(create_app(replayed)) as client:
+        assert client.get("/api/replay").json() == {"replay": True, "file": "run.h5",
+                                                    "rows": 20, "row": -1, "tick": None}
+        state = client.post("/api/replay", json={"row": 7}).json()
+        assert state == {"replay": True, "file": "run.h5", "rows": 20, "row": 7, "tick": 14}
+        assert replayed.output("Counter.OUTPUT")[0] == 15       # recorded on tick 14
+        assert client.post("/api/replay", json={"row": 20}).status_code == 400
+        assert client.post("/api/replay", json={"row": True}).status_code == 400
+    replayed.close()
+    plain = load_body(tmp_path, '<module class="Sweep" name="Counter"/>')
+    with TestClient(create_app(plain)) as client:
+        assert client.get("/api/replay").json() == {"replay": False}
+        assert client.post("/api/replay", json={"row": 0}).status_code == 409
+    plain.close()
+
+
+def test_replay_on_the_command_line_needs_no_model_and_no_batch(tmp_path, capsys):
+    from ikaros.cli import main
+    with pytest.raises(SystemExit) as e:
+        main(["-b", "--replay", str(tmp_path / "run.h5")])
+    assert e.value.code == 2
+    assert "--replay shows a recording in the web UI" in capsys.readouterr().err
+    (tmp_path / "bad.h5").write_bytes(b"no")
+    assert main(["--replay", str(tmp_path / "bad.h5")]) == 1
+    assert "ikaros: error: --replay: cannot read the recording" in capsys.readouterr().err
