@@ -265,9 +265,12 @@ class _Reporter:
         if progress:
             try:
                 from tqdm import tqdm
-                self.bar = tqdm(total=total, unit="run", file=sys.stderr)
             except ImportError:
-                pass
+                return
+
+            class Bar(tqdm):
+                monitor_interval = 0        # no monitor thread: workers are forked
+            self.bar = Bar(total=total, unit="run", file=sys.stderr)
 
     def done(self, row: dict) -> None:
         if row["status"] != "ok":

@@ -130,8 +130,8 @@ def test_command_line_usage_errors(model, capsys):
     assert main(["sweep", "missing.ikg", "--ticks", "5", "--workers", "1"]) == 1
 
 
-@pytest.mark.slow
 def test_a_local_ray_instance_gives_the_same_table(model):
+    """Starts a local Ray instance of two CPUs (10-16 s here, most of it Ray's start)."""
     ray = pytest.importorskip("ray")
     settings = {"factor": [1, 3], "Boom.fail": [0, 1]}
     started = time.monotonic()
