@@ -8,6 +8,7 @@ on, and a run that is killed leaves a file readable up to its last flushed chunk
 """
 from __future__ import annotations
 
+import atexit
 import json
 import os
 import queue
@@ -71,13 +72,37 @@ class Recorder:
         columns = self._index.size
         self.chunk_ticks = max(1, min(16384, CHUNK_BYTES // (4 * max(columns, 1))))
         self.flush_seconds = flush_seconds
-        parameters = module_parameters(net)
         try:
             self._file = h5py.File(self.filename, "w", libver="latest")
         except OSError as e:
             reason = os.strerror(e.errno) if e.errno else str(e)
             raise OSError(f"cannot write the recording {filename}: {reason}") from None
-        f = self._file
+        self._write_header(command_line)
+        self._create_datasets(columns)
+        self._file.swmr_mode = True       # from here on readers may open it
+        self._file.flush()
+        self._copy_row = self._row_copier(net.arena.block)
+        self._free: queue.SimpleQueue = queue.SimpleQueue()    # row blocks written, to reuse
+        self._start_rows()
+        self._chunk = 0                 # the chunk being filled
+        self._last_flush = time.perf_counter()     # last hand-over of a partial chunk
+        self._started = self._last_flush
+        self._file_flushed = self._last_flush
+        self._queue: queue.Queue = queue.Queue(maxsize=4)
+        self._error: BaseException | None = None
+        self._writer = threading.Thread(target=self._write_loop, name="ikaros-recorder",
+                                        daemon=True)
+        self._writer.start()
+        self._closed = False
+        self._next = net.tick           # the next tick to record
+        net.controller.tick_hooks.append(self.hook)
+        net.parameter_hooks.append(self.parameter_changed)
+        net.close_hooks.append(self.close)
+        atexit.register(self.close)     # a script that ends without close() loses nothing
+
+    def _write_header(self, command_line: list[str] | None) -> None:
+        net, f = self.net, self._file
+        parameters = module_parameters(net)
         f.attrs.update({
             "format": FORMAT, "format_version": FORMAT_VERSION,
             "ikaros_version": _version(), "model_file": net.filename or "",
@@ -93,7 +118,9 @@ class Recorder:
             "finished": False,
         })
         f.create_dataset("model", data=_model_text(net))
-        T = self.chunk_ticks
+
+    def _create_datasets(self, columns: int) -> None:
+        f, T = self._file, self.chunk_ticks
         self._data = f.create_dataset(
             "data", (0, columns), maxshape=(None, columns), dtype="<f4",
             chunks=(T, max(columns, 1)), compression="gzip",
@@ -105,26 +132,6 @@ class Recorder:
         self._changes = f.create_dataset("parameter_changes", (0,), maxshape=(None,),
                                          dtype=CHANGE_DTYPE, chunks=(16,),
                                          compression="gzip")
-        f.swmr_mode = True
-        f.flush()
-        self._copy_row = self._row_copier(net.arena.block)
-        self._free: queue.SimpleQueue = queue.SimpleQueue()    # row blocks written, to reuse
-        self._start_rows()
-        self._chunk = 0                 # the chunk being filled
-        self._written = 0               # rows in the file
-        self._last_flush = time.perf_counter()     # last hand-over of a partial chunk
-        self._started = self._last_flush
-        self._file_flushed = self._last_flush
-        self._queue: queue.Queue = queue.Queue(maxsize=4)
-        self._error: BaseException | None = None
-        self._writer = threading.Thread(target=self._write_loop, name="ikaros-recorder",
-                                        daemon=True)
-        self._writer.start()
-        self._closed = False
-        self._next = net.tick           # the next tick to record
-        net.controller.tick_hooks.append(self.hook)
-        net.parameter_hooks.append(self.parameter_changed)
-        net.close_hooks.append(self.close)
 
     # --- the kernel thread ---------------------------------------------------------------
     def _row_copier(self, block: np.ndarray):
@@ -198,6 +205,7 @@ class Recorder:
         if self._closed:
             return
         self._closed = True
+        atexit.unregister(self.close)
         net = self.net
         for hooks, hook in ((net.controller.tick_hooks, self.hook),
                             (net.parameter_hooks, self.parameter_changed),
