@@ -95,7 +95,11 @@ class Recorder:
         self._writer.start()
         self._closed = False
         self._next = net.tick           # the next tick to record
-        net.controller.tick_hooks.append(self.hook)
+        hooks = net.controller.tick_hooks
+        # a recording ended by the web UI's rebuild left its hook here: drop it
+        hooks[:] = [h for h in hooks if not (isinstance(getattr(h, "__self__", None),
+                                                        Recorder) and h.__self__.closed)]
+        hooks.append(self.hook)
         net.parameter_hooks.append(self.parameter_changed)
         net.close_hooks.append(self.close)
         atexit.register(self.close)     # a script that ends without close() loses nothing

@@ -216,6 +216,8 @@ def sweep(model: str, settings: dict[str, list | str], ticks: int,
                      os.path.abspath(os.path.join(out, f"run_{k:0{width}d}.h5"))
                      if out and patterns else None, int(every))
              for k, combo in enumerate(combos)]
+    if patterns and specs:
+        _check_patterns(specs[0])
     kind = _backend(backend, workers, address)
     runner = ray_runner(address, workers) if kind == "ray" else local_runner(workers)
     rows = runner(specs, retries, _Reporter(len(specs), progress, on_failure))
@@ -225,6 +227,19 @@ def sweep(model: str, settings: dict[str, list | str], ticks: int,
     if out:
         write_table(table, out, table_format)
     return table
+
+
+def _check_patterns(spec: RunSpec) -> None:
+    """A --record pattern that matches no output is an error before any run starts (a
+    model that does not build is left to the runs to report)."""
+    try:
+        net = _build(spec)
+    except Exception:       # noqa: BLE001: reported by the runs themselves
+        return
+    try:
+        select_outputs(net, spec.record)
+    finally:
+        net.close()
 
 
 def write_table(table, out: str, table_format: str) -> str:

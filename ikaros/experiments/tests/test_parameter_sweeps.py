@@ -128,6 +128,9 @@ def test_command_line_usage_errors(model, capsys):
     assert e.value.code == 2
     assert "--set factor:" in capsys.readouterr().err
     assert main(["sweep", "missing.ikg", "--ticks", "5", "--workers", "1"]) == 1
+    capsys.readouterr()
+    assert main(["sweep", model, "--ticks", "5", "--workers", "2", "--record", "Nothing.*"]) == 1
+    assert "ikaros sweep: error: no output matches 'Nothing.*'" in capsys.readouterr().err
 
 
 def test_a_local_ray_instance_gives_the_same_table(model):

@@ -89,3 +89,28 @@ def test_replay_on_the_command_line_needs_no_model_and_no_batch(tmp_path, capsys
     (tmp_path / "bad.h5").write_bytes(b"no")
     assert main(["--replay", str(tmp_path / "bad.h5")]) == 1
     assert "ikaros: error: --replay: cannot read the recording" in capsys.readouterr().err
+
+
+def test_an_apply_ends_the_recording_of_the_network_it_replaces(tmp_path):
+    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>')
+    app = create_app(net, models_dir=str(tmp_path))
+    with TestClient(app) as client:
+        file = client.post("/api/record", json={"on": True}).json()["file"]
+        net.run(ticks=10)
+        tree = client.get("/api/model").json()["tree"]
+        assert client.post("/api/apply", json={"tree": tree}).status_code == 200
+        assert client.get("/api/record").json()["recording"] is False
+        new = app.state.ui.net
+        assert new is not net
+        new.run(ticks=5)                  # the ended recording's hook does nothing
+        again = client.post("/api/record", json={"on": True}).json()
+        assert again["recording"] is True
+        from ikaros.experiments.recording import Recorder
+        recorders = [h for h in new.controller.tick_hooks
+                     if isinstance(getattr(h, "__self__", None), Recorder)]
+        assert len(recorders) == 1        # the ended one's hook was dropped
+        client.post("/api/record", json={"on": False})
+    new.close()
+    ds = open_recording(str(tmp_path / file))
+    assert ds.attrs["finished"] is True
+    np.testing.assert_array_equal(ds["Counter.OUTPUT"].values[:, 0], np.arange(1, 11))
