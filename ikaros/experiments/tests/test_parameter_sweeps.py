@@ -89,6 +89,8 @@ def test_a_run_that_raises_is_reported_and_the_others_finish(model):
     assert list(table["Double.OUTPUT"][[0, 2]]) == [20.0, 20.0]
     assert list(table["ticks"]) == [10, 4, 10]      # ticks 0-3 ran; tick 3 failed
     assert len(failures) == 1 and failures[0]["Boom.fail"] == 1
+    import ikaros
+    assert ikaros.sweep is sweep
 
 
 def test_a_worker_process_that_dies_fails_only_its_run(model):
