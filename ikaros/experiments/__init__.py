@@ -5,7 +5,7 @@ but for ``Network.record`` and ``Network.run(record=...)``, which call in here).
 The names below are imported when first used, so that the ``ikaros`` command starts fast."""
 import importlib
 
-_WHERE = {"open_recording": "reading", "Recorder": "recording", "sweep": "sweep",
+_WHERE = {"open_recording": "reading", "Recorder": "recording", "sweep": "sweeps",
           "plot_signals": "plotting", "plot_raster": "plotting", "plot_images": "plotting",
           "replay_network": "replay"}
 

@@ -67,7 +67,7 @@ def parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str]) -> int:
-    from .sweep import parse_values, sweep
+    from .sweeps import parse_values, sweep
     p = parser()
     opts = p.parse_args(argv)
     settings = {}

@@ -11,7 +11,7 @@ pytest.importorskip("xarray")
 
 from ikaros.cli import main  # noqa: E402
 from ikaros.experiments import open_recording  # noqa: E402
-from ikaros.experiments.sweep import RunSpec, grid, parse_values, run_one, sweep  # noqa: E402
+from ikaros.experiments.sweeps import RunSpec, grid, parse_values, run_one, sweep  # noqa: E402
 
 # Counter.OUTPUT is step * (k + 1) on tick k; Double.OUTPUT is factor times that. Boom
 # raises in tick 3 when fail is 1, and ends its process there when fail is 2.
