@@ -19,6 +19,7 @@ from datetime import datetime, timezone
 
 import numpy as np
 
+from ..module import WARNING
 from .signals import module_parameters, seeds, select_outputs
 
 FORMAT = "ikaros-recording"
@@ -89,7 +90,8 @@ class Recorder:
         self._started = self._last_flush
         self._file_flushed = self._last_flush
         self._queue: queue.Queue = queue.Queue(maxsize=4)
-        self._error: BaseException | None = None
+        self._error: BaseException | None = None      # set by the writer thread
+        self._reported = False
         self._writer = threading.Thread(target=self._write_loop, name="ikaros-recorder",
                                         daemon=True)
         self._writer.start()
@@ -101,7 +103,7 @@ class Recorder:
                                                         Recorder) and h.__self__.closed)]
         hooks.append(self.hook)
         net.parameter_hooks.append(self.parameter_changed)
-        net.close_hooks.append(self.close)
+        net.close_hooks.append(self._close_with_network)
         atexit.register(self.close)     # a script that ends without close() loses nothing
 
     def _write_header(self, command_line: list[str] | None) -> None:
@@ -167,6 +169,9 @@ class Recorder:
         tick = net.tick - 1
         if tick < self._next or self._closed:
             return
+        if self._error is not None:
+            self._report()
+            return
         self._next = tick + self.every
         n = self._n
         self._copy_row(self._rows[n])
@@ -194,15 +199,32 @@ class Recorder:
         self._put(("change", self.net.tick, path, value))
 
     def _put(self, item) -> None:
-        if self._error is not None:
-            error, self._error = self._error, None
-            raise OSError(f"writing the recording {self.filename} failed: {error}")
-        self._queue.put(item)
+        """Hand an item to the writer; once writing has failed, the recording stops (with
+        a warning in the network's log) and the run goes on."""
+        if self._error is None:
+            self._queue.put(item)
+        else:
+            self._report()
+
+    def _report(self) -> None:
+        if not self._reported:
+            self._reported = True
+            self.net.notify(WARNING, None, f"the recording {self.filename} stopped: "
+                                           f"writing failed: {self._error}")
 
     @property
     def closed(self) -> bool:
         """Whether the recording has ended."""
         return self._closed
+
+    def _close_with_network(self) -> None:
+        """When the network closes: never raise there (its modules must still be
+        stopped); a failure is a warning in the network's log."""
+        try:
+            self.close()
+        except Exception as e:      # noqa: BLE001
+            if not self._reported:
+                self.net.notify(WARNING, None, f"the recording {self.filename} failed: {e}")
 
     def close(self) -> None:
         """Write what is left, mark the recording finished and close the file."""
@@ -213,20 +235,19 @@ class Recorder:
         net = self.net
         for hooks, hook in ((net.controller.tick_hooks, self.hook),
                             (net.parameter_hooks, self.parameter_changed),
-                            (net.close_hooks, self.close)):
+                            (net.close_hooks, self._close_with_network)):
             if hook in hooks:
                 hooks.remove(hook)
-        if self._n:
+        if self._n and self._error is None:
             self._hand_over(full=False)
         self._queue.put(None)
         self._writer.join()
         self._file.close()
-        h5py = h5py_module()
-        with h5py.File(self.filename, "a") as f:
+        if self._error is not None:     # what was flushed stays readable, not "finished"
+            raise OSError(f"writing the recording {self.filename} failed: {self._error}")
+        with h5py_module().File(self.filename, "a") as f:
             f.attrs["finished"] = True
             f.attrs["ticks_recorded"] = f["tick"].shape[0]
-        if self._error is not None:
-            raise OSError(f"writing the recording {self.filename} failed: {self._error}")
 
     def __enter__(self):
         return self

@@ -179,3 +179,22 @@ def test_a_run_killed_mid_way_is_readable_up_to_its_last_flushed_chunk(tmp_path)
     np.testing.assert_array_equal(ds["Double.OUTPUT"].values[:, 0], 2 * (k + 1))
     with h5py.File(out, "r", swmr=True) as f:
         assert json.loads(f.attrs["command_line"])[0] == "ikaros"
+
+
+def test_a_failing_recording_stops_with_a_warning_and_the_run_goes_on(tmp_path):
+    net = load_body(tmp_path, BODY)
+    net.log_level = -1
+    recorder = net.record(str(tmp_path / "run.h5"))
+    stopped = []
+    net.modules["Counter"].module.stop = lambda: stopped.append(True)
+    net.run(ticks=5)
+    recorder._error = OSError("disk full")     # as the writer thread reports a failure
+    net.run(ticks=5)                           # no exception: the model keeps running
+    assert net.tick == 10
+    net.close()
+    assert stopped == [True]
+    warnings = [m for _, _, _, m in net.log if "disk full" in m]
+    assert warnings == [f"the recording {tmp_path / 'run.h5'} stopped: writing failed: "
+                        f"disk full"]
+    ds = open_recording(str(tmp_path / "run.h5"))
+    assert ds.attrs["finished"] is False
