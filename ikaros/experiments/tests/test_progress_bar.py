@@ -18,13 +18,13 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
 MODEL = '<group name="P"><module class="Sweep" name="S" step="1" max="1e9"/></group>\n'
 
 
-def run(tmp_path, *options, terminal: bool) -> str:
+def run(tmp_path, *options, terminal: bool, command: tuple = ("-b", "-s", "30000")) -> str:
     """Run 30000 ticks with stderr on a pseudo-terminal (or a pipe); what stderr got."""
     path = tmp_path / "model.ikg"
     path.write_text(MODEL)
     env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""),
                COLUMNS="100")
-    command = [sys.executable, "-m", "ikaros", "-b", "-s", "30000", *options, str(path)]
+    command = [sys.executable, "-m", "ikaros", *command, *options, str(path)]
     if not terminal:
         done = subprocess.run(command, env=env, capture_output=True, timeout=60)
         assert done.returncode == 0
@@ -65,3 +65,10 @@ def test_a_terminal_shows_ticks_done_ticks_per_second_and_time_left(tmp_path):
 def test_nothing_extra_when_not_a_terminal_or_quiet(tmp_path):
     assert run(tmp_path, terminal=False) == ""
     assert run(tmp_path, "-q", terminal=True) == ""
+
+
+def test_a_sweep_shows_the_runs_done_on_a_terminal(tmp_path):
+    text = run(tmp_path, terminal=True, command=("sweep", "--set", "S.step=1:4", "--ticks",
+                                                 "100", "--workers", "2"))
+    assert "4/4" in text and "run/s" in text
+    assert "ikaros sweep: 4 runs, 4 ok, 0 failed" in text
