@@ -93,6 +93,9 @@ def main(argv: list[str]) -> int:
     except (ImportError, OSError, ValueError, ModelError) as e:
         print(f"ikaros sweep: error: {e}", file=sys.stderr)
         return EXIT_ERROR
+    except KeyboardInterrupt:
+        print("ikaros sweep: interrupted", file=sys.stderr)
+        return EXIT_ERROR
     failed = int((table["status"] != "ok").sum())
     if opts.out is None:
         table.to_csv(sys.stdout, index=False)
