@@ -16,7 +16,16 @@ from .module import Input, Module, Output, Parameter
 
 __version__ = "0.1.0"
 __all__ = ["load", "classes", "Network", "Module", "Parameter", "Input", "Output",
-           "ModelError", "ModelWarning", "RunError", "ClassDescription"]
+           "ModelError", "ModelWarning", "RunError", "ClassDescription", "open_recording",
+           "sweep"]
+
+
+def __getattr__(name: str):
+    # ikaros.open_recording and ikaros.sweep (ikaros.experiments), imported when first used
+    if name in ("open_recording", "sweep"):
+        from . import experiments
+        return getattr(experiments, name)
+    raise AttributeError(f"module 'ikaros' has no attribute '{name}'")
 
 
 def load(filename: str, /, *, strict: bool = False, lenient: bool = False,

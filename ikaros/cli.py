@@ -8,6 +8,7 @@ import sys
 import traceback
 
 from . import classes, load
+from .experiments import commandline as experiment_options
 from .errors import ModelError, RunError
 from .module import DEBUG, FATAL_ERROR, PRINT
 
@@ -128,6 +129,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--modules-doc", nargs="?", const="docs/modules.md", metavar="FILE",
                    help="write the standard module reference (Markdown) to FILE "
                         "(default docs/modules.md); - prints it")
+    experiment_options.add_arguments(p)
     return p
 
 
@@ -194,8 +196,13 @@ def main(argv: list[str] | None = None) -> int:
     if argv is None:            # the command itself (not a call from Python code)
         from .interrupt import install
         install()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["sweep"]:
+        from .experiments.sweepcli import main as sweep_main
+        return sweep_main(argv[1:])
     p = parser()
     opts = p.parse_intermixed_args(argv)
+    experiment_options.check_arguments(p, opts)
     model, overrides = _split_args(p, opts.args)
     folders = [os.path.dirname(os.path.abspath(model))] if model else []
     try:
@@ -227,6 +234,9 @@ def main(argv: list[str] | None = None) -> int:
                 return EXIT_ERROR
             print(found.to_text())
             return EXIT_OK
+        if opts.replay:
+            net = experiment_options.replay_network(p, opts, model)
+            return EXIT_ERROR if net is None else _serve(net, opts)
         if model is None:
             p.error("no model file given")
         if opts.tick_duration is not None:
@@ -250,11 +260,18 @@ def main(argv: list[str] | None = None) -> int:
         if opts.info:
             print(net.info())
         ok = getattr(net, "checksum_ok", True)
+        try:
+            recording = experiment_options.start_recording(net, opts, argv)
+        except (ValueError, ImportError, OSError) as e:
+            net.close()
+            print(f"ikaros: error: --record: {e}", file=sys.stderr)
+            return EXIT_ERROR
         if not opts.batch:
             return _serve(net, opts)
         try:
             net.profiling = opts.profile
-            net.run(ticks=opts.stop, real_time=opts.real_time)
+            with experiment_options.batch_session(net, opts, recording):
+                net.run(ticks=opts.stop, real_time=opts.real_time)
         finally:
             net.close()
             if opts.profile:

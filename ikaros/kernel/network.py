@@ -57,6 +57,9 @@ class Network:
         self._stopped = False
         self._buffers = builder.buffers
         self.modules = {inst.path: inst for inst in order}
+        # Observers of the run (recordings): each must be quick and must not raise.
+        self.parameter_hooks: list = []    # hook(path, value) after set_parameter
+        self.close_hooks: list = []        # hook() when close() is called
         notify = builder.notify = self.notify
         for inst in order:
             inst.module._ik_notify = notify
@@ -322,13 +325,31 @@ class Network:
         """Run exactly one tick."""
         self._check_running()
         self._tick()
+        if self._controller is not None:
+            for hook in self._controller.tick_hooks:
+                hook()
 
-    def run(self, ticks: int | None = None, real_time: bool = False) -> int:
+    def run(self, ticks: int | None = None, real_time: bool = False,
+            record: list[str] | str | None = None, every: int = 1):
         """Run ``ticks`` more ticks (as fast as possible, or on the tick_duration time base
         with ``real_time``). Without ``ticks``, run until the model's ``stop`` tick, end of
-        file or an error. Returns ``tick``, the ticks completed so far."""
+        file or an error. Returns ``tick``, the ticks completed so far.
+
+        With ``record`` (glob patterns of output addresses; ``"*"`` for all) the outputs
+        that match are kept every ``every``-th tick and returned as an xarray Dataset
+        instead (see ``ikaros.experiments``)."""
         self._check_running()
+        if record is not None:
+            from ..experiments.memory import run_recorded
+            return run_recorded(self, ticks, record, every, real_time)
         return self.controller.run(REALTIME if real_time else PLAY, ticks)
+
+    def record(self, filename: str, only: list[str] | str | None = None, every: int = 1):
+        """Record outputs (all, or those matching the glob patterns ``only``) every
+        ``every``-th tick into the HDF5 file ``filename``, from the next tick until the
+        returned Recorder's ``close()`` or this network's ``close()``."""
+        from ..experiments.recording import Recorder
+        return Recorder(self, filename, only=only, every=every)
 
     @property
     def controller(self) -> Controller:
@@ -379,6 +400,9 @@ class Network:
     def close(self) -> None:
         """End the run: every module's stop() is called once. A stop() that fails is
         reported and makes ``stop_reason`` a fatal error."""
+        for hook in self.close_hooks:
+            hook()
+        self.close_hooks.clear()
         if not self._stopped:
             self.stop_reason = self.stop_reason or (TERMINATE, "closed")
             try:
@@ -457,6 +481,8 @@ class Network:
         comp.values[name] = new
         comp.has_value[name] = True
         comp.node.attrs[name] = value if isinstance(value, str) else value_text(new)
+        for hook in self.parameter_hooks:
+            hook(path, comp.node.attrs[name])
 
     def command(self, path: str, name: str, x: float = 0, y: float = 0,
                 value: Any = None) -> None:

@@ -20,6 +20,16 @@ _CHANGED = {"type": "object", "properties": {"ok": {"type": "boolean"},
                                                                  "Network"}}}
 
 
+_RECORDING = {"type": "object", "properties": {
+    "recording": {"type": "boolean"}, "file": {"type": ["string", "null"]},
+    "folder": {"type": ["string", "null"]}}}
+
+
+_REPLAY = {"type": "object", "properties": {
+    "replay": {"type": "boolean"}, "file": {"type": "string"}, "rows": {"type": "integer"},
+    "row": {"type": "integer"}, "tick": {"type": ["integer", "null"]}}}
+
+
 def _body(schema: dict) -> dict:
     return {"required": True, "content": {"application/json": {"schema": schema}}}
 
@@ -187,6 +197,23 @@ def openapi() -> dict:
              "properties": {"name": {"type": "string", "default": "Untitled",
                                      "pattern": "^[A-Za-z_][A-Za-z0-9_-]*$",
                                      "maxLength": 100}}}, _CHANGED),
+        "/api/record": {**_get("Whether the running network is being recorded", _RECORDING),
+                        **_post("Start recording every output into a new HDF5 file in the "
+                                "models folder (on: true), or end the recording (on: false)",
+                                {"type": "object", "required": ["on"],
+                                 "additionalProperties": False,
+                                 "properties": {"on": {"type": "boolean"}}}, _RECORDING,
+                                **{"409": "no models folder to record into, or the run has "
+                                          "ended"})},
+        "/api/replay": {**_get("Whether a recording is replayed (ikaros --replay), its rows "
+                               "and the row shown", _REPLAY),
+                        **_post("Show row k of the recording (its tick number is in the "
+                                "answer)", {"type": "object", "required": ["row"],
+                                            "additionalProperties": False,
+                                            "properties": {"row": {"type": "integer",
+                                                                   "minimum": 0}}},
+                                _REPLAY, **{"409": "not replaying a recording, or the run "
+                                                   "has ended"})},
         "/api/openapi.json": _get("This description", obj),
     }
     schemas = {

@@ -802,6 +802,9 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
         Mount("/static", app=StaticFiles(directory=ui.static_dir, check_dir=False),
               name="static"),
     ]
+    from .recording import RecordButton, ReplayBar
+    routes[-2:-2] = [Route("/api/record", RecordButton(ui).endpoint, methods=["GET", "POST"]),
+                     Route("/api/replay", ReplayBar(ui).endpoint, methods=["GET", "POST"])]
     if ui.model_dir:
         async def model_files(scope, receive, send):      # the current model's folder
             app = ImageFiles(directory=ui.model_dir, check_dir=False)

@@ -2,6 +2,7 @@
 // messages, and moves data from the WebSocket to the widgets.
 import { api, Socket } from "./api.js";
 import { Controls } from "./controls.js";
+import { RecordButton, ReplayBar } from "./record.js";
 import { SystemInspector } from "./inspector.js";
 import { Messages } from "./messages.js";
 import { ModuleInspector } from "./module-inspector.js";
@@ -47,6 +48,8 @@ class App {
             onStatus: (s) => this.showStatus(s),
             notify: (l, m) => this.messages.local(l, m),
         });
+        this.recordButton = new RecordButton($("#controls"), { notify: (l, m) => this.messages.local(l, m) });
+        this.replayBar = new ReplayBar($("#controls"), { notify: (l, m) => this.messages.local(l, m), recordButton: this.recordButton });
         this.ctx = {
             groupPath: "",
             selectModule: (path) => this.moduleInspector.open(path),

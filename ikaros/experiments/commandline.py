@@ -1,0 +1,79 @@
+"""The experiment options of the ``ikaros`` command: recording and progress of a run."""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import sys
+
+
+def _every(text: str) -> int:
+    if not text.lstrip("+").isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f'"{text}" is not a whole number of ticks >= 1')
+    return int(text)
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """Add --record, --record-only, --record-every and --replay to the ikaros command."""
+    g = p.add_argument_group("experiments")
+    g.add_argument("--record", metavar="FILE.h5",
+                   help="record outputs into an HDF5 file while running (needs "
+                        "ikaros[record]); read it with ikaros.open_recording")
+    g.add_argument("--record-only", action="append", metavar="PATTERN",
+                   help="record only the outputs whose address matches this glob pattern, "
+                        "e.g. 'Arm.*.OUTPUT' (repeatable; default: every output)")
+    g.add_argument("--record-every", type=_every, default=1, metavar="K",
+                   help="record every K-th tick (default 1: every tick)")
+    g.add_argument("--replay", metavar="FILE.h5",
+                   help="show a recording in the web UI: its model's views, stepping "
+                        "through the recorded ticks")
+
+
+def check_arguments(p: argparse.ArgumentParser, opts) -> None:
+    """Usage errors of the experiment options."""
+    if (opts.record_only or opts.record_every != 1) and not opts.record:
+        p.error("--record-only and --record-every need --record FILE.h5")
+
+
+def start_recording(net, opts, argv: list[str]):
+    """The Recorder of --record (None without it); it ends when the network closes.
+    Raises ValueError, ImportError or OSError with a message for the user."""
+    if not opts.record:
+        return None
+    from .recording import Recorder
+    return Recorder(net, opts.record, only=opts.record_only, every=opts.record_every,
+                    command_line=["ikaros"] + list(argv))
+
+
+@contextlib.contextmanager
+def batch_session(net, opts, recording=None):
+    """Around a batch run: the progress bar (on a terminal, not with -q); the recording
+    is closed at the end."""
+    from .progress import Progress
+    try:
+        if Progress.wanted(sys.stderr, opts.quiet):
+            total = opts.stop if opts.stop is not None else \
+                net.stop_tick if (net.stop_tick or -1) >= 0 else None
+            with Progress(net, total):
+                yield
+        else:
+            yield
+    finally:
+        if recording is not None:
+            recording.close()
+
+
+def replay_network(p: argparse.ArgumentParser, opts, model: str | None):
+    """The network of --replay (its recorded model, every recorded module a Replay), or
+    None after printing why there is none."""
+    if model is not None or opts.batch:
+        p.error("--replay shows a recording in the web UI: give no model file and no -b")
+    if opts.record:
+        p.error("--replay and --record can not be used together")
+    from .. import webui
+    from .replay import replay_network as build
+    try:
+        webui._check()
+        return build(opts.replay, quiet=opts.quiet)
+    except (webui.MissingWebDependencies, ImportError, OSError, ValueError) as e:
+        print(f"ikaros: error: --replay: {e}", file=sys.stderr)
+        return None

@@ -1,0 +1,138 @@
+"""Recordings in the web UI. The record button's endpoint: ``GET /api/record`` says whether
+the running network is being recorded; ``POST /api/record {"on": true|false}`` starts a
+recording of every output into a new HDF5 file in the models folder, or ends it. A
+recording also ends when its network does (the editor's apply, open and new build a new
+one). And the replay bar's endpoint, ``/api/replay``, for ``ikaros --replay``."""
+from __future__ import annotations
+
+import os
+import time
+
+from starlette.concurrency import run_in_threadpool
+from starlette.requests import Request
+
+from .server import ApiError, Json, _body, _query
+from .snapshot import between_ticks
+
+
+class RecordButton:
+    """The state behind ``/api/record`` for one app."""
+
+    def __init__(self, ui):
+        self.ui = ui                # the WebUI: its current network and models folder
+        self.recorder = None
+
+    def _answer(self):
+        recorder = self.recorder
+        on = recorder is not None and not recorder.closed and recorder.net is self.ui.net
+        return Json({"recording": on,
+                           "file": os.path.basename(recorder.filename) if on else None,
+                           "folder": self._folder()})
+
+    def _folder(self) -> str | None:
+        return self.ui.models_dir or self.ui.model_dir
+
+    async def endpoint(self, request: Request):
+        if request.method == "GET":
+            _query(request)
+            return self._answer()
+        body = await _body(request, ("on",))
+        if not isinstance(body["on"], bool):
+            raise ApiError(400, '"on" must be true or false')
+        current = self.recorder
+        if current is not None and not current.closed:
+            await run_in_threadpool(current.close)   # its network may be another one now
+        self.recorder = None
+        if body["on"]:
+            self.recorder = await run_in_threadpool(self._start)
+        return self._answer()
+
+    def _start(self):
+        from ..experiments.recording import Recorder
+        folder = self._folder()
+        if not folder:
+            raise ApiError(409, "no models folder to record into (start ikaros with "
+                                   "--models DIR)")
+        net = self.ui.net
+        if net.stopped:
+            raise ApiError(409, "the run has ended; restart ikaros to record")
+        stem = os.path.splitext(os.path.basename(net.filename or "model"))[0]
+        name = f"{stem}-{time.strftime('%Y%m%d-%H%M%S')}"
+        path, k = os.path.join(folder, name + ".h5"), 1
+        while os.path.exists(path):         # never over an earlier recording
+            k += 1
+            path = os.path.join(folder, f"{name}-{k}.h5")
+        try:
+            return between_ticks(net, Recorder, net, path, command_line=["web UI"])
+        except ImportError as e:
+            raise ApiError(501, str(e)) from None
+        except OSError as e:
+            raise ApiError(500, str(e)) from None
+
+
+class ReplayBar:
+    """``GET /api/replay``: whether the network replays a recording (``ikaros --replay``),
+    its rows and the row shown; ``POST /api/replay {"row": k}`` shows row k (the Replay
+    modules seek to it and one tick runs)."""
+
+    def __init__(self, ui):
+        self.ui = ui
+        self._ticks: tuple[str, list] | None = None     # (recording, its tick numbers)
+
+    def _recorded_ticks(self, path: str) -> list:
+        if self._ticks is None or self._ticks[0] != path:
+            from ..experiments.reading import _open
+            from ..experiments.recording import h5py_module
+            with _open(h5py_module(), path) as f:
+                n = min(f["tick"].shape[0], f["data"].shape[0])
+                self._ticks = (path, [int(t) for t in f["tick"][:n]])
+        return self._ticks[1]
+
+    def _replays(self) -> list:
+        return [inst for inst in self.ui.net.modules.values() if inst.entry.name == "Replay"]
+
+    def _answer(self):
+        path = getattr(self.ui.net, "replayed", None)
+        if path is None:
+            return Json({"replay": False})
+        ticks = self._recorded_ticks(path)
+        replays = self._replays()
+        row = replays[0].module.row if replays else -1
+        return Json({"replay": True, "file": os.path.basename(path), "rows": len(ticks),
+                     "row": row, "tick": ticks[row] if 0 <= row < len(ticks) else None})
+
+    async def endpoint(self, request: Request):
+        if request.method == "GET":
+            _query(request)
+            return await run_in_threadpool(self._answer)
+        body = await _body(request, ("row",))
+        path = getattr(self.ui.net, "replayed", None)
+        if path is None:
+            raise ApiError(409, "not replaying a recording (start ikaros with --replay)")
+        rows = len(await run_in_threadpool(self._recorded_ticks, path))
+        row = body["row"]
+        if not isinstance(row, int) or isinstance(row, bool) or not 0 <= row < rows:
+            raise ApiError(400, f'"row" must be a whole number from 0 to {rows - 1}')
+        if self.ui.net.stopped:
+            raise ApiError(409, "the run has ended; restart ikaros to replay again")
+        await run_in_threadpool(self._show, row)
+        return await run_in_threadpool(self._answer)
+
+    def _show(self, row: int) -> None:
+        net = self.ui.net
+
+        def seek():
+            for inst in self._replays():
+                net.command(inst.path, "seek", x=row)
+        between_ticks(net, seek)
+        ctrl = net.controller
+        if not ctrl.running:
+            net.step()
+            return
+        if ctrl.state in ("play", "realtime"):
+            return              # the next tick shows it
+        done = net.tick
+        ctrl.step()
+        deadline = time.monotonic() + 2
+        while net.tick == done and time.monotonic() < deadline:
+            time.sleep(0.005)
