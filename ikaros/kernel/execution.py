@@ -146,7 +146,8 @@ class Plan:
             for step in self.sequence:
                 step()
         except Exception as e:
-            return self.owner.get(step), e
+            # a compiled stretch names the member whose Python call failed
+            return getattr(step, "failed", None) or self.owner.get(step), e
         return None
 
     def _run_modules(self, modules: list) -> tuple | None:

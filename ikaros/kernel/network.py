@@ -17,6 +17,8 @@ from .buffers import Run
 from .control import PLAY, REALTIME, Controller
 from .execution import AsyncModule, Plan, module_tick
 from .fusion import fuse
+from . import compiled
+from .compiled.plan import CompiledRun, compiled_plan
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .timing import Timing
 from .scope import VariableError, from_python
@@ -167,12 +169,29 @@ class Network:
         tick_of = {inst: module_tick(inst, self.clock) if inst not in self.async_modules
                    else self.async_modules[inst] for inst in self.schedule}
         block = self.arena.block
+        minimum = self._compiled_minimum()
 
         def fuser(calls):
-            return fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
-                        pre_tick)
+            return (minimum is not None and
+                    compiled_plan(self.schedule, self.zero_delay_edges, self._buffers,
+                                  self.runs, self._shared, block, calls, minimum,
+                                  compiled.executor)) or \
+                fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
+                     pre_tick)
         self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
                          self.threads or 1, self._module_cost, fuser)
+
+    def _compiled_minimum(self) -> int | None:
+        """The compiled tick's setting: the compilable modules it needs, or None (off)."""
+        try:
+            return compiled.minimum_modules(self.top.attrs.get("compiled"))
+        except compiled.SettingError as e:
+            raise self.model.error(str(e)) from None
+
+    @property
+    def compiled_modules(self) -> int:
+        """How many modules run in the compiled tick (0 when it is off)."""
+        return sum(1 for op in self.plan.fused.values() if isinstance(op, CompiledRun))
 
     def _module_cost(self, inst: ModuleInstance) -> int:
         """A module's weight when thread lanes are balanced: its output elements."""

@@ -1,0 +1,49 @@
+"""The compiled tick: standard element-wise and small-array modules, and the zero-delay
+copies between them, run as instructions of one function compiled with numba (the
+optional extra ``ikaros[fast]``), one call per stretch of compiled modules per tick.
+
+Whether a model uses it: the top group's ``compiled`` attribute (or ``ikaros.load(path,
+compiled=...)``) is ``auto`` (the default: when numba is installed and at least
+``AUTO_MINIMUM`` modules can be compiled, since the first use in a process costs numba's
+start-up, about half a second), ``yes`` (whenever numba is installed) or ``no``. The
+environment variable ``IKAROS_COMPILED=0`` turns it off for every model; ``IKAROS_COMPILED=1``
+turns it on for every model that does not say ``no``.
+"""
+from __future__ import annotations
+
+import os
+
+AUTO_MINIMUM = 64          # compilable modules that make ``auto`` use the compiled tick
+
+_OFF = ("0", "no", "false", "off")
+_ON = ("1", "yes", "true", "on")
+
+
+class SettingError(ValueError):
+    pass
+
+
+def minimum_modules(attribute: str | None) -> int | None:
+    """How many compilable modules a model needs to use the compiled tick (None: never),
+    from the top group's ``compiled`` attribute and the environment."""
+    env = os.environ.get("IKAROS_COMPILED", "").strip().lower()
+    if env in _OFF:
+        return None
+    text = (attribute or "").strip().lower()
+    if text in _OFF:
+        return None
+    if text in _ON or env in _ON:
+        return 1
+    if text in ("", "auto"):
+        return AUTO_MINIMUM
+    raise SettingError(f'compiled="{attribute}" must be auto, yes or no')
+
+
+def executor():
+    """The compiled function (loaded from numba's cache after the first time), or None when
+    numba is not installed."""
+    try:
+        from .kernel import execute
+    except ImportError:
+        return None
+    return execute
