@@ -26,17 +26,15 @@ class SettingError(ValueError):
 def minimum_modules(attribute: str | None) -> int | None:
     """How many compilable modules a model needs to use the compiled tick (None: never),
     from the top group's ``compiled`` attribute and the environment."""
-    env = os.environ.get("IKAROS_COMPILED", "").strip().lower()
-    if env in _OFF:
-        return None
     text = (attribute or "").strip().lower()
-    if text in _OFF:
+    if text not in _OFF + _ON + ("", "auto"):
+        raise SettingError(f'compiled="{attribute}" must be auto, yes or no')
+    env = os.environ.get("IKAROS_COMPILED", "").strip().lower()
+    if env in _OFF or text in _OFF:
         return None
     if text in _ON or env in _ON:
         return 1
-    if text in ("", "auto"):
-        return AUTO_MINIMUM
-    raise SettingError(f'compiled="{attribute}" must be auto, yes or no')
+    return AUTO_MINIMUM
 
 
 def executor():

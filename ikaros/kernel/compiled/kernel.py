@@ -112,12 +112,12 @@ def execute(block, code, first, last, params, pool, flags):
             for i in range(n):
                 x = block[a + i]
                 y = block[b + i]
-                block[out + i] = x if (x >= y or x != x) else y
+                block[out + i] = x if (x > y or x != x) else y
         elif op == MINIMUM:
             for i in range(n):
                 x = block[a + i]
                 y = block[b + i]
-                block[out + i] = x if (x <= y or x != x) else y
+                block[out + i] = x if (x < y or x != x) else y
         elif op == SCALE:
             f = params[p]
             for i in range(n):

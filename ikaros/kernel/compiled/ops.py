@@ -13,8 +13,8 @@ ADD = 3         # OUT[i] = A[i] + B[i]
 SUBTRACT = 4    # OUT[i] = A[i] - B[i]
 MULTIPLY = 5    # OUT[i] = A[i] * B[i]
 DIVIDE = 6      # OUT[i] = A[i] / B[i], 0 where B[i] == 0 (and the instruction is flagged)
-MAXIMUM = 7     # OUT[i] = max(A[i], B[i]), NaN when either is NaN
-MINIMUM = 8     # OUT[i] = min(A[i], B[i]), NaN when either is NaN
+MAXIMUM = 7     # OUT[i] = A[i] if A[i] > B[i] else B[i]; NaN when either is NaN (as NumPy)
+MINIMUM = 8     # OUT[i] = A[i] if A[i] < B[i] else B[i]; NaN when either is NaN (as NumPy)
 SCALE = 9       # OUT[i] = A[i] * p[0], then * arena[B] when B >= 0
 ABS = 10        # OUT[i] = |A[i]|
 TANH = 11       # OUT[i] = tanh(A[i])

@@ -45,7 +45,8 @@ def fragment(inst, inputs: dict, outputs: dict, copies: list, block: np.ndarray)
 
 def grouped_order(schedule: list, edges: dict, compiled: set) -> list:
     """A schedule order (zero-delay sources first) that keeps compiled modules together:
-    the modules of one kind are taken as long as any is ready, in schedule order."""
+    the modules of one kind (compiled or not) are taken as long as any is ready, each kind
+    in schedule order."""
     position = {inst: i for i, inst in enumerate(schedule)}
     successors = collections.defaultdict(list)
     waiting = dict.fromkeys(schedule, 0)
@@ -56,7 +57,7 @@ def grouped_order(schedule: list, edges: dict, compiled: set) -> list:
     for inst in schedule:
         if waiting[inst] == 0:
             ready[inst in compiled].append((position[inst], inst))
-    kind = bool(ready[True]) and (not ready[False] or ready[True][0][0] < ready[False][0][0])
+    kind = not ready[False]        # Python modules first (often sources: devices, files)
     order = []
     while ready[True] or ready[False]:
         if not ready[kind]:
