@@ -8,6 +8,7 @@ import heapq
 import numpy as np
 
 from . import ops
+from . import user
 from .emit import EMITTERS, Fragment, emit_copy
 
 
@@ -23,107 +24,125 @@ def emitter(module):
     return None
 
 
-def fragment(inst, inputs: dict, outputs: dict, copies: list, block: np.ndarray):
-    """The instructions of one module (its zero-delay copies, then its tick) and its
-    loader, or None when it runs in Python."""
-    if inst.asynchronous or inst.period != 1:
-        return None
-    emit = emitter(inst.module)
-    if emit is None:
-        return None
-    for buf in list(inputs.values()) + list(outputs.values()):
-        if buf.array is not None and buf.array.base is not block:
-            return None
+def _in_block(inputs: dict, outputs: dict, copies: list, block: np.ndarray) -> bool:
+    return all(buf.array is None or buf.array.base is block
+               for buf in list(inputs.values()) + list(outputs.values())) and \
+        all(run.source.array.base is block for run in copies)
+
+
+def copies_fragment(copies: list) -> Fragment:
     frag = Fragment()
     for run in copies:
-        if run.source.array.base is not block:
-            return None
         emit_copy(frag, run)
-    load = emit(frag, inst.module, inputs, outputs)
-    return None if load is None else (frag, load)
+    return frag
 
 
-def grouped_order(schedule: list, edges: dict, compiled: set) -> list:
-    """A schedule order (zero-delay sources first) that keeps compiled modules together:
-    the modules of one kind (compiled or not) are taken as long as any is ready, each kind
-    in schedule order."""
+def fragment(inst, inputs: dict, outputs: dict, copies: list, block: np.ndarray):
+    """How a module runs compiled: (kind, fragment, loader), where kind is "standard" for
+    the instructions of a standard operation (its zero-delay copies, then its tick) and
+    (class, argument layout) for a user module's compiled tick; or None (Python)."""
+    if inst.asynchronous or inst.period != 1 or not _in_block(inputs, outputs, copies, block):
+        return None
+    module = inst.module
+    emit = emitter(module)
+    if emit is not None:
+        frag = copies_fragment(copies)
+        load = emit(frag, module, inputs, outputs)
+        return None if load is None else ("standard", frag, load)
+    function = user.compiled_tick(type(module))
+    args = function and user.layout(module, function)
+    if not args:
+        return None
+    frag, load = user.user_fragment(module, inputs, outputs, args)
+    return (type(module), args), frag, load
+
+
+def grouped_order(schedule: list, edges: dict, kinds: dict) -> list:
+    """A schedule order (zero-delay sources first) that keeps modules of one kind together
+    (Python modules have no kind): a kind is taken as long as any of its modules is ready,
+    each kind in schedule order; then the ready Python modules, then the kind of the first
+    ready module."""
     position = {inst: i for i, inst in enumerate(schedule)}
     successors = collections.defaultdict(list)
     waiting = dict.fromkeys(schedule, 0)
     for (a, b) in edges:
         successors[a].append(b)
         waiting[b] += 1
-    ready = {True: [], False: []}
+    ready: dict = collections.defaultdict(list)
     for inst in schedule:
         if waiting[inst] == 0:
-            ready[inst in compiled].append((position[inst], inst))
-    kind = not ready[False]        # Python modules first (often sources: devices, files)
-    order = []
-    while ready[True] or ready[False]:
+            ready[kinds.get(inst)].append((position[inst], inst))
+    order, kind = [], None
+    while len(order) < len(schedule):
         if not ready[kind]:
-            kind = not kind
+            kind = None if ready[None] else min(
+                (heap[0][0], k) for k, heap in ready.items() if heap and k is not None)[1]
         _, inst = heapq.heappop(ready[kind])
         order.append(inst)
         for nxt in successors[inst]:
             waiting[nxt] -= 1
             if waiting[nxt] == 0:
-                heapq.heappush(ready[nxt in compiled], (position[nxt], nxt))
+                heapq.heappush(ready[kinds.get(nxt)], (position[nxt], nxt))
     return order
 
 
-class Program:
-    """All instructions of a network, with their parameter slots and index pool."""
+class Table:
+    """The rows of many modules in one int64 array, with their parameter slots (moved to
+    the module's place: ``param_column`` of every row, and the pool positions of gathers)."""
 
-    def __init__(self, block: np.ndarray, fragments: list):
-        self.block = block
-        rows, pool, self.slots, self.loaders = [], [], [], []
+    def __init__(self, fragments: list, param_column: int, width: int):
+        rows, pool = [], []
         self.owner_of_row: list = []
+        self.ranges: dict = {}                     # inst -> (first row, last row + 1)
+        self.loaders: dict = {}                    # inst -> (first slot, count, loader)
         n_params = n_pool = 0
-        self.ranges = {}                     # inst -> (first row, last row + 1)
         for inst, frag, load in fragments:
             first = len(rows)
-            for op, out, n, a, b, p in frag.rows:
-                if op == ops.GATHER:
-                    a, b = a + n_pool, b + n_pool
-                rows.append((op, out, n, a, b, p + n_params))
+            for row in frag.rows:
+                row = list(row)
+                row[param_column] += n_params
+                if row[0] == ops.GATHER and param_column == ops.PARAM:
+                    row[ops.A] += n_pool
+                    row[ops.B] += n_pool
+                rows.append(row)
                 self.owner_of_row.append(inst)
             self.ranges[inst] = (first, len(rows))
-            self.slots.append((inst, n_params, frag.param_count, load))
+            self.loaders[inst] = (n_params, frag.param_count, load)
             n_params += frag.param_count
             pool.extend(frag.pool)
             n_pool += frag.pool_size
-        self.code = np.array(rows, dtype=np.int64).reshape(-1, ops.WIDTH)
+        self.code = np.array(rows, dtype=np.int64).reshape(-1, width)
         self.params = np.zeros(max(n_params, 1), dtype=np.float32)
         self.pool = np.concatenate(pool) if pool else np.zeros(1, dtype=np.int64)
         self.flags = np.zeros(max(len(rows), 1), dtype=np.int64)
-        self.loader = {inst: (first, count, load) for inst, first, count, load in self.slots}
 
     def load(self, inst) -> bool:
         """Write a module's parameters into its slots; whether it can run compiled."""
-        first, count, load = self.loader[inst]
+        first, count, load = self.loaders[inst]
         return bool(load(self.params[first:first + count]))
 
 
 class CompiledRun:
-    """One call of the compiled function for a stretch of compiled modules, in order. A
+    """One call of a compiled function for a stretch of modules of one kind, in order. A
     member whose parameters cannot run compiled (until they change again) runs its Python
-    calls in its place."""
+    calls in its place. ``call(first, last)`` runs rows first..last-1 of ``table`` and
+    returns how many of them flagged a case their module reports (a division by zero)."""
 
-    def __init__(self, program: Program, members: list, python_calls: dict, execute):
-        self.program = program
+    def __init__(self, table: Table, members: list, python_calls: dict, call):
+        self.table = table
         self.members = members
         self.python_calls = python_calls
-        self.execute = execute
+        self.call = call
         self.fallback: set = set()
         self.failed = None            # the member whose Python call raised, for the report
         for inst in members:
-            if not program.load(inst):
+            if not table.load(inst):
                 self.fallback.add(inst)
         self._pieces()
 
     def _pieces(self) -> None:
         """The calls of one tick: (first, last) row ranges, and Python members."""
-        pieces, ranges = [], self.program.ranges
+        pieces, ranges = [], self.table.ranges
         for inst in self.members:
             if inst in self.fallback:
                 pieces.append(inst)
@@ -139,23 +158,21 @@ class CompiledRun:
 
     def refresh(self, inst) -> None:
         """A member's parameters changed: load them again."""
-        ok = self.program.load(inst)
+        ok = self.table.load(inst)
         if ok != (inst not in self.fallback):
             (self.fallback.discard if ok else self.fallback.add)(inst)
             self._pieces()
 
     def _run(self, first: int, last: int) -> None:
-        p = self.program
-        if self.execute(p.block, p.code, first, last, p.params, p.pool, p.flags):
+        if self.call(first, last):
             self._flagged(first, last)
 
     def _flagged(self, first: int, last: int) -> None:
-        """Instructions that met a case their module reports (a division by zero): the
-        module's Python tick computes the same output again and reports it."""
-        flags = self.program.flags
+        """The module's Python tick computes the same output again and reports the case."""
+        flags = self.table.flags
         for k in np.flatnonzero(flags[first:last]):
             flags[first + k] = 0
-            inst = self.program.owner_of_row[first + k]
+            inst = self.table.owner_of_row[first + k]
             self.failed = inst
             inst.module.tick()
         self.failed = None
@@ -183,27 +200,50 @@ def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared
     for run in runs:
         if run.delay == 0 and run.target not in shared:
             copies[run.target.owner].append(run)
-    fragments = {}
+    made = {}
     for inst in schedule:
         inputs, outputs = buffers[inst]
-        made = fragment(inst, inputs, outputs, copies[inst], block)
-        if made is not None:
-            fragments[inst] = made
-    if not fragments or len(fragments) < minimum:
+        m = fragment(inst, inputs, outputs, copies[inst], block)
+        if m is not None:
+            made[inst] = m
+    if not made or len(made) < minimum:
         return None
     execute = executor()
     if execute is None:
         return None
-    order = grouped_order(schedule, edges, set(fragments))
-    program = Program(block, [(inst, *fragments[inst]) for inst in order
-                              if inst in fragments])
-    execute(block, program.code, 0, 0, program.params, program.pool, program.flags)  # load
+    kinds = {inst: m[0] for inst, m in made.items()}
+    order = grouped_order(schedule, edges, kinds)
+    standard = [(inst, made[inst][1], made[inst][2]) for inst in order
+                if kinds.get(inst) == "standard"]
+    users = [inst for inst in order if inst in made and kinds[inst] != "standard"]
+    # a user module's copies are standard instructions after all others, run by its row
+    program = Table(standard + [(inst, copies_fragment(copies[inst]), _no_parameters)
+                                for inst in users], ops.PARAM, ops.WIDTH)
+    code, params, pool, flags = program.code, program.params, program.pool, program.flags
+    execute(block, code, 0, 0, params, pool, flags)          # loads it from the cache
+
+    def standard_call(first, last):
+        return execute(block, code, first, last, params, pool, flags)
+
+    tables = {}
+    for kind in dict.fromkeys(kinds[inst] for inst in users):
+        members = [inst for inst in users if kinds[inst] == kind]
+        frags = []
+        for inst in members:
+            frag, load = made[inst][1], made[inst][2]
+            frag.rows = [program.ranges[inst] + row for row in frag.rows]
+            frags.append((inst, frag, load))
+        table = Table(frags, 2, len(frags[0][1].rows[0]))
+        run = user.runner(*kind, user.compiled_tick(kind[0]))
+        tables[kind] = table, _user_call(run, block, table, program)
     sequence, owner, compiled = [], {}, {}
     stretch: list = []
 
     def close_stretch():
         if stretch:
-            run = CompiledRun(program, list(stretch), calls, execute)
+            kind = kinds[stretch[0]]
+            table, call = (program, standard_call) if kind == "standard" else tables[kind]
+            run = CompiledRun(table, list(stretch), calls, call)
             sequence.append(run)
             owner[run] = stretch[0]
             for inst in stretch:
@@ -211,7 +251,9 @@ def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared
             stretch.clear()
 
     for inst in order:
-        if inst in fragments:
+        if inst in made:
+            if stretch and kinds[stretch[0]] != kinds[inst]:
+                close_stretch()
             stretch.append(inst)
             continue
         close_stretch()
@@ -220,3 +262,16 @@ def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared
             owner[call] = inst
     close_stretch()
     return sequence, owner, compiled
+
+
+def _user_call(run, block, table, program):
+    rows, params = table.code, table.params
+    code, cparams, pool, flags = program.code, program.params, program.pool, program.flags
+
+    def call(first, last):
+        return run(block, rows, first, last, params, code, cparams, pool, flags)
+    return call
+
+
+def _no_parameters(slots) -> bool:
+    return True
