@@ -70,7 +70,8 @@ def _sum(block, start, n):
 @njit(cache=True, nogil=True)
 def execute(block, code, first, last, params, pool, flags):
     """Run instructions ``first`` to ``last - 1`` of ``code``; returns how many set their
-    flag (a division by zero)."""
+    flag (a division by zero). Arrays are taken as slices of the arena so that loops over
+    large arrays vectorise."""
     flagged = 0
     zero = np.float32(0.0)
     one = np.float32(1.0)
@@ -81,75 +82,83 @@ def execute(block, code, first, last, params, pool, flags):
         a = code[k, 3]
         b = code[k, 4]
         p = code[k, 5]
+        o = block[out:out + n]
+        x = block[a:a + n]
         if op == COPY:
             for i in range(n):
-                block[out + i] = block[a + i]
+                o[i] = x[i]
         elif op == GATHER:
             for i in range(n):
                 block[pool[b + i]] = block[pool[a + i]]
         elif op == ADD:
+            y = block[b:b + n]
             for i in range(n):
-                block[out + i] = block[a + i] + block[b + i]
+                o[i] = x[i] + y[i]
         elif op == SUBTRACT:
+            y = block[b:b + n]
             for i in range(n):
-                block[out + i] = block[a + i] - block[b + i]
+                o[i] = x[i] - y[i]
         elif op == MULTIPLY:
+            y = block[b:b + n]
             for i in range(n):
-                block[out + i] = block[a + i] * block[b + i]
+                o[i] = x[i] * y[i]
         elif op == DIVIDE:
+            y = block[b:b + n]
             hit = 0
             for i in range(n):
-                d = block[b + i]
+                d = y[i]
                 if d == zero:
-                    block[out + i] = zero
+                    o[i] = zero
                     hit = 1
                 else:
-                    block[out + i] = block[a + i] / d
+                    o[i] = x[i] / d
             if hit:
                 flags[k] = 1
                 flagged += 1
         elif op == MAXIMUM:
+            y = block[b:b + n]
             for i in range(n):
-                x = block[a + i]
-                y = block[b + i]
-                block[out + i] = x if (x > y or x != x) else y
+                u = x[i]
+                v = y[i]
+                o[i] = u if (u > v or u != u) else v
         elif op == MINIMUM:
+            y = block[b:b + n]
             for i in range(n):
-                x = block[a + i]
-                y = block[b + i]
-                block[out + i] = x if (x < y or x != x) else y
+                u = x[i]
+                v = y[i]
+                o[i] = u if (u < v or u != u) else v
         elif op == SCALE:
             f = params[p]
             for i in range(n):
-                block[out + i] = block[a + i] * f
+                o[i] = x[i] * f
             if b >= 0:
                 s = block[b]
                 for i in range(n):
-                    block[out + i] = block[out + i] * s
+                    o[i] = o[i] * s
         elif op == ABS:
             for i in range(n):
-                block[out + i] = abs(block[a + i])
+                o[i] = abs(x[i])
         elif op == TANH:
             for i in range(n):
-                block[out + i] = math.tanh(block[a + i])
+                o[i] = math.tanh(x[i])
         elif op == THRESHOLD:
+            t = params[p + 2]
             if params[p] != zero:
                 for i in range(n):
-                    block[out + i] = block[a + i]
+                    o[i] = x[i]
             elif params[p + 1] != zero:
-                t = params[p + 2]
                 for i in range(n):
-                    d = block[a + i] - t
-                    block[out + i] = zero if d < zero else d
+                    d = x[i] - t
+                    o[i] = zero if d < zero else d
             else:
-                t = params[p + 2]
                 for i in range(n):
-                    block[out + i] = one if block[a + i] > t else zero
+                    o[i] = one if x[i] > t else zero
         elif op == SUM:
             block[out] = np.float32(_sum(block, a, n))
         elif op == CONSTANT:
+            c = params[p:p + n]
             for i in range(n):
-                block[out + i] = params[p + i]
+                o[i] = c[i]
         elif op == INTEGRATE:
             alpha = params[p]
             beta = params[p + 1]
@@ -158,11 +167,11 @@ def execute(block, code, first, last, params, pool, flags):
             high_on = params[p + 4] != zero
             high = params[p + 5]
             for i in range(n):
-                y = block[out + i] * alpha
-                y = y + beta * block[a + i]
-                if low_on and y < low:
-                    y = low
-                if high_on and y > high:
-                    y = high
-                block[out + i] = y
+                v = o[i] * alpha
+                v = v + beta * x[i]
+                if low_on and v < low:
+                    v = low
+                if high_on and v > high:
+                    v = high
+                o[i] = v
     return flagged

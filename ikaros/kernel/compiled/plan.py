@@ -3,6 +3,7 @@ calls that run them (one per stretch of compiled modules, between the Python one
 from __future__ import annotations
 
 import collections
+import functools
 import heapq
 
 import numpy as np
@@ -12,10 +13,10 @@ from . import user
 from .emit import EMITTERS, Fragment, emit_copy
 
 
-def emitter(module):
-    """The emitter of a module's class, or None when the class has no compiled operation
-    or its tick is not the one that declared it."""
-    cls = type(module)
+@functools.lru_cache(maxsize=None)
+def emitter(cls):
+    """The emitter of a module class, or None when the class has no compiled operation or
+    its tick is not the one of the class that declared it."""
     for klass in cls.__mro__:
         if "compiled_op" in vars(klass):
             if cls.tick is not klass.tick:
@@ -24,10 +25,17 @@ def emitter(module):
     return None
 
 
+ARRAY_LIMIT = 4096   # elements; a module with a larger array gains nothing, NumPy runs it
+
+
 def _in_block(inputs: dict, outputs: dict, copies: list, block: np.ndarray) -> bool:
-    return all(buf.array is None or buf.array.base is block
-               for buf in list(inputs.values()) + list(outputs.values())) and \
-        all(run.source.array.base is block for run in copies)
+    """Whether a module's arrays are all in the arena, none of them large."""
+    for ports in (inputs, outputs):
+        for buf in ports.values():
+            array = buf.array
+            if array is not None and (array.base is not block or array.size > ARRAY_LIMIT):
+                return False
+    return all(run.source.array.base is block for run in copies)
 
 
 def copies_fragment(copies: list) -> Fragment:
@@ -44,7 +52,7 @@ def fragment(inst, inputs: dict, outputs: dict, copies: list, block: np.ndarray)
     if inst.asynchronous or inst.period != 1 or not _in_block(inputs, outputs, copies, block):
         return None
     module = inst.module
-    emit = emitter(module)
+    emit = emitter(type(module))
     if emit is not None:
         frag = copies_fragment(copies)
         load = emit(frag, module, inputs, outputs)
