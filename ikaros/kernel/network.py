@@ -433,6 +433,7 @@ class Network:
         if not isinstance(comp, ModuleInstance):
             raise KeyError(f'no module "{path}" in {self.top.name}')
         self._apply(comp, lambda: comp.module.command(name, x, y, value))
+        self._apply(comp, lambda: self.plan.refresh(comp))   # a command may set parameters
 
     def _apply(self, inst: ModuleInstance, change) -> None:
         """Change a module now, or after its running asynchronous job."""

@@ -23,6 +23,10 @@ class Leaky(Module):
     BIAS = Input("added to the input", optional=True)
     OUTPUT = Output("the smoothed signal", size_set="INPUT")
 
+    def command(self, name, x=0, y=0, value=None):
+        if name == "freeze":
+            self.hold = True
+
     def tick(self):
         if self.hold:
             return
@@ -92,7 +96,7 @@ def test_a_user_modules_compiled_tick_runs_as_its_python_tick(tmp_path, monkeypa
                 net.set_parameter("L1.rate", 0.75)
         if tick == 5:
             for net in (plain, fast):
-                net.set_parameter("L3.hold", True)
+                net.command("L3", "freeze")         # sets hold: read again after a command
         for net in (plain, fast):
             net.step()
         for path in ("L1", "L2", "S", "L3", "T"):
