@@ -37,11 +37,24 @@ def minimum_modules(attribute: str | None) -> int | None:
     return AUTO_MINIMUM
 
 
+_executor: list = []
+
+
 def executor():
-    """The compiled function (loaded from numba's cache after the first time), or None when
-    numba is not installed."""
-    try:
-        from .kernel import execute
-    except ImportError:
-        return None
-    return execute
+    """The compiled function (compiled once, then loaded from numba's cache), or None when
+    numba is not installed or cannot compile it here."""
+    if not _executor:
+        try:
+            from .kernel import execute
+            _warm_up(execute)
+        except Exception:            # not installed, or no compiler / cache folder here
+            execute = None
+        _executor.append(execute)
+    return _executor[0]
+
+
+def _warm_up(execute) -> None:
+    import numpy as np
+    block = np.zeros(1, dtype=np.float32)
+    execute(block, np.zeros((0, 6), dtype=np.int64), 0, 0, block, np.zeros(1, np.int64),
+            np.zeros(1, np.int64))

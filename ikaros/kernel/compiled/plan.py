@@ -219,6 +219,11 @@ def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared
     execute = executor()
     if execute is None:
         return None
+    runners = {}
+    for kind in dict.fromkeys(m[0] for m in made.values() if m[0] != "standard"):
+        runners[kind] = _runner(kind, [inst for inst in made if made[inst][0] == kind])
+        if runners[kind] is None:
+            made = {inst: m for inst, m in made.items() if m[0] != kind}
     kinds = {inst: m[0] for inst, m in made.items()}
     order = grouped_order(schedule, edges, kinds)
     standard = [(inst, made[inst][1], made[inst][2]) for inst in order
@@ -228,7 +233,6 @@ def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared
     program = Table(standard + [(inst, copies_fragment(copies[inst]), _no_parameters)
                                 for inst in users], ops.PARAM, ops.WIDTH)
     code, params, pool, flags = program.code, program.params, program.pool, program.flags
-    execute(block, code, 0, 0, params, pool, flags)          # loads it from the cache
 
     def standard_call(first, last):
         return execute(block, code, first, last, params, pool, flags)
@@ -242,8 +246,7 @@ def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared
             frag.rows = [program.ranges[inst] + row for row in frag.rows]
             frags.append((inst, frag, load))
         table = Table(frags, 2, len(frags[0][1].rows[0]))
-        run = user.runner(*kind, user.compiled_tick(kind[0]))
-        tables[kind] = table, _user_call(run, block, table, program)
+        tables[kind] = table, _user_call(runners[kind], block, table, program)
     sequence, owner, compiled = [], {}, {}
     stretch: list = []
 
@@ -270,6 +273,23 @@ def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared
             owner[call] = inst
     close_stretch()
     return sequence, owner, compiled
+
+
+def _runner(kind, members: list):
+    """A user class's runner, compiled (or loaded from the cache) now; None, with a
+    warning from the first member, when numba cannot compile its tick."""
+    cls, args = kind
+    try:
+        run = user.runner(cls, args, user.compiled_tick(cls))
+        f32, i64 = np.zeros(1, np.float32), np.zeros(1, np.int64)
+        run(f32, np.zeros((0, 3 + 2 * sum(k == "array" for k, _ in args)), np.int64), 0, 0,
+            f32, np.zeros((0, ops.WIDTH), np.int64), f32, i64, i64)
+    except Exception as e:
+        first = " ".join(str(e).split())[:300]
+        members[0].module.warning(f"the compiled_tick of {cls.__name__} cannot be compiled, "
+                                  f"so its Python tick runs: {type(e).__name__}: {first}")
+        return None
+    return run
 
 
 def _user_call(run, block, table, program):

@@ -106,7 +106,7 @@ def _source(cls, args: tuple, function) -> str:
         from numba import njit
         from ikaros.kernel.compiled.kernel import execute
 
-        tick = njit(cache=True, nogil=True)(
+        tick = njit(cache=True, nogil=True, boundscheck=True)(
             sys.modules[{cls.__module__!r}].{cls.__qualname__}.compiled_tick)
 
 

@@ -110,3 +110,43 @@ def test_a_user_modules_compiled_tick_runs_as_its_python_tick(tmp_path, monkeypa
     for rate in [0.25] * 3 + [0.75] * 6:
         expected += np.float32(rate) * (np.float32([1, 2, 3]) - expected)
     assert np.array_equal(fast.output("L1.OUTPUT"), expected)
+
+
+BROKEN = '''
+import os
+
+from ikaros.module import Input, Module, Output, compiled
+
+
+class Broken(Module):
+    """Copies its input; its compiled tick calls what numba cannot compile."""
+
+    INPUT = Input("the signal")
+    OUTPUT = Output("a copy", size_set="INPUT")
+
+    def tick(self):
+        self.OUTPUT[...] = self.INPUT
+
+    @compiled
+    def compiled_tick(INPUT, OUTPUT):
+        OUTPUT[0] = len(os.getcwd())
+'''
+
+
+def test_a_compiled_tick_numba_cannot_compile_gives_a_warning_and_runs_in_python(
+        tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    (tmp_path / "Broken.py").write_text(BROKEN)
+    (tmp_path / "m.ikg").write_text('''<group>
+        <module class="Constant" name="C" data="3 4"/>
+        <module class="Broken" name="B"/>
+        <connection source="C.OUTPUT" target="B.INPUT" delay="0"/>
+    </group>''')
+    net = ikaros.load(str(tmp_path / "m.ikg"), compiled="yes")
+    warnings = [entry for entry in net.log if entry[2] == "B"]
+    assert len(warnings) == 1
+    assert "the compiled_tick of Broken cannot be compiled, so its Python tick runs: " \
+           "TypingError" in warnings[0][3]
+    assert net.compiled_modules == 1                   # C only
+    net.step()
+    assert net.output("B.OUTPUT").tolist() == [3, 4]
