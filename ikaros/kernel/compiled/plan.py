@@ -99,6 +99,7 @@ class Table:
     the module's place: ``param_column`` of every row, and the pool positions of gathers)."""
 
     def __init__(self, fragments: list, param_column: int, width: int):
+        self.param_column = param_column
         rows, pool = [], []
         self.owner_of_row: list = []
         self.ranges: dict = {}                     # inst -> (first row, last row + 1)
@@ -172,7 +173,13 @@ class CompiledRun:
             self._pieces()
 
     def _run(self, first: int, last: int) -> None:
-        if self.call(first, last):
+        try:
+            flagged = self.call(first, last)
+        except Exception:
+            user_runner = self.table.param_column != ops.PARAM   # it notes its row
+            self.failed = self.table.owner_of_row[self.table.flags[0]] if user_runner else None
+            raise
+        if flagged:
             self._flagged(first, last)
 
     def _flagged(self, first: int, last: int) -> None:
@@ -283,7 +290,7 @@ def _runner(kind, members: list):
         run = user.runner(cls, args, user.compiled_tick(cls))
         f32, i64 = np.zeros(1, np.float32), np.zeros(1, np.int64)
         run(f32, np.zeros((0, 3 + 2 * sum(k == "array" for k, _ in args)), np.int64), 0, 0,
-            f32, np.zeros((0, ops.WIDTH), np.int64), f32, i64, i64)
+            f32, np.zeros((0, ops.WIDTH), np.int64), f32, i64, i64, i64)
     except Exception as e:
         first = " ".join(str(e).split())[:300]
         members[0].module.warning(f"the compiled_tick of {cls.__name__} cannot be compiled, "
@@ -293,11 +300,11 @@ def _runner(kind, members: list):
 
 
 def _user_call(run, block, table, program):
-    rows, params = table.code, table.params
+    rows, params, where = table.code, table.params, table.flags
     code, cparams, pool, flags = program.code, program.params, program.pool, program.flags
 
     def call(first, last):
-        return run(block, rows, first, last, params, code, cparams, pool, flags)
+        return run(block, rows, first, last, params, code, cparams, pool, flags, where)
     return call
 
 

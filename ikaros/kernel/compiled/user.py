@@ -3,7 +3,8 @@
 For each class the kernel writes a small runner module into a cache folder: one numba
 function, cached on disk, that runs the class's compiled tick for a table of instances
 (each row: the instance's zero-delay copies as a range of the network's instructions, its
-first parameter slot, then offset and size of each array argument). The runner's file name
+first parameter slot, then offset and size of each array argument). It notes the row it
+is at, so that an error (an index out of range) names its module. The runner's file name
 carries a hash of the class's compiled tick, so editing the tick compiles a new runner; the
 first build after that waits for numba (about a second), later ones load from the cache.
 """
@@ -111,8 +112,9 @@ def _source(cls, args: tuple, function) -> str:
 
 
         @njit(cache=True, nogil=True)
-        def run(block, rows, first, last, params, code, cparams, pool, flags):
+        def run(block, rows, first, last, params, code, cparams, pool, flags, where):
             for k in range(first, last):
+                where[0] = k
                 r = rows[k]
                 if r[0] < r[1]:
                     execute(block, code, r[0], r[1], cparams, pool, flags)

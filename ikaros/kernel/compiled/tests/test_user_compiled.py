@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import ikaros
+from ikaros.errors import RunError
 from ikaros.kernel.compiled.plan import CompiledRun
 
 pytest.importorskip("numba", reason="the compiled tick needs numba (pip install ikaros[fast])")
@@ -132,6 +133,28 @@ class Broken(Module):
         OUTPUT[0] = len(os.getcwd())
 '''
 
+CAREFUL = '''
+from ikaros.module import Input, Module, Output, Parameter, compiled
+
+
+class Careful(Module):
+    """Copies its input; its compiled tick writes past its output above ``limit``."""
+
+    limit = Parameter(10.0, "the largest first input element that is copied")
+    INPUT = Input("the signal")
+    OUTPUT = Output("a copy", size_set="INPUT")
+
+    def tick(self):
+        if self.INPUT[0] > self.limit:
+            raise IndexError("index is out of bounds")
+        self.OUTPUT[...] = self.INPUT
+
+    @compiled
+    def compiled_tick(INPUT, OUTPUT, limit):
+        for i in range(OUTPUT.size + (INPUT[0] > limit)):
+            OUTPUT[i] = INPUT[i]
+'''
+
 
 def test_a_compiled_tick_numba_cannot_compile_gives_a_warning_and_runs_in_python(
         tmp_path, monkeypatch):
@@ -150,3 +173,26 @@ def test_a_compiled_tick_numba_cannot_compile_gives_a_warning_and_runs_in_python
     assert net.compiled_modules == 1                   # C only
     net.step()
     assert net.output("B.OUTPUT").tolist() == [3, 4]
+
+
+def test_an_index_out_of_range_in_a_compiled_tick_stops_the_run_naming_the_module(
+        tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    (tmp_path / "Careful.py").write_text(CAREFUL)
+    (tmp_path / "m.ikg").write_text('''<group>
+        <module class="Constant" name="C" data="3 4"/>
+        <module class="Careful" name="A"/>
+        <module class="Careful" name="B" limit="5"/>
+        <module class="Careful" name="D"/>
+        <connection source="C.OUTPUT" target="A.INPUT" delay="0"/>
+        <connection source="A.OUTPUT" target="B.INPUT" delay="0"/>
+        <connection source="B.OUTPUT" target="D.INPUT" delay="0"/>
+    </group>''')
+    net = ikaros.load(str(tmp_path / "m.ikg"), compiled="yes")
+    assert net.compiled_modules == 4
+    net.step()
+    assert net.output("D.OUTPUT").tolist() == [3, 4]
+    net.set_parameter("B.limit", 2)
+    with pytest.raises(RunError, match="IndexError: index is out of bounds"):
+        net.step()
+    assert net.log[-1][2] == "B"
