@@ -2,8 +2,9 @@
 
 A module class opts in with ``compiled_op = "NAME"`` (the class's own ``tick`` must compute
 what the operation computes; a subclass that overrides ``tick`` runs in Python). An emitter
-writes the module's instructions into a ``Fragment`` and returns a loader: a function that
-writes the module's current parameter values into its parameter slots and says whether the
+writes the module's instructions into a ``Fragment`` and returns a loader: a function of
+the parameter array and the module's first slot in it that writes the module's current
+parameter values into its slots (from ``Fragment.slots``) and says whether the
 module can run compiled with them (False: it runs its Python tick until a later change says
 True again).
 """
@@ -17,6 +18,8 @@ from . import ops
 class Fragment:
     """The instructions of one module, with parameter slots and index-pool entries numbered
     from 0 (the plan moves them to the module's place in the whole program)."""
+
+    __slots__ = ("rows", "param_count", "pool", "pool_size")
 
     def __init__(self):
         self.rows: list[tuple] = []
@@ -88,7 +91,7 @@ def _binary(op):
     return emit
 
 
-def _no_parameters(slots) -> bool:
+def _no_parameters(params, base) -> bool:
     return True
 
 
@@ -101,7 +104,7 @@ def _unary(op, module_ok=None):
         frag.emit(op, out.offset, out.size, x.offset)
         if module_ok is None:
             return _no_parameters
-        return lambda slots: module_ok(module)
+        return lambda params, base: module_ok(module)
     return emit
 
 
@@ -134,8 +137,8 @@ def _scale(frag, module, inputs, outputs):
     p = frag.slots(1)
     frag.emit(ops.SCALE, out.offset, out.size, x.offset, scale, p)
 
-    def load(slots):
-        slots[p] = module.factor
+    def load(params, base):
+        params[base + p] = module.factor
         return True
     return load
 
@@ -148,10 +151,10 @@ def _threshold(frag, module, inputs, outputs):
     p = frag.slots(3)
     frag.emit(ops.THRESHOLD, out.offset, out.size, x.offset, -1, p)
 
-    def load(slots):
-        slots[p] = 1.0 if module.bypass else 0.0
-        slots[p + 1] = 1.0 if module.type == "linear" else 0.0
-        slots[p + 2] = module.threshold
+    def load(params, base):
+        params[base + p] = 1.0 if module.bypass else 0.0
+        params[base + p + 1] = 1.0 if module.type == "linear" else 0.0
+        params[base + p + 2] = module.threshold
         return True
     return load
 
@@ -172,11 +175,11 @@ def _constant(frag, module, inputs, outputs):
     p = frag.slots(out.size)
     frag.emit(ops.CONSTANT, out.offset, out.size, 0, -1, p)
 
-    def load(slots):
+    def load(params, base):
         data = np.asarray(module.data).reshape(-1)
         n = min(out.size, data.size)
-        slots[p:p + n] = data[:n]
-        slots[p + n:p + out.size] = 0
+        params[base + p:base + p + n] = data[:n]
+        params[base + p + n:base + p + out.size] = 0
         return True
     return load
 
@@ -190,14 +193,14 @@ def _integrator(frag, module, inputs, outputs):
     frag.emit(ops.INTEGRATE, out.offset, out.size, x.offset, -1, p)
     limit = type(module)._limit
 
-    def load(slots):
+    def load(params, base):
         try:
             low, high = limit(module.min, "min"), limit(module.max, "max")
         except ValueError:
             return False         # the Python tick reports the bad limit
-        slots[p], slots[p + 1] = module.alpha, module.beta
-        slots[p + 2], slots[p + 3] = (0.0, 0.0) if low is None else (1.0, low)
-        slots[p + 4], slots[p + 5] = (0.0, 0.0) if high is None else (1.0, high)
+        params[base + p], params[base + p + 1] = module.alpha, module.beta
+        params[base + p + 2], params[base + p + 3] = (0.0, 0.0) if low is None else (1.0, low)
+        params[base + p + 4], params[base + p + 5] = (0.0, 0.0) if high is None else (1.0, high)
         return True
     return load
 

@@ -28,14 +28,15 @@ def emitter(cls):
 ARRAY_LIMIT = 4096   # elements; a module with a larger array gains nothing, NumPy runs it
 
 
-def _in_block(inputs: dict, outputs: dict, copies: list, block: np.ndarray) -> bool:
-    """Whether a module's arrays are all in the arena, none of them large."""
+def _in_arena(inputs: dict, outputs: dict) -> bool:
+    """Whether a module's arrays are all in the arena (every buffer with an offset is:
+    network.py puts them there), none of them large."""
     for ports in (inputs, outputs):
         for buf in ports.values():
-            array = buf.array
-            if array is not None and (array.base is not block or array.size > ARRAY_LIMIT):
+            if buf.array is not None and (buf.offset is None or
+                                          buf.array.size > ARRAY_LIMIT):
                 return False
-    return all(run.source.array.base is block for run in copies)
+    return True
 
 
 def copies_fragment(copies: list) -> Fragment:
@@ -45,11 +46,11 @@ def copies_fragment(copies: list) -> Fragment:
     return frag
 
 
-def fragment(inst, inputs: dict, outputs: dict, copies: list, block: np.ndarray):
+def fragment(inst, inputs: dict, outputs: dict, copies: list):
     """How a module runs compiled: (kind, fragment, loader), where kind is "standard" for
     the instructions of a standard operation (its zero-delay copies, then its tick) and
     (class, argument layout) for a user module's compiled tick; or None (Python)."""
-    if inst.asynchronous or inst.period != 1 or not _in_block(inputs, outputs, copies, block):
+    if inst.asynchronous or inst.period != 1 or not _in_arena(inputs, outputs):
         return None
     module = inst.module
     emit = emitter(type(module))
@@ -70,6 +71,8 @@ def grouped_order(schedule: list, edges: dict, kinds: dict) -> list:
     (Python modules have no kind): a kind is taken as long as any of its modules is ready,
     each kind in schedule order; then the ready Python modules, then the kind of the first
     ready module."""
+    if len(kinds) == len(schedule) and len(set(kinds.values())) == 1:
+        return list(schedule)                      # one kind: the schedule as it is
     position = {inst: i for i, inst in enumerate(schedule)}
     successors = collections.defaultdict(list)
     waiting = dict.fromkeys(schedule, 0)
@@ -103,32 +106,40 @@ class Table:
         rows, pool = [], []
         self.owner_of_row: list = []
         self.ranges: dict = {}                     # inst -> (first row, last row + 1)
-        self.loaders: dict = {}                    # inst -> (first slot, count, loader)
+        self.loaders: dict = {}                    # inst -> (first slot, loader)
         n_params = n_pool = 0
+        rows_of, param_base, pool_base = [], [], []
+        owner_of_row = self.owner_of_row
         for inst, frag, load in fragments:
-            first = len(rows)
-            for row in frag.rows:
-                row = list(row)
-                row[param_column] += n_params
-                if row[0] == ops.GATHER and param_column == ops.PARAM:
-                    row[ops.A] += n_pool
-                    row[ops.B] += n_pool
-                rows.append(row)
-                self.owner_of_row.append(inst)
-            self.ranges[inst] = (first, len(rows))
-            self.loaders[inst] = (n_params, frag.param_count, load)
+            first = len(owner_of_row)
+            count = len(frag.rows)
+            rows_of.extend(frag.rows)
+            owner_of_row.extend([inst] * count)
+            param_base.extend([n_params] * count)
+            pool_base.extend([n_pool] * count)
+            self.ranges[inst] = (first, first + count)
+            self.loaders[inst] = (n_params, load)
             n_params += frag.param_count
-            pool.extend(frag.pool)
-            n_pool += frag.pool_size
-        self.code = np.array(rows, dtype=np.int64).reshape(-1, width)
+            if frag.pool:
+                pool.extend(frag.pool)
+                n_pool += frag.pool_size
+        code = np.array(rows_of, dtype=np.int64).reshape(-1, width)
+        code[:, param_column] += np.array(param_base, dtype=np.int64)
+        if pool:
+            gathers = code[:, 0] == ops.GATHER
+            shift = np.array(pool_base, dtype=np.int64)[gathers]
+            code[gathers, ops.A] += shift
+            code[gathers, ops.B] += shift
+        self.code = code
+        rows = rows_of
         self.params = np.zeros(max(n_params, 1), dtype=np.float32)
         self.pool = np.concatenate(pool) if pool else np.zeros(1, dtype=np.int64)
         self.flags = np.zeros(max(len(rows), 1), dtype=np.int64)
 
     def load(self, inst) -> bool:
         """Write a module's parameters into its slots; whether it can run compiled."""
-        first, count, load = self.loaders[inst]
-        return bool(load(self.params[first:first + count]))
+        first, load = self.loaders[inst]
+        return bool(load(self.params, first))
 
 
 class CompiledRun:
@@ -218,7 +229,7 @@ def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared
     made = {}
     for inst in schedule:
         inputs, outputs = buffers[inst]
-        m = fragment(inst, inputs, outputs, copies[inst], block)
+        m = fragment(inst, inputs, outputs, copies[inst])
         if m is not None:
             made[inst] = m
     if not made or len(made) < minimum:
@@ -308,5 +319,5 @@ def _user_call(run, block, table, program):
     return call
 
 
-def _no_parameters(slots) -> bool:
+def _no_parameters(params, base) -> bool:
     return True

@@ -68,10 +68,10 @@ def user_fragment(module, inputs: dict, outputs: dict, args: tuple):
                 row += [buf.offset, buf.size]
     frag.rows.append(tuple(row))
 
-    def load(slots):
+    def load(params, base):
         try:
             for k, name in enumerate(names):
-                slots[first + k] = float(getattr(module, name))
+                params[base + first + k] = float(getattr(module, name))
         except (TypeError, ValueError):
             return False
         return True
