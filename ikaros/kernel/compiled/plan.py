@@ -40,6 +40,7 @@ def _in_arena(inputs: dict, outputs: dict) -> bool:
 
 
 def copies_fragment(copies: list) -> Fragment:
+    """The instructions of a module's zero-delay copies (runs into its inputs)."""
     frag = Fragment()
     for run in copies:
         emit_copy(frag, run)
