@@ -13,12 +13,12 @@ from ..language.values import ValueError_, format_number, value_text
 from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
                       attribute_name)
+from . import compiled
 from .buffers import Run
+from .compiled.plan import CompiledRun, compiled_plan
 from .control import PLAY, REALTIME, Controller
 from .execution import AsyncModule, Plan, module_tick
 from .fusion import fuse
-from . import compiled
-from .compiled.plan import CompiledRun, compiled_plan
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .timing import Timing
 from .scope import VariableError, from_python
@@ -172,12 +172,14 @@ class Network:
         minimum = self._compiled_minimum()
 
         def fuser(calls):
-            return (minimum is not None and
-                    compiled_plan(self.schedule, self.zero_delay_edges, self._buffers,
-                                  self.runs, self._shared, block, calls, minimum,
-                                  compiled.executor)) or \
-                fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
-                     pre_tick)
+            if minimum is not None:          # the compiled tick, when it is on and pays
+                result = compiled_plan(self.schedule, self.zero_delay_edges, self._buffers,
+                                       self.runs, self._shared, block, calls, minimum,
+                                       compiled.executor)
+                if result is not None:
+                    return result
+            return fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
+                        pre_tick)
         self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
                          self.threads or 1, self._module_cost, fuser)
 
