@@ -472,5 +472,6 @@ class Network:
         lines.append("")
         lines.append(f"Memory: {format_number(self.arena.nbytes + self.ring_arena.nbytes)} "
                      f"bytes of buffers")
+        lines.append(f"Compiled tick: {self.compiled_modules} of {len(self.schedule)} modules")
         return "\n".join(lines)
 

@@ -220,6 +220,8 @@ SMALL = '''<group name="S">
 def test_the_setting_chooses_the_compiled_tick(tmp_path, monkeypatch):
     monkeypatch.delenv("IKAROS_COMPILED", raising=False)
     assert _load(tmp_path, SMALL).compiled_modules == 0            # auto: too few
+    assert _load(tmp_path, SMALL, compiled="yes").info().endswith(
+        "Compiled tick: 2 of 2 modules")
     assert _load(tmp_path, SMALL, compiled="yes").compiled_modules == 2
     assert _load(tmp_path, SMALL, compiled="auto").compiled_modules == 0
     monkeypatch.setenv("IKAROS_COMPILED", "1")
