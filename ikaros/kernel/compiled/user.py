@@ -107,11 +107,11 @@ def _source(cls, args: tuple, function) -> str:
         from numba import njit
         from ikaros.kernel.compiled.kernel import execute
 
-        tick = njit(cache=True, nogil=True, boundscheck=True)(
+        tick = njit(cache=True, boundscheck=True)(
             sys.modules[{cls.__module__!r}].{cls.__qualname__}.compiled_tick)
 
 
-        @njit(cache=True, nogil=True)
+        @njit(cache=True)
         def run(block, rows, first, last, params, code, cparams, pool, flags, where):
             for k in range(first, last):
                 where[0] = k
