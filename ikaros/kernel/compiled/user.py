@@ -18,8 +18,7 @@ import sys
 import tempfile
 import textwrap
 
-import numpy as np
-
+from ...module import attribute_name
 from .emit import Fragment
 
 NUMERIC = ("number", "int", "bool")
@@ -27,12 +26,15 @@ _runners: dict = {}          # (class, layout) -> the runner function
 
 
 def compiled_tick(cls):
-    """The class's ``@compiled`` function, or None."""
+    """The class's ``@compiled`` function, or None (also when a subclass overrides ``tick``
+    of the class that declared it)."""
     for klass in cls.__mro__:
         value = vars(klass).get("compiled_tick")
         if value is not None:
             function = getattr(value, "__func__", value)
-            return function if getattr(function, "_ik_compiled", False) else None
+            if not getattr(function, "_ik_compiled", False) or cls.tick is not klass.tick:
+                return None
+            return function
     return None
 
 
@@ -43,7 +45,7 @@ def layout(module, function) -> tuple | None:
     ports = set(module._ik_inputs) | set(module._ik_outputs)
     out = []
     for name in inspect.signature(function).parameters:
-        port = next((p for p in ports if p.replace("-", "_") == name), None)
+        port = next((p for p in ports if attribute_name(p) == name), None)
         if port is not None:
             out.append(("array", port))
         elif name in params and params[name].type in NUMERIC:
