@@ -251,3 +251,25 @@ def test_without_numba_the_kernel_runs_as_before(tmp_path, monkeypatch):
     assert net.compiled_modules == 0
     net.step()
     assert net.output("S.OUTPUT").tolist() == [2, 4]
+
+
+def test_a_subclass_that_overrides_tick_runs_its_own_tick(tmp_path):
+    (tmp_path / "Doubler.py").write_text('''
+from ikaros.modules.utility.Scale import Scale
+
+
+class Doubler(Scale):
+    """Scales, then doubles."""
+
+    def tick(self):
+        super().tick()
+        self.OUTPUT *= 2
+''')
+    net = _load(tmp_path, '''<group>
+        <module class="Constant" name="C" data="1 2"/>
+        <module class="Doubler" name="D" factor="3"/>
+        <connection source="C.OUTPUT" target="D.INPUT" delay="0"/>
+    </group>''', compiled="yes")
+    assert net.compiled_modules == 1
+    net.step()
+    assert net.output("D.OUTPUT").tolist() == [6, 12]
