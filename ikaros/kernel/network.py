@@ -15,7 +15,7 @@ from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, T
                       attribute_name)
 from . import compiled
 from .buffers import Run
-from .compiled.plan import CompiledRun, compiled_plan
+from .compiled.plan import CompiledRun, compiled_gather, compiled_plan
 from .control import PLAY, REALTIME, Controller
 from .execution import AsyncModule, Plan, module_tick
 from .fusion import fuse
@@ -182,6 +182,8 @@ class Network:
                         pre_tick)
         self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
                          self.threads or 1, self._module_cost, fuser)
+        if bulk_copy is not None and self.compiled_modules:
+            self._delayed[0] = compiled_gather(block, *bulk.indices(), compiled.executor())
 
     def _compiled_minimum(self) -> int | None:
         """The compiled tick's setting: the compilable modules it needs, or None (off)."""

@@ -322,3 +322,16 @@ def _user_call(run, block, table, program):
 
 def _no_parameters(params, base) -> bool:
     return True
+
+
+def compiled_gather(block: np.ndarray, src: np.ndarray, dst: np.ndarray, execute):
+    """A copy of arena elements ``src`` to ``dst`` (the delay-1 copies of small buffers) as
+    one instruction of the compiled function."""
+    code = np.array([[ops.GATHER, 0, len(src), 0, len(src), 0]], dtype=np.int64)
+    pool = np.concatenate([src, dst]).astype(np.int64)
+    params = np.zeros(1, dtype=np.float32)
+    flags = np.zeros(1, dtype=np.int64)
+
+    def copy():
+        execute(block, code, 0, 1, params, pool, flags)
+    return copy
