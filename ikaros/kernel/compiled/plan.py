@@ -104,27 +104,23 @@ class Table:
 
     def __init__(self, fragments: list, param_column: int, width: int):
         self.param_column = param_column
-        rows, pool = [], []
         self.owner_of_row: list = []
         self.ranges: dict = {}                     # inst -> (first row, last row + 1)
         self.loaders: dict = {}                    # inst -> (first slot, loader)
+        rows, param_base, pool_base, pool = [], [], [], []
         n_params = n_pool = 0
-        rows_of, param_base, pool_base = [], [], []
-        owner_of_row = self.owner_of_row
         for inst, frag, load in fragments:
-            first = len(owner_of_row)
-            count = len(frag.rows)
-            rows_of.extend(frag.rows)
-            owner_of_row.extend([inst] * count)
+            first, count = len(rows), len(frag.rows)
+            rows.extend(frag.rows)
+            self.owner_of_row.extend([inst] * count)
             param_base.extend([n_params] * count)
             pool_base.extend([n_pool] * count)
             self.ranges[inst] = (first, first + count)
             self.loaders[inst] = (n_params, load)
             n_params += frag.param_count
-            if frag.pool:
-                pool.extend(frag.pool)
-                n_pool += frag.pool_size
-        code = np.array(rows_of, dtype=np.int64).reshape(-1, width)
+            pool.extend(frag.pool)
+            n_pool += frag.pool_size
+        code = np.array(rows, dtype=np.int64).reshape(-1, width)
         code[:, param_column] += np.array(param_base, dtype=np.int64)
         if pool:
             gathers = code[:, 0] == ops.GATHER
@@ -132,7 +128,6 @@ class Table:
             code[gathers, ops.A] += shift
             code[gathers, ops.B] += shift
         self.code = code
-        rows = rows_of
         self.params = np.zeros(max(n_params, 1), dtype=np.float32)
         self.pool = np.concatenate(pool) if pool else np.zeros(1, dtype=np.int64)
         self.flags = np.zeros(max(len(rows), 1), dtype=np.int64)
