@@ -87,11 +87,12 @@ def _binary(op):
         if a is None or b is None:
             return None
         frag.emit(op, out.offset, out.size, a.offset, b.offset)
-        return _no_parameters
+        return no_parameters
     return emit
 
 
-def _no_parameters(params, base) -> bool:
+def no_parameters(params, base) -> bool:
+    """The loader of a module without parameters."""
     return True
 
 
@@ -103,7 +104,7 @@ def _unary(op, module_ok=None):
             return None
         frag.emit(op, out.offset, out.size, x.offset)
         if module_ok is None:
-            return _no_parameters
+            return no_parameters
         return lambda params, base: module_ok(module)
     return emit
 
@@ -115,12 +116,12 @@ def _subtract(frag, module, inputs, outputs):
         return None
     if "INPUT2" not in module._ik_connected:
         frag.emit(ops.COPY, out.offset, out.size, a.offset)
-        return _no_parameters
+        return no_parameters
     b = _port(inputs, "INPUT2", out.size)
     if b is None:
         return None
     frag.emit(ops.SUBTRACT, out.offset, out.size, a.offset, b.offset)
-    return _no_parameters
+    return no_parameters
 
 
 def _scale(frag, module, inputs, outputs):
@@ -165,7 +166,7 @@ def _sum(frag, module, inputs, outputs):
     if x is None:
         return None
     frag.emit(ops.SUM, out.offset, x.size, x.offset)
-    return _no_parameters
+    return no_parameters
 
 
 def _constant(frag, module, inputs, outputs):

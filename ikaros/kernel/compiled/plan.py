@@ -10,7 +10,7 @@ import numpy as np
 
 from . import ops
 from . import user
-from .emit import EMITTERS, Fragment, emit_copy
+from .emit import EMITTERS, Fragment, emit_copy, no_parameters
 
 
 @functools.lru_cache(maxsize=None)
@@ -244,7 +244,7 @@ def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared
                 if kinds.get(inst) == "standard"]
     users = [inst for inst in order if inst in made and kinds[inst] != "standard"]
     # a user module's copies are standard instructions after all others, run by its row
-    program = Table(standard + [(inst, copies_fragment(copies[inst]), _no_parameters)
+    program = Table(standard + [(inst, copies_fragment(copies[inst]), no_parameters)
                                 for inst in users], ops.PARAM, ops.WIDTH)
     code, params, pool, flags = program.code, program.params, program.pool, program.flags
 
@@ -313,10 +313,6 @@ def _user_call(run, block, table, program):
     def call(first, last):
         return run(block, rows, first, last, params, code, cparams, pool, flags, where)
     return call
-
-
-def _no_parameters(params, base) -> bool:
-    return True
 
 
 def compiled_gather(block: np.ndarray, src: np.ndarray, dst: np.ndarray, execute):
