@@ -1,5 +1,9 @@
 """The compiled tick computes what the modules' Python ticks compute, takes parameter
 changes at the next tick, reports what the Python ticks report, and is chosen as set."""
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -273,3 +277,33 @@ class Doubler(Scale):
     assert net.compiled_modules == 1
     net.step()
     assert net.output("D.OUTPUT").tolist() == [6, 12]
+
+
+CACHE_CHECK = """
+import sys
+import ikaros
+from ikaros.kernel.compiled import kernel
+for path in sys.argv[1:]:
+    ikaros.load(path, compiled="yes").step()
+stats = kernel.execute.stats
+print(len(kernel.execute.signatures), sum(stats.cache_hits.values()),
+      sum(stats.cache_misses.values()))
+"""
+
+
+def test_the_compiled_function_is_compiled_once_and_then_loaded_from_its_cache(tmp_path):
+    """Every model uses the one compiled function (its instructions are data); a new
+    process loads it from numba's cache instead of compiling it."""
+    (tmp_path / "small.ikg").write_text(SMALL)
+    (tmp_path / "ops.ikg").write_text(ALL_OPERATIONS)
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.dirname(os.path.abspath(__file__))))))
+    env = dict(os.environ, PYTHONPATH=root + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    counts = []
+    for _ in range(2):          # the first may compile (when no test did before)
+        out = subprocess.run([sys.executable, "-c", CACHE_CHECK, str(tmp_path / "small.ikg"),
+                              str(tmp_path / "ops.ikg")], capture_output=True, text=True,
+                             env=env, timeout=300, check=True).stdout
+        counts.append(tuple(int(x) for x in out.split()[-3:]))
+    signatures, hits, misses = counts[1]
+    assert (signatures, hits, misses) == (1, 1, 0)
