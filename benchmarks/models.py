@@ -388,12 +388,50 @@ def image_pipelines(folder: str, threads: int, pipelines: int = 4, stages: int =
     return w.save(folder, f"pipelines_t{threads}.ikg")
 
 
+def brain(folder: str, stages: int = 20, width: int = 50, size: int = 10) -> str:
+    """A brain-style model: ``stages`` groups of ``width`` modules (1000 with the defaults),
+    each module an array of ``size`` elements. Stage 0 holds 10 Constant inputs; every other
+    module is, by its place j in the stage, an Add, Multiply, Scale, Tanh, Integrator or
+    Threshold reading module (7j + 3) mod width of the stage before (delay 0, but delay 1
+    into every fifth stage); Add and Multiply also read module j - 1 of their own stage
+    (delay 0; the first reads the last of the stage before). Writes brain_1000.ikg (for the defaults); returns its path."""
+    w = ModelWriter("Brain", comment=f"{stages} stages of {width} modules, {size} elements")
+    kinds = [("Add", {}), ("Multiply", {}), ("Scale", {"factor": 0.5}), ("Tanh", {}),
+             ("Integrator", {"alpha": 0.9, "beta": 0.1}), ("Threshold", {"threshold": 0.1})]
+    previous: list[str] = []
+    for s in range(stages):
+        group = w.group(f"Stage{s}")
+        current = []
+        for j in range(width):
+            if s == 0 and j < 10:
+                data = " ".join(f"{0.01 * ((j * size + k) % 17):g}" for k in range(size))
+                current.append(w.module("Constant", f"{group}.Input{j}", data=data))
+                continue
+            cls, attrs = kinds[j % len(kinds)]
+            m = w.module(cls, f"{group}.{cls}{j}", **attrs)
+            source = current[j % 10] if s == 0 else previous[(7 * j + 3) % width]
+            delay = 1 if s % 5 == 0 and s > 0 else 0
+            if cls in ("Add", "Multiply"):
+                w.connect(source, f"{m}.INPUT1", delay)
+                if j > 0:
+                    w.connect(current[j - 1], f"{m}.INPUT2", 0)
+                else:
+                    w.connect(previous[-1], f"{m}.INPUT2", delay)
+            else:
+                w.connect(source, f"{m}.INPUT", delay)
+            current.append(m)
+        previous = current
+    assert sum(w.class_count.values()) == stages * width
+    _check_no_zero_delay_cycle(w)
+    return w.save(folder, f"brain_{stages * width}.ikg")
+
+
 CHAIN_SIZES = (10, 100, 1000, 10000)
 
 
 def write_all(folder: str) -> dict[str, str]:
     """Write every benchmark model into ``folder``: {benchmark name: path}."""
-    paths = {"robot_320": robot_320(folder)}
+    paths = {"robot_320": robot_320(folder), "brain_1000": brain(folder)}
     for n in CHAIN_SIZES:
         for d in (0, 1):
             paths[f"chain_{n}_d{d}"] = chain(folder, n, d)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import fnmatch
+import functools
 import gc
 import json
 import os
@@ -36,12 +37,17 @@ CHILD_ENV = dict(os.environ)
 CHILD_ENV["PYTHONPATH"] = ROOT + (os.pathsep + os.environ["PYTHONPATH"]
                                   if os.environ.get("PYTHONPATH") else "")
 
+# The child's own peak RSS (VmHWM): wait4's ru_maxrss of a child started from a large parent
+# (as this one is once numba and big models are loaded) starts at the parent's size.
+PEAK_CODE = ("print(next(int(l.split()[1]) for l in open('/proc/self/status') "
+             "if l.startswith('VmHWM:')) / 1024)")
+
 # The brief's start-up command, plus (after tick 0) a timestamp on the system-wide
 # monotonic clock and an optional number of further ticks so that the process's peak RSS
 # covers a run, not just the build.
 STARTUP_CODE = ("import ikaros,sys; net=ikaros.load(sys.argv[1]); net.step(); "
                 "import time; print(time.monotonic(), flush=True); "
-                "n=int(sys.argv[2]); n and net.run(ticks=n)")
+                "n=int(sys.argv[2]); n and net.run(ticks=n); " + PEAK_CODE)
 
 TRACED_CODE = ("import ikaros,sys,tracemalloc,json; tracemalloc.start(); "
                "net=ikaros.load(sys.argv[1]); net.run(ticks=int(sys.argv[2])); "
@@ -109,6 +115,65 @@ def two_thread_speedup(n: int = 1000, repeats: int = 50) -> float:
 
 # --- one benchmark -------------------------------------------------------------------------
 
+def tick_time(step, run, quick: bool) -> tuple[float, float, int]:
+    """Warm up (at least 10 ticks and 0.3 s), then 3 batches of ``run(ticks=n)`` sized so the
+    three take about 1.5 s (0.4 s with ``quick``): (median us per tick, the warm-up's
+    estimate in seconds per tick, ticks timed)."""
+    target = 0.4 if quick else 1.5
+    gc.collect()
+    stamps = [time.perf_counter()]
+    while len(stamps) < 11 or stamps[-1] - stamps[0] < (0.1 if quick else 0.3):
+        step()
+        stamps.append(time.perf_counter())
+    half = len(stamps) // 2          # estimate from the second half (first ticks fault in)
+    per_tick = (stamps[-1] - stamps[half]) / (len(stamps) - 1 - half)
+    batch = max(3, int(target / 3 / per_tick))
+    times = []
+    for _ in range(3):
+        t = time.perf_counter()
+        run(ticks=batch)
+        times.append((time.perf_counter() - t) / batch)
+    return statistics.median(times) * 1e6, per_tick, 3 * batch
+
+
+def numpy_loop(net):
+    """The yardstick: a hand-written Python loop doing each module's work as plain NumPy
+    calls on arrays of its sizes (Add: np.add, Scale: np.multiply by the factor, Integrator:
+    two calls, Constant: a copy, ...; modules of other classes: a copy), without a kernel.
+    Returns one tick as a function."""
+    import numpy as np
+    calls = []
+    for inst in net.schedule:
+        module = inst.module
+        out = np.full(net.buffer_array(f"{inst.path}.{next(iter(module._ik_outputs))}").size,
+                      0.5, np.float32)
+        a, b = np.full_like(out, 0.25), np.full_like(out, 0.75)
+        name = inst.entry.name
+        if name in ("Add", "Subtract", "Multiply", "Max", "Min"):
+            ufunc = {"Add": np.add, "Subtract": np.subtract, "Multiply": np.multiply,
+                     "Max": np.maximum, "Min": np.minimum}[name]
+            calls.append(functools.partial(ufunc, a, b, out=out))
+        elif name == "Scale":
+            calls.append(functools.partial(np.multiply, a, module.factor, out=out))
+        elif name == "Tanh":
+            calls.append(functools.partial(np.tanh, a, out=out))
+        elif name == "Threshold":
+            calls.append(functools.partial(np.greater, a, np.float32(module.threshold), out=out))
+        elif name == "Integrator":
+            calls.append(functools.partial(np.multiply, out, module.alpha, out=out))
+            calls.append(functools.partial(np.add, out, b, out=out))
+        elif name == "Sum":
+            calls.append(functools.partial(np.sum, a))
+        else:
+            calls.append(functools.partial(np.copyto, out, a))
+
+    def tick():
+        for call in calls:
+            call()
+    return tick
+
+
+
 def measure(name: str, path: str, quick: bool) -> dict:
     import ikaros
 
@@ -132,38 +197,35 @@ def measure(name: str, path: str, quick: bool) -> dict:
     res["modules"] = len(net.schedule)
     res["connections"] = len(net.runs)
 
-    # Tick timing: warm up, then 3 batches sized so all three take about `target` seconds.
-    target = 0.4 if quick else 1.5
-    gc.collect()
-    stamps = [time.perf_counter()]
-    while len(stamps) < 11 or stamps[-1] - stamps[0] < (0.1 if quick else 0.3):
-        net.step()
-        stamps.append(time.perf_counter())
-    half = len(stamps) // 2          # estimate from the second half (first ticks fault in)
-    per_tick = (stamps[-1] - stamps[half]) / (len(stamps) - 1 - half)
-    batch = max(3, int(target / 3 / per_tick))
-    times = []
-    for _ in range(3):
-        t = time.perf_counter()
-        net.run(ticks=batch)
-        times.append((time.perf_counter() - t) / batch)
-    res["ticks_timed"] = 3 * batch
-    res["us_tick"] = statistics.median(times) * 1e6
+    res["compiled_modules"] = net.compiled_modules
+    us, per_tick, res["ticks_timed"] = tick_time(net.step, net.run, quick)
+    res["us_tick"] = us
     res["us_module_tick"] = res["us_tick"] / res["modules"]
     net.close()
     del net
+    # the same with the compiled tick on and off (whatever the model's default is)
+    for setting in ("yes", "no"):
+        gc.collect()
+        other = ikaros.load(path, compiled=setting)
+        res[f"us_tick_{setting}"] = tick_time(other.step, other.run, quick)[0]
+        if setting == "no":
+            step = numpy_loop(other)
+            res["us_numpy_loop"] = tick_time(step, lambda ticks: [step() for _ in
+                                                                  range(ticks)], quick)[0]
+        other.close()
+        del other
     gc.collect()
 
     # Start-up: a fresh process from spawn to the end of tick 0. The same child then runs
-    # a few more ticks, so its ru_maxrss is the peak RSS of build + run.
+    # a few more ticks, so its VmHWM is the peak RSS of build + run.
     extra = max(1, min(100, int(0.3 / per_tick)))
     reps = 1 if (quick or res["build_ms"] > 500) else 3
     starts, rss = [], []
     for _ in range(reps):
         t0 = time.monotonic()
-        _, maxrss, out = run_child([sys.executable, "-c", STARTUP_CODE, path, str(extra)])
+        _, _, out = run_child([sys.executable, "-c", STARTUP_CODE, path, str(extra)])
         starts.append(float(out.split()[0]) - t0)
-        rss.append(maxrss)
+        rss.append(float(out.split()[1]))
     res["startup_ms"] = statistics.median(starts) * 1e3
     res["rss_mb"] = max(rss)
     res["rss_ticks"] = extra + 1
@@ -330,12 +392,18 @@ def main(argv=None) -> int:
 
     print(f"ikaros for Python benchmarks{' (--quick)' if args.quick else ''}")
     print(machine())
-    _, base_rss, _ = run_child([sys.executable, "-c", "import ikaros"])
+    _, _, out = run_child([sys.executable, "-c", "import ikaros; " + PEAK_CODE])
+    base_rss = float(out.split()[0])
     print(f"Baseline: a process that only imports ikaros peaks at {base_rss:.1f} MB RSS.")
     print(flush=True)
 
     import ikaros
     ikaros.load(paths["chain_10_d1"]).close()     # imports and class discovery, not timed
+    compiled = ikaros.load(paths["chain_100_d0"], compiled="yes")   # numba's start-up too
+    if not compiled.compiled_modules:
+        print("The compiled tick is not available (numba is not installed: pip install "
+              "'ikaros[fast]'): its columns show the NumPy kernel.")
+    compiled.close()
 
     results = []
     for name in names:
@@ -347,17 +415,23 @@ def main(argv=None) -> int:
 
     robot_us = next((r["us_tick"] for r in results if r["name"] == "robot_320"), None)
     if results:
-        header = ["benchmark", "modules", "conns", "build ms", "start-up ms", "us/tick",
-                  "us/module-tick", "ticks timed", "peak RSS MB", "traced MB"]
-        rows = [[r["name"], r["modules"], r["connections"], f"{r['build_ms']:.1f}",
-                 f"{r['startup_ms']:.0f}", f"{r['us_tick']:.1f}",
-                 f"{r['us_module_tick']:.3f}", r["ticks_timed"], f"{r['rss_mb']:.1f}",
-                 f"{r['traced_mb']:.1f}"] for r in results]
+        header = ["benchmark", "modules", "conns", "compiled", "build ms", "start-up ms",
+                  "us/tick", "us/module-tick", "compiled us/tick", "NumPy us/tick",
+                  "NumPy loop us/tick", "ticks timed", "peak RSS MB", "traced MB"]
+        rows = [[r["name"], r["modules"], r["connections"], r["compiled_modules"],
+                 f"{r['build_ms']:.1f}", f"{r['startup_ms']:.0f}", f"{r['us_tick']:.1f}",
+                 f"{r['us_module_tick']:.3f}", f"{r['us_tick_yes']:.1f}",
+                 f"{r['us_tick_no']:.1f}", f"{r['us_numpy_loop']:.1f}", r["ticks_timed"],
+                 f"{r['rss_mb']:.1f}", f"{r['traced_mb']:.1f}"] for r in results]
         print(fmt_table(rows, header))
         print("build ms: ikaros.load() in this process, median of up to 5 builds. start-up "
               "ms: new process from spawn to the end of tick 0.\nus/tick: median of 3 timed "
-              "batches after warm-up; us/module-tick = us/tick / modules.\npeak RSS MB: "
-              "ru_maxrss of the start-up process (build + tick 0 + up to 100 more ticks), "
+              "batches after warm-up, as the model loads by default (compiled: the modules "
+              "in the compiled tick); us/module-tick = us/tick / modules.\ncompiled / NumPy "
+              "us/tick: the same with compiled=\"yes\" / \"no\". NumPy loop: the "
+              "yardstick, a hand-written Python loop of each module's NumPy calls on arrays "
+              "of its sizes, no kernel.\npeak RSS MB: "
+              "VmHWM of the start-up process (build + tick 0 + up to 100 more ticks), "
               f"including the {base_rss:.0f} MB import baseline.\ntraced MB: tracemalloc peak "
               "of build + the same ticks, in a separate process, counting only allocations "
               "made after import.")

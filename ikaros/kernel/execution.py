@@ -149,7 +149,8 @@ class Plan:
         except BaseException as e:
             if is_interrupt(e):
                 raise
-            return self.owner.get(step), e
+            # a compiled stretch names the member whose Python call failed
+            return getattr(step, "failed", None) or self.owner.get(step), e
         return None
 
     def _run_modules(self, modules: list) -> tuple | None:

@@ -134,12 +134,15 @@ class BulkCopy:
         self._dst.extend(_shifted(dst_index, dst_offset))
         self._src.extend(_shifted(src_index, src_offset))
 
+    def indices(self) -> tuple[np.ndarray, np.ndarray]:
+        """The flat arena indices copied from and to, element by element."""
+        return np.array(self._src, dtype=np.intp), np.array(self._dst, dtype=np.intp)
+
     def compile(self):
         """The copy as a no-argument function, or None when nothing was added."""
         if not self._src:
             return None
-        src = np.array(self._src, dtype=np.intp)
-        dst = np.array(self._dst, dtype=np.intp)
+        src, dst = self.indices()
         scratch = np.zeros(len(src), dtype=np.float32)
         block = self.block
 

@@ -14,7 +14,9 @@ from ..language.values import ValueError_, format_number, value_text
 from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
                       WARNING, attribute_name, parameter_attribute)
+from . import compiled
 from .buffers import Run
+from .compiled.plan import CompiledRun, compiled_gather, compiled_plan
 from .control import PLAY, REALTIME, Controller
 from .execution import AsyncModule, Plan, module_tick
 from .fusion import fuse
@@ -186,12 +188,33 @@ class Network:
         tick_of = {inst: module_tick(inst, self.clock) if inst not in self.async_modules
                    else self.async_modules[inst] for inst in self.schedule}
         block = self.arena.block
+        minimum = self._compiled_minimum()
 
         def fuser(calls):
+            if minimum is not None:          # the compiled tick, when it is on and pays
+                result = compiled_plan(self.schedule, self.zero_delay_edges, self._buffers,
+                                       self.runs, self._shared, block, calls, minimum,
+                                       compiled.executor)
+                if result is not None:
+                    return result
             return fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
                         pre_tick)
         self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
                          self.threads or 1, self._module_cost, fuser)
+        if bulk_copy is not None and self.compiled_modules:
+            self._delayed[0] = compiled_gather(block, *bulk.indices(), compiled.executor())
+
+    def _compiled_minimum(self) -> int | None:
+        """The compiled tick's setting: the compilable modules it needs, or None (off)."""
+        try:
+            return compiled.minimum_modules(self.top.attrs.get("compiled"))
+        except compiled.SettingError as e:
+            raise self.model.error(str(e)) from None
+
+    @property
+    def compiled_modules(self) -> int:
+        """How many modules run in the compiled tick (0 when it is off)."""
+        return sum(1 for op in self.plan.fused.values() if isinstance(op, CompiledRun))
 
     def _module_cost(self, inst: ModuleInstance) -> int:
         """A module's weight when thread lanes are balanced: its output elements."""
@@ -491,6 +514,7 @@ class Network:
         if not isinstance(comp, ModuleInstance):
             raise KeyError(f'no module "{path}" in {self.top.name}')
         self._apply(comp, lambda: comp.module.command(name, x, y, value))
+        self._apply(comp, lambda: self.plan.refresh(comp))   # a command may set parameters
 
     def _apply(self, inst: ModuleInstance, change) -> None:
         """Change a module now, or after its running asynchronous job."""
@@ -527,5 +551,6 @@ class Network:
         lines.append("")
         lines.append(f"Memory: {format_number(self.arena.nbytes + self.ring_arena.nbytes)} "
                      f"bytes of buffers")
+        lines.append(f"Compiled tick: {self.compiled_modules} of {len(self.schedule)} modules")
         return "\n".join(lines)
 

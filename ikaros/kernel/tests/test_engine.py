@@ -240,7 +240,7 @@ FUSABLE = '''<group name="F">
 
 
 def test_fused_element_wise_modules_compute_what_their_ticks_compute(tmp_path):
-    fused = _model(tmp_path, FUSABLE)
+    fused = _model(tmp_path, FUSABLE, compiled="no")   # fusion, not the compiled tick
     assert {i.path for i in fused.plan.fused} == {"S1", "S2", "G1", "G2"}
     plain = ikaros.load(str(tmp_path / "m.ikg"))
     plain.profiling = True                       # measuring per module: no fusion

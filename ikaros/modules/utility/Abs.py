@@ -11,5 +11,7 @@ class Abs(Module):
     INPUT = Input("the signal")
     OUTPUT = Output("the absolute value of each element of INPUT", size_set="INPUT")
 
+    compiled_op = "abs"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
+
     def tick(self):
         np.abs(self.INPUT, out=self.OUTPUT)

@@ -16,6 +16,7 @@ class Add(ElementWise):
 
     # many instances run as one NumPy operation (see ikaros/kernel/fusion.py)
     elementwise = ("add", "INPUT1", "INPUT2")
+    compiled_op = "add"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
 
     def tick(self):
         np.add(self._a, self._b, out=self.OUTPUT)

@@ -18,6 +18,8 @@ class Constant(Module):
     OUTPUT = Output("the constant", size_param_x="outputsize_x", size_param_y="outputsize_y",
                     size_param="outputsize", shape="data.shape")
 
+    compiled_op = "constant"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
+
     def init(self):
         self.tick()
 

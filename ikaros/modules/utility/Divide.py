@@ -16,6 +16,8 @@ class Divide(ElementWise):
     OUTPUT = Output("the element-wise quotient; 0 where the divisor is 0",
                     size_set="INPUT1,INPUT2")
 
+    compiled_op = "divide"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
+
     def init(self):
         super().init()
         self._zero = np.zeros(self.OUTPUT.shape, bool)

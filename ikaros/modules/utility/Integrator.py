@@ -18,6 +18,8 @@ class Integrator(Module):
     INPUT = Input("the signal to integrate")
     OUTPUT = Output("the integrated signal", size_set="INPUT")
 
+    compiled_op = "integrator"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
+
     @staticmethod
     def _limit(value, name):
         if value is None or (isinstance(value, str) and not value.strip()):

@@ -15,5 +15,7 @@ class Max(ElementWise):
     OUTPUT = Output("the larger of the two inputs, element by element",
                     size_set="INPUT1,INPUT2")
 
+    compiled_op = "maximum"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
+
     def tick(self):
         np.maximum(self._a, self._b, out=self.OUTPUT)

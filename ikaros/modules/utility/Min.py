@@ -15,5 +15,7 @@ class Min(ElementWise):
     OUTPUT = Output("the smaller of the two inputs, element by element",
                     size_set="INPUT1,INPUT2")
 
+    compiled_op = "minimum"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
+
     def tick(self):
         np.minimum(self._a, self._b, out=self.OUTPUT)

@@ -16,6 +16,7 @@ class Multiply(ElementWise):
 
     # many instances run as one NumPy operation (see ikaros/kernel/fusion.py)
     elementwise = ("multiply", "INPUT1", "INPUT2")
+    compiled_op = "multiply"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
 
     def tick(self):
         np.multiply(self._a, self._b, out=self.OUTPUT)

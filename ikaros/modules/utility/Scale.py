@@ -15,6 +15,7 @@ class Scale(Module):
 
     # many instances run as one NumPy operation (see ikaros/kernel/fusion.py)
     elementwise = [("multiply", "INPUT", "@factor"), ("multiply", "INPUT", "@factor", "SCALE[0]")]
+    compiled_op = "scale"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
 
     def init(self):
         self._scale = None if self.SCALE is None else self.SCALE.reshape(-1)[:1]

@@ -16,6 +16,7 @@ class Subtract(ElementWise):
 
     # many instances run as one NumPy operation (see ikaros/kernel/fusion.py)
     elementwise = ("subtract", "INPUT1", "INPUT2")
+    compiled_op = "subtract"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
 
     def tick(self):
         if self._b is None:

@@ -10,5 +10,7 @@ class Sum(Module):
     INPUT = Input("the values to add up")
     OUTPUT = Output("the sum of all input elements", size="1")
 
+    compiled_op = "sum"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
+
     def tick(self):
         self.OUTPUT[0] = np.sum(self.INPUT, dtype=np.float64)

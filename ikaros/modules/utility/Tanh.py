@@ -12,6 +12,8 @@ class Tanh(Module):
     INPUT = Input("the values")
     OUTPUT = Output("tanh of each input element", size_set="INPUT")
 
+    compiled_op = "tanh"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
+
     def tick(self):
         np.tanh(self.INPUT, out=self.OUTPUT)
         if self.debug:

@@ -17,6 +17,8 @@ class Threshold(Module):
     INPUT = Input("the values")
     OUTPUT = Output("the thresholded values", size_set="INPUT")
 
+    compiled_op = "threshold"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
+
     def init(self):
         self._x = self.INPUT.reshape(self.OUTPUT.shape)
 
