@@ -4,7 +4,9 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import signal
 import sys
+import threading
 import traceback
 
 from . import classes, load
@@ -141,6 +143,15 @@ def _serve(net, opts) -> int:
     return EXIT_OK
 
 
+def _terminate_like_ctrl_c() -> None:
+    """SIGTERM (kill, a closing session) ends a run the way Ctrl-C does, so every module's
+    stop() runs and devices reach their safe state before the process exits."""
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, interrupt)
+
+
 def main(argv: list[str] | None = None) -> int:
     p = parser()
     opts = p.parse_intermixed_args(argv)
@@ -190,6 +201,7 @@ def main(argv: list[str] | None = None) -> int:
             except webui.MissingWebDependencies as e:
                 print(f"ikaros: error: {e} (or run in batch mode with -b)", file=sys.stderr)
                 return EXIT_ERROR
+        _terminate_like_ctrl_c()
         net = load(model, **overrides)
         net.log_level = WARNING if opts.quiet else DEBUG if opts.verbose else PRINT
         if opts.info:

@@ -180,21 +180,28 @@ class Network:
 
     def _init_modules(self) -> None:
         self.clock.tick = -1
-        for inst in self.schedule:
-            for copy in self._pre_tick[inst]:
-                copy()
-            job = self.async_modules.get(inst)
-            if job is not None:
-                job.take_inputs()
-            try:
-                inst.module.init()
+        started = []
+        try:
+            for inst in self.schedule:
+                for copy in self._pre_tick[inst]:
+                    copy()
+                job = self.async_modules.get(inst)
                 if job is not None:
-                    job.publish_init()
-            except Exception as e:
-                raise inst.node.error(f"init failed: {type(e).__name__}: {e}") from None
-            if self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
-                raise inst.node.error(f"While initializing module {inst.path}: "
-                                      f"{self.stop_reason[1]}")
+                    job.take_inputs()
+                started.append(inst)
+                try:
+                    inst.module.init()
+                    if job is not None:
+                        job.publish_init()
+                except Exception as e:
+                    raise inst.node.error(f"init failed: {type(e).__name__}: {e}") from None
+                if self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
+                    raise inst.node.error(f"While initializing module {inst.path}: "
+                                          f"{self.stop_reason[1]}")
+        except BaseException:
+            # Devices opened by the modules initialised so far go to their safe state.
+            self._stop_modules(started)
+            raise
 
     def _check_checksum(self) -> None:
         text = self.top.attrs.get("checksum")
@@ -261,14 +268,24 @@ class Network:
             for job in self.async_modules.values():
                 job.finish()
             self.plan.close()
-            for inst in self.schedule:
-                try:
-                    inst.module.stop()
-                except Exception as e:
-                    self.notify(EXCEPTION, inst.path, f"stop failed: {type(e).__name__}: {e}")
+            self._stop_modules(self.schedule)
         level, message = self.stop_reason or (TERMINATE, "closed")
         if level == FATAL_ERROR:
             raise RunError(message)
+
+    def _stop_modules(self, instances) -> None:
+        """Call each module's stop(); a failure or a Ctrl-C in one does not skip the others
+        (drivers put their hardware in a safe state there). A Ctrl-C is raised again after."""
+        interrupted = None
+        for inst in instances:
+            try:
+                inst.module.stop()
+            except KeyboardInterrupt as e:
+                interrupted = e
+            except Exception as e:
+                self.notify(EXCEPTION, inst.path, f"stop failed: {type(e).__name__}: {e}")
+        if interrupted is not None:
+            raise interrupted
 
     def _check_running(self) -> None:
         if self._stopped:
