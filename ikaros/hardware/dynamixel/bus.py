@@ -7,6 +7,7 @@ byte of the last packet from each servo is kept in :attr:`DynamixelBus.errors`.
 from __future__ import annotations
 
 import os
+import termios
 
 from ikaros.hardware import DeviceError
 from ikaros.hardware.serial_port import require
@@ -86,20 +87,25 @@ class DynamixelBus:
         sdk = self._sdk
         for attempt in range(retries + 1):
             try:
+                if attempt:
+                    self._port.clearPort()
                 result = function(*args)
-            except (serial.SerialException, OSError, TypeError) as error:
+            except (serial.SerialException, OSError, TypeError, termios.error) as error:
                 raise DeviceError(f"the Dynamixel bus {self} was lost ({what}): {error}") from None
             code = result if isinstance(result, int) else result[-2]   # (.., result, error)
             if code == sdk.COMM_SUCCESS:
                 return result
-            if code not in (sdk.COMM_RX_TIMEOUT, sdk.COMM_RX_CORRUPT, sdk.COMM_RX_FAIL) or attempt == retries:
+            if code not in (sdk.COMM_RX_TIMEOUT, sdk.COMM_RX_CORRUPT, sdk.COMM_RX_FAIL):
                 break
-            self._port.clearPort()
         reason = {sdk.COMM_RX_TIMEOUT: "does not answer", sdk.COMM_RX_CORRUPT: "answered with a corrupt packet",
                   sdk.COMM_RX_FAIL: "does not answer", sdk.COMM_TX_FAIL: "could not be sent to",
                   sdk.COMM_PORT_BUSY: "is busy"}.get(code, self._handler.getTxRxResult(code))
         who = f"servo {ident}" if ident is not None else "the servos"
         raise DeviceError(f"{who} on {self} {reason} ({what})")
+
+    def _clear(self) -> int:
+        self._port.clearPort()
+        return self._sdk.COMM_SUCCESS
 
     def _keep_error(self, ident: int, error: int) -> None:
         self.errors[ident] = int(error)
@@ -171,7 +177,7 @@ class DynamixelBus:
             except DeviceError:
                 if attempt == RETRIES:
                     raise
-                self._port.clearPort()
+                self._call(None, "clearing the port", self._clear)
         raise AssertionError("unreachable")
 
     def bulk_read(self, requests: list[tuple[int, int, int]]) -> dict[int, bytes]:

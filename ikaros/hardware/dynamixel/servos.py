@@ -1,0 +1,156 @@
+"""A group of Dynamixel servos on one bus, read and written by role in Ikaros units.
+
+Roles are the names of the control-table files (``GOAL_POSITION``, ``PRESENT_LOAD``, ...).
+Servos whose fields lie at the same addresses share one sync write or sync read packet;
+positions are in degrees (180 is the centre), the other roles in the units of
+:mod:`ikaros.hardware.dynamixel.control_table`.
+"""
+from __future__ import annotations
+
+import threading
+
+from ikaros.hardware import DeviceError
+from ikaros.hardware.dynamixel import protocol as p
+from ikaros.hardware.dynamixel.bus import DynamixelBus
+from ikaros.hardware.dynamixel.control_table import ControlTable, table_for_number
+
+
+def open_bus(device: str, baud_rate: int, protocol: str | int = "auto", ids=None, max_id: int = 32,
+             latency_ms: float | None = None) -> tuple[DynamixelBus, dict[int, ControlTable]]:
+    """Open a bus and find its servos: the given ``ids`` (None: scan 0..max_id), in the given
+    protocol (``auto``: ping with Protocol 1.0, then 2.0; a bus that mixes them is refused)."""
+    ids = list(range(0, max_id + 1)) if ids is None else list(ids)
+    protocols = [1, 2] if str(protocol) == "auto" else [int(float(protocol))]
+    bus = DynamixelBus(device, baud_rate, protocols[0], latency_ms)
+    found: dict[int, dict[int, int]] = {}
+    try:
+        for version in protocols:
+            bus.set_protocol(version)
+            found[version] = bus.scan(ids)
+    except DeviceError:
+        bus.close()
+        raise
+    answered = {v: f for v, f in found.items() if f}
+    if len(answered) > 1:
+        bus.close()
+        raise DeviceError(f"the Dynamixel bus at '{device}' mixes Protocol 1.0 servos "
+                          f"{sorted(answered[1])} and Protocol 2.0 servos {sorted(answered[2])}; "
+                          f"give each protocol its own bus")
+    if not answered:
+        bus.close()
+        raise DeviceError(f"no Dynamixel servo answers on '{device}' at {baud_rate} baud "
+                          f"(ids {_ranges(ids)}, Protocol {' and '.join(f'{v}.0' for v in protocols)}); "
+                          f"check power, cable, baud rate and ids (see docs/robots.md)")
+    version, servos = next(iter(answered.items()))
+    bus.set_protocol(version)
+    tables = {}
+    for ident, number in servos.items():
+        table = table_for_number(number, version)
+        if table is None:
+            bus.close()
+            raise DeviceError(f"servo {ident} on {bus} is model number {number}, which has no "
+                              f"control table here (add one in ikaros/hardware/dynamixel/tables)")
+        tables[ident] = table
+    return bus, tables
+
+
+def _ranges(ids) -> str:
+    ids = sorted(ids)
+    return f"{ids[0]}..{ids[-1]}" if ids and ids == list(range(ids[0], ids[-1] + 1)) else ", ".join(map(str, ids))
+
+
+class ServoGroup:
+    """The servos ``tables`` (id -> control table) on ``bus``; all bus traffic under one lock."""
+
+    def __init__(self, bus: DynamixelBus, tables: dict[int, ControlTable]):
+        self.bus = bus
+        self.tables = dict(sorted(tables.items()))
+        self.ids = list(self.tables)
+        self.lock = threading.RLock()
+
+    def has(self, ident: int, role: str) -> bool:
+        return self.tables[ident].role(role) is not None
+
+    def read(self, roles: list[str], ids=None) -> dict[str, dict[int, float]]:
+        """Values of ``roles`` for each servo (those a model lacks are left out), with one
+        sync read per group of servos that share a layout (Protocol 2.0)."""
+        ids = self.ids if ids is None else list(ids)
+        out: dict[str, dict[int, float]] = {role: {} for role in roles}
+        for (start, length), members in self._blocks(roles, ids).items():
+            with self.lock:
+                data = self.bus.sync_read(start, length, members)
+            for ident in members:
+                table = self.tables[ident]
+                for role in roles:
+                    entry = table.role(role)
+                    if entry is None:
+                        continue
+                    at = entry.field.address - start
+                    raw = int.from_bytes(data[ident][at:at + entry.field.size], "little")
+                    out[role][ident] = entry.to_value(raw)
+        return out
+
+    def _blocks(self, roles, ids) -> dict[tuple[int, int], list[int]]:
+        blocks: dict[tuple[int, int], list[int]] = {}
+        for ident in ids:
+            fields = [e.field for e in (self.tables[ident].role(r) for r in roles) if e is not None]
+            if not fields:
+                continue
+            start = min(f.address for f in fields)
+            end = max(f.address + f.size for f in fields)
+            blocks.setdefault((start, end - start), []).append(ident)
+        return blocks
+
+    def write(self, role: str, values: dict[int, float]) -> None:
+        """Write ``role`` of each servo in ``values``: one sync write per field layout."""
+        groups: dict[tuple[int, int], dict[int, bytes]] = {}
+        for ident, value in values.items():
+            entry = self.tables[ident].role(role)
+            if entry is None:
+                continue
+            f = entry.field
+            groups.setdefault((f.address, f.size), {})[ident] = entry.to_raw(value).to_bytes(f.size, "little")
+        with self.lock:
+            for (address, size), data in groups.items():
+                self.bus.sync_write(address, size, data)
+
+    def write_each(self, role: str, values: dict[int, float]) -> dict[int, DeviceError]:
+        """Write ``role`` servo by servo, waiting for each status; returns the servos that failed
+        (the others are written even when some do not answer)."""
+        failures = {}
+        for ident, value in values.items():
+            entry = self.tables[ident].role(role)
+            if entry is None:
+                continue
+            try:
+                with self.lock:
+                    self.bus.write(ident, entry.field.address, entry.to_raw(value).to_bytes(entry.field.size, "little"))
+            except DeviceError as error:
+                failures[ident] = error
+        return failures
+
+    def error_text(self, ident: int, error: int) -> str:
+        """The status error byte of a servo in words."""
+        if self.bus.protocol == 1:
+            names = [name for bit, name in p.P1_ERROR_NAMES.items() if error & bit]
+        else:
+            names = [p.P2_ERROR_NAMES[error & 0x7F]] if error & 0x7F in p.P2_ERROR_NAMES else []
+            if error & p.P2_ALERT:
+                names.append("hardware alert")
+        return ", ".join(names)
+
+    def safe_state(self, mode: str) -> dict[int, DeviceError]:
+        """Torque off (``torque_off``) or hold the present position (``hold``) on every servo
+        that answers; returns the servos that did not."""
+        with self.lock:
+            if mode == "hold":
+                failures = {}
+                present = {}
+                for ident in self.ids:
+                    try:
+                        present.update(self.read(["PRESENT_POSITION"], [ident])["PRESENT_POSITION"])
+                    except DeviceError as error:
+                        failures[ident] = error
+                failures.update(self.write_each("GOAL_POSITION", present))
+                return failures
+            return self.write_each("TORQUE_ENABLE", {ident: 0 for ident in self.ids})
