@@ -282,8 +282,10 @@ class VirtualEpuck(PtyDevice):
 
 
 def parse_boxes(text: str) -> list[tuple[float, ...]]:
-    """Boxes ``"x0,y0,x1,y1;x0,y0,x1,y1"`` as rows of four numbers (empty text: none)."""
+    """Boxes ``"x0,y0,x1,y1;x0,y0,x1,y1"`` as rows of four numbers (``none`` or empty: none)."""
     boxes = []
+    if text.strip().lower() == "none":
+        return boxes
     for part in filter(None, (p.strip() for p in text.split(";"))):
         values = [float(v) for v in part.split(",")]
         if len(values) != 4:
@@ -296,7 +298,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--width", type=float, default=1.0, help="arena width, metres")
     parser.add_argument("--height", type=float, default=1.0, help="arena height, metres")
     parser.add_argument("--obstacles", default=DEFAULT_OBSTACLES,
-                        help="box obstacles x0,y0,x1,y1;... in metres (empty: none)")
+                        help="box obstacles x0,y0,x1,y1;... in metres (none: no obstacles)")
     parser.add_argument("--x", type=float, default=0.2, help="start x, metres")
     parser.add_argument("--y", type=float, default=0.2, help="start y, metres")
     parser.add_argument("--heading", type=float, default=0.0,

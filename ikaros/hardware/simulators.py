@@ -28,6 +28,7 @@ SIMULATORS: dict[str, str] = {
     "dynamixel": "ikaros.hardware.dynamixel.simulator_options",
     "ssc32": "ikaros.hardware.ssc32_sim",
     "opc": "ikaros.hardware.opc_sim",
+    "epuck": "ikaros.hardware.epuck_sim",
 }
 
 PREFIX = "sim:"
