@@ -151,6 +151,15 @@ class DynamixelBus:
     def reboot(self, ident: int) -> None:
         self._call(ident, "reboot", self._handler.reboot, self._port, ident)
 
+    def factory_reset(self, ident: int, keep_id: bool = True) -> None:
+        """Reset the control table to the factory values (Protocol 2.0 can keep the id and baud
+        rate: option 0x02; Protocol 1.0 resets everything, the id becomes 1)."""
+        if self.protocol == 1:
+            self._call(ident, "factory reset", self._handler.factoryReset, self._port, ident)
+        else:
+            self._call(ident, "factory reset", self._handler.factoryReset, self._port, ident,
+                       0x02 if keep_id else 0xFF)
+
     # --- many servos in one packet -----------------------------------------------------------
     def sync_write(self, address: int, length: int, values: dict[int, bytes]) -> None:
         """One packet that writes ``length`` bytes at ``address`` of each servo (no answer)."""

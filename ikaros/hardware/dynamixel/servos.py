@@ -16,9 +16,10 @@ from ikaros.hardware.dynamixel.control_table import ControlTable, table_for_numb
 
 
 def open_bus(device: str, baud_rate: int, protocol: str | int = "auto", ids=None, max_id: int = 32,
-             latency_ms: float | None = None) -> tuple[DynamixelBus, dict[int, ControlTable]]:
+             latency_ms: float | None = None, force_model: int = 0) -> tuple[DynamixelBus, dict[int, ControlTable]]:
     """Open a bus and find its servos: the given ``ids`` (None: scan 0..max_id), in the given
-    protocol (``auto``: ping with Protocol 1.0, then 2.0; a bus that mixes them is refused)."""
+    protocol (``auto``: ping with Protocol 1.0, then 2.0; a bus that mixes them is refused).
+    A servo of a model without a control table is refused, or taken as ``force_model``."""
     ids = list(range(0, max_id + 1)) if ids is None else list(ids)
     protocols = [1, 2] if str(protocol) == "auto" else [int(float(protocol))]
     bus = DynamixelBus(device, baud_rate, protocols[0], latency_ms)
@@ -45,7 +46,7 @@ def open_bus(device: str, baud_rate: int, protocol: str | int = "auto", ids=None
     bus.set_protocol(version)
     tables = {}
     for ident, number in servos.items():
-        table = table_for_number(number, version)
+        table = table_for_number(number, version) or (table_for_number(force_model, version) if force_model else None)
         if table is None:
             bus.close()
             raise DeviceError(f"servo {ident} on {bus} is model number {number}, which has no "
