@@ -52,7 +52,7 @@ class DynamixelBus:
         self._sdk = _sdk()
         self._port = _port_handler_class()(device)
         if latency_ms is None:          # a pseudo-terminal has no USB latency timer
-            latency_ms = 4.0 if os.path.realpath(device).startswith("/dev/pts/") else 16.0
+            latency_ms = 10.0 if os.path.realpath(device).startswith("/dev/pts/") else 16.0
         self._port.latency_ms = latency_ms
         self._handler = self._sdk.PacketHandler(float(self.protocol))
         self._open()

@@ -9,7 +9,8 @@ raised as a real servo raises them (overload and overheating switch torque off).
 
 A servo answers only while the driver's port runs at the servo's baud rate (read from the
 terminal settings the driver made), so a wrong baud rate looks as it does on a real bus.
-With ``line_time=True`` every packet takes the time it would take on the wire at that rate.
+With ``line_time=True`` every packet takes the time it would take on the wire at that rate,
+and each status packet comes after the servo's Return Delay Time.
 
 Faults for tests: :meth:`silence` (a servo stops answering), :meth:`corrupt` (the next status
 packets have a broken checksum or CRC), :meth:`answer_as` (a servo answers with a wrong id),
@@ -296,10 +297,18 @@ class VirtualDynamixelBus(PtyDevice):
         length = len(packet.params) + (10 if self.protocol == 2 else 6)
         at = max(time.perf_counter(), self._bus_free_at) + wire(length)
         for reply in replies:
-            at += wire(len(reply))
+            at += self._return_delay(reply) + wire(len(reply))
             sleep_until(at)
             self.send(reply)
         self._bus_free_at = at
+
+    def _return_delay(self, reply: bytes) -> float:
+        """The Return Delay Time (2 µs units) of the servo that sends ``reply``."""
+        ident = reply[4] if self.protocol == 2 else reply[2]
+        for servo in self.servos.values():
+            if servo.ident == ident:
+                return servo.memory[servo.table.field("Return Delay Time").address] * 2e-6
+        return 0.0
 
     def _listening(self) -> list[SimulatedServo]:
         baud = self._port_baud_rate()

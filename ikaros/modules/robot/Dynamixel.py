@@ -29,7 +29,8 @@ class Dynamixel(Module):
     fraction of the current (or torque) limit, voltage in volts, temperature in °C, current in
     amperes; gains and GOAL_ACCELERATION are raw control-table values. Every tick the inputs
     are written (GOAL_POSITION in one sync write, the other inputs only when they change) and
-    the present values read back (one sync read in Protocol 2.0). Nothing moves at start-up:
+    the present values read back (one sync read in Protocol 2.0; ``feedback`` chooses all of them, the
+    position only, or none). Nothing moves at start-up:
     a servo's goal is first written on the first tick its GOAL_POSITION element is not 0, and
     its torque is switched on then (or by TORQUE_ENABLE when that is connected); goals are
     clipped to each servo's angle limits. ERRORS has one row per servo with the bits of its
@@ -58,8 +59,9 @@ class Dynamixel(Module):
     safe_state = Parameter("torque_off", "what the servos do when the run ends or the watchdog fires",
                            options="torque_off/hold")
     watchdog = Parameter(1.0, "seconds without a tick before the servos are put in the safe state (0: never)")
-    feedback = Parameter(True, "read the present position, speed, load, voltage and temperature every tick")
-    serial_latency = Parameter(-1.0, "milliseconds the adapter may hold a packet (-1: 16, or 4 on a "
+    feedback = Parameter("all", "what is read back every tick: all present values (position, speed, load, "
+                         "voltage, temperature, current), only the position, or none", options="all/position/none")
+    serial_latency = Parameter(-1.0, "milliseconds the adapter may hold a packet (-1: 16, or 10 on a "
                                "pseudo-terminal)")
 
     TORQUE_ENABLE = Input("1: torque on, 0: off (unconnected: on with the first goal)", optional=True)
@@ -200,8 +202,8 @@ class Dynamixel(Module):
             values = torque if role == "TORQUE_ENABLE" else None if role == "GOAL_POSITION" else self._inputs(role)
             if values:
                 self._write_changed(role, values)
-        if self.feedback:
-            self._read_feedback()
+        if self.feedback != "none":
+            self._read_feedback(PRESENT if self.feedback == "all" else ["PRESENT_POSITION"])
         self._report_errors()
 
     def _clip_to_limits(self, ident: int, degrees: float) -> float:
@@ -225,9 +227,9 @@ class Dynamixel(Module):
         written.update(changed)
         self._publish("FEEDBACK_" + role, changed)
 
-    def _read_feedback(self) -> None:
-        values = self._group.read(PRESENT)
-        for role in PRESENT:
+    def _read_feedback(self, roles: list[str] = PRESENT) -> None:
+        values = self._group.read(roles)
+        for role in roles:
             self._publish("FEEDBACK_" + role, values[role], self._angle if role == "PRESENT_POSITION" else 1.0)
 
     def _report_errors(self) -> None:
