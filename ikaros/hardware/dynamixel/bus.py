@@ -85,6 +85,9 @@ class DynamixelBus:
         """Run an SDK call; retry on a lost or corrupt packet; raise DeviceError on failure."""
         serial = require("serial", _SDK_HINT)
         sdk = self._sdk
+        # The SDK marks the port busy from sending to receiving; a transaction cut short (an
+        # exception, Ctrl-C) would leave it marked. Calls are serialised, so none is under way.
+        self._port.is_using = False
         for attempt in range(retries + 1):
             try:
                 if attempt:
