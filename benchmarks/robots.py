@@ -34,6 +34,7 @@ sys.path.insert(0, ROOT)
 from ikaros.hardware.dynamixel.bus import DynamixelBus  # noqa: E402
 
 SERVOS = 19
+LATENCY_MS = 30.0       # a generous wait for answers: the simulator shares a loaded machine
 BAUD = 1000000
 GOAL, PRESENT, SIZE = 116, 132, 4        # X-series addresses of Goal and Present Position
 
@@ -75,7 +76,7 @@ def module_run(path: str, ticks: int) -> dict:
     model = (f'<group name="EpiBus" tick_duration="0.01">\n'
              f'<module class="Constant" name="Goals" data="{goals}"/>\n'
              f'<module class="Dynamixel" name="Servos" device="{path}" servo_id="{" ".join(map(str, range(1, SERVOS + 1)))}" '
-             f'protocol="2" feedback="position" print_info="none"/>\n'
+             f'protocol="2" feedback="position" print_info="none" serial_latency="{LATENCY_MS}"/>\n'
              '<connection source="Goals.OUTPUT" target="Servos.GOAL_POSITION"/>\n</group>\n')
     with tempfile.TemporaryDirectory() as folder:
         file = os.path.join(folder, "epibus.ikg")
@@ -101,7 +102,7 @@ def main() -> None:
     process, path = start_simulator()
     ms = 1000.0
     try:
-        bus = DynamixelBus(path, BAUD, 2)
+        bus = DynamixelBus(path, BAUD, 2, LATENCY_MS)
         ids = list(range(1, SERVOS + 1))
         for ident in ids:                         # the Epi's servos answer without delay
             bus.write(ident, 9, b"\x00")

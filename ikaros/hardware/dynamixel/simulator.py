@@ -280,14 +280,15 @@ class VirtualDynamixelBus(PtyDevice):
         return _SPEEDS.get(attributes[5])
 
     def received(self, data: bytes) -> None:
+        arrived = time.perf_counter()
         for packet in self._reader.feed(data):
             with self.lock:
                 self.packets += 1
                 self._update()
                 replies = self._answer(packet)
-            self._transmit(packet, replies)
+            self._transmit(packet, replies, arrived)
 
-    def _transmit(self, packet: p.Packet, replies: list[bytes]) -> None:
+    def _transmit(self, packet: p.Packet, replies: list[bytes], arrived: float) -> None:
         if not self.line_time:
             for reply in replies:
                 self.send(reply)
@@ -295,7 +296,8 @@ class VirtualDynamixelBus(PtyDevice):
         baud = self._port_baud_rate() or 1000000
         wire = (lambda n: n * 10.0 / baud)
         length = len(packet.params) + (10 if self.protocol == 2 else 6)
-        at = max(time.perf_counter(), self._bus_free_at) + wire(length)
+        # The wire time counts from the packet's arrival: the servos work while bytes travel.
+        at = max(arrived, self._bus_free_at) + wire(length)
         for reply in replies:
             at += self._return_delay(reply) + wire(len(reply))
             sleep_until(at)
