@@ -1,5 +1,6 @@
 """Epuck: the e-puck mobile robot over its serial (Bluetooth) link."""
 import math
+import threading
 
 import numpy as np
 
@@ -23,11 +24,14 @@ class Epuck(Module):
     ``zoom``: IMAGE grey, RED, GREEN and BLUE in 0..1). POSE is (x, y, heading in radians):
     the simulator's true pose with ``sim:epuck``, otherwise odometry from the encoders
     (starting at 0, 0, 0; needs ``encoder_on``). Nothing is sent before the first tick; when
-    the run ends the wheels are stopped and every LED is switched off. A robot that stops
+    the run ends the wheels are stopped, every LED is switched off and the sound stops; the
+    same happens after ``watchdog`` seconds without a tick (the model's commands are sent
+    again when ticks resume), at interpreter exit, and on the ``safe_state`` command. A robot that stops
     answering, or answers wrongly, stops the run with an error naming the port. Differences
     from Ikaros 2: the ASCII protocol is used for everything but the camera (Ikaros 2 read the
     sensors in the binary protocol); MICROPHONE_BUFFER and MICROPHONE_SCAN_ID are empty (the
-    sampled sound buffer is not read); POSE, velocity_scale and baud_rate are new."""
+    sampled sound buffer is not read); POSE, velocity_scale, baud_rate and watchdog are
+    new."""
 
     port = Parameter("/dev/rfcomm", "the serial device (e.g. /dev/rfcomm0 for Bluetooth), or "
                      "sim:epuck?options for the simulator")
@@ -42,6 +46,8 @@ class Epuck(Module):
     acceleration_on = Parameter(False, "read the accelerometer every tick")
     microphone_on = Parameter(False, "read the microphone amplitudes every tick")
     velocity_scale = Parameter(1000.0, "wheel speed in steps/s for a VELOCITY of 1")
+    watchdog = Parameter(1.0, "seconds without a tick before the robot is put in the safe "
+                         "state (0: never)")
 
     VELOCITY = Input("left and right wheel speed, 1 = velocity_scale steps/s", optional=True)
     LED = Input("the eight ring LEDs, on above 0.5", optional=True)
@@ -70,14 +76,16 @@ class Epuck(Module):
                   size="3")
 
     def init(self):
+        from ikaros.hardware import safety
         from ikaros.hardware.epuck import Epuck as Robot
         from ikaros.hardware.simulators import is_simulated, start_from_device_string
+        self._simulator = self._robot = self._watchdog = self._exit_key = None
+        self._lock = threading.Lock()
         if self.camera != "none" and not 0 < self.width * self.height * \
                 (2 if self.camera == "color" else 1) <= 4800:
             raise ValueError(f"a {self.width} x {self.height} {self.camera} image does not "
                              "fit the e-puck's camera buffer (4800 bytes; grey 1 byte a "
                              "pixel, colour 2)")
-        self._simulator = self._robot = None
         self._sent = {}
         self._last_encoders = None
         try:
@@ -96,6 +104,9 @@ class Epuck(Module):
         except Exception:
             self.stop()
             raise
+        self._exit_key = safety.on_exit(f"the e-puck at {device}", self._safe_state)
+        self._watchdog = safety.Watchdog(float(self.watchdog), self._safe_state,
+                                         f"{self.path}-watchdog")
         self._write_pose()
 
     def _changed(self, key, value) -> bool:
@@ -109,6 +120,12 @@ class Epuck(Module):
         return bool(value.reshape(-1)[index] > 0.5)
 
     def tick(self):
+        with self._lock:
+            if self._watchdog.kick():            # made safe while idle: send everything again
+                self._sent.clear()
+            self._tick()
+
+    def _tick(self):
         robot = self._robot
         if self.VELOCITY is not None:
             left, right = (float(v) * self.velocity_scale for v in self.VELOCITY.reshape(-1)[:2])
@@ -164,15 +181,29 @@ class Epuck(Module):
             self.POSE[2] = (heading + turn + math.pi) % (2 * math.pi) - math.pi
         self._last_encoders = steps
 
+    def command(self, name, x=0, y=0, value=None):
+        if name == "safe_state":
+            self._safe_state()
+
+    def _safe_state(self):
+        """Wheels stopped, LEDs off, no sound (called by stop, the watchdog and at exit)."""
+        with self._lock:
+            if self._robot is not None:
+                self._robot.safe_state()
+                self._sent.clear()
+
     def stop(self):
-        from ikaros.hardware import DeviceError
-        robot, self._robot = getattr(self, "_robot", None), None
+        from ikaros.hardware import DeviceError, safety
+        if getattr(self, "_watchdog", None) is not None:
+            self._watchdog.close()
         try:
-            if robot is not None:
-                robot.safe_state()
+            if getattr(self, "_robot", None) is not None:
+                self._safe_state()
         except DeviceError as error:
             self.error(f"the e-puck could not be put in the safe state: {error}")
         finally:
+            safety.cancel(getattr(self, "_exit_key", None))
+            robot, self._robot = getattr(self, "_robot", None), None
             if robot is not None:
                 robot.close()
             if getattr(self, "_simulator", None) is not None:

@@ -1,4 +1,6 @@
 """SSC32: RC servos on a Lynxmotion SSC-32 controller."""
+import threading
+
 import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
@@ -15,11 +17,13 @@ class SSC32(Module):
     OUTPUT is the present position of each servo read back from the board (QP queries) in
     the same 0..1 units, NaN for a channel that has no pulses yet. When the run ends the
     servos are put in ``safe_state``: off (no pulses: RC servos go limp), hold (the last
-    position is kept) or home (moved to the home pulse width). ``port="sim:ssc32"`` runs the
+    position is kept) or home (moved to the home pulse width); the same happens after
+    ``watchdog`` seconds without a tick (paused, stopped, hung: the positions are sent again
+    when ticks resume), at interpreter exit, and on the ``safe_state`` command. ``port="sim:ssc32"`` runs the
     board simulator in this process (see docs/robots.md). A board that does not answer, or
     answers with garbage, stops the run with an error naming the port. The Ikaros 2 class
-    had only min, max and home; port, baud_rate, channels, move_time, speed, safe_state and
-    feedback are additions."""
+    had only min, max and home; port, baud_rate, channels, move_time, speed, safe_state,
+    watchdog and feedback are additions."""
 
     port = Parameter("/dev/ttyUSB0", "the serial device of the SSC-32, or sim:ssc32 for the "
                      "simulator")
@@ -38,6 +42,8 @@ class SSC32(Module):
     speed = Parameter(0, "largest servo speed in µs per second (0: no limit)", type="int")
     safe_state = Parameter("off", "what the servos do when the run ends",
                            options="off/hold/home")
+    watchdog = Parameter(1.0, "seconds without a tick before the servos are put in the safe "
+                         "state (0: never)")
     feedback = Parameter(True, "read the present positions back every tick")
 
     INPUT = Input("servo positions, 0..1 from min to max")
@@ -46,6 +52,8 @@ class SSC32(Module):
 
     def init(self):
         from ikaros.hardware.ssc32 import CHANNELS, PULSE_MAX, PULSE_MIN, SSC32 as Board
+        self._board = self._simulator = self._watchdog = self._exit_key = None
+        self._lock = threading.Lock()
         n = self.INPUT.size
         self._channels = [int(c) for c in self.channels] if self.channels.size else list(range(n))
         if len(self._channels) != n:
@@ -59,8 +67,6 @@ class SSC32(Module):
         for name, values in (("min", self._min), ("max", self._max), ("home", self._home)):
             if np.any((values < PULSE_MIN) | (values > PULSE_MAX)):
                 raise ValueError(f"{name} pulse widths must be in {PULSE_MIN}..{PULSE_MAX} µs")
-        self._board = None
-        self._simulator = None
         self._sent = np.full(n, -1)
         self.OUTPUT.fill(np.nan)
         self._open(Board)
@@ -85,8 +91,18 @@ class SSC32(Module):
         except Exception:
             self.stop()
             raise
+        from ikaros.hardware import safety
+        self._exit_key = safety.on_exit(f"the SSC-32 at {device}", self._safe_state)
+        self._watchdog = safety.Watchdog(float(self.watchdog), self._safe_state,
+                                         f"{self.path}-watchdog")
 
     def tick(self):
+        with self._lock:
+            if self._watchdog.kick():                 # made safe while idle: send all again
+                self._sent[...] = -1
+            self._tick()
+
+    def _tick(self):
         position = np.clip(np.nan_to_num(self.INPUT.reshape(-1), nan=0.5), 0.0, 1.0)
         pulses = np.rint(self._min + position * (self._max - self._min)).astype(int)
         changed = {self._channels[i]: int(p) for i, p in enumerate(pulses) if p != self._sent[i]}
@@ -102,24 +118,41 @@ class SSC32(Module):
             self.OUTPUT.reshape(-1)[...] = position
 
     def command(self, name, x=0, y=0, value=None):
-        if name == "home" and self._board is not None:
-            self._board.move({c: int(h) for c, h in zip(self._channels, self._home)},
-                             self.move_time or None)
-            self._sent = np.rint(self._home).astype(int)
+        if self._board is None:
+            return
+        if name == "home":
+            with self._lock:
+                self._move_home()
+        elif name == "safe_state":
+            self._safe_state()
+
+    def _move_home(self):
+        self._board.move({c: int(h) for c, h in zip(self._channels, self._home)},
+                         self.move_time or None)
+        self._sent = np.rint(self._home).astype(int)
+
+    def _safe_state(self):
+        """Put the servos in safe_state (called by stop, the watchdog and at exit)."""
+        with self._lock:
+            if self._board is None:
+                return
+            if self.safe_state == "off":
+                self._board.off(self._channels)
+                self._sent[...] = 0
+            elif self.safe_state == "home":
+                self._move_home()
 
     def stop(self):
-        from ikaros.hardware import DeviceError
-        board, self._board = self._board, None
+        from ikaros.hardware import DeviceError, safety
+        if self._watchdog is not None:
+            self._watchdog.close()
         try:
-            if board is not None:
-                if self.safe_state == "off":
-                    board.off(self._channels)
-                elif self.safe_state == "home":
-                    board.move({c: int(h) for c, h in zip(self._channels, self._home)},
-                               self.move_time or None)
+            self._safe_state()
         except DeviceError as error:
             self.error(f"the servos could not be put in the safe state: {error}")
         finally:
+            safety.cancel(self._exit_key)
+            board, self._board = self._board, None
             if board is not None:
                 board.close()
             if self._simulator is not None:

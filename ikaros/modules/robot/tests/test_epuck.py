@@ -1,6 +1,7 @@
 """The Epuck module against the virtual e-puck, and the obstacle-avoidance example."""
 import math
 import os
+import time
 
 import numpy as np
 import pytest
@@ -133,5 +134,25 @@ def test_the_obstacle_example_avoids_every_obstacle():
         assert robot.distance > 3.0
         x, y, _ = robot.pose
         assert 0 < x < 1 and 0 < y < 1
+    finally:
+        net.close()
+
+
+def test_the_watchdog_stops_an_idle_robot_and_ticks_resume(tmp_path):
+    extra = ('<module class="Constant" name="L" data="1 1 1 1 1 1 1 1"/>\n'
+             '<connection source="L.OUTPUT" target="R.LED"/>\n')
+    net = model(tmp_path, f'port="{SIM}" watchdog="0.2"', "0.5 0.5", extra)
+    robot = simulator(net)
+    try:
+        net.step()
+        assert robot.speeds == [500, 500] and robot.leds == [1] * 8
+        deadline = time.monotonic() + 2.0
+        while robot.commands[-1] != "T,0" and time.monotonic() < deadline:
+            time.sleep(0.01)                          # the safe state's last command
+        assert robot.speeds == [0, 0] and robot.leds == [0] * 8          # no tick for 0.2 s
+        net.step()
+        assert robot.speeds == [500, 500] and robot.leds == [1] * 8      # sent again
+        net.command("R", "safe_state")
+        assert robot.speeds == [0, 0] and robot.leds == [0] * 8
     finally:
         net.close()

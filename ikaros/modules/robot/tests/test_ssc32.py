@@ -1,4 +1,6 @@
 """The SSC32 module against the virtual SSC-32."""
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -92,3 +94,34 @@ def test_bad_parameters_are_named(tmp_path, board):
         model(tmp_path, board.path, params='channels="1 2"')
     with pytest.raises(ModelError, match="cannot open the SSC-32 at '/dev/nothing-here'"):
         model(tmp_path, "/dev/nothing-here")
+
+
+def test_the_watchdog_makes_idle_servos_safe_and_ticks_resume(tmp_path, board):
+    net = model(tmp_path, board.path, params='min="1000" max="2000" watchdog="0.2"')
+    try:
+        net.step()
+        assert last_move(board, "#0P0#1P0#2P0") == "#0P0#1P0#2P0"      # no tick for 0.2 s
+        net.step()
+        assert moves(board)[-1] == "#0P1000#1P1500#2P2000"              # sent again
+        assert np.allclose(net.output("Servos.OUTPUT"), [0, 0.5, 1])
+        net.command("Servos", "safe_state")
+        assert last_move(board, "#0P0#1P0#2P0") == "#0P0#1P0#2P0"
+    finally:
+        net.close()
+
+
+def test_a_script_that_never_closes_leaves_the_servos_off(tmp_path, board):
+    script = tmp_path / "script.py"
+    script.write_text(
+        "import sys, ikaros\n"
+        f"net = ikaros.load({str(tmp_path / 'model.ikg')!r})\n"
+        "net.step()\n"
+        "sys.exit(0)\n")                                   # no close(): the exit hook runs
+    model(tmp_path, board.path).close()                    # writes model.ikg
+    last_move(board, "#0P0#1P0#2P0")
+    board.commands.clear()
+    result = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                            timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert last_move(board, "#0P0#1P0#2P0") == "#0P0#1P0#2P0"
+    assert moves(board)[0] == "#0P1000#1P1500#2P2000"
