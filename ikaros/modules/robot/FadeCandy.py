@@ -18,7 +18,7 @@ class FadeCandy(Module):
     unconnected), each with at least ``size`` values in 0..1, one per pixel; every tick one
     OPC message per channel sets its pixels (colours clipped to 0..1 and scaled to 0..255).
     Nothing is sent before the first tick; when the run ends every channel is set to black
-    (LEDs off). With ``start_server`` the program ``server`` is started (and stopped at the
+    (LEDs off), as at interpreter exit. With ``start_server`` the program ``server`` is started (and stopped at the
     end) when it is installed; otherwise, or when it is not found, a server already running
     at ``address`` is used. ``address="sim:opc"`` runs a simulated OPC server in this process
     (see docs/robots.md). A server that cannot be reached, or that goes away, stops the run
@@ -57,6 +57,7 @@ class FadeCandy(Module):
 
     def init(self):
         from ikaros.hardware.opc import OPCClient
+        self._client = self._server = self._simulator = self._exit_key = None
         self._inputs = []
         for name, number, size in self._channels:
             colours = []
@@ -67,13 +68,14 @@ class FadeCandy(Module):
                                      f"has {size} pixels")
                 colours.append(value)
             self._inputs.append((number, size, colours))
-        self._client = self._server = self._simulator = None
         try:
             address = self._start_server()
             self._client = OPCClient(address)
         except Exception:
             self.stop()
             raise
+        from ikaros.hardware import safety
+        self._exit_key = safety.on_exit(f"the LEDs at {address}", self._lights_off)
 
     def _start_server(self) -> str:
         from ikaros.hardware.simulators import is_simulated, start_from_device_string
@@ -101,16 +103,21 @@ class FadeCandy(Module):
                     rgb[:, k] = value.reshape(-1)[:size]
             self._client.set_pixels(number, rgb)
 
+    def _lights_off(self):
+        """Every pixel of every channel black (called by stop and at exit)."""
+        if self._client is not None:
+            for number, size, _ in self._inputs:
+                self._client.set_pixels(number, np.zeros((size, 3)))
+
     def stop(self):
-        from ikaros.hardware import DeviceError
-        client, self._client = getattr(self, "_client", None), None
+        from ikaros.hardware import DeviceError, safety
         try:
-            if client is not None:
-                for number, size, _ in self._inputs:
-                    client.set_pixels(number, np.zeros((size, 3)))
+            self._lights_off()
         except DeviceError as error:
             self.error(f"the LEDs could not be turned off: {error}")
         finally:
+            safety.cancel(self._exit_key)
+            client, self._client = self._client, None
             if client is not None:
                 client.close()
             if self._server is not None:

@@ -15,7 +15,8 @@ class Phidgets(Module):
     (on above 0.5) on every tick. ATTACHED is 1 while the board is attached. The board is
     found by ``serial`` (-1: any board) within ``attach_timeout`` ms, or the load fails
     naming the serial number; ``info`` prints its name and version. Nothing is written before
-    the first tick, and every digital output is switched off when the run ends. Ikaros 2
+    the first tick, and every digital output is switched off when the run ends (and at
+    interpreter exit). Ikaros 2
     used the older Phidget21 library; the channel counts and attach_timeout are new
     (Phidget22 opens each channel on its own)."""
 
@@ -42,7 +43,9 @@ class Phidgets(Module):
         phidgets.load_library()                 # a missing library fails at load
 
     def init(self):
+        from ikaros.hardware import safety
         from ikaros.hardware.phidgets import InterfaceKit
+        self._board = self._exit_key = None
         if self.DIGITAL_INPUTS is not None and self.DIGITAL_INPUTS.size > self.digital_outputs:
             raise ValueError(f"DIGITAL_INPUTS has {self.DIGITAL_INPUTS.size} values but the "
                              f"board has {self.digital_outputs} digital outputs")
@@ -50,6 +53,8 @@ class Phidgets(Module):
                                    int(self.digital_inputs), int(self.digital_outputs),
                                    bool(self.ratiometric), float(self.sensitivity),
                                    int(self.attach_timeout))
+        self._exit_key = safety.on_exit(f"the Phidgets board {self._board.where}",
+                                        self._board.safe_state)
         if self.info:
             self.print(self._board.info())
         self._read()
@@ -66,10 +71,11 @@ class Phidgets(Module):
         self._read()
 
     def stop(self):
-        from ikaros.hardware import DeviceError
+        from ikaros.hardware import DeviceError, safety
         board, self._board = getattr(self, "_board", None), None
         if board is None:
             return
+        safety.cancel(self._exit_key)
         try:
             board.safe_state()
         except DeviceError as error:

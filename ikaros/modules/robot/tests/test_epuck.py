@@ -1,5 +1,4 @@
 """The Epuck module against the virtual e-puck, and the obstacle-avoidance example."""
-import math
 import os
 import time
 

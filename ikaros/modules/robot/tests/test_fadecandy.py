@@ -1,6 +1,7 @@
 """The FadeCandy module against the simulated OPC server."""
 import os
 import socket
+import subprocess
 import sys
 import time
 
@@ -112,3 +113,22 @@ def test_bad_channels_are_named(tmp_path, channels, message):
     with VirtualOPCServer() as server:
         with pytest.raises(ModelError, match=message):
             model(tmp_path, server.path, channels=channels)
+
+
+def test_a_script_that_never_closes_turns_the_leds_off(tmp_path):
+    with VirtualOPCServer() as server:
+        model(tmp_path, server.path).close()                  # writes model.ikg
+        assert wait_for(lambda: len(server.messages) == 2)
+        server.messages.clear()
+        script = tmp_path / "script.py"
+        script.write_text("import sys, ikaros\n"
+                          f"net = ikaros.load({str(tmp_path / 'model.ikg')!r})\n"
+                          "net.step()\n"
+                          "sys.exit(0)\n")                     # no close(): the exit hook runs
+        result = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                                timeout=60)
+        assert result.returncode == 0, result.stderr
+        assert wait_for(lambda: len(server.messages) == 4)
+        assert server.messages[0][2] == bytes([255, 0, 0, 128, 0, 0, 0, 0, 0])
+        assert server.pixels_of(1).tolist() == [[0, 0, 0]] * 3
+        assert server.pixels_of(2).tolist() == [[0, 0, 0]] * 2
