@@ -93,7 +93,7 @@ class DynamixelBus:
                 if attempt:
                     self._port.clearPort()
                 result = function(*args)
-            except (serial.SerialException, OSError, TypeError, termios.error) as error:
+            except (serial.SerialException, OSError, termios.error) as error:
                 raise DeviceError(f"the Dynamixel bus {self} was lost ({what}): {error}") from None
             code = result if isinstance(result, int) else result[-2]   # (.., result, error)
             if code == sdk.COMM_SUCCESS:
@@ -193,16 +193,16 @@ class DynamixelBus:
         raise AssertionError("unreachable")
 
     def bulk_read(self, requests: list[tuple[int, int, int]]) -> dict[int, bytes]:
-        """(id, address, length) per servo, in one bulk read packet."""
+        """(id, address, length) per servo, in one bulk read packet (Protocol 1.0: MX series only)."""
         params = []
-        if self.protocol == 1:
-            params.append(0)
+        if self.protocol == 1:                  # the SDK adds the leading 0x00
             for ident, address, length in requests:
                 params += [length, ident, address]
+            self._call(None, "bulk read", self._handler.bulkReadTx, self._port, params, len(params))
         else:
             for ident, address, length in requests:
                 params += [ident, address & 0xFF, address >> 8, length & 0xFF, length >> 8]
-        self._call(None, "bulk read", self._handler.bulkReadTx, self._port, params, len(params), False)
+            self._call(None, "bulk read", self._handler.bulkReadTx, self._port, params, len(params), False)
         return self._collect([(ident, length) for ident, _, length in requests], "bulk read")
 
     def bulk_write(self, requests: list[tuple[int, int, bytes]]) -> None:

@@ -79,7 +79,11 @@ class ServoGroup:
         out: dict[str, dict[int, float]] = {role: {} for role in roles}
         for (start, length), members in self._blocks(roles, ids).items():
             with self.lock:
-                data = self.bus.sync_read(start, length, members)
+                if self.bus.protocol == 1 and len(members) > 1 and all(
+                        self.tables[i].series.startswith("MX") for i in members):
+                    data = self.bus.bulk_read([(i, start, length) for i in members])   # one packet
+                else:
+                    data = self.bus.sync_read(start, length, members)
             for ident in members:
                 table = self.tables[ident]
                 for role in roles:

@@ -29,7 +29,8 @@ class Dynamixel(Module):
     fraction of the current (or torque) limit, voltage in volts, temperature in °C, current in
     amperes; gains and GOAL_ACCELERATION are raw control-table values. Every tick the inputs
     are written (GOAL_POSITION in one sync write, the other inputs only when they change) and
-    the present values read back (one sync read in Protocol 2.0; ``feedback`` chooses all of them, the
+    the present values read back (one sync read in Protocol 2.0, one bulk read for MX servos in 1.0,
+    else one read per servo; ``feedback`` chooses all of them, the
     position only, or none). Nothing moves at start-up:
     a servo's goal is first written on the first tick its GOAL_POSITION element is not 0, and
     its torque is switched on then (or by TORQUE_ENABLE when that is connected); goals are
@@ -38,7 +39,8 @@ class Dynamixel(Module):
     hardware alert). When the run ends for any reason, and when no tick has come for
     ``watchdog`` seconds (paused, stopped, hung), every servo that answers is put in
     ``safe_state``: torque off, or hold (goal = present position). A servo that stops answering
-    stops the run with an error naming the servo and the bus. ``device="sim:dynamixel?ids=1-3"``
+    stops the run with an error naming the servo and the bus; the command ``safe_state`` goes to the
+    safe state at once (the next goal switches torque on again). ``device="sim:dynamixel?ids=1-3"``
     runs the simulator in this process (docs/robots.md). Differences from Ikaros 2: the safe
     state is torque off rather than a torque-limit ramp that left torque enabled; ERRORS has
     8 columns (one per bit); protocol, max_servo_id, safe_state, watchdog, feedback and

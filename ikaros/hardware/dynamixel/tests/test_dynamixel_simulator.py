@@ -160,3 +160,18 @@ def test_ikaros_sim_prints_the_device_path():
     finally:
         process.terminate()
         assert process.wait(timeout=10) == 0
+
+
+def test_protocol1_bulk_read_of_mx_servos_and_the_group_read():
+    from ikaros.hardware.dynamixel.control_table import table_for_model
+    from ikaros.hardware.dynamixel.servos import ServoGroup
+    with VirtualDynamixelBus({1: "MX-28", 2: "MX-64"}, 1, positions={1: 90.0, 2: 270.0}) as sim:
+        bus = DynamixelBus(sim.path, 1000000, 1)
+        assert bus.bulk_read([(1, 36, 2), (2, 0, 2)]) == {1: (1024).to_bytes(2, "little"),
+                                                         2: (310).to_bytes(2, "little")}
+        sent = sim.packets
+        group = ServoGroup(bus, {1: table_for_model("MX-28"), 2: table_for_model("MX-64")})
+        values = group.read(["PRESENT_POSITION", "PRESENT_TEMPERATURE"])
+        assert values == {"PRESENT_POSITION": {1: 90.0, 2: 270.0}, "PRESENT_TEMPERATURE": {1: 30.0, 2: 30.0}}
+        assert sim.packets == sent + 1                     # one bulk read packet for both
+        bus.close()
