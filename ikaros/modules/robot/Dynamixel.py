@@ -129,8 +129,6 @@ class Dynamixel(Module):
         self._index = np.array(ids if self.index_mode == "indirect" else range(len(ids)), dtype=int)
         for name in self._ik_outputs:
             self.set_output_shape(name, (size, ERROR_BITS) if name == "ERRORS" else size)
-        if self.print_info != "none":
-            self.print(self._describe(bus, tables))
 
     def _describe(self, bus, tables) -> str:
         models = {}
@@ -146,6 +144,8 @@ class Dynamixel(Module):
     def init(self):
         from ikaros.hardware import safety
         group = self._group
+        if self.print_info != "none":
+            self.print(self._describe(group.bus, group.tables))
         self._angle = ANGLE_FACTOR[self.angle_unit]
         self._commanded = {ident: False for ident in self._ids}
         self._written: dict[str, dict[int, float]] = {role: {} for role in SETTINGS}

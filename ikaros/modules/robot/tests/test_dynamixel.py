@@ -208,3 +208,16 @@ def test_ctrl_c_of_an_ikaros_process_makes_the_servos_safe(tmp_path, bus, how):
         if process.poll() is None:
             process.kill()
     assert not bus.servo(1).torque and not bus.servo(2).torque
+
+
+def test_a_script_that_never_closes_its_network_leaves_the_servos_safe(tmp_path, bus):
+    path = tmp_path / "arm.ikg"
+    path.write_text(f'<group name="Arm">\n<module class="Constant" name="G" data="250"/>\n'
+                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1"/>\n'
+                    '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
+    script = f"import ikaros\nnet = ikaros.load({str(path)!r})\nnet.run(ticks=3)\nprint(net.output('D.FEEDBACK_TORQUE_ENABLE')[0])\n"
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
+    result = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert "D: 1 servos on" in result.stdout and result.stdout.split()[-1] == "1.0"   # torque was on
+    assert not bus.servo(1).torque                                                     # and is off at exit
