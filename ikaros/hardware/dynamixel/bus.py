@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import termios
+import threading
 
 from ikaros.hardware import DeviceError
 from ikaros.hardware.serial_port import require
@@ -49,6 +50,7 @@ class DynamixelBus:
         self.baud_rate = int(baud_rate)
         self.protocol = int(protocol)
         self.errors: dict[int, int] = {}
+        self.lock = threading.RLock()       # drivers sharing the bus take turns under it
         self._sdk = _sdk()
         self._port = _port_handler_class()(device)
         if latency_ms is None:          # a pseudo-terminal has no USB latency timer

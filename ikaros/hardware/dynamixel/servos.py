@@ -7,6 +7,7 @@ positions are in degrees (180 is the centre), the other roles in the units of
 """
 from __future__ import annotations
 
+import os
 import threading
 
 from ikaros.hardware import DeviceError
@@ -15,30 +16,69 @@ from ikaros.hardware.dynamixel.bus import DynamixelBus
 from ikaros.hardware.dynamixel.control_table import ControlTable, table_for_number
 
 
+_open_buses: dict[str, list] = {}      # real device path -> [bus, number of users]
+_open_lock = threading.Lock()
+
+
+def _acquire(device: str, baud_rate: int, protocol: int, latency_ms: float | None) -> DynamixelBus:
+    """The open bus on ``device``, shared by every driver that uses it (two modules on one bus,
+    or a model rebuilt by the web UI while the old one still runs); opened on first use."""
+    key = os.path.realpath(device) if not device.startswith("sim:") else device
+    with _open_lock:
+        entry = _open_buses.get(key)
+        if entry is not None:
+            if entry[0].baud_rate != int(baud_rate):
+                raise DeviceError(f"the Dynamixel bus at '{device}' is already open at {entry[0].baud_rate} "
+                                  f"baud; it cannot also run at {baud_rate}")
+            entry[1] += 1
+            return entry[0]
+        bus = DynamixelBus(device, baud_rate, protocol, latency_ms)
+        _open_buses[key] = [bus, 1]
+        return bus
+
+
+def release_bus(bus: DynamixelBus) -> None:
+    """Give a bus back; the last user closes it."""
+    with _open_lock:
+        for key, entry in list(_open_buses.items()):
+            if entry[0] is bus:
+                entry[1] -= 1
+                if entry[1] > 0:
+                    return
+                del _open_buses[key]
+    bus.close()
+
+
 def open_bus(device: str, baud_rate: int, protocol: str | int = "auto", ids=None, max_id: int = 32,
              latency_ms: float | None = None, force_model: int = 0) -> tuple[DynamixelBus, dict[int, ControlTable]]:
-    """Open a bus and find its servos: the given ``ids`` (None: scan 0..max_id), in the given
-    protocol (``auto``: ping with Protocol 1.0, then 2.0; a bus that mixes them is refused).
-    A servo of a model without a control table is refused, or taken as ``force_model``."""
+    """Open a bus (or share the one already open on ``device``) and find its servos: the given
+    ``ids`` (None: scan 0..max_id), in the given protocol (``auto``: ping with Protocol 1.0, then
+    2.0; a bus that mixes them is refused). A servo of a model without a control table is
+    refused, or taken as ``force_model``. Give the bus back with :func:`release_bus`."""
     ids = list(range(0, max_id + 1)) if ids is None else list(ids)
     protocols = [1, 2] if str(protocol) == "auto" else [int(float(protocol))]
-    bus = DynamixelBus(device, baud_rate, protocols[0], latency_ms)
-    found: dict[int, dict[int, int]] = {}
+    bus = _acquire(device, baud_rate, protocols[0], latency_ms)
     try:
-        for version in protocols:
-            bus.set_protocol(version)
-            found[version] = bus.scan(ids)
-    except DeviceError:
-        bus.close()
+        with bus.lock:
+            return bus, _find_servos(bus, device, baud_rate, protocols, ids, force_model)
+    except BaseException:
+        release_bus(bus)
         raise
+
+
+def _find_servos(bus, device, baud_rate, protocols, ids, force_model) -> dict[int, ControlTable]:
+    found: dict[int, dict[int, int]] = {}
+    in_use = bus.protocol
+    for version in protocols:
+        bus.set_protocol(version)
+        found[version] = bus.scan(ids)
     answered = {v: f for v, f in found.items() if f}
     if len(answered) > 1:
-        bus.close()
         raise DeviceError(f"the Dynamixel bus at '{device}' mixes Protocol 1.0 servos "
                           f"{sorted(answered[1])} and Protocol 2.0 servos {sorted(answered[2])}; "
                           f"give each protocol its own bus")
     if not answered:
-        bus.close()
+        bus.set_protocol(in_use)
         raise DeviceError(f"no Dynamixel servo answers on '{device}' at {baud_rate} baud "
                           f"(ids {_ranges(ids)}, Protocol {' and '.join(f'{v}.0' for v in protocols)}); "
                           f"check power, cable, baud rate and ids (see docs/robots.md)")
@@ -48,11 +88,10 @@ def open_bus(device: str, baud_rate: int, protocol: str | int = "auto", ids=None
     for ident, number in servos.items():
         table = table_for_number(number, version) or (table_for_number(force_model, version) if force_model else None)
         if table is None:
-            bus.close()
             raise DeviceError(f"servo {ident} on {bus} is model number {number}, which has no "
                               f"control table here (add one in ikaros/hardware/dynamixel/tables)")
         tables[ident] = table
-    return bus, tables
+    return tables
 
 
 def _ranges(ids) -> str:
@@ -61,13 +100,13 @@ def _ranges(ids) -> str:
 
 
 class ServoGroup:
-    """The servos ``tables`` (id -> control table) on ``bus``; all bus traffic under one lock."""
+    """The servos ``tables`` (id -> control table) on ``bus``; all traffic under the bus's lock."""
 
     def __init__(self, bus: DynamixelBus, tables: dict[int, ControlTable]):
         self.bus = bus
         self.tables = dict(sorted(tables.items()))
         self.ids = list(self.tables)
-        self.lock = threading.RLock()
+        self.lock = bus.lock
 
     def has(self, ident: int, role: str) -> bool:
         return self.tables[ident].role(role) is not None

@@ -97,7 +97,7 @@ class Dynamixel(Module):
 
     # --- build ------------------------------------------------------------------------------
     def configure(self):
-        from ikaros.hardware.dynamixel.servos import ServoGroup, open_bus
+        from ikaros.hardware.dynamixel.servos import ServoGroup, open_bus, release_bus
         from ikaros.hardware.simulators import is_simulated, start_from_device_string
         self._simulator = None
         self._group = None
@@ -117,7 +117,7 @@ class Dynamixel(Module):
         if wanted:
             missing = [i for i in wanted if i not in tables]
             if missing and (self.strict_servo_id or len(missing) == len(wanted)):
-                bus.close()
+                release_bus(bus)
                 self._close_simulator()
                 raise ValueError(f"servo {', '.join(map(str, missing))} on {bus} does not answer")
             if missing:
@@ -258,6 +258,7 @@ class Dynamixel(Module):
 
     def stop(self):
         from ikaros.hardware import safety
+        from ikaros.hardware.dynamixel.servos import release_bus
         if self._watchdog is not None:
             self._watchdog.close()
         group, self._group = self._group, None
@@ -272,7 +273,7 @@ class Dynamixel(Module):
             safety.cancel(self._exit_key)
             self._exit_key = None
             if group is not None:
-                group.bus.close()
+                release_bus(group.bus)
             self._close_simulator()
 
     def _close_simulator(self) -> None:

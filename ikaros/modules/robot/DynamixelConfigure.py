@@ -51,9 +51,10 @@ class DynamixelConfigure(Module):
         self._scan()
 
     def _scan(self):
-        from ikaros.hardware.dynamixel.servos import open_bus
+        from ikaros.hardware.dynamixel.servos import open_bus, release_bus
         if self._bus is not None:
-            self._bus.close()
+            release_bus(self._bus)
+            self._bus = None
         self._bus, self._tables = open_bus(self._device, int(self.baud_rate), self.protocol, None,
                                            int(self.max_servo_id), force_model=int(self.force_model))
         for ident, table in self._tables.items():
@@ -108,8 +109,9 @@ class DynamixelConfigure(Module):
             self._scan()
 
     def stop(self):
+        from ikaros.hardware.dynamixel.servos import release_bus
         if self._bus is not None:
-            self._bus.close()
+            release_bus(self._bus)
             self._bus = None
         if self._simulator is not None:
             self._simulator.stop()

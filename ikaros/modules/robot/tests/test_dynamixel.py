@@ -221,3 +221,24 @@ def test_a_script_that_never_closes_its_network_leaves_the_servos_safe(tmp_path,
     assert result.returncode == 0, result.stderr
     assert "D: 1 servos on" in result.stdout and result.stdout.split()[-1] == "1.0"   # torque was on
     assert not bus.servo(1).torque                                                     # and is off at exit
+
+
+def test_two_networks_share_one_bus(tmp_path, bus):
+    """Two modules on one bus, or a model rebuilt (by the web UI) while the old one runs."""
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    first = model(tmp_path / "a", bus.path, goals="200", params='servo_id="1"')
+    second = model(tmp_path / "b", bus.path, goals="150", params='servo_id="2"')
+    try:
+        first.step()
+        second.step()
+        assert bus.servo(1).torque and bus.servo(2).torque
+        first.close()
+        assert not bus.servo(1).torque and bus.servo(2).torque
+        assert wait_for(lambda: abs(bus.servo(2).value("PRESENT_POSITION") - 150) < 0.1)
+        second.step()                                   # the bus stayed open for the second
+        assert second.output("D.FEEDBACK_PRESENT_POSITION")[0] == pytest.approx(150, abs=0.1)
+    finally:
+        first.close()
+        second.close()
+    assert not bus.servo(2).torque
