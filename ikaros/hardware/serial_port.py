@@ -28,12 +28,13 @@ def open_serial(device: str, baudrate: int, timeout: float = 0.1, what: str = "s
     try:
         return serial.Serial(device, baudrate=baudrate, timeout=timeout, write_timeout=max(timeout, 1.0))
     except serial.SerialException as error:
-        raise DeviceError(f"cannot open the {what} at '{device}': {_reason(error)}") from None
+        raise DeviceError(f"cannot open the {what} at '{device}': {describe_error(error)}") from None
     except (OSError, ValueError) as error:
         raise DeviceError(f"cannot open the {what} at '{device}': {error}") from None
 
 
-def _reason(error: Exception) -> str:
+def describe_error(error: Exception) -> str:
+    """Why a port could not be opened, with the likely fix."""
     number = getattr(error, "errno", None)
     text = str(error)
     if number == 2 or "No such file" in text:

@@ -11,7 +11,7 @@ import termios
 import threading
 
 from ikaros.hardware import DeviceError
-from ikaros.hardware.serial_port import require
+from ikaros.hardware.serial_port import describe_error, require
 
 _SDK_HINT = "the Dynamixel bus"
 RETRIES = 1                     # a packet lost to noise is asked for once more
@@ -68,8 +68,7 @@ class DynamixelBus:
             if not self._port.setBaudRate(self.baud_rate):
                 raise DeviceError(f"the Dynamixel bus at '{self.device}' cannot run at {self.baud_rate} baud")
         except serial.SerialException as error:
-            from ikaros.hardware.serial_port import _reason
-            raise DeviceError(f"cannot open the Dynamixel bus at '{self.device}': {_reason(error)}") from None
+            raise DeviceError(f"cannot open the Dynamixel bus at '{self.device}': {describe_error(error)}") from None
 
     def set_protocol(self, protocol: int) -> None:
         self.protocol = int(protocol)

@@ -85,7 +85,8 @@ def test_angle_limit_error_and_overload(rig):
     assert error == (p.P1_ANGLE_LIMIT if bus.protocol == 1 else p.P2_DATA_LIMIT)
     bus.write(1, table.role("TORQUE_ENABLE").field.address, b"\x01")
     sim.set_external_load(1, 1.2)
-    time.sleep(p_time := 0.45)
+    loaded_for = 0.45
+    time.sleep(loaded_for)
     error = bus.write(1, table.role("LED").field.address, b"\x01")
     if bus.protocol == 1:
         assert error & p.P1_OVERLOAD
@@ -93,7 +94,7 @@ def test_angle_limit_error_and_overload(rig):
         assert error & p.P2_ALERT
         assert bus.read(1, table.role("HARDWARE_ERROR").field.address, 1) == bytes([p.HW_OVERLOAD])
     assert bus.read(1, table.role("TORQUE_ENABLE").field.address, 1) == b"\x00"
-    assert sim.servo(1).temperature > 30.0 + 0.5 * 4.0 * 1.44 * p_time
+    assert sim.servo(1).temperature > 30.0 + 0.5 * 4.0 * 1.2 ** 2 * loaded_for     # heating 4 C/s x load^2
 
 
 def test_faults_name_the_servo_and_the_bus(rig):
