@@ -176,3 +176,11 @@ def test_protocol1_bulk_read_of_mx_servos_and_the_group_read():
         assert values == {"PRESENT_POSITION": {1: 90.0, 2: 270.0}, "PRESENT_TEMPERATURE": {1: 30.0, 2: 30.0}}
         assert sim.packets == sent + 1                     # one bulk read packet for both
         bus.close()
+
+
+def test_scan_finds_servos_at_any_baud_rate(capsys):
+    from ikaros.hardware.dynamixel.scan import main
+    with VirtualDynamixelBus({3: "XL430-W250", 4: "XL430-W250"}, 2, baud_rate=57600) as sim:
+        assert main([sim.path, "--baud", "1000000", "57600", "--max-id", "5", "--protocol", "2"]) == 0
+    assert capsys.readouterr().out.splitlines() == [
+        "id   3  XL430-W250      Protocol 2.0  57600 baud", "id   4  XL430-W250      Protocol 2.0  57600 baud"]
