@@ -241,3 +241,16 @@ def test_two_networks_share_one_bus(tmp_path, bus):
         first.close()
         second.close()
     assert not bus.servo(2).torque
+
+
+def test_the_end_of_a_batch_run_leaves_the_servos_safe(tmp_path, bus):
+    path = tmp_path / "arm.ikg"
+    path.write_text(f'<group name="Arm">\n<module class="Constant" name="G" data="250"/>\n'
+                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1" print_info="none"/>\n'
+                    '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
+    result = subprocess.run([sys.executable, "-m", "ikaros", "-b", "-s", "20", str(path)], env=env,
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    servo = bus.servo(1)
+    assert servo.value("GOAL_POSITION") == pytest.approx(250, abs=0.1) and not servo.torque
