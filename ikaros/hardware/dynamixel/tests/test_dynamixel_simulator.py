@@ -184,3 +184,13 @@ def test_scan_finds_servos_at_any_baud_rate(capsys):
         assert main([sim.path, "--baud", "1000000", "57600", "--max-id", "5", "--protocol", "2"]) == 0
     assert capsys.readouterr().out.splitlines() == [
         "id   3  XL430-W250      Protocol 2.0  57600 baud", "id   4  XL430-W250      Protocol 2.0  57600 baud"]
+
+
+def test_byte_stuffing_end_to_end_through_the_sdk_and_the_simulator():
+    with VirtualDynamixelBus({1: "XM430-W350"}, 2) as sim:
+        bus = DynamixelBus(sim.path, 1000000, 2)
+        value = bytes.fromhex("FF FF FD 00")                 # Homing Offset: the header inside the data
+        assert bus.write(1, 20, value) == 0
+        assert bytes(sim.servo(1).memory[20:24]) == value
+        assert bus.read(1, 18, 8) == bytes(sim.servo(1).memory[18:26])   # the status is stuffed too
+        bus.close()
