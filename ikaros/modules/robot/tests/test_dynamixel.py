@@ -254,3 +254,25 @@ def test_the_end_of_a_batch_run_leaves_the_servos_safe(tmp_path, bus):
     assert result.returncode == 0, result.stderr
     servo = bus.servo(1)
     assert servo.value("GOAL_POSITION") == pytest.approx(250, abs=0.1) and not servo.torque
+
+
+@pytest.mark.filterwarnings("ignore:.*httpx.*")
+def test_the_web_ui_stop_button_leaves_the_servos_safe(tmp_path, bus):
+    from starlette.testclient import TestClient
+
+    from ikaros.webui.server import create_app
+    net = model(tmp_path, bus.path, goals="200", params='servo_id="1" watchdog="0.3"')
+    try:
+        with TestClient(create_app(net)) as client:
+            assert client.post("/api/control", json={"state": "play"}).status_code == 200
+            assert wait_for(lambda: bus.servo(1).torque, 5.0)
+            client.post("/api/control", json={"state": "stop"})
+            assert wait_for(lambda: not bus.servo(1).torque, 3.0)             # by the watchdog
+            client.post("/api/control", json={"state": "play"})             # and back under control
+            assert wait_for(lambda: bus.servo(1).torque, 5.0)
+            client.post("/api/control", json={"state": "pause"})
+    finally:
+        net.controller.stop()
+        net.controller.join(5)
+        net.close()
+    assert not bus.servo(1).torque
