@@ -39,8 +39,9 @@ class Dynamixel(Module):
     hardware alert). When the run ends for any reason, and when no tick has come for
     ``watchdog`` seconds (paused, stopped, hung), every servo that answers is put in
     ``safe_state``: torque off, or hold (goal = present position). A servo that stops answering
-    stops the run with an error naming the servo and the bus; the command ``safe_state`` goes to the
-    safe state at once (the next goal switches torque on again). ``device="sim:dynamixel?ids=1-3"``
+    stops the run with an error naming the servo and the bus. The command ``safe_state`` goes to the
+    safe state at once and keeps the servos there (feedback is still read) until the command
+    ``resume``; then the next goal takes them back as at start-up. ``device="sim:dynamixel?ids=1-3"``
     runs the simulator in this process (docs/robots.md). Differences from Ikaros 2: the safe
     state is torque off rather than a torque-limit ramp that left torque enabled; ERRORS has
     8 columns (one per bit); protocol, max_servo_id, safe_state, watchdog, feedback and
@@ -156,6 +157,7 @@ class Dynamixel(Module):
         limits = group.read(["MIN_POSITION", "MAX_POSITION"])
         self._limits = {i: (limits["MIN_POSITION"].get(i), limits["MAX_POSITION"].get(i)) for i in self._ids}
         self._errors: dict[int, int] = {}
+        self._halted = False
         self._read_feedback()
         self._exit_key = safety.on_exit(f"the Dynamixel bus {group.bus}", self._safe_state)
         self._watchdog = safety.Watchdog(float(self.watchdog), self._safe_state, f"{self.path}-watchdog")
@@ -178,10 +180,19 @@ class Dynamixel(Module):
                 out[ident] = float(flat[element])
         return out
 
+    def _start_again(self) -> None:
+        """After a safe state: the next goal or TORQUE_ENABLE takes the servos back, as at start-up."""
+        self._commanded = {ident: False for ident in self._ids}
+        self._written["TORQUE_ENABLE"] = {ident: -1.0 for ident in self._ids}
+
     def tick(self):
         if self._watchdog.kick():                        # the servos were made safe: start again
-            self._commanded = {ident: False for ident in self._ids}
-            self._written["TORQUE_ENABLE"] = {ident: -1.0 for ident in self._ids}
+            self._start_again()
+        if self._halted:
+            if self.feedback != "none":
+                self._read_feedback(PRESENT if self.feedback == "all" else ["PRESENT_POSITION"])
+            self._report_errors()
+            return
         group = self._group
         goals = self._inputs("GOAL_POSITION")
         newly = []
@@ -246,7 +257,13 @@ class Dynamixel(Module):
 
     def command(self, name, x=0, y=0, value=None):
         if name == "safe_state" and self._group is not None:
+            self._halted = True
             self._safe_state()
+        elif name == "resume":
+            self._halted = False
+            self._start_again()
+        else:
+            raise ValueError(f"unknown command '{name}' (safe_state, resume)")
 
     # --- the end ----------------------------------------------------------------------------
     def _safe_state(self) -> None:

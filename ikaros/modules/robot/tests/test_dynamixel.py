@@ -276,3 +276,22 @@ def test_the_web_ui_stop_button_leaves_the_servos_safe(tmp_path, bus):
         net.controller.join(5)
         net.close()
     assert not bus.servo(1).torque
+
+
+def test_the_safe_state_command_holds_until_resume(tmp_path, bus):
+    net = model(tmp_path, bus.path, goals="200", params='servo_id="1"')
+    try:
+        net.step()
+        assert bus.servo(1).torque
+        net.command("D", "safe_state")
+        assert not bus.servo(1).torque
+        net.step()
+        net.step()
+        assert not bus.servo(1).torque                    # the goal does not take it back
+        net.command("D", "resume")
+        net.step()
+        assert bus.servo(1).torque
+        with pytest.raises(ValueError, match="unknown command 'jump'"):
+            net.command("D", "jump")
+    finally:
+        net.close()
