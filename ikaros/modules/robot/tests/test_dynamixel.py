@@ -295,3 +295,9 @@ def test_the_safe_state_command_holds_until_resume(tmp_path, bus):
             net.command("D", "jump")
     finally:
         net.close()
+
+
+def test_a_missing_sdk_fails_at_load_with_the_pip_install(tmp_path, bus, monkeypatch):
+    monkeypatch.setitem(sys.modules, "dynamixel_sdk", None)          # as if not installed
+    with pytest.raises(ModelError, match=r"dynamixel_sdk.*pip install 'ikaros\[robots\]'"):
+        model(tmp_path, bus.path)
