@@ -412,21 +412,17 @@ class VirtualDynamixelBus(PtyDevice):
         return [r for r in replies if r] if ident != p.BROADCAST_ID else []
 
     def _write_many(self, params: bytes, instruction: int) -> None:
-        if self.protocol == 2 and instruction == p.SYNC_WRITE:
-            address, length, at = params[0] | params[1] << 8, params[2] | params[3] << 8, 4
+        if instruction == p.SYNC_WRITE:         # address, length, then id + data per servo
+            if self.protocol == 2:
+                address, length, at = params[0] | params[1] << 8, params[2] | params[3] << 8, 4
+            else:
+                address, length, at = params[0], params[1], 2
             while at + 1 + length <= len(params):
                 servo = self._find(params[at])
                 if servo is not None:
                     servo.write(address, params[at + 1:at + 1 + length])
                 at += 1 + length
-        elif self.protocol == 1 and instruction == p.SYNC_WRITE:
-            address, length, at = params[0], params[1], 2
-            while at + 1 + length <= len(params):
-                servo = self._find(params[at])
-                if servo is not None:
-                    servo.write(address, params[at + 1:at + 1 + length])
-                at += 1 + length
-        elif self.protocol == 2:            # bulk write: id, address, length, data ...
+        elif self.protocol == 2:                # bulk write: id, address, length, data per servo
             at = 0
             while at + 5 <= len(params):
                 ident, address, length = params[at], params[at + 1] | params[at + 2] << 8, params[at + 3] | params[at + 4] << 8
