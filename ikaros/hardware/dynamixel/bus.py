@@ -53,8 +53,8 @@ class DynamixelBus:
         self.lock = threading.RLock()       # drivers sharing the bus take turns under it
         self._sdk = _sdk()
         self._port = _port_handler_class()(device)
-        if latency_ms is None:          # a pseudo-terminal has no USB latency timer
-            latency_ms = 10.0 if os.path.realpath(device).startswith("/dev/pts/") else 16.0
+        if latency_ms is None:          # a simulator on a pseudo-terminal may wait for the CPU
+            latency_ms = 20.0 if os.path.realpath(device).startswith("/dev/pts/") else 16.0
         self._port.latency_ms = latency_ms
         self._handler = self._sdk.PacketHandler(float(self.protocol))
         self._open()

@@ -55,23 +55,26 @@ def open_bus(device: str, baud_rate: int, protocol: str | int = "auto", ids=None
     ``ids`` (None: scan 0..max_id), in the given protocol (``auto``: ping with Protocol 1.0, then
     2.0; a bus that mixes them is refused). A servo of a model without a control table is
     refused, or taken as ``force_model``. Give the bus back with :func:`release_bus`."""
+    ids_given = ids is not None
     ids = list(range(0, max_id + 1)) if ids is None else list(ids)
     protocols = [1, 2] if str(protocol) == "auto" else [int(float(protocol))]
     bus = _acquire(device, baud_rate, protocols[0], latency_ms)
     try:
         with bus.lock:
-            return bus, _find_servos(bus, device, baud_rate, protocols, ids, force_model)
+            return bus, _find_servos(bus, device, baud_rate, protocols, ids, force_model, named=ids_given)
     except BaseException:
         release_bus(bus)
         raise
 
 
-def _find_servos(bus, device, baud_rate, protocols, ids, force_model) -> dict[int, ControlTable]:
+def _find_servos(bus, device, baud_rate, protocols, ids, force_model, named) -> dict[int, ControlTable]:
     found: dict[int, dict[int, int]] = {}
     in_use = bus.protocol
     for version in protocols:
         bus.set_protocol(version)
         found[version] = bus.scan(ids)
+        if named and found[version]:            # a servo the model names gets a second chance
+            found[version].update(bus.scan([i for i in ids if i not in found[version]]))
     answered = {v: f for v, f in found.items() if f}
     if len(answered) > 1:
         raise DeviceError(f"the Dynamixel bus at '{device}' mixes Protocol 1.0 servos "

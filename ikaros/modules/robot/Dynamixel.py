@@ -64,7 +64,7 @@ class Dynamixel(Module):
     watchdog = Parameter(1.0, "seconds without a tick before the servos are put in the safe state (0: never)")
     feedback = Parameter("all", "what is read back every tick: all present values (position, speed, load, "
                          "voltage, temperature, current), only the position, or none", options="all/position/none")
-    serial_latency = Parameter(-1.0, "milliseconds the adapter may hold a packet (-1: 16, or 10 on a "
+    serial_latency = Parameter(-1.0, "milliseconds the adapter may hold a packet (-1: 16, or 20 on a "
                                "pseudo-terminal)")
 
     TORQUE_ENABLE = Input("1: torque on, 0: off (unconnected: on with the first goal)", optional=True)

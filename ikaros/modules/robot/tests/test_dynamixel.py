@@ -179,7 +179,7 @@ def test_bad_setups_fail_at_load_with_the_device_named(tmp_path, bus):
 
 
 def test_a_simulator_started_by_the_device_attribute(tmp_path):
-    net = model(tmp_path, "sim:dynamixel?ids=1-2&amp;protocol=1", goals="150 210")
+    net = model(tmp_path, "sim:dynamixel?ids=1-2&amp;protocol=1", goals="150 210", params='max_servo_id="4"')
     try:
         net.step()
         time.sleep(0.2)
