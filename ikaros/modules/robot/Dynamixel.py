@@ -148,7 +148,6 @@ class Dynamixel(Module):
         if self.print_info != "none":
             self.print(self._describe(group.bus, group.tables))
         self._angle = ANGLE_FACTOR[self.angle_unit]
-        self._commanded = {ident: False for ident in self._ids}
         self._written: dict[str, dict[int, float]] = {role: {} for role in SETTINGS}
         start = group.read(SETTINGS)
         for role, values in start.items():
@@ -158,6 +157,7 @@ class Dynamixel(Module):
         self._limits = {i: (limits["MIN_POSITION"].get(i), limits["MAX_POSITION"].get(i)) for i in self._ids}
         self._errors: dict[int, int] = {}
         self._halted = False
+        self._start_again()                    # torque is written explicitly, whatever it was
         self._read_feedback()
         self._exit_key = safety.on_exit(f"the Dynamixel bus {group.bus}", self._safe_state)
         self._watchdog = safety.Watchdog(float(self.watchdog), self._safe_state, f"{self.path}-watchdog")

@@ -301,3 +301,18 @@ def test_a_missing_sdk_fails_at_load_with_the_pip_install(tmp_path, bus, monkeyp
     monkeypatch.setitem(sys.modules, "dynamixel_sdk", None)          # as if not installed
     with pytest.raises(ModelError, match=r"dynamixel_sdk.*pip install 'ikaros\[robots\]'"):
         model(tmp_path, bus.path)
+
+
+def test_a_model_rebuilt_while_the_old_one_runs_takes_the_servos_over(tmp_path, bus):
+    (tmp_path / "old").mkdir()
+    (tmp_path / "new").mkdir()
+    old = model(tmp_path / "old", bus.path, goals="200", params='servo_id="1"')
+    old.step()
+    new = model(tmp_path / "new", bus.path, goals="160", params='servo_id="1"')   # built while old runs
+    old.close()                                          # the web UI then closes the old model
+    assert not bus.servo(1).torque
+    try:
+        new.step()
+        assert bus.servo(1).torque and bus.servo(1).value("GOAL_POSITION") == pytest.approx(160, abs=0.1)
+    finally:
+        new.close()
