@@ -188,13 +188,13 @@ class Network:
                 job = self.async_modules.get(inst)
                 if job is not None:
                     job.take_inputs()
-                started.append(inst)
                 try:
                     inst.module.init()
                     if job is not None:
                         job.publish_init()
                 except Exception as e:
                     raise inst.node.error(f"init failed: {type(e).__name__}: {e}") from None
+                started.append(inst)            # (an init that raises cleans up after itself)
                 if self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
                     raise inst.node.error(f"While initializing module {inst.path}: "
                                           f"{self.stop_reason[1]}")
