@@ -20,9 +20,10 @@ _open_buses: dict[str, list] = {}      # real device path -> [bus, number of use
 _open_lock = threading.Lock()
 
 
-def _acquire(device: str, baud_rate: int, protocol: int, latency_ms: float | None) -> DynamixelBus:
+def acquire_bus(device: str, baud_rate: int, protocol: int, latency_ms: float | None = None) -> DynamixelBus:
     """The open bus on ``device``, shared by every driver that uses it (two modules on one bus,
-    or a model rebuilt by the web UI while the old one still runs); opened on first use."""
+    or a model rebuilt by the web UI while the old one still runs); opened on first use. Give it
+    back with :func:`release_bus`."""
     key = os.path.realpath(device) if not device.startswith("sim:") else device
     with _open_lock:
         entry = _open_buses.get(key)
@@ -58,7 +59,7 @@ def open_bus(device: str, baud_rate: int, protocol: str | int = "auto", ids=None
     ids_given = ids is not None
     ids = list(range(0, max_id + 1)) if ids is None else list(ids)
     protocols = [1, 2] if str(protocol) == "auto" else [int(float(protocol))]
-    bus = _acquire(device, baud_rate, protocols[0], latency_ms)
+    bus = acquire_bus(device, baud_rate, protocols[0], latency_ms)
     try:
         with bus.lock:
             return bus, _find_servos(bus, device, baud_rate, protocols, ids, force_model, named=ids_given)

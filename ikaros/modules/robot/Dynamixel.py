@@ -98,7 +98,9 @@ class Dynamixel(Module):
 
     # --- build ------------------------------------------------------------------------------
     def configure(self):
-        from ikaros.hardware.dynamixel.servos import ServoGroup, open_bus, release_bus
+        # The bus is scanned here (the servos found give the output sizes) and given back;
+        # init opens it again, so a model whose build fails later leaves no port open.
+        from ikaros.hardware.dynamixel.servos import open_bus, release_bus
         from ikaros.hardware.simulators import is_simulated, start_from_device_string
         self._simulator = None
         self._group = None
@@ -109,22 +111,26 @@ class Dynamixel(Module):
             self._simulator = start_from_device_string(device)
             device = self._simulator.path
         wanted = [int(i) for i in np.asarray(self.servo_id).reshape(-1)] or None
-        latency = None if self.serial_latency < 0 else float(self.serial_latency)
+        self._latency = None if self.serial_latency < 0 else float(self.serial_latency)
         try:
-            bus, tables = open_bus(device, int(self.baud_rate), self.protocol, wanted, int(self.max_servo_id), latency)
+            bus, tables = open_bus(device, int(self.baud_rate), self.protocol, wanted, int(self.max_servo_id),
+                                   self._latency)
+            described = str(bus)
+            self._protocol = bus.protocol
+            release_bus(bus)
         except Exception:
             self._close_simulator()
             raise
+        self._device_path = device
         if wanted:
             missing = [i for i in wanted if i not in tables]
             if missing and (self.strict_servo_id or len(missing) == len(wanted)):
-                release_bus(bus)
                 self._close_simulator()
-                raise ValueError(f"servo {', '.join(map(str, missing))} on {bus} does not answer")
+                raise ValueError(f"servo {', '.join(map(str, missing))} on {described} does not answer")
             if missing:
-                self.warning(f"servo {', '.join(map(str, missing))} on {bus} does not answer; left out")
-        self._group = ServoGroup(bus, tables)
-        ids = self._group.ids
+                self.warning(f"servo {', '.join(map(str, missing))} on {described} does not answer; left out")
+        self._tables = dict(sorted(tables.items()))
+        ids = list(self._tables)
         self._ids = ids
         size = max(ids) + 1 if self.index_mode == "indirect" else len(ids)
         self._index = np.array(ids if self.index_mode == "indirect" else range(len(ids)), dtype=int)
@@ -143,8 +149,17 @@ class Dynamixel(Module):
 
     # --- run --------------------------------------------------------------------------------
     def init(self):
+        from ikaros.hardware.dynamixel.servos import ServoGroup, acquire_bus
+        bus = acquire_bus(self._device_path, int(self.baud_rate), self._protocol, self._latency)
+        self._group = group = ServoGroup(bus, self._tables)
+        try:
+            self._start(group)
+        except BaseException:
+            self.stop()                         # init cleans up after itself
+            raise
+
+    def _start(self, group) -> None:
         from ikaros.hardware import safety
-        group = self._group
         if self.print_info != "none":
             self.print(self._describe(group.bus, group.tables))
         self._angle = ANGLE_FACTOR[self.angle_unit]

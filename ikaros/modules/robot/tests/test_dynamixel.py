@@ -316,3 +316,19 @@ def test_a_model_rebuilt_while_the_old_one_runs_takes_the_servos_over(tmp_path, 
         assert bus.servo(1).torque and bus.servo(1).value("GOAL_POSITION") == pytest.approx(160, abs=0.1)
     finally:
         new.close()
+
+
+
+def test_a_failed_build_leaves_the_port_closed(tmp_path, bus):
+    (tmp_path / "FailingConfigure.py").write_text(
+        "from ikaros.module import Module\n"
+        "class FailingConfigure(Module):\n"
+        "    \"\"\"Fails while the model is built (before any init).\"\"\"\n"
+        "    def configure(self):\n"
+        "        raise OSError('camera not found')\n")
+    with pytest.raises(ModelError, match="camera not found"):
+        model(tmp_path, bus.path, params='servo_id="1"', extra='<module class="FailingConfigure" name="F"/>')
+    # were the port still open at 1 Mbaud, opening it at another rate would be refused
+    with pytest.raises(ModelError, match="no Dynamixel servo answers"):
+        model(tmp_path, bus.path, params='servo_id="1" baud_rate="57600"')
+    assert not bus.servo(1).torque
