@@ -19,6 +19,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--baud", type=int, default=1000000, help="baud rate the servos are set to (default 1000000)")
     parser.add_argument("--line-time", action="store_true",
                         help="every packet takes the time it would take on the wire at the port's baud rate")
+    parser.add_argument("--silent", default="", metavar="IDS",
+                        help="fault: these servos never answer, e.g. 3 or 2-4")
+    parser.add_argument("--load", action="append", default=[], metavar="ID=FRACTION",
+                        help="an external load on a servo as a signed fraction of its maximum torque "
+                             "(above 1: overload), e.g. --load 2=0.5 (repeatable)")
 
 
 def start(options: argparse.Namespace) -> VirtualDynamixelBus:
@@ -29,6 +34,10 @@ def start(options: argparse.Namespace) -> VirtualDynamixelBus:
             ident, _, name = entry.partition("=")
             servos[int(ident)] = name.strip()
         bus = VirtualDynamixelBus(servos, options.protocol, options.baud, line_time=options.line_time)
-    except (ValueError, DeviceError) as error:
+        bus.silence(*parse_ids(options.silent))
+        for entry in options.load:
+            ident, _, fraction = entry.partition("=")
+            bus.set_external_load(int(ident), float(fraction))
+    except (ValueError, KeyError, DeviceError) as error:
         raise DeviceError(f"cannot start the Dynamixel simulator: {error}") from None
     return bus.start()

@@ -194,3 +194,17 @@ def test_byte_stuffing_end_to_end_through_the_sdk_and_the_simulator():
         assert bytes(sim.servo(1).memory[20:24]) == value
         assert bus.read(1, 18, 8) == bytes(sim.servo(1).memory[18:26])   # the status is stuffed too
         bus.close()
+
+
+def test_faults_from_the_device_string():
+    from ikaros.hardware.simulators import start_from_device_string
+    sim = start_from_device_string("sim:dynamixel?ids=1-3&protocol=1&silent=2&load=3=0.5")
+    try:
+        bus = DynamixelBus(sim.path, 1000000, 1)
+        assert bus.scan([1, 2, 3]) == {1: 12, 3: 12}
+        assert sim.servo(3).external_load == 0.5
+        bus.close()
+    finally:
+        sim.stop()
+    with pytest.raises(DeviceError, match="cannot start the Dynamixel simulator: .*servo ids 'x'"):
+        start_from_device_string("sim:dynamixel?ids=x")
