@@ -45,7 +45,8 @@ def test_acceleration_figures():
 
 
 def test_arena_rays_and_clearance():
-    assert parse_boxes("none") == [] and parse_boxes("1,2,3,4;5,6,7,8") == [(1, 2, 3, 4), (5, 6, 7, 8)]
+    assert parse_boxes("none") == []
+    assert parse_boxes("1,2,3,4;5,6,7,8") == [(1, 2, 3, 4), (5, 6, 7, 8)]
     arena = Arena(1.0, 0.5, parse_boxes("0.6,0.1,0.8,0.3"))
     assert arena.cast((0.1, 0.2), 0.0, 2.0) == pytest.approx((0.5, True))
     assert arena.cast((0.1, 0.2), math.pi, 2.0) == pytest.approx((0.1, False))

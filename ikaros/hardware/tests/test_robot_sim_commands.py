@@ -5,6 +5,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -58,6 +59,8 @@ def test_simulator_command(argv, use):
         path = process.stdout.readline().strip()
         assert path, process.stderr.read()
         assert use(path)
+        assert "Ctrl-C stops it" in process.stderr.readline()
+        time.sleep(0.3)             # sim_cli installs its SIGTERM handler after these lines
         process.send_signal(signal.SIGTERM)
         assert process.wait(timeout=10) == 0
     finally:

@@ -54,45 +54,46 @@ class GLRobotSimulator(Module):
     """A simulated builder robot (after the Goal-Leaders robot of Ikaros 2) in a square arena
     seen from above, in millimetres: x, y on the floor, z up, headings in radians
     counter-clockwise from the x axis. OBJECTS_IN gives the objects on the first tick, one row
-    each: kind (1 block, 2 landmark; 0 empty row), id, x, y, z, colour; OBJECTS_OUT is the same table as it
-    is now. BLOCKS and LANDMARKS list them (id, x, y, z, colour, held), up to 50 rows.
+    each: kind (1 block, 2 landmark; 0 empty row), id, x, y, z, colour; OBJECTS_OUT is the same
+    table as it is now. BLOCKS and LANDMARKS list them (id, x, y, z, colour, held), up to 50
+    rows.
 
     Locomotion: a rising LOCOMOTION_TRIGGER starts a trip to GOAL_LOCATION (x, y): the robot
     turns at ``rotation_speed`` rad/tick, then drives at ``locomotion_speed`` mm/tick times
-    SPEED (default 1). It stops with LOCOMOTION_ERROR when the goal is outside the arena,
-    when it would run into a landmark, a block on the floor or a wall (its radius is
-    ``robot_radius``) or when the battery is empty. DIRECT_CONTROL (forward mm/tick,
-    rotation rad/tick) drives it directly while it is not zero.
+    SPEED (default 1). It stops with LOCOMOTION_ERROR when the goal is outside the arena, when
+    it would run into a landmark, a block on the floor or a wall (its radius is
+    ``robot_radius``) or when the battery is empty. DIRECT_CONTROL (forward mm/tick, rotation
+    rad/tick) drives it directly while it is not zero.
 
     The arm (two links of ``arm_length``/2 from a shoulder 150 mm up, plus a gripper) reaches
     ``arm_length`` around the robot. A rising PICK_OBJECT_TRIGGER picks the block
     PICK_OBJECT_ID, or when that is 0 or unconnected the block nearest to
-    PICK_OBJECT_SPATIAL_ATTENTION (x, y) within one block size; the block must be in reach,
-    free (nothing on top) and the gripper empty. A rising PLACE_OBJECT_TRIGGER puts the held
-    block at PLACE_OBJECT_LOCATION (x, y), in reach, on top of whatever is stacked there
-    (``auto_stack``: a location within one block of a block snaps onto it). Each takes
-    reaching (10 ticks), grasping or lowering (5), and lifting or releasing (10). MOVE_BLOCK
-    (id, x, y) puts a block there at once (on top of a stack), for experiments.
+    PICK_OBJECT_SPATIAL_ATTENTION (x, y) within one block size; the block must be in reach, free
+    (nothing on top) and the gripper empty. A rising PLACE_OBJECT_TRIGGER puts the held block at
+    PLACE_OBJECT_LOCATION (x, y), in reach, on top of whatever is stacked there (``auto_stack``:
+    a location within one block of a block snaps onto it). Each takes reaching (10 ticks),
+    grasping or lowering (5), and lifting or releasing (10). MOVE_BLOCK (id, x, y) puts a block
+    there at once (on top of a stack), for experiments.
 
     The battery (BATTERY_LEVEL, 0..1) loses ``battery_decay`` per tick, twice that while the
     robot or its arm moves; CHARGE_BATTERIES above 0.5 charges it by 0.01 per tick when the
     robot is within 100 mm of ``charging_station`` (otherwise CHARGE_ERROR).
 
-    Phases are one-hot: LOCOMOTION_PHASE (idle, turning, driving, arrived, failed),
-    PICK_PHASE and PLACE_PHASE (idle, reaching, grasping / lowering, lifting / releasing,
-    done), CHARGE_PHASE (not charging, charging); an error output is 1 from a failure until
-    the next trigger of the same action. ROBOT_LOCATION is (x, y, heading, id of the held
-    block or 0); TARGET the goal of the running action (x, y, z, 1 locomotion / 2 pick /
-    3 place; 0 idle); VIEW_FIELD the centre of the disc of radius ``view_radius`` in front of
-    the robot that it sees, and BLOCKS_IN_VIEW the blocks in it. RANGE_MAP is the distance
-    (mm, at most ``view_radius``) to the nearest object or wall along 32 directions around
-    the robot, starting at its heading and going counter-clockwise, and RANGE_COLOR the colour
-    of what each ray hits (0: a wall or nothing). TRANSFORMS draws the scene in the web UI's
-    3-D view (canvas3d, metres): rows of row-major 4x4 transforms of unit shapes: the body
-    (cylinder), the upper arm, the forearm and the gripper (boxes), the charging station,
-    and one row per OBJECTS_IN row (boxes for blocks, cylinders for landmarks; an empty
-    row is scaled to nothing). Written from the Ikaros 2 class's interface; the row formats,
-    phases and timings are this implementation's."""
+    Phases are one-hot: LOCOMOTION_PHASE (idle, turning, driving, arrived, failed), PICK_PHASE
+    and PLACE_PHASE (idle, reaching, grasping / lowering, lifting / releasing, done),
+    CHARGE_PHASE (not charging, charging); an error output is 1 from a failure until the next
+    trigger of the same action. ROBOT_LOCATION is (x, y, heading, id of the held block or 0);
+    TARGET the goal of the running action (x, y, z, 1 locomotion / 2 pick / 3 place; 0 idle);
+    VIEW_FIELD the centre of the disc of radius ``view_radius`` in front of the robot that it
+    sees, and BLOCKS_IN_VIEW the blocks in it. RANGE_MAP is the distance (mm, at most
+    ``view_radius``) to the nearest object or wall along 32 directions around the robot,
+    starting at its heading and going counter-clockwise, and RANGE_COLOR the colour of what each
+    ray hits (0: a wall or nothing). TRANSFORMS draws the scene in the web UI's 3-D view
+    (canvas3d, metres): rows of row-major 4x4 transforms of unit shapes: the body (cylinder),
+    the upper arm, the forearm and the gripper (boxes), the charging station, and one row per
+    OBJECTS_IN row (boxes for blocks, cylinders for landmarks; an empty row is scaled to
+    nothing). Written from the Ikaros 2 class's interface; the row formats, phases and timings
+    are this implementation's."""
 
     locomotion_speed = Parameter(10.0, "driving speed, mm per tick")
     rotation_speed = Parameter(0.1, "turning speed, radians per tick")
@@ -126,7 +127,8 @@ class GLRobotSimulator(Module):
     DIRECT_CONTROL = Input("forward speed (mm/tick) and rotation (rad/tick), used while not "
                            "zero", optional=True)
 
-    OBJECTS_OUT = Output("the objects as they are now, rows as OBJECTS_IN", shape="OBJECTS_IN.shape")
+    OBJECTS_OUT = Output("the objects as they are now, rows as OBJECTS_IN",
+                         shape="OBJECTS_IN.shape")
     BLOCKS = Output("the blocks: id, x, y, z, colour, held (1)", size_x="6", size_y="50")
     LANDMARKS = Output("the landmarks: id, x, y, z, colour, 0", size_x="6", size_y="50")
     CHARGING_STATION = Output("x, y of the charging station", size="2")

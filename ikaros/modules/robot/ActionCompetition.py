@@ -1,4 +1,4 @@
-"""ActionCompetition: actions compete by activation; the winner runs for a while, then is suppressed."""
+"""ActionCompetition: actions compete by activation; the winner runs, then is suppressed."""
 import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter

@@ -8,30 +8,29 @@ from ikaros.module import Input, Module, Output, Parameter
 
 
 class Epuck(Module):
-    """Drives an e-puck robot through its serial command protocol (Bluetooth serial, a cable,
-    or ``port="sim:epuck"``: the simulated robot in a 2-D arena, see docs/robots.md).
-    VELOCITY (left, right) sets the wheel speeds, 1 being ``velocity_scale`` steps/s (1000
-    steps/s, the top speed, is about 12.9 cm/s); LED (8 values) switches the ring LEDs, LIGHT
-    the front LED and BODY the body LED (on above 0.5); SOUND plays sound 1..5 when its value
-    changes (0 stops). Sensors are read only when switched on: PROXIMITY (``proximity_on``:
-    the eight IR sensors IR0..IR7, clockwise from front right, in the robot's counts, near 0
-    with nothing within about 7 cm and several thousand at contact; calibrated at the start
-    when ``calibrate`` is on, which needs the robot away from obstacles), ENCODER
-    (``encoder_on``: left and right wheel steps, 1000 a turn), the accelerometer
-    (``acceleration_on``: ACCELERATION_PLAIN raw x, y, z; ACCELERATION in g; ORIENTATION and
-    INCLINATION in degrees), MICROPHONE_VOLUME (``microphone_on``: the three microphones'
-    amplitudes) and the camera (``camera`` grey or colour, ``width`` x ``height`` pixels at
-    ``zoom``: IMAGE grey, RED, GREEN and BLUE in 0..1). POSE is (x, y, heading in radians):
-    the simulator's true pose with ``sim:epuck``, otherwise odometry from the encoders
-    (starting at 0, 0, 0; needs ``encoder_on``). Nothing is sent before the first tick; when
-    the run ends the wheels are stopped, every LED is switched off and the sound stops; the
-    same happens after ``watchdog`` seconds without a tick (the model's commands are sent
-    again when ticks resume), at interpreter exit, and on the ``safe_state`` command. A robot that stops
-    answering, or answers wrongly, stops the run with an error naming the port. Differences
-    from Ikaros 2: the ASCII protocol is used for everything but the camera (Ikaros 2 read the
-    sensors in the binary protocol); MICROPHONE_BUFFER and MICROPHONE_SCAN_ID are empty (the
-    sampled sound buffer is not read); POSE, velocity_scale, baud_rate and watchdog are
-    new."""
+    """Drives an e-puck robot through its serial command protocol (Bluetooth serial, a cable, or
+    ``port="sim:epuck"``: the simulated robot in a 2-D arena, see docs/robots.md). VELOCITY
+    (left, right) sets the wheel speeds, 1 being ``velocity_scale`` steps/s (1000 steps/s, the
+    top speed, is about 12.9 cm/s); LED (8 values) switches the ring LEDs, LIGHT the front LED
+    and BODY the body LED (on above 0.5); SOUND plays sound 1..5 when its value changes (0
+    stops). Sensors are read only when switched on: PROXIMITY (``proximity_on``: the eight IR
+    sensors IR0..IR7, clockwise from front right, in the robot's counts, near 0 with nothing
+    within about 7 cm and several thousand at contact; calibrated at the start when
+    ``calibrate`` is on, which needs the robot away from obstacles), ENCODER (``encoder_on``:
+    left and right wheel steps, 1000 a turn), the accelerometer (``acceleration_on``:
+    ACCELERATION_PLAIN raw x, y, z; ACCELERATION in g; ORIENTATION and INCLINATION in degrees),
+    MICROPHONE_VOLUME (``microphone_on``: the three microphones' amplitudes) and the camera
+    (``camera`` grey or colour, ``width`` x ``height`` pixels at ``zoom``: IMAGE grey, RED,
+    GREEN and BLUE in 0..1). POSE is (x, y, heading in radians): the simulator's true pose with
+    ``sim:epuck``, otherwise odometry from the encoders (starting at 0, 0, 0; needs
+    ``encoder_on``). Nothing is sent before the first tick; when the run ends the wheels are
+    stopped, every LED is switched off and the sound stops; the same happens after ``watchdog``
+    seconds without a tick (the model's commands are sent again when ticks resume), at
+    interpreter exit, and on the ``safe_state`` command. A robot that stops answering, or
+    answers wrongly, stops the run with an error naming the port. Differences from Ikaros 2: the
+    ASCII protocol is used for everything but the camera (Ikaros 2 read the sensors in the
+    binary protocol); MICROPHONE_BUFFER and MICROPHONE_SCAN_ID are empty (the sampled sound
+    buffer is not read); POSE, velocity_scale, baud_rate and watchdog are new."""
 
     port = Parameter("/dev/rfcomm", "the serial device (e.g. /dev/rfcomm0 for Bluetooth), or "
                      "sim:epuck?options for the simulator")

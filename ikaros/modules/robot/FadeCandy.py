@@ -12,18 +12,18 @@ _SERVER_START_SECONDS = 3.0
 
 
 class FadeCandy(Module):
-    """Sends LED colours to a FadeCandy board through its server (fcserver) with the Open
-    Pixel Control protocol over TCP. Each child element ``<channel name="EYES" channel="1"
+    """Sends LED colours to a FadeCandy board through its server (fcserver) with the Open Pixel
+    Control protocol over TCP. Each child element ``<channel name="EYES" channel="1"
     size="12"/>`` gives the inputs EYES_RED, EYES_GREEN and EYES_BLUE (optional, 0 when
-    unconnected), each with at least ``size`` values in 0..1, one per pixel; every tick one
-    OPC message per channel sets its pixels (colours clipped to 0..1 and scaled to 0..255).
-    Nothing is sent before the first tick; when the run ends every channel is set to black
-    (LEDs off), as at interpreter exit. With ``start_server`` the program ``server`` is started (and stopped at the
-    end) when it is installed; otherwise, or when it is not found, a server already running
-    at ``address`` is used. ``address="sim:opc"`` runs a simulated OPC server in this process
-    (see docs/robots.md). A server that cannot be reached, or that goes away, stops the run
-    with an error naming its address. Differences from Ikaros 2: ``address`` is new (Ikaros 2
-    always used 127.0.0.1:7890); the program is the parameter ``server``, default fcserver
+    unconnected), each with at least ``size`` values in 0..1, one per pixel; every tick one OPC
+    message per channel sets its pixels (colours clipped to 0..1 and scaled to 0..255). Nothing
+    is sent before the first tick; when the run ends every channel is set to black (LEDs off),
+    as at interpreter exit. With ``start_server`` the program ``server`` is started (and stopped
+    at the end) when it is installed; otherwise, or when it is not found, a server already
+    running at ``address`` is used. ``address="sim:opc"`` runs a simulated OPC server in this
+    process (see docs/robots.md). A server that cannot be reached, or that goes away, stops the
+    run with an error naming its address. Differences from Ikaros 2: ``address`` is new (Ikaros
+    2 always used 127.0.0.1:7890); the program is the parameter ``server``, default fcserver
     (``command`` is a reserved name in this module API; a ``command`` attribute in a model is
     still read; Ikaros 2's default was fcserver-osx)."""
 

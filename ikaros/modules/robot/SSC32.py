@@ -7,23 +7,22 @@ from ikaros.module import Input, Module, Output, Parameter
 
 
 class SSC32(Module):
-    """Drives RC servos on a Lynxmotion SSC-32 board over a serial port. Element i of INPUT
-    is the position of the servo on channel ``channels[i]`` (default: channel i), from 0 to 1:
-    its pulse width is min + INPUT * (max - min) µs, clipped to min..max (``min``, ``max`` and
+    """Drives RC servos on a Lynxmotion SSC-32 board over a serial port. Element i of INPUT is
+    the position of the servo on channel ``channels[i]`` (default: channel i), from 0 to 1: its
+    pulse width is min + INPUT * (max - min) µs, clipped to min..max (``min``, ``max`` and
     ``home`` give one value for all servos or one per servo). Every tick the channels whose
-    position changed are sent in one group move (``#0P1500#1P900T20\\r``), taking
-    ``move_time`` ms (0: as fast as the servos go) at most ``speed`` µs/s per servo (0: no
-    limit); nothing is sent before the first tick, so nothing moves until the model says so.
-    OUTPUT is the present position of each servo read back from the board (QP queries) in
-    the same 0..1 units, NaN for a channel that has no pulses yet. When the run ends the
-    servos are put in ``safe_state``: off (no pulses: RC servos go limp), hold (the last
-    position is kept) or home (moved to the home pulse width); the same happens after
-    ``watchdog`` seconds without a tick (paused, stopped, hung: the positions are sent again
-    when ticks resume), at interpreter exit, and on the ``safe_state`` command. ``port="sim:ssc32"`` runs the
-    board simulator in this process (see docs/robots.md). A board that does not answer, or
-    answers with garbage, stops the run with an error naming the port. The Ikaros 2 class
-    had only min, max and home; port, baud_rate, channels, move_time, speed, safe_state,
-    watchdog and feedback are additions."""
+    position changed are sent in one group move (``#0P1500#1P900T20\\r``), taking ``move_time``
+    ms (0: as fast as the servos go) at most ``speed`` µs/s per servo (0: no limit); nothing is
+    sent before the first tick, so nothing moves until the model says so. OUTPUT is the present
+    position of each servo read back from the board (QP queries) in the same 0..1 units, NaN for
+    a channel that has no pulses yet. When the run ends the servos are put in ``safe_state``:
+    off (no pulses: RC servos go limp), hold (the last position is kept) or home (moved to the
+    home pulse width); the same happens after ``watchdog`` seconds without a tick (paused,
+    stopped, hung: the positions are sent again when ticks resume), at interpreter exit, and on
+    the ``safe_state`` command. ``port="sim:ssc32"`` runs the board simulator in this process
+    (see docs/robots.md). A board that does not answer, or answers with garbage, stops the run
+    with an error naming the port. The Ikaros 2 class had only min, max and home; port,
+    baud_rate, channels, move_time, speed, safe_state, watchdog and feedback are additions."""
 
     port = Parameter("/dev/ttyUSB0", "the serial device of the SSC-32, or sim:ssc32 for the "
                      "simulator")
