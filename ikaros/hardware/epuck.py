@@ -47,6 +47,10 @@ RING_LEDS = 8
 IMAGE_COMMAND = bytes([256 - ord("I"), 0])
 
 
+class NotAnswering(DeviceError):
+    """The robot does not answer at all (gone, switched off, out of Bluetooth range)."""
+
+
 def command_line(letter: str, *args: int) -> bytes:
     """An ASCII command: ``command_line("D", 500, -500) == b"D,500,-500\\r"``."""
     return (",".join([letter, *(str(int(a)) for a in args)]) + "\r").encode("ascii")
@@ -103,21 +107,37 @@ class Epuck:
         self.port = open_serial(device, baud_rate, timeout=timeout, what="e-puck")
 
     def ask(self, letter: str, *args: int) -> list[int]:
-        """Send a command and return the values of its reply."""
+        """Send a command and return the values of its reply. A reply left over from an
+        interrupted command is skipped."""
+        self._discard_input()
         self._write(command_line(letter, *args))
+        for attempt in range(2):
+            line = self._read_line(letter)
+            try:
+                return parse_reply(letter, line)
+            except ValueError as error:
+                stale = line[:1].isalpha() and line[:1].islower() and attempt == 0
+                if not stale:
+                    self._discard_input()
+                    raise DeviceError(f"the e-puck at '{self.device}' gave a corrupted reply "
+                                      f"to command {letter}: {error}") from None
+        raise AssertionError("unreachable")
+
+    def _read_line(self, letter: str) -> bytes:
         try:
             line = self.port.read_until(b"\n", 256)
         except Exception as error:
             raise DeviceError(f"the e-puck at '{self.device}' cannot be read: {error}") from None
         if not line.endswith(b"\n"):
-            raise DeviceError(f"the e-puck at '{self.device}' does not answer (command "
-                              f"{letter}, no reply within {self.timeout} s)")
+            raise NotAnswering(f"the e-puck at '{self.device}' does not answer (command "
+                               f"{letter}, no reply within {self.timeout} s)")
+        return line
+
+    def _discard_input(self) -> None:
         try:
-            return parse_reply(letter, line)
-        except ValueError as error:
             self.port.reset_input_buffer()
-            raise DeviceError(f"the e-puck at '{self.device}' gave a corrupted reply to "
-                              f"command {letter}: {error}") from None
+        except Exception as error:
+            raise DeviceError(f"the e-puck at '{self.device}' cannot be read: {error}") from None
 
     def _write(self, data: bytes) -> None:
         try:
@@ -191,13 +211,21 @@ class Epuck:
         return data
 
     def safe_state(self) -> None:
-        """Wheels stopped, every LED off, no sound."""
-        self.ask("S")
-        for number in range(RING_LEDS):
-            self.set_led(number, False)
-        self.set_body_led(False)
-        self.set_front_led(False)
-        self.play_sound(0)
+        """Wheels stopped, every LED off, no sound. Every step is tried even when one gets a
+        wrong reply (the first failure is raised at the end); a robot that does not answer
+        at all ends it at once."""
+        steps = [("S",)] + [("L", n, 0) for n in range(RING_LEDS)] + [("B", 0), ("F", 0),
+                                                                    ("T", 0)]
+        failure = None
+        for step in steps:
+            try:
+                self.ask(*step)
+            except NotAnswering:
+                raise
+            except DeviceError as error:
+                failure = failure or error
+        if failure is not None:
+            raise failure
 
     def close(self) -> None:
         try:

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 import pytest
@@ -167,3 +168,13 @@ def test_a_robot_that_disappears_is_reported(epuck):
 def test_a_start_inside_an_obstacle_is_refused():
     with pytest.raises(ValueError, match="inside a wall or an obstacle"):
         VirtualEpuck(Arena(1, 1, parse_boxes("0.1,0.1,0.3,0.3")), x=0.2, y=0.2)
+
+
+def test_replies_left_over_from_interrupted_commands_are_skipped(epuck):
+    robot, driver = epuck
+    driver.port.write(b"L,0,1\r")                   # its reply "l" is never read
+    assert driver.encoders() == [0, 0]
+    driver.port.write(b"B,1\r")
+    time.sleep(0.05)                                 # the stale reply has arrived
+    assert driver.encoders() == [0, 0]
+    assert (robot.leds[0], robot.body_led) == (1, 1)

@@ -1,5 +1,8 @@
 """The Epuck module against the virtual e-puck, and the obstacle-avoidance example."""
 import os
+import signal
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -155,3 +158,32 @@ def test_the_watchdog_stops_an_idle_robot_and_ticks_resume(tmp_path):
         assert robot.speeds == [0, 0] and robot.leds == [0] * 8
     finally:
         net.close()
+
+
+@pytest.mark.parametrize("how", [signal.SIGINT, signal.SIGTERM])
+def test_ctrl_c_of_an_ikaros_process_stops_the_robot(tmp_path, how):
+    with VirtualEpuck(Arena(1, 1, []), x=0.5, y=0.5) as robot:
+        path = tmp_path / "drive.ikg"
+        path.write_text('<group name="Drive" tick_duration="0.02">\n'
+                        '<module class="Constant" name="V" data="0.3 0.3"/>\n'
+                        '<module class="Constant" name="L" data="1 1 1 1 1 1 1 1"/>\n'
+                        f'<module class="Epuck" name="R" port="{robot.path}"/>\n'
+                        '<connection source="V.OUTPUT" target="R.VELOCITY"/>\n'
+                        '<connection source="L.OUTPUT" target="R.LED"/>\n</group>\n')
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+            p for p in [ROOT, os.environ.get("PYTHONPATH")] if p))
+        process = subprocess.Popen([sys.executable, "-m", "ikaros", "-b", "-r", str(path)],
+                                   env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        try:
+            deadline = time.monotonic() + 20
+            while (robot.speeds, robot.leds) != ([300, 300], [1] * 8) and \
+                    time.monotonic() < deadline:
+                time.sleep(0.02)
+            assert robot.speeds == [300, 300] and robot.leds == [1] * 8
+            process.send_signal(how)
+            process.wait(timeout=10)
+        finally:
+            if process.poll() is None:
+                process.kill()
+                process.wait(timeout=10)
+        assert robot.speeds == [0, 0] and robot.leds == [0] * 8 and robot.commands[-1] == "T,0"
