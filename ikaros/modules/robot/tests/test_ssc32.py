@@ -1,4 +1,6 @@
 """The SSC32 module against the virtual SSC-32."""
+import os
+import signal
 import subprocess
 import sys
 import time
@@ -28,9 +30,9 @@ def moves(device):
     return [c for c in device.commands if c.startswith("#")]
 
 
-def last_move(device, expected):
-    """The last move command once ``expected`` has arrived (or after 1 s)."""
-    deadline = time.monotonic() + 1.0
+def last_move(device, expected, seconds=1.0):
+    """The last move command once ``expected`` has arrived (or after ``seconds``)."""
+    deadline = time.monotonic() + seconds
     while moves(device)[-1:] != [expected] and time.monotonic() < deadline:
         time.sleep(0.005)
     return moves(device)[-1]
@@ -125,3 +127,27 @@ def test_a_script_that_never_closes_leaves_the_servos_off(tmp_path, board):
     assert result.returncode == 0, result.stderr
     assert last_move(board, "#0P0#1P0#2P0") == "#0P0#1P0#2P0"
     assert moves(board)[0] == "#0P1000#1P1500#2P2000"
+
+
+def test_ctrl_c_of_an_ikaros_process_turns_the_servos_off(tmp_path, board):
+    path = tmp_path / "servos.ikg"
+    path.write_text('<group name="Servos" tick_duration="0.02">\n'
+                    '<module class="Constant" name="In" data="0.2 0.8"/>\n'
+                    f'<module class="SSC32" name="S" port="{board.path}"/>\n'
+                    '<connection source="In.OUTPUT" target="S.INPUT"/>\n</group>\n')
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__))))))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        p for p in [root, os.environ.get("PYTHONPATH")] if p))
+    process = subprocess.Popen([sys.executable, "-m", "ikaros", "-b", "-r", str(path)],
+                               env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        assert last_move(board, "#0P900#1P2100", 20.0) == "#0P900#1P2100"
+        process.send_signal(signal.SIGINT)
+        process.wait(timeout=10)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait(timeout=10)
+    assert last_move(board, "#0P0#1P0") == "#0P0#1P0"
+    assert [board.pulse(0), board.pulse(1)] == [0, 0]
