@@ -80,6 +80,9 @@ class OPCClient:
     def send(self, data: bytes) -> None:
         try:
             self.socket.sendall(data)
+        except TimeoutError:
+            raise DeviceError(f"the OPC server at {self.address} does not take data (no "
+                              f"progress within {self.socket.gettimeout()} s)") from None
         except OSError as error:
             raise DeviceError(f"the connection to the OPC server at {self.address} is lost: "
                               f"{error.strerror or error}") from None

@@ -1,7 +1,8 @@
 """An Open Pixel Control server on 127.0.0.1 that keeps the pixels it is sent (a virtual
 FadeCandy): ``pixels[channel]`` is an (n, 3) uint8 array of the last colours of that channel,
-``messages`` every (channel, command, data) received. ``disconnect()`` drops every
-connection and stops listening (a server that goes away).
+``messages`` every (channel, command, data) received. Faults: ``disconnect()`` drops every
+connection and stops listening (a server that goes away); ``stall()`` keeps the connections
+but reads nothing more (a server that hangs).
 """
 from __future__ import annotations
 
@@ -30,6 +31,7 @@ class VirtualOPCServer:
         self._clients: dict[socket.socket, bytearray] = {}
         self._thread: threading.Thread | None = None
         self._stopping = threading.Event()
+        self._stalled = threading.Event()
         self._lock = threading.Lock()
 
     @property
@@ -52,6 +54,10 @@ class VirtualOPCServer:
             self._thread = None
         self._close_all()
 
+    def stall(self) -> None:
+        """Fault: the server stops reading; clients' writes block once the buffers are full."""
+        self._stalled.set()
+
     def disconnect(self) -> None:
         """Fault: the server goes away; clients' next writes fail."""
         self.stop()
@@ -68,7 +74,7 @@ class VirtualOPCServer:
 
     def _serve(self) -> None:
         while not self._stopping.is_set():
-            sockets = [self._listener, *self._clients]
+            sockets = [self._listener] + ([] if self._stalled.is_set() else [*self._clients])
             try:
                 ready, _, _ = select.select(sockets, [], [], _POLL_SECONDS)
             except (OSError, ValueError):

@@ -76,3 +76,17 @@ def test_no_server_is_reported_with_its_address():
         address = server.path
     with pytest.raises(DeviceError, match=f"cannot connect to the OPC server at {address}"):
         OPCClient(address)
+
+
+def test_a_server_that_hangs_is_reported():
+    with VirtualOPCServer() as server:
+        client = OPCClient(server.path, timeout=0.3)
+        try:
+            server.stall()
+            big = np.zeros((21845, 3))                  # 65535 bytes a message
+            with pytest.raises(DeviceError, match=f"OPC server at {server.path} does not "
+                               "take data"):
+                for _ in range(2000):                   # until the socket buffers are full
+                    client.set_pixels(1, big)
+        finally:
+            client.close()
