@@ -187,3 +187,19 @@ def test_ctrl_c_of_an_ikaros_process_stops_the_robot(tmp_path, how):
                 process.kill()
                 process.wait(timeout=10)
         assert robot.speeds == [0, 0] and robot.leds == [0] * 8 and robot.commands[-1] == "T,0"
+
+
+def test_an_exception_in_another_module_stops_the_robot(tmp_path):
+    (tmp_path / "Boom.py").write_text(
+        "from ikaros import Module\n\n\nclass Boom(Module):\n"
+        "    def tick(self):\n"
+        "        if self.clock.tick == 3:\n"
+        "            raise RuntimeError('boom')\n")
+    net = model(tmp_path, f'port="{SIM}"', "0.5 0.5", '<module class="Boom" name="B"/>\n')
+    robot = simulator(net)
+    with pytest.raises(RunError, match="RuntimeError: boom"):
+        for _ in range(10):
+            net.step()
+    assert robot.speeds == [0, 0] and robot.commands[-1] == "T,0"
+    assert net.tick == 4
+    net.close()

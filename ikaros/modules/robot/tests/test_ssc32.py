@@ -151,3 +151,21 @@ def test_ctrl_c_of_an_ikaros_process_turns_the_servos_off(tmp_path, board):
             process.wait(timeout=10)
     assert last_move(board, "#0P0#1P0") == "#0P0#1P0"
     assert [board.pulse(0), board.pulse(1)] == [0, 0]
+
+
+def test_an_exception_in_another_module_turns_the_servos_off(tmp_path, board):
+    (tmp_path / "Boom.py").write_text(
+        "from ikaros import Module\n\n\nclass Boom(Module):\n"
+        "    def tick(self):\n"
+        "        if self.clock.tick == 2:\n"
+        "            raise RuntimeError('boom')\n")
+    body = ('<module class="Constant" name="In" data="0 0.5 1"/>\n'
+            f'<module class="SSC32" name="Servos" port="{board.path}"/>\n'
+            '<module class="Boom" name="B"/>\n'
+            '<connection source="In.OUTPUT" target="Servos.INPUT" delay="0"/>')
+    net = load_body(tmp_path, body)
+    with pytest.raises(RunError, match="RuntimeError: boom"):
+        for _ in range(10):
+            net.step()
+    assert last_move(board, "#0P0#1P0#2P0") == "#0P0#1P0#2P0"
+    net.close()
