@@ -94,12 +94,13 @@ def test_start_server_runs_the_program_and_stops_it(tmp_path):
     assert marker.exists()
 
 
-def test_a_missing_program_is_a_warning_and_no_server_an_error(tmp_path, capsys):
+@pytest.mark.parametrize("attribute", ["server", "command"])     # command: Ikaros 2's name
+def test_a_missing_program_is_a_warning_and_no_server_an_error(tmp_path, capsys, attribute):
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
         port = probe.getsockname()[1]
     with pytest.raises(ModelError, match=f"cannot connect to the OPC server at 127.0.0.1:{port}"):
-        model(tmp_path, f"127.0.0.1:{port}", 'command="no-such-fcserver"')
+        model(tmp_path, f"127.0.0.1:{port}", f'{attribute}="no-such-fcserver"')
     assert "'no-such-fcserver' is not installed" in capsys.readouterr().err
 
 
