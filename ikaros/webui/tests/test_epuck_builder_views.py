@@ -22,7 +22,8 @@ def widgets(page) -> list[str]:
 
 def test_the_epuck_arena_view_follows_the_robot():
     def check(server, page):
-        assert sorted(widgets(page)) == ["bar-graph", "plot", "table", "table", "world-2d"]
+        assert sorted(widgets(page)) == ["bar-graph", "image", "plot", "table", "table",
+                                         "world-2d"]
         tick = server.step(20)
         pose = server.data("Robot.POSE")["data"]["Robot.POSE"]
         page.wait_for_function(
