@@ -182,8 +182,14 @@ class Epuck:
     def play_sound(self, number: int) -> None:
         self.ask("T", number)
 
-    def calibrate(self) -> None:
-        self.ask("K")
+    def calibrate(self, seconds: float = 5.0) -> None:
+        """Calibrate the proximity sensors (the robot takes a while: up to ``seconds``)."""
+        normal = self.port.timeout
+        self.port.timeout, self.timeout = seconds, seconds
+        try:
+            self.ask("K")
+        finally:
+            self.port.timeout, self.timeout = normal, normal
 
     def set_camera(self, colour: bool, width: int, height: int, zoom: int) -> None:
         self.ask("J", 1 if colour else 0, width, height, zoom)
