@@ -24,7 +24,9 @@ class Interrupted(KeyboardInterrupt):
 
 
 def install(grace: float = GRACE) -> None:
-    """Make SIGINT raise Interrupted and end the process within ``grace`` seconds."""
+    """Make SIGINT raise Interrupted and end the process within ``grace`` seconds. SIGTERM
+    (kill, a closing session) ends a run the same way, so every module's stop() runs and
+    devices reach their safe state before the process exits."""
     global _installed
 
     def handler(signum, frame):
@@ -34,6 +36,7 @@ def install(grace: float = GRACE) -> None:
         raise Interrupted()
 
     signal.signal(signal.SIGINT, handler)
+    signal.signal(signal.SIGTERM, handler)
     _installed = True
 
 

@@ -224,31 +224,38 @@ class Network:
         """Run every init in schedule order. When one fails, the modules already initialised
         are stopped (in order) before the error is raised; the failing one is not."""
         self.clock.tick = -1
-        for k, inst in enumerate(self.schedule):
-            for copy in self._pre_tick[inst]:
-                copy()
-            job = self.async_modules.get(inst)
-            if job is not None:
-                job.take_inputs()
-            error = None
-            try:
-                inst.module.init()
+        started = []
+        try:
+            for inst in self.schedule:
+                for copy in self._pre_tick[inst]:
+                    copy()
+                job = self.async_modules.get(inst)
                 if job is not None:
-                    job.publish_init()
-            except module_faults() as e:
-                if is_interrupt(e):
-                    raise
-                error = inst.node.error(f"init failed: {fault_text(e)}")
-            if error is None and self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
-                error = inst.node.error(f"While initializing module {inst.path}: "
-                                        f"{self.stop_reason[1]}")
-            if error is not None:
-                self._stopped = True
-                for job in self.async_modules.values():
-                    job.finish()
-                self.plan.close()
-                self._stop_modules(self.schedule[:k])
-                raise error from None
+                    job.take_inputs()
+                error = None
+                try:
+                    inst.module.init()
+                    if job is not None:
+                        job.publish_init()
+                except module_faults() as e:
+                    if is_interrupt(e):
+                        raise
+                    error = inst.node.error(f"init failed: {fault_text(e)}")
+                else:
+                    started.append(inst)        # (an init that raises cleans up after itself)
+                if error is None and self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
+                    error = inst.node.error(f"While initializing module {inst.path}: "
+                                            f"{self.stop_reason[1]}")
+                if error is not None:
+                    raise error from None
+        except BaseException:
+            # Devices opened by the modules initialised so far go to their safe state.
+            self._stopped = True
+            for job in self.async_modules.values():
+                job.finish()
+            self.plan.close()
+            self._stop_modules(started)
+            raise
 
     def _check_checksum(self) -> None:
         if self.top.attrs.get("check_sum") not in (None, ""):
@@ -329,15 +336,23 @@ class Network:
             raise RunError(f"{where}: {message}" if where else message)
 
     def _stop_modules(self, modules: list[ModuleInstance]) -> None:
-        """Call stop() of each module once; a stop() that fails is a fatal error (the run
-        ends with an error), and the other modules are still stopped."""
+        """Call stop() of each module once. A stop() that fails is a fatal error (the run
+        ends with an error); neither a failure nor a Ctrl-C in one skips the others
+        (drivers put their hardware in a safe state there). A Ctrl-C is raised again
+        after."""
+        interrupted = None
         for inst in modules:
             try:
                 inst.module.stop()
             except module_faults() as e:
                 if is_interrupt(e):
-                    raise
+                    interrupted = e
+                    continue
                 self.notify(FATAL_ERROR, inst.path, f"stop failed: {fault_text(e)}")
+            except KeyboardInterrupt as e:
+                interrupted = e
+        if interrupted is not None:
+            raise interrupted
 
     def _check_running(self) -> None:
         if self._stopped:

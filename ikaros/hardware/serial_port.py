@@ -1,0 +1,44 @@
+"""Opening serial ports (real ones and the pseudo-terminals of the simulators) through pyserial."""
+from __future__ import annotations
+
+from typing import Any
+
+from ikaros.hardware import DeviceError
+
+INSTALL_HINT = "pip install 'ikaros[robots]'"
+
+
+def require(module_name: str, purpose: str) -> Any:
+    """Import an optional robot package or raise DeviceError with the pip command that installs it."""
+    import importlib
+    try:
+        return importlib.import_module(module_name)
+    except ImportError:
+        raise DeviceError(f"{purpose} needs the Python package '{module_name}', which is not "
+                          f"installed: {INSTALL_HINT}") from None
+
+
+def open_serial(device: str, baudrate: int, timeout: float = 0.1, what: str = "serial device"):
+    """Open ``device`` at ``baudrate`` (8N1, raw) and return the ``serial.Serial``.
+
+    Failures raise :class:`DeviceError` naming ``what`` and the device, with the likely cause
+    (missing device, no permission) instead of pyserial's bare OSError.
+    """
+    serial = require("serial", f"The {what}")
+    try:
+        return serial.Serial(device, baudrate=baudrate, timeout=timeout, write_timeout=max(timeout, 1.0))
+    except serial.SerialException as error:
+        raise DeviceError(f"cannot open the {what} at '{device}': {describe_error(error)}") from None
+    except (OSError, ValueError) as error:
+        raise DeviceError(f"cannot open the {what} at '{device}': {error}") from None
+
+
+def describe_error(error: Exception) -> str:
+    """Why a port could not be opened, with the likely fix."""
+    number = getattr(error, "errno", None)
+    text = str(error)
+    if number == 2 or "No such file" in text:
+        return "no such device (is it plugged in? see docs/robots.md for the device names)"
+    if number == 13 or "Permission denied" in text:
+        return "permission denied (add yourself to the 'dialout' group, see docs/robots.md)"
+    return text

@@ -1,0 +1,213 @@
+"""GLRobotSimulator: picking, stacking and placing blocks, driving, collisions, battery,
+range map and the 3-D scene."""
+import math
+
+import numpy as np
+import pytest
+
+from ikaros.errors import ModelError
+from ikaros.testing import load_body
+
+OBJECTS = "1 1 1100 300 0 0.3; 1 2 1100 400 0 0.6; 2 7 400 1000 0 0.9"
+
+
+def build(tmp_path, script, params="", objects=OBJECTS, extra=""):
+    """A robot driven by an InputFile ``script``: column names, then one row per tick."""
+    (tmp_path / "script.txt").write_text(script)
+    names = script.split("\n")[0].split()
+    body = (f'<module class="Constant" name="Objects" data="{objects}"/>\n'
+            '<module class="InputFile" name="S" filename="script.txt"/>\n'
+            f'<module class="GLRobotSimulator" name="R" {params}/>\n'
+            '<connection source="Objects.OUTPUT" target="R.OBJECTS_IN"/>\n' + extra)
+    for column in names:
+        name = column.split("/")[0]
+        body += f'<connection source="S.{name}" target="R.{name}" delay="0"/>\n'
+    return load_body(tmp_path, body)
+
+
+def run(net, ticks, watch=()):
+    seen = []
+    for _ in range(ticks):
+        net.step()
+        seen.append({w: net.output(f"R.{w}").copy() for w in watch})
+    return seen
+
+
+def script(header, *rows):
+    """header, then each (row, repeat) pair."""
+    lines = [header] + [row for row, times in rows for _ in range(times)]
+    return "\n".join(lines) + "\n"
+
+
+def phase(seen, name):
+    return [int(np.argmax(s[name])) for s in seen]
+
+
+def test_pick_a_block_and_stack_it_on_another(tmp_path):
+    net = build(tmp_path, script("PICK_OBJECT_ID/1 PICK_OBJECT_TRIGGER/1 "
+                                 "PLACE_OBJECT_LOCATION/2 PLACE_OBJECT_TRIGGER/1",
+                                 ("1 1 1100 400 0", 30), ("1 0 1100 400 1", 30)))
+    try:
+        seen = run(net, 60, ("PICK_PHASE", "PLACE_PHASE", "ROBOT_LOCATION", "BLOCKS",
+                             "PICK_ERROR", "PLACE_ERROR"))
+        # reaching arrives on its 10th tick, grasping takes 5, lifting 10; then done
+        assert phase(seen[:30], "PICK_PHASE") == [1] * 9 + [2] * 5 + [3] * 10 + [4] * 6
+        assert phase(seen[30:], "PLACE_PHASE") == [1] * 9 + [2] * 5 + [3] * 10 + [4] * 6
+        assert seen[20]["ROBOT_LOCATION"][3] == 1                     # holding block 1
+        assert seen[20]["BLOCKS"][0, 5] == 1
+        assert seen[-1]["ROBOT_LOCATION"][3] == 0
+        assert seen[-1]["BLOCKS"][0].tolist() == pytest.approx([1, 1100, 400, 50, 0.3, 0])
+        assert seen[-1]["BLOCKS"][1].tolist() == pytest.approx([2, 1100, 400, 0, 0.6, 0])
+        assert not any(s["PICK_ERROR"][0] or s["PLACE_ERROR"][0] for s in seen)
+        out = net.output("R.OBJECTS_OUT")
+        assert out.shape == (3, 6) and out[0].tolist() == pytest.approx([1, 1, 1100, 400, 50,
+                                                                          0.3])
+    finally:
+        net.close()
+
+
+@pytest.mark.parametrize("objects, pick_id", [
+    (OBJECTS, 9),                                                   # no such block
+    ("1 1 700 300 0 0.3", 1),                                       # out of reach (600 mm)
+    ("1 1 1100 300 0 0.3; 1 2 1100 300 50 0.6", 1)])                # block 2 lies on it
+def test_picks_that_cannot_be_done_are_errors(tmp_path, objects, pick_id):
+    net = build(tmp_path, script("PICK_OBJECT_ID/1 PICK_OBJECT_TRIGGER/1", (f"{pick_id} 1", 3)),
+                objects=objects)
+    try:
+        seen = run(net, 3, ("PICK_ERROR", "PICK_PHASE"))
+        assert [s["PICK_ERROR"][0] for s in seen] == [1, 1, 1]
+        assert phase(seen, "PICK_PHASE") == [0, 0, 0]
+    finally:
+        net.close()
+
+
+def test_spatial_attention_picks_the_nearest_block(tmp_path):
+    net = build(tmp_path, script("PICK_OBJECT_SPATIAL_ATTENTION/2 PICK_OBJECT_TRIGGER/1",
+                                 ("1090 410 1", 20)))
+    try:
+        run(net, 20)
+        assert net.output("R.ROBOT_LOCATION")[3] == 2
+    finally:
+        net.close()
+
+
+def test_drive_to_a_goal(tmp_path):
+    net = build(tmp_path, script("GOAL_LOCATION/2 LOCOMOTION_TRIGGER/1", ("1300 800 1", 80)))
+    try:
+        seen = run(net, 80, ("LOCOMOTION_PHASE", "ROBOT_LOCATION", "SPEED_OUT", "TARGET"))
+        phases = phase(seen, "LOCOMOTION_PHASE")
+        turning = math.ceil((math.pi / 2) / 0.1)          # from heading pi to pi/2
+        driving = math.ceil(575 / 10)
+        assert phases == [1] * (turning - 1) + [2] * driving + [3] * (81 - turning - driving)
+        assert seen[-1]["ROBOT_LOCATION"][:3].tolist() == pytest.approx([1300, 800, math.pi / 2],
+                                                                        abs=1e-3)
+        assert seen[turning + 5]["SPEED_OUT"][0] == 10
+        assert seen[turning + 5]["TARGET"].tolist() == [1300, 800, 0, 1]
+    finally:
+        net.close()
+
+
+def test_a_trip_into_a_block_stops_with_an_error(tmp_path):
+    net = build(tmp_path, script("GOAL_LOCATION/2 LOCOMOTION_TRIGGER/1", ("700 700 1", 100)))
+    try:
+        seen = run(net, 100, ("LOCOMOTION_PHASE", "LOCOMOTION_ERROR", "ROBOT_LOCATION"))
+        assert phase(seen, "LOCOMOTION_PHASE")[-1] == 4 and seen[-1]["LOCOMOTION_ERROR"][0] == 1
+        x, y = seen[-1]["ROBOT_LOCATION"][:2]
+        nearest = min(math.hypot(x - 1100, y - 300), math.hypot(x - 1100, y - 400))
+        assert 125 - 1e-6 <= nearest < 135          # stopped at a block (radii 100 + 25)
+    finally:
+        net.close()
+
+
+def test_goals_outside_the_arena_are_errors(tmp_path):
+    net = build(tmp_path, script("GOAL_LOCATION/2 LOCOMOTION_TRIGGER/1", ("1450 800 1", 2)))
+    try:
+        seen = run(net, 2, ("LOCOMOTION_ERROR",))
+        assert seen[0]["LOCOMOTION_ERROR"][0] == 1                # 1450 + radius 100 > 1500
+    finally:
+        net.close()
+
+
+def test_battery_decays_and_charges_at_the_station(tmp_path):
+    net = build(tmp_path, script("DIRECT_CONTROL/2 CHARGE_BATTERIES/1",
+                                 ("0 0 1", 1), ("-10 0 1", 10), ("0 0 1", 5)),
+                params='battery_decay="0.01"')
+    try:
+        seen = run(net, 16, ("BATTERY_LEVEL", "CHARGE_ERROR", "CHARGE_PHASE", "ROBOT_LOCATION"))
+        assert seen[0]["CHARGE_ERROR"][0] == 1                    # 175 mm from the station
+        assert seen[0]["BATTERY_LEVEL"][0] == pytest.approx(0.99)
+        # backwards 10 mm a tick, using 0.02; from x = 1380 (tick 8) the robot is within
+        # 100 mm of the station and charges 0.01 a tick
+        assert seen[7]["BATTERY_LEVEL"][0] == pytest.approx(0.99 - 7 * 0.02)
+        assert seen[7]["CHARGE_PHASE"].tolist() == [1, 0] and seen[7]["CHARGE_ERROR"][0] == 1
+        assert seen[8]["CHARGE_PHASE"].tolist() == [0, 1] and seen[8]["CHARGE_ERROR"][0] == 0
+        assert seen[9]["BATTERY_LEVEL"][0] == pytest.approx(0.99 - 9 * 0.02 + 2 * 0.01)
+        assert seen[10]["ROBOT_LOCATION"][0] == pytest.approx(1400)
+        assert seen[12]["BATTERY_LEVEL"][0] == pytest.approx(seen[11]["BATTERY_LEVEL"][0])
+    finally:
+        net.close()
+
+
+def test_range_map_and_view(tmp_path):
+    net = build(tmp_path, script("DIRECT_CONTROL/2", ("0 0", 1)),
+                params='start="700 1350 0"', objects="1 4 900 1350 0 0.5; 2 5 700 1200 0 0.8")
+    try:
+        run(net, 1)
+        ranges, colours = net.output("R.RANGE_MAP"), net.output("R.RANGE_COLOR")
+        assert ranges[0] == pytest.approx(175) and colours[0] == pytest.approx(0.5)  # block
+        assert ranges[8] == pytest.approx(150) and colours[8] == 0                   # wall
+        assert ranges[16] == 300 and colours[16] == 0                                # nothing
+        assert ranges[24] == pytest.approx(125) and colours[24] == pytest.approx(0.8)
+        assert net.output("R.VIEW_FIELD").tolist() == [1000, 1350]
+        assert net.output("R.BLOCKS_IN_VIEW")[0, :2].tolist() == [4, 900]
+        assert net.output("R.LANDMARKS")[0, :2].tolist() == [5, 700]
+    finally:
+        net.close()
+
+
+def test_transforms_draw_the_scene_in_metres(tmp_path):
+    net = build(tmp_path, script("MOVE_BLOCK/3", ("2 500 500", 2)))
+    try:
+        run(net, 2)
+        t = net.output("R.TRANSFORMS")
+        assert t.shape == (5 + 3, 16)
+        body = t[0].reshape(4, 4)
+        assert body[:3, 3].tolist() == pytest.approx([1.3, 0.225, 0.06])
+        assert body[3].tolist() == [0, 0, 0, 1]
+        block2 = t[5 + 1].reshape(4, 4)                          # moved by MOVE_BLOCK
+        assert block2[:3, 3].tolist() == pytest.approx([0.5, 0.5, 0.025])
+        assert np.diag(block2)[:3].tolist() == pytest.approx([0.05, 0.05, 0.05])
+        shoulder_to_elbow = t[1].reshape(4, 4)
+        assert np.linalg.norm(shoulder_to_elbow[:3, 0]) == pytest.approx(0.15, abs=1e-6)
+    finally:
+        net.close()
+
+
+def test_objects_need_rows_of_six(tmp_path):
+    with pytest.raises(ModelError, match="rows of 6"):
+        build(tmp_path, script("MOVE_BLOCK/3", ("0 0 0", 1)), objects="1 2 3 4")
+
+
+def test_the_builder_example_runs_its_plan():
+    """examples/gl_robot_builder.ikg to its end: block 1 stacked on block 2, block 3 moved,
+    the robot back at the charging station with a full battery, no action failed."""
+    import os
+
+    import ikaros
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__))))))
+    net = ikaros.load(os.path.join(root, "examples", "gl_robot_builder.ikg"))
+    try:
+        errors = 0.0
+        for _ in range(480):                                    # the model's stop tick
+            net.step()
+            errors += sum(net.output(f"Robot.{e}")[0] for e in
+                          ("LOCOMOTION_ERROR", "PICK_ERROR", "PLACE_ERROR"))
+        assert net.tick == 480 and errors == 0
+        blocks = net.output("Robot.BLOCKS")
+        assert blocks[:3, :4].tolist() == [[1, 1150, 450, 50], [2, 1150, 450, 0],
+                                           [3, 850, 1050, 0]]
+        assert net.output("Robot.ROBOT_LOCATION")[:2].tolist() == [1400, 260]
+        assert net.output("Robot.BATTERY_LEVEL")[0] > 0.99
+    finally:
+        net.close()

@@ -1,0 +1,334 @@
+"""The Dynamixel module against the virtual Dynamixel bus: commands, feedback units, errors and
+the safe state on every way a run ends."""
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from ikaros.errors import ModelError, RunError
+from ikaros.hardware.dynamixel.simulator import VirtualDynamixelBus
+from ikaros.testing import load_body
+
+XM = "XM430-W350"
+
+
+def model(tmp_path, device, goals="200 0 90", params="", extra=""):
+    body = (f'<module class="Constant" name="G" data="{goals}"/>\n'
+            f'<module class="Dynamixel" name="D" device="{device}" print_info="none" {params}/>\n'
+            '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n' + extra)
+    return load_body(tmp_path, body)
+
+
+@pytest.fixture
+def bus():
+    with VirtualDynamixelBus({1: XM, 2: XM, 4: "XL430-W250"}, 2) as sim:
+        yield sim
+
+
+def wait_for(condition, seconds=2.0):
+    deadline = time.monotonic() + seconds
+    while not condition() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return condition()
+
+
+def test_nothing_moves_at_start_up_and_goals_reach_the_servos(tmp_path, bus):
+    net = model(tmp_path, bus.path, params='max_servo_id="5"')
+    try:
+        assert net.output("D.FEEDBACK_PRESENT_POSITION").tolist() == [180, 180, 180]
+        assert not any(bus.servo(i).torque for i in (1, 2, 4))          # built: nothing written
+        net.step()
+        assert [bus.servo(i).torque for i in (1, 2, 4)] == [True, False, True]   # goal 0: no command
+        assert bus.servo(1).value("GOAL_POSITION") == pytest.approx(200, abs=0.05)
+        assert bus.servo(2).value("GOAL_POSITION") == 180.0                     # never written
+        assert wait_for(lambda: abs(bus.servo(4).value("PRESENT_POSITION") - 90) < 0.1)
+        net.step()
+        assert net.output("D.FEEDBACK_PRESENT_POSITION") == pytest.approx([200, 180, 90], abs=0.1)
+        assert net.output("D.FEEDBACK_GOAL_POSITION") == pytest.approx([200, 180, 90], abs=0.01)
+        assert net.output("D.FEEDBACK_TORQUE_ENABLE").tolist() == [1, 0, 1]
+        assert net.output("D.FEEDBACK_PRESENT_VOLTAGE").tolist() == pytest.approx([12.0] * 3)
+        assert net.output("D.FEEDBACK_PRESENT_TEMPERATURE").tolist() == [30, 30, 30]
+        assert net.output("D.ERRORS").shape == (3, 8)
+    finally:
+        net.close()
+    assert not any(bus.servo(i).torque for i in (1, 2, 4))                # safe state: torque off
+
+
+@pytest.mark.parametrize("unit, goal, factor", [("radians", math.pi / 2, math.pi / 180), ("tau", 0.75, 1 / 360)])
+def test_angle_units(tmp_path, unit, goal, factor):
+    with VirtualDynamixelBus({3: "AX-12A"}, 1) as sim:
+        net = model(tmp_path, sim.path, goals=str(goal), params=f'angle_unit="{unit}" servo_id="3" protocol="1"')
+        try:
+            net.step()
+            degrees = goal / factor
+            assert sim.servo(3).value("GOAL_POSITION") == pytest.approx(degrees, abs=0.3)
+            assert wait_for(lambda: abs(sim.servo(3).value("PRESENT_POSITION") - degrees) < 0.3)
+            net.step()
+            assert net.output("D.FEEDBACK_PRESENT_POSITION")[0] == pytest.approx(goal, abs=0.3 * factor)
+        finally:
+            net.close()
+
+
+def test_indirect_index_mode_speed_and_torque_enable(tmp_path, bus):
+    extra = ('<module class="Constant" name="T" data="0 0 1 0 0"/>\n'
+             '<module class="Constant" name="S" data="0 0.25 0.25 0 0.5"/>\n'
+             '<connection source="T.OUTPUT" target="D.TORQUE_ENABLE"/>\n'
+             '<connection source="S.OUTPUT" target="D.MOVING_SPEED"/>')
+    net = model(tmp_path, bus.path, goals="0 200 200 0 200", params='index_mode="indirect" servo_id="1 2 4"',
+                extra=extra)
+    try:
+        assert net.output("D.FEEDBACK_PRESENT_POSITION").shape == (5,)
+        net.step()
+        assert [bus.servo(i).torque for i in (1, 2, 4)] == [False, True, False]   # TORQUE_ENABLE rules
+        assert bus.servo(2).raw("MOVING_SPEED") == round(0.25 / 0.0020087719)
+        assert bus.servo(4).raw("MOVING_SPEED") == round(0.5 / 0.0020087719)
+        net.step()
+        assert net.output("D.FEEDBACK_MOVING_SPEED")[[1, 2, 4]] == pytest.approx([0.25, 0.25, 0.5])
+        assert net.output("D.FEEDBACK_PRESENT_SPEED")[2] == pytest.approx(0.25, abs=0.01)   # moving
+    finally:
+        net.close()
+
+
+def test_goals_are_clipped_to_the_angle_limits_and_overload_is_reported(tmp_path):
+    with VirtualDynamixelBus({1: "AX-12A"}, 1) as sim:
+        sim.servo(1).memory[6:8] = (512 - 100).to_bytes(2, "little")      # CW limit 150.7 degrees
+        net = model(tmp_path, sim.path, goals="100", params='protocol="1" servo_id="1"')
+        try:
+            net.step()
+            assert sim.servo(1).raw("GOAL_POSITION") == 412
+            sim.set_external_load(1, 1.5)
+            time.sleep(0.4)
+            net.step()
+            net.step()
+            assert net.output("D.ERRORS")[0].tolist() == [0, 0, 0, 0, 0, 1, 0, 0]       # overload (bit 5)
+            assert any("servo 1 on" in m and "overload" in m for _, _, _, m in net.log)
+            assert net.output("D.FEEDBACK_PRESENT_LOAD")[0] == 0                         # torque is off
+        finally:
+            net.close()
+
+
+def test_a_servo_that_stops_answering_stops_the_run_and_the_rest_is_made_safe(tmp_path, bus):
+    net = model(tmp_path, bus.path, goals="200 190 90", params='servo_id="1 2 4"')
+    net.step()
+    bus.silence(2)
+    with pytest.raises(RunError, match=rf"servo 2 on {bus.path} \(Protocol 2.0, 1000000 baud\) does not answer"):
+        net.step()
+    assert net.stopped
+    assert [bus.servo(i).torque for i in (1, 2, 4)] == [False, True, False]
+    assert any("servo 2 on" in m and "did not answer" in m for _, _, _, m in net.log)
+
+
+def test_a_lost_bus_stops_the_run(tmp_path, bus):
+    net = model(tmp_path, bus.path, params='servo_id="1 2 4"')
+    net.step()
+    bus.disconnect()
+    with pytest.raises(RunError, match="was lost"):
+        net.step()
+
+
+def test_another_modules_exception_makes_the_servos_safe(tmp_path, bus):
+    (tmp_path / "Boom.py").write_text(
+        "from ikaros.module import Module\n"
+        "class Boom(Module):\n"
+        "    '''Fails on its third tick.'''\n"
+        "    def tick(self):\n"
+        "        if self.clock.tick == 2:\n"
+        "            raise ValueError('boom')\n")
+    net = model(tmp_path, bus.path, params='servo_id="1 2"', extra='<module class="Boom" name="B"/>')
+    with pytest.raises(RunError, match="boom"):
+        net.run(ticks=10)
+    assert net.tick == 3
+    assert not bus.servo(1).torque
+
+
+def test_hold_keeps_torque_and_stops_where_the_servo_is(tmp_path, bus):
+    net = model(tmp_path, bus.path, goals="300", params='servo_id="1" safe_state="hold"')
+    net.step()
+    time.sleep(0.05)
+    net.close()
+    servo = bus.servo(1)
+    assert servo.torque
+    assert 190 < servo.value("GOAL_POSITION") < 300
+    assert servo.value("GOAL_POSITION") == pytest.approx(servo.value("PRESENT_POSITION"), abs=1.0)
+
+
+def test_the_watchdog_makes_the_servos_safe_when_ticks_stop_and_the_run_can_go_on(tmp_path, bus):
+    net = model(tmp_path, bus.path, goals="200", params='servo_id="1" watchdog="0.2"')
+    try:
+        net.step()
+        assert bus.servo(1).torque
+        assert wait_for(lambda: not bus.servo(1).torque, 2.0)
+        net.step()                                    # the model still says so: on again
+        assert bus.servo(1).torque
+    finally:
+        net.close()
+
+
+def test_bad_setups_fail_at_load_with_the_device_named(tmp_path, bus):
+    with pytest.raises(ModelError, match="servo 7 on .* does not answer"):
+        model(tmp_path, bus.path, params='servo_id="1 7" strict_servo_id="yes"')
+    with pytest.raises(ModelError, match="cannot open the Dynamixel bus at '/dev/ttyNOSUCH'"):
+        model(tmp_path, "/dev/ttyNOSUCH")
+    with VirtualDynamixelBus({1: "AX-12A", 2: "AX-12A"}, 1) as other:
+        with pytest.raises(ModelError, match="no Dynamixel servo answers .* at 57600 baud"):
+            model(tmp_path, other.path, params='baud_rate="57600" max_servo_id="3"')
+
+
+def test_a_simulator_started_by_the_device_attribute(tmp_path):
+    net = model(tmp_path, "sim:dynamixel?ids=1-2&amp;protocol=1", goals="150 210", params='max_servo_id="4"')
+    try:
+        net.step()
+        time.sleep(0.2)
+        net.step()
+        assert net.output("D.FEEDBACK_PRESENT_POSITION") == pytest.approx([150, 210], abs=0.3)
+    finally:
+        net.close()
+
+
+@pytest.mark.parametrize("how", [signal.SIGINT, signal.SIGTERM])
+def test_ctrl_c_of_an_ikaros_process_makes_the_servos_safe(tmp_path, bus, how):
+    path = tmp_path / "arm.ikg"
+    path.write_text(f'<group name="Arm" tick_duration="0.01">\n'
+                    f'<module class="Constant" name="G" data="250 100"/>\n'
+                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1 2"/>\n'
+                    '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
+    process = subprocess.Popen([sys.executable, "-m", "ikaros", "-b", "-r", str(path)], env=env,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert wait_for(lambda: bus.servo(1).torque and bus.servo(2).torque, 20.0)
+        process.send_signal(how)
+        process.wait(timeout=10)
+    finally:
+        if process.poll() is None:
+            process.kill()
+    assert not bus.servo(1).torque and not bus.servo(2).torque
+
+
+def test_a_script_that_never_closes_its_network_leaves_the_servos_safe(tmp_path, bus):
+    path = tmp_path / "arm.ikg"
+    path.write_text(f'<group name="Arm">\n<module class="Constant" name="G" data="250"/>\n'
+                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1"/>\n'
+                    '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
+    script = f"import ikaros\nnet = ikaros.load({str(path)!r})\nnet.run(ticks=3)\nprint(net.output('D.FEEDBACK_TORQUE_ENABLE')[0])\n"
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
+    result = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert "D: 1 servos on" in result.stdout and result.stdout.split()[-1] == "1.0"   # torque was on
+    assert not bus.servo(1).torque                                                     # and is off at exit
+
+
+def test_two_networks_share_one_bus(tmp_path, bus):
+    """Two modules on one bus, or a model rebuilt (by the web UI) while the old one runs."""
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    first = model(tmp_path / "a", bus.path, goals="200", params='servo_id="1"')
+    second = model(tmp_path / "b", bus.path, goals="150", params='servo_id="2"')
+    try:
+        first.step()
+        second.step()
+        assert bus.servo(1).torque and bus.servo(2).torque
+        first.close()
+        assert not bus.servo(1).torque and bus.servo(2).torque
+        assert wait_for(lambda: abs(bus.servo(2).value("PRESENT_POSITION") - 150) < 0.1)
+        second.step()                                   # the bus stayed open for the second
+        assert second.output("D.FEEDBACK_PRESENT_POSITION")[0] == pytest.approx(150, abs=0.1)
+    finally:
+        first.close()
+        second.close()
+    assert not bus.servo(2).torque
+
+
+def test_the_end_of_a_batch_run_leaves_the_servos_safe(tmp_path, bus):
+    path = tmp_path / "arm.ikg"
+    path.write_text(f'<group name="Arm">\n<module class="Constant" name="G" data="250"/>\n'
+                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1" print_info="none"/>\n'
+                    '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
+    result = subprocess.run([sys.executable, "-m", "ikaros", "-b", "-s", "20", str(path)], env=env,
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    servo = bus.servo(1)
+    assert servo.value("GOAL_POSITION") == pytest.approx(250, abs=0.1) and not servo.torque
+
+
+@pytest.mark.filterwarnings("ignore:.*httpx.*")
+def test_the_web_ui_stop_button_leaves_the_servos_safe(tmp_path, bus):
+    from starlette.testclient import TestClient
+
+    from ikaros.webui.server import create_app
+    net = model(tmp_path, bus.path, goals="200", params='servo_id="1" watchdog="0.3"')
+    try:
+        with TestClient(create_app(net)) as client:
+            assert client.post("/api/control", json={"state": "play"}).status_code == 200
+            assert wait_for(lambda: bus.servo(1).torque, 5.0)
+            client.post("/api/control", json={"state": "stop"})
+            assert wait_for(lambda: not bus.servo(1).torque, 3.0)             # by the watchdog
+            client.post("/api/control", json={"state": "play"})             # and back under control
+            assert wait_for(lambda: bus.servo(1).torque, 5.0)
+            client.post("/api/control", json={"state": "pause"})
+    finally:
+        net.controller.stop()
+        net.controller.join(5)
+        net.close()
+    assert not bus.servo(1).torque
+
+
+def test_the_safe_state_command_holds_until_resume(tmp_path, bus):
+    net = model(tmp_path, bus.path, goals="200", params='servo_id="1"')
+    try:
+        net.step()
+        assert bus.servo(1).torque
+        net.command("D", "safe_state")
+        assert not bus.servo(1).torque
+        net.step()
+        net.step()
+        assert not bus.servo(1).torque                    # the goal does not take it back
+        net.command("D", "resume")
+        net.step()
+        assert bus.servo(1).torque
+        with pytest.raises(ValueError, match="unknown command 'jump'"):
+            net.command("D", "jump")
+    finally:
+        net.close()
+
+
+def test_a_missing_sdk_fails_at_load_with_the_pip_install(tmp_path, bus, monkeypatch):
+    monkeypatch.setitem(sys.modules, "dynamixel_sdk", None)          # as if not installed
+    with pytest.raises(ModelError, match=r"dynamixel_sdk.*pip install 'ikaros\[robots\]'"):
+        model(tmp_path, bus.path)
+
+
+def test_a_model_rebuilt_while_the_old_one_runs_takes_the_servos_over(tmp_path, bus):
+    (tmp_path / "old").mkdir()
+    (tmp_path / "new").mkdir()
+    old = model(tmp_path / "old", bus.path, goals="200", params='servo_id="1"')
+    old.step()
+    new = model(tmp_path / "new", bus.path, goals="160", params='servo_id="1"')   # built while old runs
+    old.close()                                          # the web UI then closes the old model
+    assert not bus.servo(1).torque
+    try:
+        new.step()
+        assert bus.servo(1).torque and bus.servo(1).value("GOAL_POSITION") == pytest.approx(160, abs=0.1)
+    finally:
+        new.close()
+
+
+
+def test_a_failed_build_leaves_the_port_closed(tmp_path, bus):
+    (tmp_path / "FailingConfigure.py").write_text(
+        "from ikaros.module import Module\n"
+        "class FailingConfigure(Module):\n"
+        "    \"\"\"Fails while the model is built (before any init).\"\"\"\n"
+        "    def configure(self):\n"
+        "        raise OSError('camera not found')\n")
+    with pytest.raises(ModelError, match="camera not found"):
+        model(tmp_path, bus.path, params='servo_id="1"', extra='<module class="FailingConfigure" name="F"/>')
+    # were the port still open at 1 Mbaud, opening it at another rate would be refused
+    with pytest.raises(ModelError, match="no Dynamixel servo answers"):
+        model(tmp_path, bus.path, params='servo_id="1" baud_rate="57600"')
+    assert not bus.servo(1).torque

@@ -1,0 +1,77 @@
+"""The robot examples run headless against the simulators: the Epi head follows its target,
+the LUCS arm follows its guarded sines, and the recorded arm motion is played back."""
+import os
+import shutil
+import time
+
+import numpy as np
+
+import ikaros
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXAMPLES = os.path.join(ROOT, "examples")
+
+
+def copy(tmp_path, *names):
+    for name in names:
+        shutil.copy(os.path.join(EXAMPLES, name), tmp_path)
+    return str(tmp_path / names[0])
+
+
+def run_in_real_time(net, ticks, probe):
+    """Step ``ticks`` ticks on the model's time base; ``probe()`` after each tick."""
+    period = net.clock.tick_duration
+    start = time.perf_counter()
+    rows = []
+    for k in range(ticks):
+        net.step()
+        rows.append(probe())
+        delay = start + (k + 1) * period - time.perf_counter()
+        if delay > 0:
+            time.sleep(delay)
+    return rows
+
+
+def test_epi_head_follows_the_target_through_the_guard(tmp_path):
+    net = ikaros.load(copy(tmp_path, "epi.ikg", "EpiHeadPose.py"))
+    try:
+        rows = run_in_real_time(net, 150, lambda: (net.output("Gaze.OUTPUT").copy(), net.output("Guard.OUTPUT").copy(),
+                                                    net.output("Head.FEEDBACK_PRESENT_POSITION").copy()))
+        for (_, guarded, _), (_, _, previous) in zip(rows[1:], rows):
+            assert np.all(np.abs(guarded - previous) <= 1.5 + 1e-3)        # REFERENCE is last tick's position
+        gaze = np.array([r[0] for r in rows])
+        assert np.ptp(gaze[:, 0]) > 15 and np.ptp(gaze[:, 1]) > 10          # the target moves the head
+        errors = [np.max(np.abs(g - p)) for g, _, p in rows[50:]]
+        assert np.median(errors) < 2.0                                       # and the head keeps up
+        pose = net.output("Pose.TRANSFORMS")
+        assert pose.shape == (6, 16) and abs(pose[1, 11] - (0.693 + 0.077)) < 1e-6     # the tilt axis
+    finally:
+        net.close()
+
+
+def test_lucs_arm_follows_its_guarded_sines(tmp_path):
+    net = ikaros.load(copy(tmp_path, "lucs_arm.ikg"))
+    try:
+        rows = run_in_real_time(net, 100, lambda: (net.output("Guard.OUTPUT").copy(),
+                                                   net.output("Arm.FEEDBACK_PRESENT_POSITION").copy()))
+        for (guarded, _), (_, previous) in zip(rows[1:], rows):
+            assert np.all(np.abs(guarded - previous) <= 2 + 1e-3)           # steps of at most 2 from the arm
+        goals = np.array([g for g, _ in rows])
+        assert np.ptp(goals[:, 0]) > 20
+        assert np.median([np.max(np.abs(g - p)) for g, p in rows[10:]]) < 3.0
+        assert net.output("Arm.ERRORS").sum() == 0
+    finally:
+        net.close()
+
+
+def test_the_recorded_arm_motion_is_played_back(tmp_path):
+    net = ikaros.load(copy(tmp_path, "arm_playback.ikg", "arm_motion.00.dat"))
+    try:
+        assert net.output("Recorder.LENGTHS")[0] == 5
+        rows = run_in_real_time(net, 150, lambda: net.output("Arm.FEEDBACK_PRESENT_POSITION").copy())
+        pan = np.array([r[0] for r in rows])
+        first_peak, first_dip = int(np.argmax(pan[:75])), int(np.argmin(pan[40:110])) + 40
+        assert pan[first_peak] > 212 and 35 <= first_peak <= 65            # keyframe 220 at 1 s (tick 50)
+        assert pan[first_dip] < 158 and 85 <= first_dip <= 115             # keyframe 150 at 2 s (tick 100)
+    finally:
+        net.close()
