@@ -147,7 +147,16 @@ def _serve(net, opts) -> int:
     return EXIT_OK
 
 
+def _worker(argv: list[str]) -> int:
+    """``ikaros worker ...``: serve groups of models to other kernels (docs/links.md)."""
+    from .links.worker import main as worker_main
+    return worker_main(argv)
+
+
 def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["worker"]:
+        return _worker(argv[1:])
     p = parser()
     opts = p.parse_intermixed_args(argv)
     model, overrides = _split_args(p, opts.args)
