@@ -4,9 +4,10 @@ from ikaros.module import Input, Module, Output
 
 class DelayOne(Module):
     """Outputs its input delayed by one tick: OUTPUT on tick n is INPUT of tick n-1 (on tick
-    0, what INPUT held at init: the values of a delay-1 connection). A programming example (docs/writing-modules.md): the output's size is set in
-    ``set_sizes`` from the input's, and the module keeps the last input in its own array.
-    A connection with ``delay="1"`` does the same without a module."""
+    0, what INPUT held at init: the values of a delay-1 connection). A programming example
+    (docs/writing-modules.md): the output's size is set in ``set_sizes`` from the input's,
+    and the module keeps the last input in its own array. A connection with ``delay="1"``
+    does the same without a module."""
 
     INPUT = Input("the signal")
     OUTPUT = Output("INPUT of the previous tick")

@@ -2,7 +2,6 @@
 TouchBoardGraph."""
 import time
 
-import numpy as np
 import pytest
 
 from ikaros.errors import ModelError

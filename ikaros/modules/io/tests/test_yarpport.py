@@ -4,7 +4,6 @@ tested too)."""
 import sys
 import types
 
-import numpy as np
 import pytest
 
 from ikaros.errors import ModelError

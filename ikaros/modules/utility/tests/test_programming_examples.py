@@ -2,7 +2,6 @@
 docs/writing-modules.md."""
 import os
 
-import numpy as np
 import pytest
 
 from ikaros.errors import ModelError
