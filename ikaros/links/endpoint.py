@@ -31,8 +31,9 @@ def check_key(host: str, key: bytes | None, what: str) -> None:
     """A link that other machines can reach (or that reaches another machine) needs a key."""
     if key is None and not is_loopback(host):
         raise LinkError(f'{what} "{host}" is not this machine (127.0.0.1): a link to or from '
-                        f'another machine needs a shared key; set the key parameter or the '
-                        f'environment variable {KEY_VARIABLE} on both sides')
+                        f'another machine needs a shared key: give the same key to both sides '
+                        f'(the key parameter, ikaros worker --key, or the environment variable '
+                        f'{KEY_VARIABLE})')
 
 
 def tcp(host: str, port: int) -> str:

@@ -154,3 +154,12 @@ def test_a_lost_worker_ends_the_run_with_an_error_naming_it(model):
         assert net.stopped
     finally:
         net.close()
+
+
+def test_a_worker_for_other_machines_needs_a_key():
+    env = {k: v for k, v in os.environ.items() if k != "IKAROS_LINK_KEY"}
+    r = subprocess.run([sys.executable, "-m", "ikaros", "worker", "--bind", "0.0.0.0",
+                        "--port", "0"], cwd=ROOT, env=env, capture_output=True, text=True,
+                       timeout=60)
+    assert r.returncode == 1
+    assert "ikaros worker: error:" in r.stderr and "needs a shared key" in r.stderr
