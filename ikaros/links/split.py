@@ -22,12 +22,15 @@ import selectors
 import subprocess
 import sys
 import time
+from typing import Any
+
+import numpy as np
 
 from ..errors import RunError
 from ..kernel.network import Network
 from ..kernel.scope import VariableError, substitute
-from ..kernel.tree import Group
-from ..module import FATAL_ERROR
+from ..kernel.tree import Group, find_component
+from ..module import EXCEPTION, FATAL_ERROR
 from .endpoint import KEY_VARIABLE, check_key, link_key, split_address, tcp
 from .peer import HEARTBEAT_MS, HEARTBEAT_TIMEOUT_MS, zmq_module
 from .wire import LinkError, decode, encode
@@ -151,7 +154,7 @@ class SplitNetwork(PartNetwork):
         try:
             super()._init_modules()
             for worker in self.workers:
-                worker.ready()
+                self._relay(worker.ready(), self.tick)
         except BaseException:
             self._stop_workers()
             raise
@@ -170,11 +173,38 @@ class SplitNetwork(PartNetwork):
         self._in_flight = False
         for worker in self.workers:
             try:
-                stop = worker.receive_tick(self.tick - 1)
+                log = worker.receive_tick(self.tick - 1)
             except LinkError as e:
-                stop = (FATAL_ERROR, str(e))
-            if stop is not None:
-                self.notify(stop[0], worker.group.path, stop[1])
+                log = [(FATAL_ERROR, worker.group.path, str(e))]
+            self._relay(log, self.tick - 1)
+
+    def _relay(self, log: list, tick: int) -> None:
+        """Log (and print, and act on) a worker's notifications of ``tick``."""
+        for level, where, message in log:
+            self.notify(level, where, message)
+            self.log[-1] = (tick, level, where, message)   # the tick they were made in
+
+    def _worker_of(self, path: str) -> "WorkerLink | None":
+        inst = find_component(self.top, path)
+        group = process_group(inst, self.process_groups) if inst is not None else None
+        return next((w for w in self.workers if w.group is group), None) if group else None
+
+    def set_parameter(self, path: str, value: Any) -> None:
+        """Set a parameter; one of a module in a worker is set there too, before its next
+        tick (as here)."""
+        super().set_parameter(path, value)
+        worker = self._worker_of(path.rpartition(".")[0])
+        if worker is not None:
+            worker.requests.append(["set", path, _plain(value)])
+
+    def command(self, path: str, name: str, x: float = 0, y: float = 0,
+                value: Any = None) -> None:
+        """A command to a module; one in a worker is sent there, before its next tick."""
+        worker = self._worker_of(path)
+        if worker is None:
+            super().command(path, name, x, y, value)
+        else:
+            worker.requests.append(["command", path, name, x, y, _plain(value)])
 
     def _end(self) -> None:
         try:
@@ -200,6 +230,7 @@ class WorkerLink:
         self.process = None
         self.socket = None
         self.monitor = None
+        self.requests: list = []        # parameter changes and commands for the next tick
         self.lost = None                # why the link was lost
         self.remote = "://" in where or ":" in where
         self.what = f'the worker of group "{group.path}" (process="{where}")'
@@ -287,26 +318,29 @@ class WorkerLink:
             raise LinkError(self.lost)
         return header, arrays
 
-    def ready(self) -> None:
+    def ready(self) -> list:
         """Wait for the worker to have built and initialised its group; take its values
-        of tick -1."""
+        of tick -1. Returns its notifications (level, module path, message)."""
         try:
             header, arrays = self._receive(time.monotonic() + START_SECONDS)
         except LinkError as e:
             raise self.group.node.error(str(e)) from None
         self._take(header, arrays, -1)
+        return header.get("log", [])
 
     def send_tick(self, tick: int) -> None:
         if not self.lost:
-            self.socket.send_multipart(encode({"type": "tick", "tick": tick},
-                                              [b.array for b in self.incoming], self.key))
+            header = {"type": "tick", "tick": tick, "requests": self.requests}
+            self.socket.send_multipart(encode(header, [b.array for b in self.incoming],
+                                              self.key))
+            self.requests = []
 
-    def receive_tick(self, tick: int):
-        """Take the worker's values of ``tick``; returns its stop (level, message) or None."""
+    def receive_tick(self, tick: int) -> list:
+        """Take the worker's values of ``tick``; returns its notifications of the tick
+        (an end of file or a fatal error among them ends the run here too)."""
         header, arrays = self._receive()
         self._take(header, arrays, tick)
-        stop = header.get("stop")
-        return tuple(stop) if stop else None
+        return header.get("log", [])
 
     def _take(self, header, arrays, tick) -> None:
         if header.get("tick") != tick or len(arrays) != len(self.outgoing):
@@ -335,6 +369,15 @@ class WorkerLink:
             self.process = None
 
 
+def _plain(value: Any) -> Any:
+    """A parameter value or command argument as JSON can carry it."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
 def worker_network(group_path: str, incoming: list, outgoing: list):
     """A network factory for ``ikaros worker``: runs only the group at ``group_path``, and
     checks that the crossings are those the main process announced."""
@@ -354,11 +397,42 @@ def worker_network(group_path: str, incoming: list, outgoing: list):
 
 
 class WorkerNetwork(PartNetwork):
-    """A worker's network: runs one process group, fed by the link."""
+    """A worker's network: runs one process group, fed by the link. Its notifications are
+    kept in ``outbox`` for the main process (which prints them), not printed here."""
 
     def __init__(self, builder, top, order, runs, edges, groups, group):
         self.incoming, self.outgoing = crossings(runs, groups, group)
+        self.outbox: list = []
         super().__init__(builder, top, order, runs, edges, groups, group)
+
+    @property
+    def log_level(self) -> int:
+        return 0            # nothing is printed here: the main process prints the outbox
+
+    @log_level.setter
+    def log_level(self, level: int) -> None:
+        pass
+
+    def notify(self, level: int, module, message: str) -> None:
+        super().notify(level, module, message)
+        where = module if isinstance(module, str) else getattr(module, "path", "") or ""
+        self.outbox.append([level, where, message])
+
+    def take_log(self) -> list:
+        log, self.outbox = self.outbox, []
+        return log
+
+    def apply(self, requests: list) -> None:
+        """Parameter changes and commands from the main process, before a tick."""
+        for request in requests:
+            try:
+                if request[0] == "set":
+                    self.set_parameter(request[1], request[2])
+                elif request[0] == "command":
+                    self.command(*request[1:])
+            except Exception as e:       # reported to the main process; the run goes on
+                self.notify(EXCEPTION, request[1], f"{request[0]} failed: "
+                                                   f"{type(e).__name__}: {e}")
 
     def take(self, arrays: list) -> None:
         if len(arrays) != len(self.incoming):

@@ -147,20 +147,21 @@ class Worker:
             print(f"ikaros worker: running group {request['group']} of "
                   f"{request['filename']}", file=sys.stderr, flush=True)
         try:
-            self._send(peer, {"type": "ready", "tick": -1}, net.sources())
+            self._send(peer, {"type": "ready", "tick": -1, "log": net.take_log()},
+                       net.sources())
             while True:
                 _, header, arrays = self._next(peer)
                 if header is None or header.get("type") == "stop":
                     break
                 if not net.stopped:
+                    net.apply(header.get("requests", []))
                     net.take(arrays)
                     try:
                         net.step()
                     except RunError:
-                        pass            # its stop_reason goes to the main process
-                stop = list(net.stop_reason) if net.stopped and net.stop_reason else None
-                self._send(peer, {"type": "tick", "tick": header.get("tick"), "stop": stop},
-                           net.sources())
+                        pass            # the fatal error is in the log it sends
+                self._send(peer, {"type": "tick", "tick": header.get("tick"),
+                                  "log": net.take_log()}, net.sources())
         finally:
             net.close()
             if header is not None:

@@ -163,3 +163,50 @@ def test_a_worker_for_other_machines_needs_a_key():
                        timeout=60)
     assert r.returncode == 1
     assert "ikaros worker: error:" in r.stderr and "needs a shared key" in r.stderr
+
+
+CMD = """from ikaros import Module, Output, Parameter
+
+
+class Cmd(Module):
+    \"\"\"Test module: the command "set" sets OUTPUT to x; prints on tick 2; ends the run
+    on tick ``last``.\"\"\"
+    last = Parameter(1000, "the tick that ends the run", type="int")
+    OUTPUT = Output("the value last set", size=1)
+
+    def command(self, name, x=0, y=0, value=None):
+        if name == "set":
+            self.OUTPUT[0] = x
+
+    def tick(self):
+        if self.clock.tick == 2:
+            self.print("hello from tick 2")
+        if self.clock.tick == self.last:
+            self.end_of_file("done")
+"""
+
+
+def test_parameters_commands_and_notifications_cross_to_and_from_a_worker(tmp_path, capsys):
+    from ikaros.module import END_OF_FILE, PRINT
+    (tmp_path / "Cmd.py").write_text(CMD)
+    (tmp_path / "m.ikg").write_text(
+        '<group name="T"><group name="W" process="worker"><module class="Cmd" name="C"/>'
+        '</group><module class="Scale" name="R" factor="1"/>'
+        '<connection source="W.C.OUTPUT" target="R.INPUT"/></group>')
+    net = ikaros.load(str(tmp_path / "m.ikg"))
+    try:
+        net.run(ticks=3)
+        assert (2, PRINT, "W.C", "hello from tick 2") in net.log
+        assert capsys.readouterr().out.count("hello from tick 2") == 1     # printed here
+        net.command("W.C", "set", 5)
+        net.step()
+        assert net.output("W.C.OUTPUT").tolist() == [5]
+        net.step()
+        assert net.output("R.OUTPUT").tolist() == [5]
+        net.set_parameter("W.C.last", 7)
+        assert net.parameter("W.C.last") == 7
+        net.run(ticks=100)
+        assert net.tick == 8 and net.stopped
+        assert net.stop_reason == (END_OF_FILE, "done")
+    finally:
+        net.close()
