@@ -189,6 +189,15 @@ class SplitNetwork(PartNetwork):
         group = process_group(inst, self.process_groups) if inst is not None else None
         return next((w for w in self.workers if w.group is group), None) if group else None
 
+    def buffer_array(self, path: str) -> np.ndarray:
+        """The live array of a module output or input; one of a module in a worker is
+        brought over after every tick from now on (as the web UI's views need)."""
+        array = super().buffer_array(path)
+        worker = self._worker_of(path.rpartition(".")[0])
+        if worker is not None and array.size:
+            worker.watched.setdefault(path, array)
+        return array
+
     def set_parameter(self, path: str, value: Any) -> None:
         """Set a parameter; one of a module in a worker is set there too, before its next
         tick (as here)."""
@@ -231,6 +240,8 @@ class WorkerLink:
         self.socket = None
         self.monitor = None
         self.requests: list = []        # parameter changes and commands for the next tick
+        self.watched: dict = {}         # path -> array of other buffers to bring over
+        self._asked: list = []          # the watched paths asked for with the last tick
         self.lost = None                # why the link was lost
         self.remote = "://" in where or ":" in where
         self.what = f'the worker of group "{group.path}" (process="{where}")'
@@ -330,7 +341,9 @@ class WorkerLink:
 
     def send_tick(self, tick: int) -> None:
         if not self.lost:
-            header = {"type": "tick", "tick": tick, "requests": self.requests}
+            self._asked = list(self.watched)
+            header = {"type": "tick", "tick": tick, "requests": self.requests,
+                      "watch": self._asked}
             self.socket.send_multipart(encode(header, [b.array for b in self.incoming],
                                               self.key))
             self.requests = []
@@ -343,12 +356,17 @@ class WorkerLink:
         return header.get("log", [])
 
     def _take(self, header, arrays, tick) -> None:
-        if header.get("tick") != tick or len(arrays) != len(self.outgoing):
+        asked = self._asked if tick >= 0 else []
+        due = len(self.outgoing) + len(asked)
+        if header.get("tick") != tick or len(arrays) != due:
             self.lost = (f"{self.what} sent tick {header.get('tick')} with {len(arrays)} "
-                         f"arrays where tick {tick} with {len(self.outgoing)} was due")
+                         f"arrays where tick {tick} with {due} was due")
             raise LinkError(self.lost)
         for buf, a in zip(self.outgoing, arrays):
             buf.array[...] = a.reshape(buf.shape)
+        for path, a in zip(asked, arrays[len(self.outgoing):]):
+            target = self.watched[path]
+            target[...] = a.reshape(target.shape)
 
     def stop(self) -> None:
         """End the worker's session and close the link (once)."""
@@ -440,5 +458,13 @@ class WorkerNetwork(PartNetwork):
         for buf, a in zip(self.incoming, arrays):
             buf.array[...] = a.reshape(buf.shape)
 
-    def sources(self) -> list:
-        return [b.array for b in self.outgoing]
+    def sources(self, watched=()) -> list:
+        """The arrays for the main process: the sources it reads, then the buffers it
+        watches (0 for a path that is not here)."""
+        arrays = [b.array for b in self.outgoing]
+        for path in watched:
+            try:
+                arrays.append(self.buffer_array(path))
+            except KeyError:
+                arrays.append(np.zeros(0, np.float32))
+        return arrays

@@ -161,7 +161,8 @@ class Worker:
                     except RunError:
                         pass            # the fatal error is in the log it sends
                 self._send(peer, {"type": "tick", "tick": header.get("tick"),
-                                  "log": net.take_log()}, net.sources())
+                                  "log": net.take_log()},
+                           net.sources(header.get("watch", [])))
         finally:
             net.close()
             if header is not None:

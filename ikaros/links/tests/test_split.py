@@ -191,11 +191,15 @@ def test_parameters_commands_and_notifications_cross_to_and_from_a_worker(tmp_pa
     (tmp_path / "Cmd.py").write_text(CMD)
     (tmp_path / "m.ikg").write_text(
         '<group name="T"><group name="W" process="worker"><module class="Cmd" name="C"/>'
+        '<module class="Sweep" name="S" min="0" max="100" step="1"/>'
         '</group><module class="Scale" name="R" factor="1"/>'
         '<connection source="W.C.OUTPUT" target="R.INPUT"/></group>')
     net = ikaros.load(str(tmp_path / "m.ikg"))
     try:
+        inside = net.buffer_array("W.S.OUTPUT")          # brought over from now on
+        assert inside.tolist() == [0]
         net.run(ticks=3)
+        assert inside.tolist() == [3]                     # the Sweep's value of tick 2
         assert (2, PRINT, "W.C", "hello from tick 2") in net.log
         assert capsys.readouterr().out.count("hello from tick 2") == 1     # printed here
         net.command("W.C", "set", 5)
