@@ -214,3 +214,25 @@ def test_parameters_commands_and_notifications_cross_to_and_from_a_worker(tmp_pa
         assert net.stop_reason == (END_OF_FILE, "done")
     finally:
         net.close()
+
+
+def test_a_busy_worker_refuses_and_a_lost_remote_worker_ends_the_run(model, monkeypatch):
+    port = free_port()
+    worker = start_worker(port, "k")
+    monkeypatch.setenv("IKAROS_LINK_KEY", "k")
+    net = ikaros.load(model, where=f"127.0.0.1:{port}", alias_where="")
+    try:
+        net.run(ticks=2)
+        with pytest.raises(ModelError, match="busy with another model"):
+            ikaros.load(model, where=f"127.0.0.1:{port}", alias_where="")
+        net.run(ticks=2)                        # the first session goes on
+        worker.kill()
+        worker.wait(10)
+        start = time.monotonic()
+        with pytest.raises(RunError, match=f'worker of group "Vision".*127.0.0.1:{port} was '
+                                           f'lost: the connection was lost'):
+            net.run(ticks=1000)
+        assert time.monotonic() - start < 10
+    finally:
+        net.close()
+        stop(worker)
