@@ -284,14 +284,14 @@ class WorkerLink:
         with selectors.DefaultSelector() as sel:
             sel.register(self.process.stdout, selectors.EVENT_READ)
             deadline = time.monotonic() + START_SECONDS
-            while not line.endswith(b"\n") and time.monotonic() < deadline:
+            while b"\n" not in line and time.monotonic() < deadline:
                 if sel.select(POLL_SECONDS):
-                    byte = self.process.stdout.read(1)
-                    if not byte:
+                    data = os.read(self.process.stdout.fileno(), 256)     # unbuffered
+                    if not data:
                         break
-                    line += byte
+                    line += data
         self.process.stdout.close()
-        text = line.decode(errors="replace").strip()
+        text = line.decode(errors="replace").partition("\n")[0].strip()
         if not text.startswith("ikaros worker: listening on tcp://"):
             self.process.kill()
             self.process.wait()
