@@ -48,7 +48,15 @@ def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
     except LimitError as e:
         raise ModelError(f"max_memory: {e}") from None
     diagnostics = Diagnostics(strict=strict, lenient=lenient, quiet=quiet)
-    return Builder(filename, overrides, diagnostics=diagnostics, limits=limits).build()
+    return Builder(filename, overrides, diagnostics=diagnostics, limits=limits,
+                   network_factory=_network).build()
+
+
+def _network(*built) -> Network:
+    """A Network, or one whose groups with a ``process`` attribute run in other kernel
+    processes (docs/links.md)."""
+    from .links.split import make_network
+    return make_network(*built)
 
 
 def classes(*folders: str) -> dict[str, ClassDescription]:

@@ -192,6 +192,12 @@ def _leave_stuck_builds() -> None:
         force_exit(EXIT_OK)
 
 
+def _worker(argv: list[str]) -> int:
+    """``ikaros worker ...``: serve groups of models to other kernels (docs/links.md)."""
+    from .links.worker import main as worker_main
+    return worker_main(argv)
+
+
 def main(argv: list[str] | None = None) -> int:
     if argv is None:            # the command itself (not a call from Python code)
         from .interrupt import install
@@ -200,6 +206,8 @@ def main(argv: list[str] | None = None) -> int:
     if argv[:1] == ["sweep"]:
         from .experiments.sweepcli import main as sweep_main
         return sweep_main(argv[1:])
+    if argv[:1] == ["worker"]:
+        return _worker(argv[1:])
     p = parser()
     opts = p.parse_intermixed_args(argv)
     experiment_options.check_arguments(p, opts)

@@ -54,7 +54,7 @@ class Builder:
     def __init__(self, filename: str, overrides: dict | None = None, text: str | None = None,
                  notify=None, registry: ClassRegistry | None = None,
                  model: Node | None = None, diagnostics: Diagnostics | None = None,
-                 limits: Limits | None = None):
+                 limits: Limits | None = None, network_factory=None):
         self.limits = limits
         self.filename = os.path.abspath(filename)
         if model is not None and model.tag != "group":
@@ -64,6 +64,9 @@ class Builder:
         self.overrides = {k: value_text(v) for k, v in (overrides or {}).items()}
         self.registry = registry or ClassRegistry([os.path.dirname(self.filename)])
         self.diagnostics = diagnostics or Diagnostics()
+        # makes the Network from (builder, top, order, runs, edges); ikaros.load's runs
+        # groups with a process attribute in other processes (ikaros.links.split)
+        self.network_factory = network_factory
         self.clock = Clock()
         self.connections: list[tuple[Node, Group]] = []
         self.ports: dict[tuple, Buffer] = {}
@@ -676,7 +679,7 @@ class Builder:
                         if run.delay == 0:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)
         order = schedule(self.instances, edges)
-        return Network(self, top, order, runs, edges)
+        return (self.network_factory or Network)(self, top, order, runs, edges)
 
 
 def _missing(node: Node, message: str) -> ModelError:

@@ -1,0 +1,470 @@
+"""Groups that run in other kernel processes: ``<group name="Vision" process="worker">``.
+
+Every process builds the whole model from the same file (so sizes, parameters, variables and
+the schedule are the same everywhere) but runs, initialises and stops only its own modules:
+the main process everything outside the process groups, each worker one group. Connections
+that cross a group's boundary must have a delay of at least 1; their source arrays travel
+over the link once per tick, in step, so every input sees exactly the values it sees in one
+process. Tick n in the main process:
+
+1. send each worker the values of tick n-1 of the sources outside it that it reads;
+2. run its own modules for tick n while every worker runs its group's tick n;
+3. receive from each worker its sources of tick n that others read.
+
+The local copies of the other processes' source arrays feed the kernel's usual delay copies
+and rings, so delays are kept in ticks.
+"""
+from __future__ import annotations
+
+import os
+import secrets
+import selectors
+import subprocess
+import sys
+import time
+from typing import Any
+
+import numpy as np
+
+from ..errors import RunError
+from ..kernel.network import Network
+from ..kernel.scope import VariableError, substitute
+from ..kernel.tree import Group, find_component
+from ..module import EXCEPTION, FATAL_ERROR
+from .endpoint import KEY_VARIABLE, check_key, link_key, split_address, tcp
+from .peer import HEARTBEAT_MS, HEARTBEAT_TIMEOUT_MS, zmq_module
+from .wire import LinkError, decode, encode
+
+WORKER_PORT = 9200          # the default port of ``ikaros worker``
+START_SECONDS = 60.0        # for a worker to start, build the model and initialise
+POLL_SECONDS = 0.5          # how often a wait checks that the peer is still there
+
+
+def process_groups(top: Group) -> dict[Group, str]:
+    """{group: where it runs} for every group with a (non-empty) ``process`` attribute."""
+    groups = {}
+    for c in top.walk():
+        if isinstance(c, Group) and c.attrs.get("process"):
+            try:
+                where = substitute(c.attrs["process"], c.parent).strip()
+            except VariableError as e:
+                raise c.node.error(f"process: {e}") from None
+            if where:
+                groups[c] = where
+    return groups
+
+
+def make_network(builder, top, order, runs, edges) -> Network:
+    """A Network, or a SplitNetwork when some group has a ``process`` attribute."""
+    groups = process_groups(top)
+    if not groups:
+        return Network(builder, top, order, runs, edges)
+    return SplitNetwork(builder, top, order, runs, edges, groups)
+
+
+def process_group(inst, groups) -> Group | None:
+    """The process group a module runs in (None: the main process)."""
+    for c in inst.chain():
+        if c in groups:
+            return c
+    return None
+
+
+def crossings(runs, groups, group) -> tuple[list, list]:
+    """(sources ``group``'s modules read from other processes, sources of ``group`` that
+    other processes read), each a list of output buffers sorted by path. A crossing
+    connection with delay 0 is a build error naming it."""
+    incoming, outgoing = {}, {}
+    for run in runs:
+        src, dst = process_group(run.source.owner, groups), process_group(run.target.owner,
+                                                                          groups)
+        if src is dst:
+            continue
+        if run.delay == 0:
+            where = next(g for g in (dst, src) if g is not None)
+            raise run.node.error(
+                f'the connection {run.source.path} -> {run.target.path} crosses into or out '
+                f'of group "{where.path}", which runs in another process '
+                f'(process="{groups[where]}"), with delay 0: a connection between '
+                f'processes needs a delay of at least 1')
+        if dst is group:
+            incoming[run.source.path] = run.source
+        elif src is group:
+            outgoing[run.source.path] = run.source
+    return ([incoming[k] for k in sorted(incoming)], [outgoing[k] for k in sorted(outgoing)])
+
+
+class PartNetwork(Network):
+    """A network that runs only the modules of one process (``group``; None: the main
+    process) of a model split by ``process`` attributes."""
+
+    def __init__(self, builder, top, order, runs, edges, groups, group):
+        self.process_groups = groups
+        self.process = group
+        for g in groups:
+            if any(p in groups for p in list(g.chain())[1:]):
+                raise g.node.error(f'group "{g.path}" has a process attribute inside a group '
+                                   f'that has one: process groups can not be nested')
+        self.all_modules = order
+        super().__init__(builder, top, order, runs, edges)
+
+    def _compile(self) -> None:
+        self.schedule = [inst for inst in self.all_modules
+                         if process_group(inst, self.process_groups) is self.process]
+        super()._compile()
+
+    def _check_checksum(self) -> None:
+        owned, self.schedule = self.schedule, self.all_modules
+        try:
+            if self.process is None:
+                super()._check_checksum()
+        finally:
+            self.schedule = owned
+
+
+class SplitNetwork(PartNetwork):
+    """The main process of a split model: runs what is outside the process groups and
+    drives one worker per group, tick by tick."""
+
+    def __init__(self, builder, top, order, runs, edges, groups):
+        self.workers = [WorkerLink(g, where, *crossings(runs, groups, g))
+                        for g, where in groups.items()]
+        self._in_flight = False
+        self._source_text = builder._text
+        self._load_request = {"type": "load", "filename": builder.filename,
+                              "overrides": builder.overrides,
+                              "strict": builder.diagnostics.strict,
+                              "lenient": builder.diagnostics.lenient}
+        super().__init__(builder, top, order, runs, edges, groups, None)
+
+    def _compile(self) -> None:
+        text = self._source_text
+        if text is None:
+            with open(self.filename, encoding="utf-8") as f:
+                text = f.read()
+        try:
+            for worker in self.workers:          # they build while this process does
+                worker.start(dict(self._load_request, text=text))
+            super()._compile()
+        except BaseException:
+            self._stop_workers()
+            raise
+
+    def _init_modules(self) -> None:
+        try:
+            super()._init_modules()
+            for worker in self.workers:
+                self._relay(worker.ready(), self.tick)
+        except BaseException:
+            self._stop_workers()
+            raise
+
+    def _tick(self) -> None:
+        for worker in self.workers:
+            worker.send_tick(self.tick)
+        self._in_flight = True
+        super()._tick()             # may end the run, which collects the workers' tick
+        if self._in_flight:
+            self._collect()
+            if self.stop_reason is not None and not self._stopped:
+                self._end()
+
+    def _collect(self) -> None:
+        self._in_flight = False
+        for worker in self.workers:
+            try:
+                log = worker.receive_tick(self.tick - 1)
+            except LinkError as e:
+                log = [(FATAL_ERROR, worker.group.path, str(e))]
+            self._relay(log, self.tick - 1)
+
+    def _relay(self, log: list, tick: int) -> None:
+        """Log (and print, and act on) a worker's notifications of ``tick``."""
+        for level, where, message in log:
+            self.notify(level, where, message)
+            self.log[-1] = (tick, level, where, message)   # the tick they were made in
+
+    def _worker_of(self, path: str) -> "WorkerLink | None":
+        inst = find_component(self.top, path)
+        group = process_group(inst, self.process_groups) if inst is not None else None
+        return next((w for w in self.workers if w.group is group), None) if group else None
+
+    def buffer_array(self, path: str) -> np.ndarray:
+        """The live array of a module output or input; one of a module in a worker is
+        brought over after every tick from now on (as the web UI's views need)."""
+        array = super().buffer_array(path)
+        worker = self._worker_of(path.rpartition(".")[0])
+        if worker is not None and array.size:
+            worker.watched.setdefault(path, array)
+        return array
+
+    def set_parameter(self, path: str, value: Any) -> None:
+        """Set a parameter; one of a module in a worker is set there too, before its next
+        tick (as here)."""
+        super().set_parameter(path, value)
+        worker = self._worker_of(path.rpartition(".")[0])
+        if worker is not None:
+            worker.requests.append(["set", path, _plain(value)])
+
+    def command(self, path: str, name: str, x: float = 0, y: float = 0,
+                value: Any = None) -> None:
+        """A command to a module; one in a worker is sent there, before its next tick."""
+        worker = self._worker_of(path)
+        if worker is None:
+            super().command(path, name, x, y, value)
+        else:
+            worker.requests.append(["command", path, name, x, y, _plain(value)])
+
+    def _end(self) -> None:
+        try:
+            if self._in_flight:
+                self._collect()
+            super()._end()
+        finally:
+            self._stop_workers()
+
+    def _stop_workers(self) -> None:
+        for worker in self.workers:
+            worker.stop()
+
+
+class WorkerLink:
+    """The main process's end of the link to the worker that runs ``group``."""
+
+    def __init__(self, group: Group, where: str, incoming: list, outgoing: list):
+        self.group = group
+        self.where = where
+        self.incoming = incoming        # sources the worker reads: sent every tick
+        self.outgoing = outgoing        # the worker's sources others read: received
+        self.process = None
+        self.socket = None
+        self.monitor = None
+        self.requests: list = []        # parameter changes and commands for the next tick
+        self.watched: dict = {}         # path -> array of other buffers to bring over
+        self._asked: list = []          # the watched paths asked for with the last tick
+        self.lost = None                # why the link was lost
+        self.remote = "://" in where or ":" in where
+        self.what = f'the worker of group "{group.path}" (process="{where}")'
+
+    def start(self, request: dict) -> None:
+        zmq = zmq_module()
+        if self.remote:
+            host, port = split_address(self.where, WORKER_PORT)
+            self.key = link_key(self.group.attrs.get("key"))
+            try:
+                check_key(host, self.key, f"the worker address of group {self.group.path}")
+            except LinkError as e:
+                raise self.group.node.error(str(e)) from None
+        else:
+            self.key = secrets.token_hex(16).encode()
+            host, port = "127.0.0.1", self._spawn()
+        s = self.socket = zmq.Context.instance().socket(zmq.DEALER)
+        s.setsockopt(zmq.LINGER, 0)
+        s.setsockopt(zmq.HEARTBEAT_IVL, HEARTBEAT_MS)
+        s.setsockopt(zmq.HEARTBEAT_TIMEOUT, HEARTBEAT_TIMEOUT_MS)
+        self.monitor = s.get_monitor_socket(zmq.EVENT_DISCONNECTED)
+        s.connect(tcp(host, port))
+        self.address = tcp(host, port)
+        request = dict(request, group=self.group.path,
+                       incoming=[b.path for b in self.incoming],
+                       outgoing=[b.path for b in self.outgoing])
+        s.send_multipart(encode(request, key=self.key))
+
+    def _spawn(self) -> int:
+        """Start ``ikaros worker`` on this machine for one session; returns its port."""
+        import ikaros
+        package_root = os.path.dirname(os.path.dirname(os.path.abspath(ikaros.__file__)))
+        env = dict(os.environ, **{KEY_VARIABLE: self.key.decode()})
+        env["PYTHONPATH"] = os.pathsep.join(
+            p for p in (package_root, os.environ.get("PYTHONPATH")) if p)
+        self.process = subprocess.Popen(
+            [sys.executable, "-m", "ikaros", "worker", "--port", "0", "--once",
+             "--parent", str(os.getpid())], stdout=subprocess.PIPE, env=env)
+        line = b""
+        with selectors.DefaultSelector() as sel:
+            sel.register(self.process.stdout, selectors.EVENT_READ)
+            deadline = time.monotonic() + START_SECONDS
+            while b"\n" not in line and time.monotonic() < deadline:
+                if sel.select(POLL_SECONDS):
+                    data = os.read(self.process.stdout.fileno(), 256)     # unbuffered
+                    if not data:
+                        break
+                    line += data
+        self.process.stdout.close()
+        text = line.decode(errors="replace").partition("\n")[0].strip()
+        if not text.startswith("ikaros worker: listening on tcp://"):
+            self.process.kill()
+            self.process.wait()
+            raise self.group.node.error(f"{self.what} did not start: "
+                                        f"{text or 'no answer'}")
+        return int(text.rsplit(":", 1)[1].split()[0])
+
+    def _receive(self, deadline: float | None = None) -> tuple[dict, list]:
+        """The next message from the worker; LinkError when it is lost or refuses."""
+        zmq = zmq_module()
+        if self.lost:
+            raise LinkError(self.lost)
+        while not self.socket.poll(POLL_SECONDS * 1000):
+            reason = None
+            if self.process is not None and self.process.poll() is not None:
+                reason = f"its process ended (exit status {self.process.returncode})"
+            elif self.monitor.poll(0):
+                reason = "the connection was lost"
+            elif deadline is not None and time.monotonic() > deadline:
+                reason = f"no answer within {START_SECONDS:g} s"
+            if reason:
+                self.lost = f"{self.what} at {self.address} was lost: {reason}"
+                raise LinkError(self.lost)
+        frames = self.socket.recv_multipart(zmq.NOBLOCK)
+        try:
+            header, arrays = decode(frames, self.key)
+        except LinkError:
+            header, arrays = decode(frames, None)       # only a refusal comes unsigned
+            if header.get("type") != "refused":
+                raise
+        if header.get("type") == "ping":                # the worker checks the link
+            return self._receive(deadline)
+        if header.get("type") in ("refused", "error"):
+            self.lost = f"{self.what} at {self.address}: {header.get('message')}"
+            raise LinkError(self.lost)
+        return header, arrays
+
+    def ready(self) -> list:
+        """Wait for the worker to have built and initialised its group; take its values
+        of tick -1. Returns its notifications (level, module path, message)."""
+        try:
+            header, arrays = self._receive(time.monotonic() + START_SECONDS)
+        except LinkError as e:
+            raise self.group.node.error(str(e)) from None
+        self._take(header, arrays, -1)
+        return header.get("log", [])
+
+    def send_tick(self, tick: int) -> None:
+        if not self.lost:
+            self._asked = list(self.watched)
+            header = {"type": "tick", "tick": tick, "requests": self.requests,
+                      "watch": self._asked}
+            self.socket.send_multipart(encode(header, [b.array for b in self.incoming],
+                                              self.key))
+            self.requests = []
+
+    def receive_tick(self, tick: int) -> list:
+        """Take the worker's values of ``tick``; returns its notifications of the tick
+        (an end of file or a fatal error among them ends the run here too)."""
+        header, arrays = self._receive()
+        self._take(header, arrays, tick)
+        return header.get("log", [])
+
+    def _take(self, header, arrays, tick) -> None:
+        asked = self._asked if tick >= 0 else []
+        due = len(self.outgoing) + len(asked)
+        if header.get("tick") != tick or len(arrays) != due:
+            self.lost = (f"{self.what} sent tick {header.get('tick')} with {len(arrays)} "
+                         f"arrays where tick {tick} with {due} was due")
+            raise LinkError(self.lost)
+        for buf, a in zip(self.outgoing, arrays):
+            buf.array[...] = a.reshape(buf.shape)
+        for path, a in zip(asked, arrays[len(self.outgoing):]):
+            target = self.watched[path]
+            target[...] = a.reshape(target.shape)
+
+    def stop(self) -> None:
+        """End the worker's session and close the link (once)."""
+        if self.socket is not None:
+            if not self.lost:
+                self.socket.send_multipart(encode({"type": "stop"}, key=self.key))
+                self.socket.poll(2000)             # its acknowledgement, once stopped
+            self.socket.disable_monitor()
+            self.monitor.close(0)
+            self.socket.close(0)
+            self.socket = None
+        if self.process is not None:
+            try:
+                self.process.wait(10)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
+            self.process = None
+
+
+def _plain(value: Any) -> Any:
+    """A parameter value or command argument as JSON can carry it."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def worker_network(group_path: str, incoming: list, outgoing: list):
+    """A network factory for ``ikaros worker``: runs only the group at ``group_path``, and
+    checks that the crossings are those the main process announced."""
+    def make(builder, top, order, runs, edges):
+        groups = process_groups(top)
+        mine = next((g for g in groups if g.path == group_path), None)
+        if mine is None:
+            raise RunError(f'the model has no group "{group_path}" with a process attribute')
+        net = WorkerNetwork(builder, top, order, runs, edges, groups, mine)
+        if [b.path for b in net.incoming] != incoming or \
+                [b.path for b in net.outgoing] != outgoing:
+            net.close()
+            raise RunError("the model built here differs from the main process's: not the "
+                           "same connections cross the group's boundary")
+        return net
+    return make
+
+
+class WorkerNetwork(PartNetwork):
+    """A worker's network: runs one process group, fed by the link. Its notifications are
+    kept in ``outbox`` for the main process (which prints them), not printed here."""
+
+    def __init__(self, builder, top, order, runs, edges, groups, group):
+        self.incoming, self.outgoing = crossings(runs, groups, group)
+        self.outbox: list = []
+        super().__init__(builder, top, order, runs, edges, groups, group)
+
+    @property
+    def log_level(self) -> int:
+        return 0            # nothing is printed here: the main process prints the outbox
+
+    @log_level.setter
+    def log_level(self, level: int) -> None:
+        pass
+
+    def notify(self, level: int, module, message: str) -> None:
+        super().notify(level, module, message)
+        where = module if isinstance(module, str) else getattr(module, "path", "") or ""
+        self.outbox.append([level, where, message])
+
+    def take_log(self) -> list:
+        log, self.outbox = self.outbox, []
+        return log
+
+    def apply(self, requests: list) -> None:
+        """Parameter changes and commands from the main process, before a tick."""
+        for request in requests:
+            try:
+                if request[0] == "set":
+                    self.set_parameter(request[1], request[2])
+                elif request[0] == "command":
+                    self.command(*request[1:])
+            except Exception as e:       # reported to the main process; the run goes on
+                self.notify(EXCEPTION, request[1], f"{request[0]} failed: "
+                                                   f"{type(e).__name__}: {e}")
+
+    def take(self, arrays: list) -> None:
+        if len(arrays) != len(self.incoming):
+            raise LinkError(f"{len(arrays)} arrays came where {len(self.incoming)} were due")
+        for buf, a in zip(self.incoming, arrays):
+            buf.array[...] = a.reshape(buf.shape)
+
+    def sources(self, watched=()) -> list:
+        """The arrays for the main process: the sources it reads, then the buffers it
+        watches (0 for a path that is not here)."""
+        arrays = [b.array for b in self.outgoing]
+        for path in watched:
+            try:
+                arrays.append(self.buffer_array(path))
+            except KeyError:
+                arrays.append(np.zeros(0, np.float32))
+        return arrays

@@ -1,0 +1,169 @@
+"""Tests of SoundOutput and InputSound with sound files written by the test. The audio
+streams are replaced by fakes (sounddevice cannot open a device on test machines, which
+have no PortAudio library and no sound card): the fake output stream is asked for blocks of
+the mix by the test, the fake microphone gets blocks from the test."""
+import numpy as np
+import pytest
+import soundfile
+
+from ikaros.errors import ModelError
+from ikaros.modules.io import _audio
+from ikaros.testing import load_body as load
+
+RATE = 8000
+
+
+class FakeStream:
+    def __init__(self, samplerate, channels, callback, device=None):
+        self.samplerate, self.channels, self.callback = samplerate, channels, callback
+        self.device = device
+        self.closed = False
+        STREAMS.append(self)
+
+    def pull(self, frames):
+        out = np.zeros((frames, self.channels), np.float32)
+        self.callback(out)
+        return out
+
+    def close(self):
+        self.closed = True
+
+
+STREAMS = []
+
+
+@pytest.fixture
+def streams(monkeypatch):
+    STREAMS.clear()
+    monkeypatch.setattr(_audio, "open_output_stream", FakeStream)
+    monkeypatch.setattr(_audio, "open_input_stream", FakeStream)
+    return STREAMS
+
+
+def write(path, data, rate=RATE):
+    soundfile.write(str(path), np.asarray(data, np.float32), rate, subtype="FLOAT")
+
+
+def test_a_rise_plays_a_sound_and_playing_says_so(tmp_path, streams):
+    write(tmp_path / "a.wav", np.full(100, 0.25))                        # mono
+    write(tmp_path / "b.wav", np.column_stack([np.full(50, 0.5), np.full(50, -0.5)]))
+    (tmp_path / "in.txt").write_text("T/2\n0 0\n1 0\n1 1\n1 1\n0 1\n1 1\n")
+    net = load(tmp_path, '<module class="InputFile" name="F" filename="in.txt"/>'
+                         '<module class="SoundOutput" name="S" sounds="a.wav, b.wav" '
+                         'device="3"/>'
+                         '<connection source="F.T" target="S.INPUT" delay="0"/>')
+    try:
+        stream = streams[0]
+        assert (stream.samplerate, stream.channels, stream.device) == (RATE, 2, 3)
+        net.step()
+        assert net.output("S.PLAYING").tolist() == [0, 0]
+        assert not stream.pull(10).any()
+        net.step()                                                       # a rises
+        assert net.output("S.PLAYING").tolist() == [1, 0]
+        assert stream.pull(60).tolist() == [[0.25, 0.25]] * 60
+        net.step()                                                       # b rises
+        assert net.output("S.PLAYING").tolist() == [1, 1]
+        mix = stream.pull(60)
+        assert mix[:40].tolist() == [[0.75, -0.25]] * 40                 # both
+        assert mix[40:50].tolist() == [[0.5, -0.5]] * 10                 # a has ended
+        assert not mix[50:].any()
+        net.step()                                                       # held: no rise
+        assert net.output("S.PLAYING").tolist() == [0, 0]
+        net.step()
+        net.step()                                                       # a rises again
+        assert net.output("S.PLAYING").tolist() == [1, 0]
+    finally:
+        net.close()
+    assert stream.closed
+
+
+def test_files_of_another_rate_are_resampled_to_the_first(tmp_path, streams):
+    write(tmp_path / "a.wav", np.zeros(10))
+    write(tmp_path / "b.wav", np.linspace(0, 0.9, 10), rate=RATE // 2)
+    net = load(tmp_path, '<module class="Constant" name="C" data="0 1"/>'
+                         '<module class="SoundOutput" name="S" sounds="a.wav,b.wav"/>'
+                         '<connection source="C.OUTPUT" target="S.INPUT"/>')
+    try:
+        net.run(ticks=2)
+        out = streams[0].pull(20)[:, 0]
+        assert np.allclose(out[:19], np.arange(19) * 0.05, atol=1e-6)   # interpolated
+    finally:
+        net.close()
+
+
+def test_sound_output_errors(tmp_path, streams):
+    with pytest.raises(ModelError, match="sounds is empty"):
+        load(tmp_path, '<module class="Constant" name="C" data="1"/>'
+                       '<module class="SoundOutput" name="S"/>'
+                       '<connection source="C.OUTPUT" target="S.INPUT"/>')
+    with pytest.raises(ModelError, match='cannot read the sound file "missing.wav"'):
+        load(tmp_path, '<module class="Constant" name="C" data="1"/>'
+                       '<module class="SoundOutput" name="S" sounds="missing.wav"/>'
+                       '<connection source="C.OUTPUT" target="S.INPUT"/>')
+
+
+def test_no_audio_device_is_a_clear_load_error(tmp_path, monkeypatch):
+    def no_portaudio(*args, **kwargs):
+        raise OSError("PortAudio library not found")
+    monkeypatch.setattr(_audio, "open_output_stream", no_portaudio)
+    write(tmp_path / "a.wav", np.zeros(10))
+    with pytest.raises(ModelError, match="cannot open the sound output.*libportaudio2"):
+        load(tmp_path, '<module class="Constant" name="C" data="1"/>'
+                       '<module class="SoundOutput" name="S" sounds="a.wav"/>'
+                       '<connection source="C.OUTPUT" target="S.INPUT"/>')
+
+
+def test_a_file_is_read_block_by_block_with_a_level(tmp_path):
+    samples = np.arange(10, dtype=np.float32) / 10
+    write(tmp_path / "s.wav", np.column_stack([samples, -samples]))
+    net = load(tmp_path, '<module class="InputSound" name="I" filename="s.wav" samples="4" '
+                         'channels="2"/>')
+    try:
+        assert net.output("I.OUTPUT").shape == (4, 2)
+        blocks, levels = [], []
+        while not net.stopped:
+            net.step()
+            blocks.append(net.output("I.OUTPUT")[:, 0].tolist())
+            levels.append(net.output("I.LEVEL").tolist())
+        expected = [samples[0:4], samples[4:8], np.r_[samples[8:10], 0, 0]]
+        assert np.allclose(blocks[:3], expected)
+        assert blocks[3] == [0, 0, 0, 0]                      # the end of the file
+        rms = np.sqrt(np.mean(np.square(expected[1])))
+        assert np.allclose(levels[1], [rms, rms])
+        assert net.tick == 4
+    finally:
+        net.close()
+
+
+def test_a_file_loops_and_is_mixed_down(tmp_path):
+    write(tmp_path / "s.wav", np.column_stack([np.r_[1, 2, 3], np.r_[3, 4, 5]]) / 10)
+    net = load(tmp_path, '<module class="InputSound" name="I" filename="s.wav" samples="4" '
+                         'loop="yes"/>')
+    try:
+        net.run(ticks=2)
+        assert np.allclose(net.output("I.OUTPUT").ravel(), [0.3, 0.4, 0.2, 0.3])
+        assert not net.stopped
+    finally:
+        net.close()
+
+
+def test_the_microphone_gives_the_newest_samples(tmp_path, streams):
+    net = load(tmp_path, '<module class="InputSound" name="I" samples="4" '
+                         'samplerate="16000"/>')
+    try:
+        mic = streams[0]
+        assert (mic.samplerate, mic.channels) == (16000, 1)
+        mic.callback(np.float32([[0.1], [0.2], [0.3]]))
+        net.step()
+        assert np.allclose(net.output("I.OUTPUT").ravel(), [0, 0.1, 0.2, 0.3])
+        mic.callback(np.float32([[0.4], [0.5]]))
+        mic.callback(np.float32([[0.6], [0.7], [0.8]]))
+        net.step()
+        assert np.allclose(net.output("I.OUTPUT").ravel(), [0.5, 0.6, 0.7, 0.8])
+        assert np.allclose(net.output("I.LEVEL"), np.sqrt(np.mean(np.square(
+            [0.5, 0.6, 0.7, 0.8]))))
+        net.step()                                          # nothing new: kept
+        assert np.allclose(net.output("I.OUTPUT").ravel(), [0.5, 0.6, 0.7, 0.8])
+    finally:
+        net.close()
+    assert mic.closed
