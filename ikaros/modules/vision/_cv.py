@@ -112,3 +112,19 @@ def from_pixels(pixels: np.ndarray, out: np.ndarray) -> np.ndarray:
     """An interleaved ``(rows, cols, 3)`` image as a planar ``(3, rows, cols)`` in ``out``."""
     np.copyto(out, pixels.transpose(2, 0, 1))
     return out
+
+
+# Image positions that modules pass to each other (FOCUS, positions, bounds) are (x, y)
+# fractions of the image's width and height, 0..1 from the left and top edges, so that they
+# hold for images of any size. The pixel in row r and column c covers x in
+# [c / cols, (c + 1) / cols); its centre is at ((c + 0.5) / cols, (r + 0.5) / rows).
+
+def pixel_of(x: float, y: float, rows: int, cols: int) -> tuple[int, int]:
+    """The (row, col) of the pixel that holds the position (x, y), clamped to the image."""
+    return (min(max(int(np.floor(y * rows)), 0), rows - 1),
+            min(max(int(np.floor(x * cols)), 0), cols - 1))
+
+
+def position_of(row: float, col: float, rows: int, cols: int) -> tuple[float, float]:
+    """The position (x, y) of the centre of the pixel (row, col)."""
+    return (col + 0.5) / cols, (row + 0.5) / rows
