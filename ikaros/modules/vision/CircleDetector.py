@@ -29,9 +29,9 @@ class CircleDetector(Module):
     POSITION = Output("the centre x, y and the fraction of supporting elements", shape="3")
     DIAMETER = Output("the circle's diameter in pixels", shape="1")
 
-    def set_sizes(self):
-        shape = self.input_shape("EDGE_LIST")
-        if shape and (len(shape) != 2 or shape[1] < 3):
+    def init(self):
+        shape = self.EDGE_LIST.shape
+        if len(shape) != 2 or shape[1] < 3:
             raise ValueError(f"EDGE_LIST must have rows of x, y, orientation (at least 3 "
                              f"columns), not shape {shape}")
         if not 0 < self.min_radius <= self.max_radius:

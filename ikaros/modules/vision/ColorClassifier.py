@@ -39,15 +39,12 @@ class ColorClassifier(Module):
     COLORSPACE_G = Output("green plane of the rg-plane diagnostic image", shape="256, 256")
     COLORSPACE_B = Output("blue plane of the rg-plane diagnostic image", shape="256, 256")
 
-    def set_sizes(self):
-        shapes = [self.input_shape(n) for n in "RGI"]
-        if all(shapes):
-            for name, shape in zip("RGI", shapes):
-                check_gray(shape, name)
-            if len(set(shapes)) > 1:
-                raise ValueError(f"R, G and I must have the same size, not {shapes}")
-
     def init(self):
+        shapes = [getattr(self, n).shape for n in "RGI"]
+        for name, shape in zip("RGI", shapes):
+            check_gray(shape, name)
+        if len(set(shapes)) > 1:
+            raise ValueError(f"R, G and I must have the same size, not {shapes}")
         shape = self.R.shape
         self._dr, self._dg = np.zeros(shape, np.float32), np.zeros(shape, np.float32)
         self._hue, self._sat = np.zeros(shape, np.float32), np.zeros(shape, np.float32)

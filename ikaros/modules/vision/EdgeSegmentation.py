@@ -31,13 +31,12 @@ class EdgeSegmentation(Module):
                            shape="@max_edges, 4")
     EDGE_LIST_SIZE = Output("the number of elements listed", shape="1")
 
-    def set_sizes(self):
-        shapes = {n: self.input_shape(n) for n in ("INPUT", "DX", "DY")}
-        if all(shapes.values()):
-            for name, shape in shapes.items():
-                check_gray(shape, name)
-            if len(set(shapes.values())) > 1:
-                raise ValueError(f"INPUT, DX and DY must have the same size, not {shapes}")
+    def init(self):
+        shapes = {n: getattr(self, n).shape for n in ("INPUT", "DX", "DY")}
+        for name, shape in shapes.items():
+            check_gray(shape, name)
+        if len(set(shapes.values())) > 1:
+            raise ValueError(f"INPUT, DX and DY must have the same size, not {shapes}")
         if self.grid < 1 or self.max_edges < 1:
             raise ValueError("grid and max_edges must be at least 1")
 

@@ -23,12 +23,8 @@ class HysteresisThresholding(Module):
     def configure(self):
         self.cv2 = opencv()
 
-    def set_sizes(self):
-        shape = self.input_shape("INPUT")
-        if shape:
-            check_gray(shape)
-
     def init(self):
+        check_gray(self.INPUT.shape)
         self._kept = np.zeros(self.INPUT.shape, np.uint8)
         self._weak = np.zeros(self.INPUT.shape, np.uint8)
 

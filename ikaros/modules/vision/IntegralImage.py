@@ -17,12 +17,8 @@ class IntegralImage(Module):
     def configure(self):
         self.cv2 = opencv()
 
-    def set_sizes(self):
-        shape = self.input_shape("INPUT")
-        if shape:
-            check_image(shape)
-
     def init(self):
+        check_image(self.INPUT.shape)
         rows, cols = self.INPUT.shape[-2:]
         self._sums = np.zeros((rows + 1, cols + 1), np.float64)
         self._table = self._sums[1:, 1:]

@@ -14,12 +14,8 @@ class ZeroCrossings(Module):
     INPUT = Input("the image (rows, cols)")
     OUTPUT = Output("1 at the zero crossings, 0 elsewhere", shape="INPUT.shape")
 
-    def set_sizes(self):
-        shape = self.input_shape("INPUT")
-        if shape:
-            check_gray(shape)
-
     def init(self):
+        check_gray(self.INPUT.shape)
         rows, cols = self.INPUT.shape
         self._right = np.zeros((rows, cols - 1), bool)
         self._down = np.zeros((rows - 1, cols), bool)

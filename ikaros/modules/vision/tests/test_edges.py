@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 from scipy import ndimage, signal
 
+import ikaros
 from ikaros.testing import load_body
-from vision_models import literal, outputs
+from vision_models import literal, outputs, run
 
 RNG = np.random.default_rng(11)
 GRAY = RNG.random((10, 12)).astype(np.float32)
@@ -246,3 +247,10 @@ def test_edge_segmentation_lists_elements_on_a_grid(tmp_path):
     expected[4, 6] = 0.5
     expected[4, 2] = 0.4
     assert np.allclose(out, expected)
+
+
+def test_inputs_of_different_sizes_are_a_model_error(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="INPUT, DX and DY must have the same size"):
+        run(tmp_path, "EdgeSegmentation", {"INPUT": GRAY, "DX": GRAY, "DY": GRAY[1:]})
+    with pytest.raises(ikaros.ModelError, match="INPUT must be a gray image"):
+        run(tmp_path, "ZeroCrossings", {"INPUT": np.zeros((3, 4, 4))})
