@@ -3,7 +3,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from ._cv import check_gray
+from ._cv import check_gray, opencv
 
 SIZE = 256
 
@@ -15,7 +15,9 @@ class ColorClassifier(Module):
     from the r axis (red is about 333, green 117, blue 225), and its saturation the
     distance from white (0 for gray, up to 0.75). OUTPUT is 1 where the hue lies in a
     sector ``width`` degrees wide centred on ``color`` and the saturation lies between
-    ``saturation_min`` and ``saturation_max``, and 0 elsewhere. I is only checked for size:
+    ``saturation_min`` and ``saturation_max``, and 0 elsewhere (tested without angles: the
+    offset d from white is in the sector when d · u >= |d| cos(width / 2), u pointing at
+    ``color``; gray itself, with no hue, counts as in every sector). I is only checked for size:
     black pixels have r = g = 0 (saturation 0.47, hue 225) and are best removed by
     ``saturation_max`` or a mask. With ``compensation`` the image's mean chromaticity is
     moved to white first (a gray-world correction for the colour of the light). With
@@ -39,6 +41,9 @@ class ColorClassifier(Module):
     COLORSPACE_G = Output("green plane of the rg-plane diagnostic image", shape="256, 256")
     COLORSPACE_B = Output("blue plane of the rg-plane diagnostic image", shape="256, 256")
 
+    def configure(self):
+        self.cv2 = opencv()
+
     def init(self):
         shapes = [getattr(self, n).shape for n in "RGI"]
         for name, shape in zip("RGI", shapes):
@@ -47,40 +52,47 @@ class ColorClassifier(Module):
             raise ValueError(f"R, G and I must have the same size, not {shapes}")
         shape = self.R.shape
         self._dr, self._dg = np.zeros(shape, np.float32), np.zeros(shape, np.float32)
-        self._hue, self._sat = np.zeros(shape, np.float32), np.zeros(shape, np.float32)
+        self._sat, self._along = np.zeros(shape, np.float32), np.zeros(shape, np.float32)
+        self._limit = np.zeros(shape, np.float32)
+        self._in_range, self._in_sector = np.zeros(shape, np.uint8), np.zeros(shape, np.uint8)
         g, r = np.mgrid[SIZE - 1:-1:-1, 0:SIZE] / (SIZE - 1.0)
-        valid = r + g <= 1.0
-        self._plane_colour = np.stack([r, g, 1.0 - r - g]) * valid
-        self._plane_hue, self._plane_sat = self._hue_saturation(r - 1 / 3, g - 1 / 3)
-        self._plane_valid = valid
+        self._plane_valid = r + g <= 1.0
+        self._plane_colour = np.stack([r, g, 1.0 - r - g]) * self._plane_valid
+        self._plane_d = (r - 1.0 / 3.0, g - 1.0 / 3.0)
         self._planes = (self.COLORSPACE_R, self.COLORSPACE_G, self.COLORSPACE_B)
 
-    @staticmethod
-    def _hue_saturation(dr, dg):
-        return np.degrees(np.arctan2(dg, dr)) % 360.0, np.hypot(dr, dg)
-
-    def _selected(self, hue, saturation):
-        offset = (hue - self.color + 180.0) % 360.0 - 180.0
-        return ((np.abs(offset) <= self.width / 2.0) & (saturation >= self.saturation_min) &
-                (saturation <= self.saturation_max))
+    def _sector(self):
+        """The unit vector of the hue ``color`` and the cosine of half the width: a
+        chromaticity offset d is in the sector when d · u >= |d| cos(width / 2)."""
+        hue = np.radians(self.color)
+        half = np.radians(min(max(self.width, 0.0), 360.0) / 2.0)
+        return np.cos(hue), np.sin(hue), np.cos(half)
 
     def tick(self):
-        dr, dg = self._dr, self._dg
+        cv2 = self.cv2
+        dr, dg, sat, along = self._dr, self._dg, self._sat, self._along
         np.subtract(self.R, 1.0 / 3.0, out=dr)
         np.subtract(self.G, 1.0 / 3.0, out=dg)
         if self.compensation:
             dr -= dr.mean()
             dg -= dg.mean()
-        np.arctan2(dg, dr, out=self._hue)
-        np.degrees(self._hue, out=self._hue)
-        np.mod(self._hue, 360.0, out=self._hue)
-        np.hypot(dr, dg, out=self._sat)
-        np.copyto(self.OUTPUT, self._selected(self._hue, self._sat))
+        ux, uy, cos_half = self._sector()
+        cv2.magnitude(dr, dg, magnitude=sat)
+        cv2.addWeighted(dr, ux, dg, uy, 0.0, dst=along)
+        cv2.inRange(sat, self.saturation_min, self.saturation_max, dst=self._in_range)
+        np.multiply(sat, cos_half, out=self._limit)
+        cv2.compare(along, self._limit, cv2.CMP_GE, dst=self._in_sector)
+        cv2.bitwise_and(self._in_range, self._in_sector, dst=self._in_sector)
+        np.multiply(self._in_sector, 1.0 / 255.0, out=self.OUTPUT, casting="unsafe")
         if self.diagnostics:
             self._draw(dr, dg)
 
     def _draw(self, dr, dg):
-        selected = self._selected(self._plane_hue, self._plane_sat) & self._plane_valid
+        ux, uy, cos_half = self._sector()
+        pr, pg = self._plane_d
+        sat = np.hypot(pr, pg)
+        selected = ((pr * ux + pg * uy >= sat * cos_half) & (sat >= self.saturation_min) &
+                    (sat <= self.saturation_max) & self._plane_valid)
         brightness = np.where(selected, 1.0, 0.5)
         cols = np.clip(np.rint((dr + 1 / 3) * (SIZE - 1)), 0, SIZE - 1).astype(np.intp)
         rows = np.clip(np.rint((2 / 3 - dg) * (SIZE - 1)), 0, SIZE - 1).astype(np.intp)
