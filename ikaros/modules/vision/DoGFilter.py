@@ -30,7 +30,7 @@ class DoGFilter(KernelFilter):
         return self.sigma1, self.sigma2, self.normalize
 
     def make_kernel(self):
-        x, y = kernel_grid(self.kernel_size)
+        x, y = kernel_grid(self.kernel_rows)
         r2 = x * x + y * y
         kernel = 0.0
         for sign, sigma in ((1.0, self.sigma1), (-1.0, self.sigma2)):
@@ -39,4 +39,4 @@ class DoGFilter(KernelFilter):
             kernel = kernel + sign * g
         self.KERNEL[...] = kernel
         self.kernel = self.KERNEL
-        self.PROFILE[0] = self.KERNEL[self.kernel_size // 2]
+        self.PROFILE[0] = self.KERNEL[self.kernel_rows // 2]

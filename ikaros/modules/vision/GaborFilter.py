@@ -48,7 +48,7 @@ class GaborFilter(KernelFilter):
                 self.sigma)
 
     def make_kernel(self):
-        x, y = kernel_grid(self.FILTER.shape[0])
+        x, y = kernel_grid(self.kernel_rows)
         sigma, wavelength = self.sigma * self.scale, getattr(self, "lambda") * self.scale
         c, s = math.cos(self.theta), math.sin(self.theta)
         xr, yr = x * c + y * s, -x * s + y * c

@@ -28,7 +28,7 @@ class GaussianFilter(ValidFilter):
         return (self.sigma,)
 
     def make_kernel(self):
-        self._profile = self.cv2.getGaussianKernel(self.kernel_size, self.sigma,
+        self._profile = self.cv2.getGaussianKernel(self.kernel_rows, self.sigma,
                                                    self.cv2.CV_32F)
         self.PROFILE[0] = self._profile[:, 0]
         np.multiply(self._profile, self._profile.T, out=self.KERNEL)

@@ -27,8 +27,13 @@ class ImageConvolution(KernelFilter):
         return np.asarray(self.kernel).tobytes(), self.scale
 
     def make_kernel(self):
-        self._flipped = np.ascontiguousarray(
-            np.atleast_2d(self.kernel)[::-1, ::-1] * self.scale, np.float32)
+        kernel = np.atleast_2d(self.kernel)
+        if kernel.shape != (self.kernel_rows, self.kernel_cols):
+            self.warning(f"the kernel's size cannot change while the model runs "
+                         f"({self.kernel_rows} x {self.kernel_cols}); the new kernel "
+                         f"{kernel.shape[0]} x {kernel.shape[1]} is not used")
+            return
+        self._flipped = np.ascontiguousarray(kernel[::-1, ::-1] * self.scale, np.float32)
 
     def filter(self, src, dst):
         self.cv2.filter2D(src, -1, self._flipped, dst=dst, delta=self.bias,

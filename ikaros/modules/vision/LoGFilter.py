@@ -30,11 +30,11 @@ class LoGFilter(KernelFilter):
         return self.sigma, self.normalize
 
     def make_kernel(self):
-        x, y = kernel_grid(self.kernel_size)
+        x, y = kernel_grid(self.kernel_rows)
         r2, s2 = x * x + y * y, self.sigma * self.sigma
         kernel = (r2 - 2.0 * s2) / (s2 * s2) * np.exp(-r2 / (2.0 * s2)) / (2.0 * np.pi * s2)
         if self.normalize:
             kernel -= kernel.mean()
         self.KERNEL[...] = kernel
         self.kernel = self.KERNEL
-        self.PROFILE[0] = self.KERNEL[self.kernel_size // 2]
+        self.PROFILE[0] = self.KERNEL[self.kernel_rows // 2]

@@ -23,8 +23,8 @@ class MedianFilter(ValidFilter):
         return k, k
 
     def filter(self, src, dst):
-        if self.kernel_size in (3, 5):
-            self.cv2.medianBlur(src, self.kernel_size, dst=dst)
+        if self.kernel_rows in (3, 5):
+            self.cv2.medianBlur(src, self.kernel_rows, dst=dst)
         else:
-            self._ndimage.median_filter(src, size=self.kernel_size, output=dst,
+            self._ndimage.median_filter(src, size=self.kernel_rows, output=dst,
                                         mode="nearest")

@@ -24,7 +24,8 @@ class ValidFilter(Module):
         self.cv2 = opencv()
 
     def kernel_shape(self) -> tuple[int, int]:
-        """The (rows, cols) of the kernel; fixed for the run."""
+        """The (rows, cols) of the kernel, from the parameters. It is read once in init
+        (``self.kernel_rows``, ``self.kernel_cols``): the size is fixed for the run."""
         raise NotImplementedError
 
     def kernel_key(self) -> tuple:
@@ -48,7 +49,7 @@ class ValidFilter(Module):
             self.set_output_shape("OUTPUT", shrunk(shape, rows, cols))
 
     def init(self):
-        rows, cols = self.kernel_shape()
+        rows, cols = self.kernel_rows, self.kernel_cols = self.kernel_shape()
         self._full = np.zeros(self.INPUT.shape[-2:], np.float32)
         self._valid = interior(self._full, rows // 2, cols // 2, *self.OUTPUT.shape[-2:])
         self._pairs = list(zip(planes(self.INPUT), planes(self.OUTPUT)))

@@ -153,3 +153,15 @@ def test_convolution_flips_the_kernel_and_scales_biases_rectifies(tmp_path):
     assert out.shape == (3, 9, 9)
     assert np.allclose(out, np.maximum(2 * expected - 1.5, 0), atol=1e-5)
     assert (out == 0).any()
+
+
+def test_convolution_kernel_can_change_but_not_its_size(tmp_path):
+    with run(tmp_path, "ImageConvolution", {"INPUT": GRAY}, kernel="1 0; 0 0") as net:
+        assert np.allclose(net.output("M.OUTPUT"), GRAY[1:, 1:])
+        net.set_parameter("M.kernel", "0 0; 0 2")
+        net.step()
+        assert np.allclose(net.output("M.OUTPUT"), 2 * GRAY[:-1, :-1])
+        net.set_parameter("M.kernel", "1 0 0")
+        net.step()
+        assert np.allclose(net.output("M.OUTPUT"), 2 * GRAY[:-1, :-1])
+        assert any("cannot change while the model runs" in m for *_, m in net.log)
