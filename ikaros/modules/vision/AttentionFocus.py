@@ -24,6 +24,10 @@ class AttentionFocus(Module):
             side = 2 * self.output_radius + 1
             self.set_output_shape("OUTPUT", with_size(shape, side, side))
 
+    def init(self):
+        if self.FOCUS.size < 2:
+            raise ValueError(f"FOCUS must hold x and y, not {self.FOCUS.size} value(s)")
+
     def tick(self):
         rows, cols = self.INPUT.shape[-2:]
         radius = self.output_radius

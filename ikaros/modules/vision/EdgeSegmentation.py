@@ -49,7 +49,8 @@ class EdgeSegmentation(Module):
             scale = 1.0 / top if top > 0 else 1.0
         on_grid = edges[::step, ::step]
         rows, cols = np.nonzero(on_grid * scale > self.threshold)
-        rows, cols = rows[:self.max_edges] * step, cols[:self.max_edges] * step
+        limit = self.EDGE_LIST.shape[0]
+        rows, cols = rows[:limit] * step, cols[:limit] * step
         n = rows.size
         strength = edges[rows, cols] * scale
         angle = np.arctan2(self.DY[rows, cols], self.DX[rows, cols])

@@ -65,7 +65,7 @@ class FASTDetector(Module):
         self._scores[rows, cols] = score
         cv2.dilate(self._scores, np.ones((3, 3), np.uint8), dst=self._best)
         keep = self._scores[rows, cols] == self._best[rows, cols]
-        order = np.argsort(-score[keep], kind="stable")[:self.max_points]
+        order = np.argsort(-score[keep], kind="stable")[:self.POINTS.shape[0]]
         rows, cols = rows[keep][order], cols[keep][order]
         n = rows.size
         self.POINTS[n:] = 0.0

@@ -139,3 +139,8 @@ def test_saliency_random_choices_follow_the_salience(tmp_path):
     with saliency_model(tmp_path, [m], type="exponential", temperature=0.01, seed=1) as net:
         net.run(ticks=20)
         assert np.allclose(net.output("S.FOCUS"), [2.5 / 4, 1.5 / 4])
+
+
+def test_attention_focus_needs_x_and_y(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="FOCUS must hold x and y"):
+        run(tmp_path, "AttentionFocus", {"INPUT": IMAGE, "FOCUS": [0.5]})
