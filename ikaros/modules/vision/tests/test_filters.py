@@ -1,6 +1,7 @@
 """Tests of the kernel filters: GaussianFilter, DoGFilter, LoGFilter, GaborFilter,
 MedianFilter and ImageConvolution, each against an independent computation (SciPy)."""
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -165,3 +166,9 @@ def test_convolution_kernel_can_change_but_not_its_size(tmp_path):
         net.step()
         assert np.allclose(net.output("M.OUTPUT"), 2 * GRAY[:-1, :-1])
         assert any("cannot change while the model runs" in m for *_, m in net.log)
+
+
+def test_missing_opencv_names_the_install(tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "cv2", None)      # import cv2 now fails
+    with pytest.raises(ikaros.ModelError, match=r"pip install 'ikaros\[vision\]'"):
+        run(tmp_path, "GaussianFilter", {"INPUT": GRAY})
