@@ -4,7 +4,7 @@
 (``multipart/x-mixed-replace``, as network cameras send it) at ``url``, and one JPEG at
 ``url_snapshot``. Tests use it as a network camera; users can serve the synthetic scene::
 
-    python -m ikaros.modules.io.mjpeg --port 8080 --markers 1,2 --face
+    python -m ikaros.hardware.mjpeg --port 8080 --markers 1,2 --face
 
 ``MJPEGReader(url)`` reads such a stream frame by frame; every socket read has a time-out,
 so a stream that stops makes ``read`` return None instead of waiting for ever.
@@ -21,13 +21,13 @@ from typing import Callable
 
 import numpy as np
 
-from ikaros.module import require
+from ._opencv import opencv
 
 BOUNDARY = "ikarosframe"
 
 
 def encode_jpeg(rgb: np.ndarray, quality: int = 90) -> bytes:
-    cv2 = require("cv2", "opencv-python-headless", extra="vision")
+    cv2 = opencv()
     ok, data = cv2.imencode(".jpg", rgb[:, :, ::-1], [cv2.IMWRITE_JPEG_QUALITY, quality])
     return data.tobytes()
 
@@ -132,7 +132,7 @@ class MJPEGReader:
     """
 
     def __init__(self, url: str, timeout: float = 2.0):
-        self.cv2 = require("cv2", "opencv-python-headless", extra="vision")
+        self.cv2 = opencv()
         self.url, self.timeout = url, timeout
         self._connect()
 
@@ -211,7 +211,7 @@ class MJPEGReader:
 
 
 def main(argv=None):
-    from .synthetic_scene import SyntheticScene
+    from .synthetic_camera import SyntheticScene
     p = argparse.ArgumentParser(description="Serve the synthetic camera scene as an MJPEG "
                                 "stream (a network camera for testing models).")
     p.add_argument("--port", type=int, default=8080)

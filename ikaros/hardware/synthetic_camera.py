@@ -4,7 +4,7 @@
 (rows, cols, 3) and returns it with the truth: the centres of the coloured discs, the ids and
 corners of the ArUco markers, and the box of the face. Everything moves on fixed paths, so
 frame ``n`` is the same on every call. Used by the SyntheticCamera module and by
-``python -m ikaros.modules.io.mjpeg``.
+``python -m ikaros.hardware.mjpeg``.
 """
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ikaros.module import require
+from ._opencv import opencv
 
 # Saturated colours that ColorClassifier-style hue tests tell apart (RGB, 0..255).
 BLOB_COLOURS = [(230, 40, 40), (40, 200, 60), (50, 80, 230), (230, 210, 40), (200, 60, 210),
@@ -34,7 +34,7 @@ class Truth:
 def face_image(size: int) -> np.ndarray:
     """A face, (size, size, 3) uint8: the astronaut from scikit-image's test data when
     scikit-image is installed, otherwise a drawn one."""
-    cv2 = require("cv2", "opencv-python-headless", extra="vision")
+    cv2 = opencv()
     try:
         from skimage import data
         face = data.astronaut()[20:260, 120:360]        # head and shoulders, 240 x 240
@@ -58,7 +58,7 @@ class SyntheticScene:
     def __init__(self, rows: int = 480, cols: int = 640, blobs: int = 3,
                  markers: list[int] | tuple[int, ...] = (), face: bool = False,
                  speed: float = 1.0, noise: float = 0.0, seed: int = 0):
-        self.cv2 = require("cv2", "opencv-python-headless", extra="vision")
+        self.cv2 = opencv()
         if blobs > len(BLOB_COLOURS):
             raise ValueError(f"at most {len(BLOB_COLOURS)} blobs")
         self.rows, self.cols = rows, cols

@@ -7,14 +7,14 @@ import numpy as np
 from ikaros.module import Input, Module, Output, Parameter
 
 from ._files import build_error, resolve
-from .rgbd_recording import mm_to_raw, raw_to_mm
+from ikaros.hardware.rgbd_recording import mm_to_raw, raw_to_mm
 
 
 class Kinect(Module):
     """Depth and colour images from a Microsoft Kinect (through libfreenect's Python
     bindings, the `freenect` module) or, with `xtion`, an Asus Xtion (through OpenNI 2's
     Python bindings, `openni`), or from an RGB-D `recording` (see
-    ikaros.modules.io.rgbd_recording) played one frame per tick (tick k shows frame k, init frame 0), over and over, so that
+    ikaros.hardware.rgbd_recording) played one frame per tick (tick k shows frame k, init frame 0), over and over, so that
     depth models run without the device. DEPTH is the raw 11-bit reading scaled to 0..1
     (raw / 2047) with mode raw, or the depth in mm with mode mm (0 where there is no
     reading). OUTPUT is the colour image and RED, GREEN, BLUE and INTENSITY its planes and

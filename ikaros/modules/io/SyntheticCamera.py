@@ -4,7 +4,7 @@ import numpy as np
 from ikaros.module import Module, Output, Parameter
 
 from ._files import build_error
-from .synthetic_scene import BLOB_COLOURS, SyntheticScene
+from ikaros.hardware.synthetic_camera import BLOB_COLOURS, SyntheticScene
 
 
 class SyntheticCamera(Module):

@@ -236,7 +236,7 @@ def open_stream(url: str, timeout: float):
     """A reader for a stream URL: HTTP MJPEG (or JPEG snapshots) with the MJPEG reader, any
     other URL (rtsp://, HLS, ...) with cv2.VideoCapture and its FFmpeg backend."""
     if url.startswith(("http://", "https://")):
-        from .mjpeg import MJPEGReader
+        from ikaros.hardware.mjpeg import MJPEGReader
         try:
             return MJPEGReader(url, timeout)
         except OSError as e:

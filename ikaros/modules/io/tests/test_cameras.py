@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from ikaros.errors import ModelError, RunError
-from ikaros.modules.io.mjpeg import MJPEGReader, MJPEGServer
-from ikaros.modules.io.synthetic_scene import SyntheticScene
+from ikaros.hardware.mjpeg import MJPEGReader, MJPEGServer
+from ikaros.hardware.synthetic_camera import SyntheticScene
 from ikaros.testing import load_body as load
 
 cv2 = pytest.importorskip("cv2")

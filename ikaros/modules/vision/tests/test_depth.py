@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from ikaros.modules.io.rgbd_recording import box_columns, raw_to_mm, synthetic_recording
+from ikaros.hardware.rgbd_recording import box_columns, raw_to_mm, synthetic_recording
 from ikaros.testing import load_body
 
 from vision_models import run
