@@ -101,23 +101,11 @@ class Uint8Image:
         return self.levels
 
 
-def to_pixels(image: np.ndarray, out: np.ndarray) -> np.ndarray:
-    """A planar colour image ``(3, rows, cols)`` as OpenCV's interleaved ``(rows, cols, 3)``
-    in ``out`` (RGB order; OpenCV's own colour functions say BGR or RGB by name)."""
-    np.copyto(out, image.transpose(1, 2, 0))
-    return out
-
-
-def from_pixels(pixels: np.ndarray, out: np.ndarray) -> np.ndarray:
-    """An interleaved ``(rows, cols, 3)`` image as a planar ``(3, rows, cols)`` in ``out``."""
-    np.copyto(out, pixels.transpose(2, 0, 1))
-    return out
-
-
 # Image positions that modules pass to each other (FOCUS, positions, bounds) are (x, y)
 # fractions of the image's width and height, 0..1 from the left and top edges, so that they
 # hold for images of any size. The pixel in row r and column c covers x in
-# [c / cols, (c + 1) / cols); its centre is at ((c + 0.5) / cols, (r + 0.5) / rows).
+# [c / cols, (c + 1) / cols); its centre is at ((c + 0.5) / cols, (r + 0.5) / rows)
+# (docs/images.md, "Positions in an image").
 
 def pixel_of(x: float, y: float, rows: int, cols: int) -> tuple[int, int]:
     """The (row, col) of the pixel that holds the position (x, y), clamped to the image."""
