@@ -17,8 +17,9 @@ class GaborFilter(KernelFilter):
     fallen to about 1 % at its edge; this size is fixed when the model is built. As in
     Ikaros 2 the output is the part of the image where the whole kernel fits; a colour
     image is filtered plane by plane. FILTER is the kernel, GAUSSIAN its envelope and
-    GRATING its grating. (The Ikaros 2 class sized its kernel in its own way; OpenCV's
-    getGaborKernel is not used because it flips the kernel.)"""
+    GRATING its grating. (The class has no kernel-size parameter, so this size rule is
+    this module's own; OpenCV's getGaborKernel is not used because it stores its kernel
+    flipped, for convolution.)"""
 
     scale = Parameter(1.0, "multiplies sigma and lambda")
     gamma = Parameter(0.5, "aspect ratio of the envelope (its width along the grating's "
