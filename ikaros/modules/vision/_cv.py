@@ -90,14 +90,14 @@ class Uint8Image:
     level = round(255 · value). Both buffers are allocated here, once."""
 
     def __init__(self, shape: tuple):
+        self.cv2 = opencv()
         self.clipped = np.zeros(shape, np.float32)
         self.levels = np.zeros(shape, np.uint8)
 
     def __call__(self, image: np.ndarray) -> np.ndarray:
         np.clip(image, 0.0, 1.0, out=self.clipped)
-        self.clipped *= 255.0
-        np.rint(self.clipped, out=self.clipped)
-        np.copyto(self.levels, self.clipped, casting="unsafe")
+        # 255 · value rounded to the nearest level (OpenCV's saturating conversion)
+        self.cv2.convertScaleAbs(self.clipped, dst=self.levels, alpha=255.0)
         return self.levels
 
 
