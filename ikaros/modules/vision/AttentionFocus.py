@@ -8,7 +8,8 @@ class AttentionFocus(Module):
     """Cuts the square of 2·output_radius + 1 pixels centred on the pixel at FOCUS out of
     the image, gray or colour. FOCUS is (x, y) as fractions of the image's width and height
     (0..1 from the left and top, the convention of the vision modules, as SaliencyMap's
-    FOCUS gives it). Parts of the square outside the image are 0."""
+    FOCUS gives it). Parts of the square outside the image are 0. (The Ikaros 2 class
+    gives output_radius no default; 16 is this module's.)"""
 
     output_radius = Parameter(16, "the square is 2 · output_radius + 1 pixels wide")
     INPUT = Input("the image: gray (rows, cols) or colour (3, rows, cols)")

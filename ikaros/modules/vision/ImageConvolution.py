@@ -12,7 +12,8 @@ class ImageConvolution(KernelFilter):
     with ``rectify`` sets negative values to 0. As in Ikaros 2 the output is the part of
     the image where the whole kernel fits (kernel rows - 1 and columns - 1 smaller); a
     colour image is filtered plane by plane. The kernel's values, scale and bias may change
-    while the model runs, its size may not."""
+    while the model runs, its size may not. (The Ikaros 2 class gives ``kernel`` no
+    default; "1", which copies the image, is this module's.)"""
 
     scale = Parameter(1.0, "multiplies the convolution")
     bias = Parameter(0.0, "added after scaling")

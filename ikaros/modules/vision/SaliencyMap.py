@@ -21,8 +21,8 @@ class SaliencyMap(Module):
     Σ GAIN[i] · feature[i], and when REINFORCEMENT (its first value) is connected the gains
     move by alpha · (reinforcement - estimation) · feature for the focus chosen
     ``reinforcement_delay`` ticks before (a delta rule). ``seed`` fixes the random draws.
-    (The Ikaros 2 class's exact learning and selection formulas are not known; these are
-    stated here.)"""
+    (The Ikaros 2 class made its inputs in code; their names INPUT0, INPUT1, ... and the
+    learning and selection formulas stated here are this module's.)"""
 
     integration_radius = Parameter(2, "half the side of the square that gives a feature's "
                                    "value at the focus")

@@ -12,9 +12,11 @@ class WhiteBalance(ThreePlanes):
     gain = (target / 255) / mean. The reference region is the rectangle of columns
     ``x0``..``x1`` and rows ``y0``..``y1`` (pixels, both ends included, clipped to the
     image); by default the single pixel in column 10, row 20. The targets are 8-bit levels
-    as in Ikaros 2 (255 is 1.0). A plane whose region mean is 0 keeps gain 1. The region
-    and targets may change while the model runs. The image comes on INPUT (3, rows, cols)
-    or on INPUT0..2, and goes out on OUTPUT and on OUTPUT0..2."""
+    (255 is 1.0), as their Ikaros 2 defaults of 255 suggest. A plane whose region mean is 0
+    keeps gain 1. The region and targets may change while the model runs. The image comes
+    on INPUT (3, rows, cols) or on INPUT0..2, and goes out on OUTPUT and on OUTPUT0..2.
+    (This reading of x0, x1, y0 and y1 as the region's bounds is this module's; the four
+    further parameters of the Ikaros 2 class are not implemented.)"""
 
     red_target = Parameter(255.0, "the red level the region is brought to (0..255)")
     green_target = Parameter(255.0, "the green level the region is brought to (0..255)")
