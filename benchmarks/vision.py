@@ -19,6 +19,12 @@ moving discs), at 640 x 480 and at 1280 x 720. For each size the script prints:
 
     python benchmarks/vision.py            # about a minute
     python benchmarks/vision.py --ticks 60 --sizes 640x480
+    python benchmarks/vision.py --web-ui   # also: real time with the web UI showing two images
+
+With ``--web-ui`` each size also runs in real time at 30 Hz for ``--seconds`` with the web UI
+server up and a browser-like client subscribed to two images (the camera and the overlay,
+as JPEG) polling as fast as the server lets it, and prints the lag (mean, 99th percentile,
+max) beside the same run without the server, and the frames per second the client got.
 """
 from __future__ import annotations
 
@@ -225,13 +231,70 @@ def direct(rows: int, cols: int, ticks: int) -> tuple[float, dict]:
     return total, {k: v / ticks * 1000 for k, v in spent.items()}
 
 
+def web_ui_run(path: str, seconds: float) -> dict:
+    """Real time at 30 Hz: lag without the server, then with the web UI and a client on two
+    images (JPEG); the client's frames per second."""
+    import multiprocessing as mp
+    import threading
+
+    import uvicorn
+
+    from benchmarks.webui import client_process, lag_figures
+    from ikaros.module import WARNING
+    from ikaros.webui.server import create_app, listen
+
+    net = ikaros.load(path)
+    net.log_level = WARNING
+    ctrl = net.controller
+    ctrl.start("realtime")
+    time.sleep(1.0)
+    alone = lag_figures(net, seconds)
+    sock = listen("127.0.0.1", 0)
+    server = uvicorn.Server(uvicorn.Config(create_app(net), log_level="warning",
+                                           access_log=False, lifespan="off",
+                                           ws_per_message_deflate=False))
+    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
+    thread.start()
+    while not server.started:
+        time.sleep(0.05)
+    spawn = mp.get_context("spawn")
+    go, stop, quit_, connected = (spawn.Event() for _ in range(4))
+    frames = spawn.Value("l", 0)
+    url = f"ws://127.0.0.1:{sock.getsockname()[1]}/api/ws"
+    proc = spawn.Process(target=client_process, daemon=True,
+                         args=(url, ["Camera.OUTPUT", "Overlay.OUTPUT"], go, stop, quit_,
+                               frames, connected, "jpeg"))
+    proc.start()
+    go.set()
+    try:
+        if not connected.wait(30):
+            raise RuntimeError("the web UI client did not connect")
+        time.sleep(0.5)
+        f0, t0 = frames.value, time.perf_counter()
+        shown = lag_figures(net, seconds)
+        fps = (frames.value - f0) / (time.perf_counter() - t0)
+    finally:
+        stop.set()
+        quit_.set()
+        proc.join(10)
+        server.should_exit = True
+        thread.join(10)
+        ctrl.stop()
+        ctrl.join(10)
+        net.close()
+    return {"alone": alone, "shown": shown, "fps": fps}
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--ticks", type=int, default=90, help="ticks per measurement (90)")
     p.add_argument("--repeats", type=int, default=3, help="batch figures: the best of (3)")
     p.add_argument("--sizes", default="640x480,1280x720", help="COLSxROWS,...")
+    p.add_argument("--web-ui", action="store_true", help="also run in real time with the web "
+                   "UI showing two images")
+    p.add_argument("--seconds", type=float, default=5.0, help="length of each web UI phase")
     a = p.parse_args(argv)
-    rows_out = []
+    rows_out, web_out = [], []
     with tempfile.TemporaryDirectory() as folder:
         for size in a.sizes.split(","):
             cols, rows = (int(v) for v in size.split("x"))
@@ -248,6 +311,9 @@ def main(argv=None):
             print(f"{cols}x{rows}: ikaros real time ...", file=sys.stderr)
             real = ikaros_real_time(path, a.ticks)
             rows_out.append((size, batch, real, plain, plain_stages))
+            if a.web_ui:
+                print(f"{cols}x{rows}: real time with the web UI ...", file=sys.stderr)
+                web_out.append((size, web_ui_run(path, a.seconds)))
     load = ", ".join(f"{v:.1f}" for v in os.getloadavg())
     print(f"\nVision pipeline, {a.ticks} ticks per figure (batch: best of {a.repeats}); a "
           f"camera frame every {FRAME_MS:.1f} ms (30 Hz); {os.cpu_count()} cores, load "
@@ -280,6 +346,15 @@ def main(argv=None):
             print(f"{size:>10} {name:>18} {ms:>8.2f} {plain_stages[name]:>8.2f}")
         print(f"{size:>10} {'kernel':>18} {batch['kernel']:>8.2f} {'':>8}")
 
+
+    if web_out:
+        print(f"\nReal time at 30 Hz, {a.seconds:g} s per phase: lag in ms (mean, p99, max)\n")
+        header = f"{'size':>10} {'no server':>24} {'web UI, 2 images':>24} {'frames/s':>9}"
+        print(header)
+        print("-" * len(header))
+        for size, w in web_out:
+            print(f"{size:>10} {' '.join(f'{v:7.2f}' for v in w['alone']):>24} "
+                  f"{' '.join(f'{v:7.2f}' for v in w['shown']):>24} {w['fps']:>9.1f}")
 
 if __name__ == "__main__":
     main()
