@@ -51,8 +51,11 @@ class SpatialClustering(Module):
         self._disc = (xx * xx + yy * yy <= r * r).astype(np.float32)
         self._yy, self._xx = yy.astype(np.float32), xx.astype(np.float32)
         self._values = np.zeros((rows, cols), np.float32)
-        self._mask = np.zeros((rows, cols), np.float32)
-        self._density = np.zeros((rows, cols), np.float32)
+        self._mask = np.zeros((rows, cols), np.uint8)
+        side = 2 * r + 1                   # counts in a square fit 16 bits up to side 255
+        self._depth = self.cv2.CV_16U if side * side <= 65535 else self.cv2.CV_32F
+        self._density = np.zeros((rows, cols), np.uint16 if side * side <= 65535 else
+                                 np.float32)
         self._tracked = False
 
     def _window(self, cx, cy):
@@ -67,23 +70,23 @@ class SpatialClustering(Module):
         cv2 = self.cv2
         values, mask = self._values, self._mask
         gray = self._gray()
-        np.greater(gray, self.threshold, out=mask)
+        np.greater(gray, self.threshold, out=mask, casting="unsafe")
         np.multiply(gray, mask, out=values)
         side = 2 * self._r + 1
         found = []
         for _ in range(self.no_of_clusters):
-            cv2.boxFilter(mask, -1, (side, side), dst=self._density, normalize=False,
-                          borderType=cv2.BORDER_CONSTANT)
+            source = mask if self._depth == cv2.CV_16U else mask.astype(np.float32)
+            cv2.boxFilter(source, self._depth, (side, side), dst=self._density,
+                          normalize=False, borderType=cv2.BORDER_CONSTANT)
             _, best, _, (cx, cy) = cv2.minMaxLoc(self._density)
             if best < 0.5:
                 break
             # start from the centroid of the pixels in the densest square
             r = self._r
-            box = values[max(0, cy - r):cy + r + 1, max(0, cx - r):cx + r + 1]
-            total = float(box.sum())
-            ys, xs = np.mgrid[max(0, cy - r):max(0, cy - r) + box.shape[0],
-                              max(0, cx - r):max(0, cx - r) + box.shape[1]]
-            x, y = float((box * xs).sum()) / total, float((box * ys).sum()) / total
+            top, left = max(0, cy - r), max(0, cx - r)
+            box = values[top:cy + r + 1, left:cx + r + 1]
+            m = cv2.moments(box)
+            x, y = left + m["m10"] / m["m00"], top + m["m01"] / m["m00"]
             for _ in range(10):                          # mean shift to the centroid
                 image, disc = self._window(int(round(x)), int(round(y)))
                 w = values[image] * self._disc[disc]
@@ -105,7 +108,7 @@ class SpatialClustering(Module):
                 mask[image][inside] = 0
             else:                       # scattered pixels: drop the seed square instead
                 box[...] = 0
-                mask[max(0, cy - r):cy + r + 1, max(0, cx - r):cx + r + 1] = 0
+                mask[top:cy + r + 1, left:cx + r + 1] = 0
         return found
 
     def tick(self):

@@ -205,3 +205,9 @@ def test_dtracker_starts_at_a_box_input(tmp_path):
             net.step()
             assert np.all(np.abs(net.output("M.TRACKER_POSITION") - truth[k]) <
                           [2 / 160, 2 / 120]), k
+
+
+def test_a_large_cluster_radius_counts_in_floats(tmp_path):
+    image = disc_map(60, 600, [(300, 30, 20, 1.0)])          # radius 0.5: a 601-pixel square
+    with run(tmp_path, "SpatialClustering", {"INPUT": image}, cluster_radius="0.5") as net:
+        assert np.allclose(net.output("M.OUTPUT")[0], centre(300, 30, 60, 600), atol=1e-6)
