@@ -3,7 +3,6 @@ background."""
 from ikaros.module import Parameter
 
 from ._camera import CameraInput, open_stream
-from ._files import build_error
 
 
 class InputVideoStream(CameraInput):
@@ -35,7 +34,7 @@ class InputVideoStream(CameraInput):
 
     def configure(self):
         if not self.url:
-            raise build_error(self, f"{type(self).__name__} needs a url")
+            raise ValueError(f"{type(self).__name__} needs a url")
         super().configure()
         if self.info:
             self.print(f"{self.source_name()}: {self.output_shape('RED')[1]} x "

@@ -4,9 +4,9 @@ import time
 
 import numpy as np
 
-from ikaros.module import Input, Module, Output, Parameter
+from ikaros.module import Input, MissingDependency, Module, Output, Parameter
 
-from ._files import build_error, resolve
+from ._files import resolve
 from ikaros.hardware.rgbd_recording import mm_to_raw, raw_to_mm
 
 
@@ -45,9 +45,9 @@ class Kinect(Module):
                 with np.load(path) as data:
                     self._rgb, self._raw = data["rgb"], data["depth"]
             except (OSError, KeyError, ValueError) as e:
-                raise build_error(self, f'cannot read RGB-D recording "{path}": {e}') from None
+                raise OSError(f'cannot read RGB-D recording "{path}": {e}') from None
             if self._rgb.ndim != 4 or self._raw.shape != self._rgb.shape[:3]:
-                raise build_error(self, f'RGB-D recording "{path}" needs rgb (frames, rows, '
+                raise ValueError(f'RGB-D recording "{path}" needs rgb (frames, rows, '
                                   f'cols, 3) and depth (frames, rows, cols)')
             shape = self._raw.shape[1:]
             self._device = None
@@ -64,23 +64,23 @@ class Kinect(Module):
             try:
                 openni2 = importlib.import_module("openni.openni2")
             except ImportError:
-                raise build_error(self, "Kinect with xtion needs OpenNI 2 and its Python "
+                raise MissingDependency("Kinect with xtion needs OpenNI 2 and its Python "
                                   "bindings (pip install openni, and the OpenNI 2 runtime); "
                                   "or set recording= to play an RGB-D recording") from None
             try:
                 return XtionReader(openni2, self.index)
             except Exception as e:
-                raise build_error(self, f"cannot open Xtion {self.index}: {e}") from None
+                raise OSError(f"cannot open Xtion {self.index}: {e}") from None
         try:
             freenect = importlib.import_module("freenect")
         except ImportError:
-            raise build_error(self, "Kinect needs libfreenect and its Python bindings (the "
+            raise MissingDependency("Kinect needs libfreenect and its Python bindings (the "
                               "freenect module, built with libfreenect's wrappers/python); "
                               "or set recording= to play an RGB-D recording") from None
         try:
             return KinectReader(freenect, self.index)
         except OSError as e:
-            raise build_error(self, f"cannot open Kinect {self.index}: {e}") from None
+            raise OSError(f"cannot open Kinect {self.index}: {e}") from None
 
     def init(self):
         self._show(*self._next())

@@ -2,7 +2,6 @@
 from ikaros.module import Parameter
 
 from ._camera import CameraInput, open_stream
-from ._files import build_error
 
 
 class NetworkCamera(CameraInput):
@@ -40,5 +39,5 @@ class NetworkCamera(CameraInput):
 
     def configure(self):
         if not self.host_ip and "://" not in self.image_request:
-            raise build_error(self, "NetworkCamera needs host_ip")
+            raise ValueError("NetworkCamera needs host_ip")
         super().configure()

@@ -3,7 +3,6 @@ import numpy as np
 
 from ikaros.module import Module, Output, Parameter
 
-from ._files import build_error
 from ikaros.hardware.synthetic_camera import BLOB_COLOURS, SyntheticScene
 
 
@@ -44,13 +43,13 @@ class SyntheticCamera(Module):
 
     def configure(self):
         if not 0 <= self.blobs <= len(BLOB_COLOURS):
-            raise build_error(self, f"blobs must be 0 to {len(BLOB_COLOURS)}, not "
+            raise ValueError(f"blobs must be 0 to {len(BLOB_COLOURS)}, not "
                               f"{self.blobs}")
         ids = [int(i) for i in np.ravel(self.markers)]
         if any(not 0 <= i < 50 for i in ids):
-            raise build_error(self, f"marker ids must be 0..49 (DICT_4X4_50), not {ids}")
+            raise ValueError(f"marker ids must be 0..49 (DICT_4X4_50), not {ids}")
         if self.size_x < 32 or self.size_y < 32:
-            raise build_error(self, "size_x and size_y must be at least 32")
+            raise ValueError("size_x and size_y must be at least 32")
         self.scene = SyntheticScene(self.size_y, self.size_x, self.blobs, ids, self.face,
                                     self.speed, self.noise)
         if self.blobs:

@@ -10,7 +10,6 @@ import numpy as np
 
 from ikaros.module import Module, Output, Parameter, require
 
-from ._files import build_error
 
 
 class CaptureReader:
@@ -19,9 +18,15 @@ class CaptureReader:
     def __init__(self, source, width: int | None = None, height: int | None = None,
                  fps: float | None = None, paced: bool = False):
         cv2 = self.cv2 = require("cv2", "opencv-python-headless", extra="vision")
-        self.capture = cv2.VideoCapture(source)
+        logging = cv2.utils.logging           # the failed tries of other backends are noise
+        level = logging.getLogLevel()
+        logging.setLogLevel(logging.LOG_LEVEL_ERROR)
+        try:
+            self.capture = cv2.VideoCapture(source)
+        finally:
+            logging.setLogLevel(level)
         if not self.capture.isOpened():
-            raise OSError("it cannot be opened")
+            raise OSError("no such camera or file, it is in use, or OpenCV cannot read it")
         if width:
             self.capture.set(cv2.CAP_PROP_FRAME_WIDTH, width)
         if height:
@@ -183,11 +188,11 @@ class CameraInput(Module):
             self._grabber = FrameGrabber(self.open_reader, self.reconnect,
                                          retry=min(1.0, self.timeout), name=self.name)
         except OSError as e:
-            raise build_error(self, f"cannot open {self.source_name()}: {e}") from None
+            raise OSError(f"cannot open {self.source_name()}: {e}") from None
         first = self._grabber.wait_first(self.timeout)
         if first is None:
             self._grabber.stop()
-            raise build_error(self, f"no frame from {self.source_name()} within "
+            raise OSError(f"no frame from {self.source_name()} within "
                               f"{self.timeout:g} s")
         size = self.requested_size() or first.shape[:2]
         self._grabber.start_publishing(size, self.flip_frames, first)

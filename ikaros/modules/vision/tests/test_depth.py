@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+from ikaros.errors import ModelError
 from ikaros.hardware.rgbd_recording import box_columns, raw_to_mm, synthetic_recording
 from ikaros.testing import load_body
 
@@ -114,9 +115,9 @@ def test_kinect_plays_a_recording(tmp_path):
 
 
 def test_kinect_without_a_device_library_names_it(tmp_path):
-    with pytest.raises(Exception, match="Kinect needs libfreenect and its Python bindings"):
+    with pytest.raises(ModelError, match="Kinect needs libfreenect and its Python bindings"):
         load_body(tmp_path, '<module class="Kinect" name="K"/>')
-    with pytest.raises(Exception, match="OpenNI 2"):
+    with pytest.raises(ModelError, match="OpenNI 2"):
         load_body(tmp_path, '<module class="Kinect" name="K" xtion="yes"/>')
 
 
