@@ -203,6 +203,16 @@ class MJPEGReader:
             data += chunk
         return bytes(data)
 
+    def interrupt(self):
+        """Make a read that waits on the stream return None now (from another thread)."""
+        sock = getattr(self._conn, "sock", None)
+        if sock is not None:
+            import socket
+            try:
+                sock.shutdown(socket.SHUT_RDWR)
+            except OSError:
+                pass
+
     def close(self):
         try:
             self._conn.close()

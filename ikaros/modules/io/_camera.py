@@ -51,7 +51,8 @@ class CaptureReader:
 
 class FrameGrabber:
     """Reads frames in a daemon thread and keeps the newest, converted to four float32
-    planes (red, green, blue, intensity) in 0..1 at the output size.
+    planes (red, green, blue, intensity) in 0..1 at the output size. The reader is used and
+    closed in that thread only (OpenCV's capture must not be released during a read).
 
     ``open_reader()`` makes a reader (``read() -> RGB uint8 or None``, ``close()``). When it
     returns None the source ended: with ``reconnect`` the grabber opens it again after
@@ -98,20 +99,29 @@ class FrameGrabber:
         return planes
 
     def _run(self):
-        reader = self.reader
+        try:
+            self._grab()
+        finally:
+            if self.reader is not None:       # the reader is closed in this thread only
+                self.reader.close()
+                self.reader = None
+
+    def _grab(self):
         while not self._stopping.is_set():
-            rgb = reader.read() if reader is not None else None
+            rgb = self.reader.read() if self.reader is not None else None
+            if self._stopping.is_set():
+                return
             if rgb is None:
-                if reader is not None:
-                    reader.close()
-                    reader = self.reader = None
-                if not self.reconnect or self._stopping.is_set():
+                if self.reader is not None:
+                    self.reader.close()
+                    self.reader = None
+                if not self.reconnect:
                     self.ended.set()
                     return
                 if self._stopping.wait(self.retry):
                     return
                 try:
-                    reader = self.reader = self.open_reader()
+                    self.reader = self.open_reader()
                 except OSError as e:
                     self.error = str(e)
                 continue
@@ -142,10 +152,12 @@ class FrameGrabber:
                 self.count += 1
 
     def stop(self):
+        """Stop grabbing. A reader that can be interrupted (a network stream) is, so that a
+        read waiting on the source returns; others finish their read within a frame."""
         self._stopping.set()
-        reader = self.reader
-        if reader is not None:
-            reader.close()          # unblocks a read that waits on the source
+        interrupt = getattr(self.reader, "interrupt", None)
+        if interrupt is not None:
+            interrupt()
         self._thread.join(timeout=3.0)
 
 

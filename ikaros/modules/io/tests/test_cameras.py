@@ -203,3 +203,14 @@ def test_input_video_av_reads_a_stream(tmp_path, server, scene):
         assert_is_scene_frame(net, "A", scene)
     finally:
         net.close()
+
+
+def test_closing_while_the_stream_hangs_returns_at_once(tmp_path, server):
+    net = load(tmp_path, f'<module class="InputVideoStream" name="S" url="{server.url}" '
+                         f'timeout="5"/>')
+    net.step()
+    server.pause()                      # the grab thread now waits in a read (up to 5 s)
+    time.sleep(0.2)
+    start = time.monotonic()
+    net.close()
+    assert time.monotonic() - start < 1.0
