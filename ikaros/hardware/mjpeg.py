@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import http.client
+import socket
 import threading
 import time
 import urllib.parse
@@ -149,6 +150,7 @@ class MJPEGReader:
             token = f"{parts.username}:{parts.password or ''}".encode()
             headers["Authorization"] = "Basic " + base64.b64encode(token).decode()
         self._conn.request("GET", target, headers=headers)
+        self._socket = self._conn.sock          # the response keeps reading from it
         self._response = self._conn.getresponse()
         if self._response.status != 200:
             raise OSError(f"HTTP {self._response.status} {self._response.reason}")
@@ -205,16 +207,14 @@ class MJPEGReader:
 
     def interrupt(self):
         """Make a read that waits on the stream return None now (from another thread)."""
-        sock = getattr(self._conn, "sock", None)
-        if sock is not None:
-            import socket
-            try:
-                sock.shutdown(socket.SHUT_RDWR)
-            except OSError:
-                pass
+        try:
+            self._socket.shutdown(socket.SHUT_RDWR)
+        except OSError:
+            pass
 
     def close(self):
         try:
+            self._response.close()
             self._conn.close()
         except OSError:
             pass
