@@ -336,8 +336,8 @@ def main(argv=None):
           "module ticks)\nand share: its share of the tick; 30 Hz?: the run at "
           "tick_duration 1/30 s had no tick\nlater than one frame; lag: how late ticks "
           "started in that run (ms).")
-    print(f"\nPer stage, ms (ikaros: the modules' mean tick time; kernel: the tick minus all "
-          f"module ticks)\n")
+    print("\nPer stage, ms (ikaros: the modules' mean tick time; kernel: the tick minus all "
+          "module ticks)\n")
     header = f"{'size':>10} {'stage':>18} {'ikaros':>8} {'OpenCV':>8}"
     print(header)
     print("-" * len(header))

@@ -68,8 +68,8 @@ class MJPEGServer:
         self.port = self.httpd.server_address[1]
         self.url = f"http://{host}:{self.port}/video.mjpg"
         self.url_snapshot = f"http://{host}:{self.port}/snapshot.jpg"
-        self._thread = threading.Thread(target=self.httpd.serve_forever, daemon=True,
-                                        name="ikaros-mjpeg-server")
+        self._thread = threading.Thread(target=self.httpd.serve_forever, args=(0.05,),
+                                        daemon=True, name="ikaros-mjpeg-server")
         self._thread.start()
 
     def _send_snapshot(self, handler):

@@ -1,6 +1,5 @@
 """Kinect: a depth camera (Kinect or Xtion), or an RGB-D recording in its place."""
 import threading
-import time
 
 import numpy as np
 
@@ -14,14 +13,15 @@ class Kinect(Module):
     """Depth and colour images from a Microsoft Kinect (through libfreenect's Python
     bindings, the `freenect` module) or, with `xtion`, an Asus Xtion (through OpenNI 2's
     Python bindings, `openni`), or from an RGB-D `recording` (see
-    ikaros.hardware.rgbd_recording) played one frame per tick (tick k shows frame k, init frame 0), over and over, so that
-    depth models run without the device. DEPTH is the raw 11-bit reading scaled to 0..1
-    (raw / 2047) with mode raw, or the depth in mm with mode mm (0 where there is no
-    reading). OUTPUT is the colour image and RED, GREEN, BLUE and INTENSITY its planes and
-    their mean. A device is read in a background thread and each tick publishes the newest
-    frames. The outputs have the frames' size (640 × 480 for the devices). When the library
-    for the device is missing the model does not load, and the error names the library.
-    TILT (degrees) and LED (0..6) are sent to a Kinect when they change."""
+    ikaros.hardware.rgbd_recording) played one frame per tick (tick k shows frame k, init
+    frame 0), over and over, so that depth models run without the device. DEPTH is the raw
+    11-bit reading scaled to 0..1 (raw / 2047) with mode raw, or the depth in mm with mode
+    mm (0 where there is no reading). OUTPUT is the colour image and RED, GREEN, BLUE and
+    INTENSITY its planes and their mean. A device is read in a background thread and each
+    tick publishes the newest frames. The outputs have the frames' size (640 × 480 for the
+    devices). When the library for the device is missing the model does not load, and the
+    error names the library. TILT (degrees) and LED (0..6) are sent to a Kinect when they
+    change."""
 
     mode = Parameter("raw", "raw: DEPTH is raw / 2047; mm: DEPTH is in millimetres",
                      options="raw/mm")

@@ -1,6 +1,4 @@
 """CIFaceDetector: faces with positions, features and identities kept from tick to tick."""
-import numpy as np
-
 from ikaros.module import Output, Parameter
 
 from ._faces import FaceDetectorBase, overlap

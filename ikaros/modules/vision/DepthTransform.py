@@ -1,6 +1,4 @@
 """DepthTransform: image positions with depths to points in space."""
-import numpy as np
-
 from ikaros.module import Input, Module, Output, Parameter
 
 from ._depth import to_points

@@ -61,7 +61,8 @@ class SpatialClustering(Module):
     def _window(self, cx, cy):
         """Slices of the image and of the disc for a disc centred at pixel (cx, cy)."""
         r, (rows, cols) = self._r, self._values.shape
-        y0, y1, x0, x1 = max(0, cy - r), min(rows, cy + r + 1), max(0, cx - r), min(cols, cx + r + 1)
+        y0, y1 = max(0, cy - r), min(rows, cy + r + 1)
+        x0, x1 = max(0, cx - r), min(cols, cx + r + 1)
         return ((slice(y0, y1), slice(x0, x1)),
                 (slice(y0 - cy + r, y1 - cy + r), slice(x0 - cx + r, x1 - cx + r)))
 

@@ -14,10 +14,11 @@ class StaufferGrimson(Module):
     simplification ρ = α of the paper's ρ = α·N(x)), every weight moves towards 1 for the
     match and 0 otherwise at rate `alpha`, and without a match the weakest Gaussian is
     replaced by one at the value with standard deviation `initialStandardDeviation` and
-    weight `alpha`. A variance never falls below (0.1 · initialStandardDeviation)². Ranked by weight / standard deviation, the first Gaussians whose weights
-    add up to more than `T` are the background; OUTPUT is 1 where the value matched none of
-    them (foreground) and 0 elsewhere. The first image starts the model (all background).
-    The pixels are updated together, Gaussian by Gaussian, with NumPy."""
+    weight `alpha`. A variance never falls below (0.1 · initialStandardDeviation)². Ranked
+    by weight / standard deviation, the first Gaussians whose weights add up to more than
+    `T` are the background; OUTPUT is 1 where the value matched none of them (foreground)
+    and 0 elsewhere. The first image starts the model (all background). The pixels are
+    updated together, Gaussian by Gaussian, with NumPy."""
 
     alpha = Parameter(0.005, "learning rate of the weights, means and variances")
     T = Parameter(0.8, "the part of the weight that is background")
