@@ -66,3 +66,20 @@ def test_gallery_canny_edges_lie_on_the_disc_outlines():
             angles = np.arctan2(rows[near] - y, cols[near] - x)
             bins = np.unique(np.floor((angles + np.pi) / (2 * np.pi) * 36).astype(int))
             assert len(bins) >= 0.9 * 36
+
+
+def test_depth_objects_segments_the_box_from_the_recording():
+    from ikaros.hardware.rgbd_recording import box_columns
+    with load("depth_objects.ikg") as net:
+        for k in range(8):
+            net.step()
+            left, right = box_columns(k, 8, 160, 40)
+            expected = np.zeros((120, 160))
+            expected[30:90, left:right] = 1
+            assert np.array_equal(net.output("Object.OUTPUT"), expected), k
+            assert np.array_equal(net.output("Outline.BOX"), [[left, 30], [right - 1, 30],
+                                                              [right - 1, 89], [left, 89]])
+            if k >= 3:                    # the box has left its place in the background
+                angle = ((left + right) / 2 / 160 - 0.5) * 1.1
+                truth = [1500, -1500 * np.tan(angle)]
+                assert np.all(np.abs(net.output("Floor.MAXIMA")[0] - truth) < 100), k
