@@ -23,7 +23,7 @@ def test_overhead_tracker_follows_each_robot_within_one_pixel():
             net.step()
             truth = net.output("Camera.POSITIONS")
             for i, robot in enumerate(("RedRobot", "GreenRobot", "BlueRobot")):
-                error = np.abs(net.output(f"{robot}.OUTPUT")[0] - truth[i]) * [640, 480]
+                error = np.abs(net.output(f"{robot}.OUTPUT")[0] - truth[i]) * [320, 240]
                 assert error.max() <= 1.0, (robot, net.tick, error)
                 assert net.output(f"{robot}.CONFIDENCE")[0] == 1
 
@@ -50,7 +50,7 @@ def test_marker_cube_finder_finds_the_cubes():
             error = np.abs(net.output("Markers.IMAGE_POSITION") - truth) * [640, 480]
             assert error.max() <= 1.0
             distance = net.output("Markers.MATRIX")[:, 3]
-            assert np.allclose(distance, 600 * 45 / 80, rtol=0.01)
+            assert np.allclose(distance, 600 * 0.045 / 80, rtol=0.01)
 
 
 def test_gallery_canny_edges_lie_on_the_disc_outlines():

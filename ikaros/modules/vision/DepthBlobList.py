@@ -12,19 +12,20 @@ MAX_BLOBS = 10
 
 class DepthBlobList(Module):
     """Finds objects in a depth image (in mm) on a 100 × 100 map of the floor seen from
-    above. Every pixel with a depth becomes a point in the camera's frame (x forward, y left,
-    z up; the fields of view fov_h and fov_v as in DepthTransform), turned by `tilt` (up)
-    and `pan` (left), in degrees, and placed by the camera pose POSITION (a 4 × 4 matrix,
-    16 values; the camera at the origin when it is not connected). GRID is 1 for the cells
-    of `range` / 100 mm that hold at least `min_points` points: row 0 is the far edge
+    above. Every pixel with a depth becomes a point in the camera's frame (x forward, y
+    left, z up; the fields of view fov_h and fov_v as in DepthTransform), turned by `tilt`
+    (up) and `pan` (left), in degrees, and placed by the camera pose POSITION (a 4 × 4
+    matrix, 16 values; the camera at the origin when it is not connected). GRID is 1 for the
+    cells of `range` / 100 mm that hold at least `min_points` points: row 0 is the far edge
     (x = range) and column 0 the left edge (y = range / 2) of a square of side `range` in
     front of the origin. BACKGROUND is the GRID of the first tick (and of the tick after the
     command "reset"), DILATED_BACKGROUND it grown by one cell, DETECTION the cells of GRID
-    outside it and SMOOTHED that blurred by a Gaussian of one cell. Up to 10 local maxima
-    of SMOOTHED above 0.2 are the objects: MAXIMA has their (x, y) in mm, and OUTPUT one row
-    per object: a 4 × 4 matrix (16 values, row by row) that places it on the floor, and its
-    strength (the maximum's value); rows past the last object are 0. (What Ikaros 2 did in
-    detail is not known; this is a plain background-subtraction blob finder.)"""
+    outside it and SMOOTHED that blurred by a Gaussian of one cell. Up to 10 local maxima of
+    SMOOTHED above 0.2, more than two cells apart, are the objects: MAXIMA has their (x, y)
+    in mm, and OUTPUT one row per object: a 4 × 4 matrix (16 values, row by row) that places
+    it on the floor, and its strength (the maximum's value); rows past the last object are
+    0. (What Ikaros 2 did in detail is not known; this is a plain background-subtraction
+    blob finder.)"""
 
     pan = Parameter(0.0, "the camera's pan to the left, degrees")
     tilt = Parameter(0.0, "the camera's tilt upwards, degrees")
@@ -93,10 +94,16 @@ class DepthBlobList(Module):
         peaks = (self.SMOOTHED == cv2.dilate(self.SMOOTHED, np.ones((3, 3), np.uint8))) & (
             self.SMOOTHED > 0.2)
         rows, cols = np.nonzero(peaks)
-        order = np.argsort(-self.SMOOTHED[rows, cols], kind="stable")[:MAX_BLOBS]
+        order = np.argsort(-self.SMOOTHED[rows, cols], kind="stable")
+        kept = []                  # a plateau gives several equal maxima: keep one of them
+        for r, c in zip(rows[order], cols[order]):
+            if all(abs(r - kr) > 2 or abs(c - kc) > 2 for kr, kc in kept):
+                kept.append((r, c))
+            if len(kept) == MAX_BLOBS:
+                break
         self.MAXIMA.fill(0)
         self.OUTPUT.fill(0)
-        for i, (r, c) in enumerate(zip(rows[order], cols[order])):
+        for i, (r, c) in enumerate(kept):
             x, y = self.range - (r + 0.5) * cell, self.range / 2 - (c + 0.5) * cell
             self.MAXIMA[i] = (x, y)
             place = np.eye(4, dtype=np.float32)

@@ -135,6 +135,7 @@ def test_depth_blob_list_finds_the_box_that_moved_in(tmp_path):
         expected = [1500, -1500 * math.tan(angle)]
         maxima = net.output("B.MAXIMA")
         assert np.all(np.abs(maxima[0] - expected) < 100)
+        assert maxima[1:].sum() == 0                    # one object, one maximum
         assert net.output("B.OUTPUT")[0, 16] > 0.2
         assert np.allclose(net.output("B.OUTPUT")[0, [3, 7]], maxima[0])
         assert net.output("B.DETECTION").sum() > 0
