@@ -214,3 +214,30 @@ def test_closing_while_the_stream_hangs_returns_at_once(tmp_path, server):
     start = time.monotonic()
     net.close()
     assert time.monotonic() - start < 1.0
+
+
+def test_a_stream_that_is_not_mjpeg_goes_through_ffmpeg(tmp_path, scene):
+    import functools
+    import threading
+    from http.server import SimpleHTTPRequestHandler, ThreadingHTTPServer
+
+    write_movie(tmp_path / "clip.avi", scene, frames=30)
+
+    class Quiet(SimpleHTTPRequestHandler):
+        def log_message(self, *args):
+            pass
+
+    httpd = ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Quiet,
+                                                                     directory=str(tmp_path)))
+    thread = threading.Thread(target=httpd.serve_forever, args=(0.05,), daemon=True)
+    thread.start()
+    try:
+        url = f"http://127.0.0.1:{httpd.server_address[1]}/clip.avi"
+        net = load(tmp_path, f'<module class="InputVideoStream" name="S" url="{url}" '
+                             f'size_x="{COLS}" size_y="{ROWS}"/>')
+        with net:
+            net.step()
+            assert_is_scene_frame(net, "S", scene)
+    finally:
+        httpd.shutdown()
+        httpd.server_close()
