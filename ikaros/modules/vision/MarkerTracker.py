@@ -98,6 +98,7 @@ class MarkerTracker(Module):
         self._size = np.array([cols, rows], np.float32)
         self._gray = GrayImage(self.INPUT)
         self._levels = Uint8Image((rows, cols))
+        self._binary = np.zeros((rows, cols), np.uint8)
         s = self.marker_size / 2
         self._object = np.array([[-s, s, 0], [s, s, 0], [s, -s, 0], [-s, -s, 0]], np.float64)
         self._frame = OPENCV_TO_IKAROS if self.coordinate_system == "ikaros" else np.eye(4)
@@ -123,7 +124,9 @@ class MarkerTracker(Module):
     def tick(self):
         levels = self._levels(self._gray())
         if self.threshold != "auto":
-            levels = np.where(levels > self._level, 255, 0).astype(np.uint8)
+            self.cv2.threshold(levels, self._level, 255, self.cv2.THRESH_BINARY,
+                               dst=self._binary)
+            levels = self._binary
         corners, ids, _ = self._detector.detectMarkers(levels)
         found = [] if ids is None else sorted(
             zip(ids.ravel().tolist(), corners), key=lambda m: m[0] if self.sort else 0)

@@ -211,3 +211,9 @@ def test_a_large_cluster_radius_counts_in_floats(tmp_path):
     image = disc_map(60, 600, [(300, 30, 20, 1.0)])          # radius 0.5: a 601-pixel square
     with run(tmp_path, "SpatialClustering", {"INPUT": image}, cluster_radius="0.5") as net:
         assert np.allclose(net.output("M.OUTPUT")[0], centre(300, 30, 60, 600), atol=1e-6)
+
+
+def test_markers_with_a_fixed_threshold(tmp_path):
+    with markers(tmp_path, "3 7", 'threshold="128"') as net:
+        net.step()
+        assert net.output("M.OBJECT_ID").ravel()[:2].tolist() == [3, 7]
