@@ -72,3 +72,14 @@ def test_frames_repeat_for_the_same_tick_and_move_between_ticks(tmp_path):
 def test_bad_marker_id_is_a_load_error(tmp_path):
     with pytest.raises(ModelError, match="marker ids must be 0..49"):
         load(tmp_path, '<module class="SyntheticCamera" name="C" markers="60"/>')
+
+
+def test_a_drawn_face_without_scikit_image(monkeypatch):
+    import sys
+
+    from ikaros.hardware.synthetic_camera import face_image
+    monkeypatch.setitem(sys.modules, "skimage", None)       # import skimage fails
+    face = face_image(120)
+    assert face.shape == (120, 120, 3) and face.dtype == np.uint8
+    assert np.array_equal(face[60, 60], [224, 180, 150])     # the skin of the drawn face
+    assert np.array_equal(face[2, 2], [200, 200, 200])       # the background
