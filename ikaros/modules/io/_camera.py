@@ -11,7 +11,6 @@ import numpy as np
 from ikaros.module import Module, Output, Parameter, require
 
 
-
 class CaptureReader:
     """A cv2.VideoCapture (camera index, device path, file or stream URL) as RGB frames."""
 
@@ -73,7 +72,7 @@ class FrameGrabber:
         self._stopping = threading.Event()
         self._first = threading.Event()
         self._sized = threading.Event()
-        self.error: str | None = None
+        self.error: str | None = None                # why the last reconnection failed
         self.reader = open_reader()
         self._thread = threading.Thread(target=self._run, daemon=True,
                                         name=f"ikaros-grab-{name}")
@@ -122,6 +121,7 @@ class FrameGrabber:
                     return
                 try:
                     self.reader = self.open_reader()
+                    self.error = None
                 except OSError as e:
                     self.error = str(e)
                 continue
@@ -232,8 +232,9 @@ class CameraInput(Module):
         self.STALE[0] = float(stale)
         if stale and not self._stale_reported:
             self._stale_reported = True
-            self.warning(f"no new frame from {self.source_name()} for {age:.1f} s; the last "
-                         f"frame is kept and STALE is 1")
+            reason = f" (reconnecting: {self._grabber.error})" if self._grabber.error else ""
+            self.warning(f"no new frame from {self.source_name()} for {age:.1f} s{reason}; "
+                         f"the last frame is kept and STALE is 1")
         elif not stale:
             self._stale_reported = False
 
