@@ -125,6 +125,10 @@ class MJPEGServer:
         self.close()
 
 
+class NotMJPEG(OSError):
+    """The URL answers, but with neither an MJPEG stream nor a JPEG image."""
+
+
 class MJPEGReader:
     """Reads an HTTP MJPEG stream (or polls a JPEG snapshot URL) frame by frame.
 
@@ -152,12 +156,14 @@ class MJPEGReader:
         self._conn.request("GET", target, headers=headers)
         self._socket = self._conn.sock          # the response keeps reading from it
         self._response = self._conn.getresponse()
-        if self._response.status != 200:
-            raise OSError(f"HTTP {self._response.status} {self._response.reason}")
         kind = self._response.getheader("Content-Type", "")
         self.multipart = kind.startswith("multipart/")
+        if self._response.status != 200:
+            self.close()
+            raise OSError(f"HTTP {self._response.status} {self._response.reason}")
         if not self.multipart and not kind.startswith("image/"):
-            raise OSError(f"not an MJPEG stream or a JPEG image (Content-Type {kind!r})")
+            self.close()
+            raise NotMJPEG(f"not an MJPEG stream or a JPEG image (Content-Type {kind!r})")
 
     def _decode(self, data: bytes) -> np.ndarray | None:
         bgr = self.cv2.imdecode(np.frombuffer(data, np.uint8), self.cv2.IMREAD_COLOR)

@@ -204,8 +204,7 @@ class CameraInput(Module):
         first = self._grabber.wait_first(self.timeout)
         if first is None:
             self._grabber.stop()
-            raise OSError(f"no frame from {self.source_name()} within "
-                              f"{self.timeout:g} s")
+            raise OSError(f"no frame from {self.source_name()} within {self.timeout:g} s")
         size = self.requested_size() or first.shape[:2]
         self._grabber.start_publishing(size, self.flip_frames, first)
         self.set_output_shape("OUTPUT", (3,) + tuple(size))
@@ -254,22 +253,21 @@ def open_stream(url: str, timeout: float):
     """A reader for a stream URL: HTTP MJPEG (or JPEG snapshots) with the MJPEG reader, any
     other URL (rtsp://, HLS, ...) with cv2.VideoCapture and its FFmpeg backend."""
     if url.startswith(("http://", "https://")):
-        from ikaros.hardware.mjpeg import MJPEGReader
+        from ikaros.hardware.mjpeg import MJPEGReader, NotMJPEG
         try:
             return MJPEGReader(url, timeout)
-        except OSError as e:
-            if "Content-Type" not in str(e):
-                raise
+        except NotMJPEG:
+            pass
     return CaptureReader(url)
 
 
 def list_cameras(count: int = 8) -> str:
     """The indices of the cameras among the first ``count`` that OpenCV can open."""
-    cv2 = require("cv2", "opencv-python-headless", extra="vision")
     found = []
     for index in range(count):
-        capture = cv2.VideoCapture(index)
-        if capture.isOpened():
-            found.append(str(index))
-        capture.release()
+        try:
+            CaptureReader(index).close()
+        except OSError:
+            continue
+        found.append(str(index))
     return ", ".join(found) or "none found"
