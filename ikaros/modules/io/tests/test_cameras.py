@@ -216,28 +216,36 @@ def test_closing_while_the_stream_hangs_returns_at_once(tmp_path, server):
     assert time.monotonic() - start < 1.0
 
 
-def test_a_stream_that_is_not_mjpeg_goes_through_ffmpeg(tmp_path, scene):
+@pytest.fixture
+def file_server(tmp_path):
+    """An HTTP server on 127.0.0.1 for the files in tmp_path; yields its base URL."""
     import functools
     import threading
     from http.server import SimpleHTTPRequestHandler, ThreadingHTTPServer
-
-    write_movie(tmp_path / "clip.avi", scene, frames=30)
 
     class Quiet(SimpleHTTPRequestHandler):
         def log_message(self, *args):
             pass
 
-    httpd = ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Quiet,
-                                                                     directory=str(tmp_path)))
+    httpd = ThreadingHTTPServer(("127.0.0.1", 0),
+                                functools.partial(Quiet, directory=str(tmp_path)))
     thread = threading.Thread(target=httpd.serve_forever, args=(0.05,), daemon=True)
     thread.start()
-    try:
-        url = f"http://127.0.0.1:{httpd.server_address[1]}/clip.avi"
-        net = load(tmp_path, f'<module class="InputVideoStream" name="S" url="{url}" '
-                             f'size_x="{COLS}" size_y="{ROWS}"/>')
-        with net:
-            net.step()
-            assert_is_scene_frame(net, "S", scene)
-    finally:
-        httpd.shutdown()
-        httpd.server_close()
+    yield f"http://127.0.0.1:{httpd.server_address[1]}"
+    httpd.shutdown()
+    httpd.server_close()
+
+
+def test_a_stream_that_is_not_mjpeg_goes_through_ffmpeg(tmp_path, scene, file_server):
+    write_movie(tmp_path / "clip.avi", scene, frames=30)
+    net = load(tmp_path, f'<module class="InputVideoStream" name="S" '
+                         f'url="{file_server}/clip.avi" size_x="{COLS}" size_y="{ROWS}"/>')
+    with net:
+        net.step()
+        assert_is_scene_frame(net, "S", scene)
+
+
+def test_an_http_error_is_a_clear_load_error(tmp_path, file_server):
+    with pytest.raises(ModelError, match=r'cannot open stream ".*/missing.mjpg": HTTP 404'):
+        load(tmp_path, f'<module class="InputVideoStream" name="S" '
+                       f'url="{file_server}/missing.mjpg"/>')
