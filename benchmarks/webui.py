@@ -40,10 +40,11 @@ if ROOT not in sys.path:
     sys.path.insert(0, ROOT)
 
 
-def client_process(url: str, paths: list[str], go, stop, quit_, frames, connected) -> None:
-    """Each time ``go`` is set: connect, subscribe to ``paths`` and poll as fast as
-    possible (a new "ready" as soon as a data frame arrives) until ``stop`` is set, then
-    disconnect. Ends when ``quit_`` is set."""
+def client_process(url: str, paths: list[str], go, stop, quit_, frames, connected,
+                   fmt: str = "raw") -> None:
+    """Each time ``go`` is set: connect, subscribe to ``paths`` (in format ``fmt``: raw,
+    png or jpeg) and poll as fast as possible (a new "ready" as soon as a data frame
+    arrives) until ``stop`` is set, then disconnect. Ends when ``quit_`` is set."""
     from websockets.sync.client import connect
     while not quit_.is_set():
         if not go.wait(0.2):
@@ -51,7 +52,7 @@ def client_process(url: str, paths: list[str], go, stop, quit_, frames, connecte
         go.clear()
         with connect(url, max_size=None, compression=None) as ws:
             ws.send(json.dumps({"type": "subscribe",
-                                "buffers": [{"path": p, "format": "raw"} for p in paths]}))
+                                "buffers": [{"path": p, "format": fmt} for p in paths]}))
             ws.send(json.dumps({"type": "ready"}))
             connected.set()
             while not stop.is_set():

@@ -18,12 +18,15 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CONFORMANCE = sorted(p for p in glob.glob(os.path.join(ROOT, "tests", "conformance", "models",
                                                        "*.ikg"))
                      if not os.path.basename(p).startswith("err_"))
-# Examples whose values follow the wall clock (servos of a simulator moving in real time)
-# differ from run to run whatever the kernel does, so they are not compared.
-REAL_TIME_DEVICES = {"epi.ikg", "lucs_arm.ikg", "arm_playback.ikg"}
+# Examples whose values differ from run to run whatever the kernel does are not compared:
+# servos of a simulator that move in real time, and OpenCV's float filters, which round the
+# last bit differently from run to run (docs/images.md) and so may tip a threshold. None of
+# their modules run in the compiled tick.
+NOT_REPEATABLE = {"epi.ikg", "lucs_arm.ikg", "arm_playback.ikg"}
 EXAMPLES = sorted(p for p in glob.glob(os.path.join(ROOT, "examples", "**", "*.ikg"),
                                        recursive=True)
-                  if os.path.basename(p) not in REAL_TIME_DEVICES)
+                  if os.path.basename(p) not in NOT_REPEATABLE
+                  and os.path.basename(os.path.dirname(p)) != "vision")
 TICKS = 12
 
 
@@ -62,6 +65,7 @@ def test_compiled_tick_gives_the_same_outputs(path, tmp_path):
     assert none == 0
     with open(path, encoding="utf-8") as f:
         text = f.read()
+    # numba's float32 tanh differs from NumPy's in the last bits
     exact = 'class="Tanh"' not in text
     assert len(fast) == len(plain)
     for tick, (a, b) in enumerate(zip(plain, fast)):

@@ -1,0 +1,54 @@
+"""SaliencePoints: a saliency map from a list of points."""
+import numpy as np
+
+from ikaros.module import Input, Module, Output, Parameter
+
+
+class SaliencePoints(Module):
+    """Turns a list of points into a saliency map of ``size_x`` x ``size_y``: each point
+    adds a Gaussian blob of standard deviation ``sigma`` pixels, of height its salience.
+    INPUT has one point per row (a single row may be given as a vector); columns
+    ``select`` and ``select`` + 1 hold x and y, and column ``select_salience`` its salience
+    ("none": every point has salience 1). x · ``scale`` and y · ``scale`` are positions in
+    the map in pixels from its left and top edges, so the centre of pixel (r, c) is at
+    (c + 0.5, r + 0.5); with scale = the map size, x and y are fractions of the width and
+    height as the other vision modules give them. COUNT (its first value), when connected,
+    says how many rows are used. The blobs are added as one matrix product, not pixel by
+    pixel."""
+
+    size_x = Parameter(128, "width of the map")
+    size_y = Parameter(128, "height of the map")
+    sigma = Parameter(2.0, "standard deviation of each blob, in pixels")
+    scale = Parameter(1.0, "multiplies the coordinates to give map pixels")
+    select = Parameter(0, "the column of x (y is the next one)")
+    select_salience = Parameter("none", "the column of the salience, or none for 1",
+                                type="string")
+    INPUT = Input("the points, one row each")
+    COUNT = Input("how many rows of INPUT are used", optional=True)
+    OUTPUT = Output("the saliency map", size_param_x="size_x", size_param_y="size_y")
+
+    def init(self):
+        shape = self.INPUT.shape
+        needed = self.select + 2
+        if self.select_salience.strip().lower() != "none":
+            needed = max(needed, int(self.select_salience) + 1)
+        if shape[-1] < needed or len(shape) > 2:
+            raise ValueError(f"INPUT must have rows of at least {needed} columns for "
+                             f"select={self.select} and select_salience="
+                             f"{self.select_salience}, not shape {shape}")
+        self._points = self.INPUT.reshape(1, -1) if self.INPUT.ndim == 1 else self.INPUT
+        self._cols = np.arange(self.size_x, dtype=np.float32) + 0.5
+        self._rows = np.arange(self.size_y, dtype=np.float32) + 0.5
+
+    def tick(self):
+        points = self._points
+        n = points.shape[0] if self.COUNT is None else min(int(self.COUNT.flat[0]),
+                                                            points.shape[0])
+        x = points[:n, self.select] * self.scale
+        y = points[:n, self.select + 1] * self.scale
+        column = self.select_salience.strip().lower()
+        salience = np.ones(n, np.float32) if column == "none" else points[:n, int(column)]
+        k = -0.5 / (self.sigma * self.sigma)
+        across = np.exp(k * (self._cols[None, :] - x[:, None]) ** 2)
+        down = np.exp(k * (self._rows[None, :] - y[:, None]) ** 2) * salience[:, None]
+        np.matmul(down.T, across, out=self.OUTPUT)

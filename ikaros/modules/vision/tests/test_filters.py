@@ -1,0 +1,174 @@
+"""Tests of the kernel filters: GaussianFilter, DoGFilter, LoGFilter, GaborFilter,
+MedianFilter and ImageConvolution, each against an independent computation (SciPy)."""
+import math
+import sys
+
+import numpy as np
+import pytest
+from scipy import ndimage, signal
+
+import ikaros
+from vision_models import outputs, run
+
+RNG = np.random.default_rng(7)
+GRAY = RNG.random((12, 14)).astype(np.float32)
+COLOUR = RNG.random((3, 10, 11)).astype(np.float32)
+
+
+def valid(image, kernel):
+    """Correlation of each plane with the kernel where the kernel fits (float64)."""
+    k = np.asarray(kernel, np.float64)
+    if image.ndim == 2:
+        return signal.correlate2d(image.astype(np.float64), k, mode="valid")
+    return np.stack([valid(p, k) for p in image])
+
+
+def test_gaussian_kernel_sums_to_one_with_a_gaussian_profile(tmp_path):
+    out, kernel, profile = outputs(tmp_path, "GaussianFilter", {"INPUT": GRAY}, "OUTPUT",
+                                   "KERNEL", "PROFILE", sigma=1.5, kernel_size=7)
+    x = np.arange(7) - 3
+    expected = np.exp(-x ** 2 / (2 * 1.5 ** 2))
+    assert profile.shape == (1, 7) and kernel.shape == (7, 7)
+    assert np.allclose(profile[0], expected / expected.sum(), atol=1e-6)
+    assert kernel.sum() == pytest.approx(1.0, abs=1e-5)
+    assert np.allclose(kernel, np.outer(profile, profile), atol=1e-7)
+    assert out.shape == (6, 8)                      # 12 - 7 + 1, 14 - 7 + 1
+    assert np.allclose(out, valid(GRAY, kernel), atol=1e-5)
+
+
+def test_gaussian_filters_colour_plane_by_plane(tmp_path):
+    out, kernel = outputs(tmp_path, "GaussianFilter", {"INPUT": COLOUR}, "OUTPUT", "KERNEL")
+    assert out.shape == (3, 6, 7)
+    assert np.allclose(out, valid(COLOUR, kernel), atol=1e-5)
+
+
+def test_gaussian_keeps_a_flat_image_and_follows_sigma_changes(tmp_path):
+    with run(tmp_path, "GaussianFilter", {"INPUT": GRAY}) as net:
+        net.set_parameter("M.sigma", 0.7)
+        net.step()
+        x = np.arange(5) - 2
+        g = np.exp(-x ** 2 / (2 * 0.7 ** 2))
+        assert np.allclose(net.output("M.PROFILE")[0], g / g.sum(), atol=1e-6)
+        assert np.allclose(net.output("M.OUTPUT"), valid(GRAY, np.outer(g, g) / g.sum() ** 2),
+                           atol=1e-5)
+    (flat,) = outputs(tmp_path, "GaussianFilter", {"INPUT": np.full((6, 6), 0.25)}, "OUTPUT")
+    assert np.allclose(flat, 0.25, atol=1e-6)
+
+
+def test_even_kernel_size_is_a_model_error(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="kernel_size must be a positive odd number"):
+        run(tmp_path, "GaussianFilter", {"INPUT": GRAY}, kernel_size=4)
+
+
+def test_kernel_larger_than_the_image_is_a_model_error(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="smaller than the kernel"):
+        run(tmp_path, "GaussianFilter", {"INPUT": GRAY[:3, :3]})
+
+
+def test_a_vector_is_not_an_image(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="gray \\(rows, cols\\) or colour"):
+        run(tmp_path, "GaussianFilter", {"INPUT": np.arange(8.0)})
+
+
+def gaussian(r2, sigma):
+    return np.exp(-r2 / (2 * sigma ** 2))
+
+
+def grid(size):
+    x = np.arange(size) - size // 2
+    return x[None, :] ** 2 + x[:, None] ** 2
+
+
+def test_dog_kernel_is_a_difference_of_normalised_gaussians(tmp_path):
+    out, kernel, profile = outputs(tmp_path, "DoGFilter", {"INPUT": GRAY}, "OUTPUT", "KERNEL",
+                                   "PROFILE")
+    g1, g2 = gaussian(grid(5), 1.0), gaussian(grid(5), 0.5)
+    expected = g1 / g1.sum() - g2 / g2.sum()
+    assert np.allclose(kernel, expected, atol=1e-6)
+    assert kernel.sum() == pytest.approx(0.0, abs=1e-6)
+    assert np.array_equal(profile[0], kernel[2])
+    assert out.shape == (8, 10) and np.allclose(out, valid(GRAY, expected), atol=1e-5)
+
+
+def test_dog_without_normalize_uses_the_continuous_gaussians(tmp_path):
+    (kernel,) = outputs(tmp_path, "DoGFilter", {"INPUT": GRAY}, "KERNEL", sigma1=2,
+                        sigma2=1, normalize="no")
+    r2 = grid(5)
+    expected = gaussian(r2, 2) / (2 * np.pi * 4) - gaussian(r2, 1) / (2 * np.pi)
+    assert np.allclose(kernel, expected, atol=1e-6)
+
+
+def test_log_kernel_and_response_to_a_bright_spot(tmp_path):
+    image = np.zeros((9, 9), np.float32)
+    image[4, 4] = 1.0
+    out, kernel = outputs(tmp_path, "LoGFilter", {"INPUT": image}, "OUTPUT", "KERNEL",
+                          normalize="no")
+    r2 = grid(5)
+    expected = (r2 - 2) * np.exp(-r2 / 2) / (2 * np.pi)
+    assert np.allclose(kernel, expected, atol=1e-6)
+    assert out.shape == (5, 5)
+    assert out[2, 2] == pytest.approx(expected[2, 2], abs=1e-6) and out[2, 2] < 0
+    (normalised,) = outputs(tmp_path, "LoGFilter", {"INPUT": GRAY}, "KERNEL")
+    assert normalised.sum() == pytest.approx(0.0, abs=1e-6)
+    assert np.allclose(normalised, expected - expected.mean(), atol=1e-6)
+
+
+def test_gabor_kernel_parts_and_output(tmp_path):
+    out, filt, envelope, grating = outputs(
+        tmp_path, "GaborFilter", {"INPUT": np.tile(GRAY, (2, 2))}, "OUTPUT", "FILTER",
+        "GAUSSIAN", "GRATING", theta=0.5, phi=0.3)
+    size = 2 * math.ceil(3 * 1.0 / 0.5) + 1
+    assert filt.shape == (size, size)
+    c = np.arange(size) - size // 2
+    x, y = c[None, :], c[:, None]
+    xr, yr = x * math.cos(0.5) + y * math.sin(0.5), -x * math.sin(0.5) + y * math.cos(0.5)
+    assert np.allclose(envelope, np.exp(-(xr ** 2 + 0.25 * yr ** 2) / 2), atol=1e-6)
+    assert np.allclose(grating, np.cos(2 * np.pi * xr / 4 + 0.3), atol=1e-6)
+    assert np.allclose(filt, envelope * grating, atol=1e-6)
+    assert out.shape == (24 - size + 1, 28 - size + 1)
+    assert np.allclose(out, valid(np.tile(GRAY, (2, 2)), filt), atol=1e-4)
+
+
+@pytest.mark.parametrize("size", [3, 5, 7])
+def test_median_matches_scipy(tmp_path, size):
+    (out,) = outputs(tmp_path, "MedianFilter", {"INPUT": GRAY}, "OUTPUT", kernel_size=size)
+    b = size // 2
+    expected = ndimage.median_filter(GRAY, size=size)[b:-b, b:-b]
+    assert out.shape == (12 - size + 1, 14 - size + 1)
+    assert np.array_equal(out, expected)
+
+
+def test_median_removes_salt_noise(tmp_path):
+    image = np.full((8, 8), 0.5, np.float32)
+    image[3, 4] = 1.0
+    (out,) = outputs(tmp_path, "MedianFilter", {"INPUT": image}, "OUTPUT", kernel_size=3)
+    assert np.array_equal(out, np.full((6, 6), 0.5, np.float32))
+
+
+def test_convolution_flips_the_kernel_and_scales_biases_rectifies(tmp_path):
+    kernel = np.array([[1, 2, 0], [0, -1, 3]], np.float32)
+    (out,) = outputs(tmp_path, "ImageConvolution", {"INPUT": COLOUR}, "OUTPUT",
+                     kernel="1 2 0; 0 -1 3", scale=2, bias=-1.5, rectify="yes")
+    expected = np.stack([signal.convolve2d(p.astype(np.float64), kernel, mode="valid")
+                         for p in COLOUR])
+    assert out.shape == (3, 9, 9)
+    assert np.allclose(out, np.maximum(2 * expected - 1.5, 0), atol=1e-5)
+    assert (out == 0).any()
+
+
+def test_convolution_kernel_can_change_but_not_its_size(tmp_path):
+    with run(tmp_path, "ImageConvolution", {"INPUT": GRAY}, kernel="1 0; 0 0") as net:
+        assert np.allclose(net.output("M.OUTPUT"), GRAY[1:, 1:])
+        net.set_parameter("M.kernel", "0 0; 0 2")
+        net.step()
+        assert np.allclose(net.output("M.OUTPUT"), 2 * GRAY[:-1, :-1])
+        net.set_parameter("M.kernel", "1 0 0")
+        net.step()
+        assert np.allclose(net.output("M.OUTPUT"), 2 * GRAY[:-1, :-1])
+        assert any("cannot change while the model runs" in m for *_, m in net.log)
+
+
+def test_missing_opencv_names_the_install(tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "cv2", None)      # import cv2 now fails
+    with pytest.raises(ikaros.ModelError, match=r"pip install 'ikaros\[vision\]'"):
+        run(tmp_path, "GaussianFilter", {"INPUT": GRAY})

@@ -1,0 +1,144 @@
+"""Tests of the motion modules: ChangeDetector, StaufferGrimson, BlockMatching and
+DirectionDetector, on image sequences with a known answer."""
+import numpy as np
+import pytest
+
+from ikaros.errors import ModelError
+
+from sequences import load_sequence, run_sequence
+
+cv2 = pytest.importorskip("cv2")
+
+
+def test_change_detector_gives_the_absolute_difference_inside_the_border(tmp_path):
+    rng = np.random.default_rng(1)
+    frames = rng.random((3, 10, 12)).astype(np.float32)
+    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M" border="2"/>',
+                       "OUTPUT")
+    assert out[0][0].shape == (6, 8)
+    assert np.array_equal(out[0][0], np.zeros((6, 8)))
+    for k in (1, 2):
+        assert np.allclose(out[k][0], np.abs(frames[k] - frames[k - 1])[2:-2, 2:-2], atol=0)
+
+
+def test_change_detector_on_colour(tmp_path):
+    frames = np.zeros((2, 3, 4, 5), np.float32)
+    frames[1, 1, 2, 3] = 0.75
+    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M"/>', "OUTPUT")
+    assert out[1][0].shape == (3, 4, 5) and out[1][0].sum() == 0.75 and out[1][0][1, 2, 3] == 0.75
+
+
+def test_change_detector_border_too_large(tmp_path):
+    with pytest.raises(ModelError, match="border 5 leaves nothing"):
+        run_sequence(tmp_path, np.zeros((1, 8, 8)), '<module class="ChangeDetector" name="M" '
+                     'border="5"/>', "OUTPUT")
+
+
+def test_stauffer_grimson_finds_a_new_object_and_learns_it(tmp_path):
+    rng = np.random.default_rng(2)
+    background = rng.uniform(0.2, 0.8, (20, 24)).astype(np.float32)
+    frames = [background + rng.normal(0, 0.005, background.shape) for _ in range(30)]
+    for _ in range(3):
+        f = background + rng.normal(0, 0.005, background.shape)
+        f[5:10, 6:14] = 0.95                         # an object appears
+        frames.append(f)
+    frames = np.array(frames, np.float32)
+    out = run_sequence(tmp_path, frames, '<module class="StaufferGrimson" name="M" '
+                       'alpha="0.05"/>', "OUTPUT")
+    assert all(out[k][0].sum() == 0 for k in range(30))      # the noisy background
+    expected = np.zeros(background.shape)
+    expected[5:10, 6:14] = 1
+    assert np.array_equal(out[30][0], expected)
+    # an object that stays becomes background: with alpha 0.5 a few frames suffice
+    with_object = background.copy()
+    with_object[5:10, 6:14] = 0.95
+    still = np.array([background] * 5 + [with_object] * 12, np.float32)
+    out = run_sequence(tmp_path, still, '<module class="StaufferGrimson" name="M" '
+                       'alpha="0.5"/>', "OUTPUT")
+    assert out[5][0].sum() == 40 and out[-1][0].sum() == 0
+
+
+def textured(rows, cols, seed=3):
+    rng = np.random.default_rng(seed)
+    small = rng.random((rows // 4, cols // 4)).astype(np.float32)
+    return cv2.resize(small, (cols, rows), interpolation=cv2.INTER_LINEAR)
+
+
+def test_block_matching_finds_a_known_shift(tmp_path):
+    image = textured(80, 96)
+    shifted = np.roll(image, (3, -5), axis=(0, 1))            # down 3, left 5
+    frames = np.array([image, shifted], np.float32)
+    points = np.array([[30, 30], [50, 40], [60, 25]], np.float32)
+    body = ('<module class="Constant" name="P" data="30 30; 50 40; 60 25"/>'
+            '<module class="BlockMatching" name="M" block_radius="4" '
+            'search_window_radius="8"/>'
+            '<connection source="F.OUTPUT" target="M.INPUT" delay="0"/>'
+            '<connection source="F.OUTPUT" target="M.INPUT-LAST" delay="1"/>'
+            '<connection source="P.OUTPUT" target="M.POINTS" delay="0"/>')
+    with load_sequence(tmp_path, frames, body) as net:
+        net.step()
+        net.step()
+        flow = net.output("M.FLOW")
+        assert flow.shape == (3, 4)
+        assert np.array_equal(flow[:, :2], points)
+        assert np.array_equal(flow[:, 2:], [[-5, 3]] * 3)
+        assert net.output("M.FLOW-SIZE")[0] == 3
+        assert net.output("M.DEBUG").shape == (240, 320)
+
+
+def test_block_matching_counts_only_no_of_points(tmp_path):
+    image = textured(64, 64)
+    frames = np.array([image, np.roll(image, 2, axis=1)], np.float32)
+    body = ('<module class="Constant" name="P" data="30 30; 0 0"/>'
+            '<module class="Constant" name="N" data="1"/>'
+            '<module class="BlockMatching" name="M" block_radius="3" search_window_radius="5" '
+            'metric="1"/>'
+            '<connection source="F.OUTPUT" target="M.INPUT" delay="0"/>'
+            '<connection source="F.OUTPUT" target="M.INPUT-LAST" delay="1"/>'
+            '<connection source="P.OUTPUT" target="M.POINTS" delay="0"/>'
+            '<connection source="N.OUTPUT" target="M.NO-OF-POINTS" delay="0"/>')
+    with load_sequence(tmp_path, frames, body) as net:
+        net.run(ticks=2)
+        assert np.array_equal(net.output("M.FLOW"), [[30, 30, 2, 0], [0, 0, 0, 0]])
+        assert net.output("M.FLOW-SIZE")[0] == 1
+
+
+def flow_table(points, vectors):
+    return np.hstack([points, vectors]).astype(np.float32)
+
+
+def direction(tmp_path, table, **params):
+    from vision_models import run
+    attrs = {k: str(v) for k, v in params.items()}
+    with run(tmp_path, "DirectionDetector", {"INPUT": table}, **attrs) as net:
+        return {n: net.output(f"M.{n}").copy() for n in (
+            "MOTION-VECTOR", "MOTION-DIRECTION", "LOOMING", "LEFT-FIELD-MOTION",
+            "RIGHT-FIELD-MOTION", "MOTION-VECTOR-DRAW")}
+
+
+def test_direction_detector_global_motion(tmp_path):
+    points = np.array([[10, 10], [30, 10], [10, 30], [30, 30]])
+    out = direction(tmp_path, flow_table(points, [[2, -2]] * 4))
+    assert np.allclose(out["MOTION-VECTOR"], [2, -2])
+    sector, angle, magnitude, count = out["MOTION-DIRECTION"]
+    assert sector == 1 and np.isclose(angle, np.pi / 4) and np.isclose(magnitude, np.sqrt(8))
+    assert count == 4
+    assert np.isclose(out["LOOMING"][0], 0)
+    assert np.isclose(out["LEFT-FIELD-MOTION"][0], 2) and np.isclose(
+        out["RIGHT-FIELD-MOTION"][0], 2)
+    assert np.allclose(out["MOTION-VECTOR-DRAW"], [20, 20, 22, 18])
+
+
+def test_direction_detector_looming_and_fields(tmp_path):
+    points = np.array([[10, 20], [30, 20], [20, 10], [20, 30]])
+    out = direction(tmp_path, flow_table(points, [[-1, 0], [1, 0], [0, -1], [0, 1]]))
+    assert np.allclose(out["MOTION-VECTOR"], 0)
+    assert np.isclose(out["LOOMING"][0], 1)                   # every point moves out by 1
+    assert np.isclose(out["LEFT-FIELD-MOTION"][0], -1)
+    assert np.isclose(out["RIGHT-FIELD-MOTION"][0], 1)
+
+
+def test_direction_detector_crop_ignores_long_vectors(tmp_path):
+    points = np.array([[10, 10], [30, 10]])
+    out = direction(tmp_path, flow_table(points, [[1, 0], [40, 0]]), crop=10)
+    assert np.allclose(out["MOTION-VECTOR"], [1, 0])

@@ -1,0 +1,219 @@
+"""Tests of the tracking modules: SpatialClustering, MarkerTracker, CalibrateCameraPosition
+and DTracker, against the synthetic camera's truth and images with known answers."""
+import numpy as np
+import pytest
+
+from ikaros.errors import ModelError
+from ikaros.testing import load_body
+
+from sequences import run_sequence
+from vision_models import run
+
+cv2 = pytest.importorskip("cv2")
+
+
+def disc_map(rows, cols, discs):
+    image = np.zeros((rows, cols), np.float32)
+    for x, y, r, value in discs:
+        cv2.circle(image, (x, y), r, value, -1)
+    return image
+
+
+def centre(x, y, rows, cols):
+    return [(x + 0.5) / cols, (y + 0.5) / rows]
+
+
+def test_clusters_are_at_the_disc_centres_largest_first(tmp_path):
+    image = disc_map(60, 80, [(15, 20, 6, 1.0), (60, 40, 4, 1.0), (40, 10, 1, 0.5)])
+    with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters="3",
+             cluster_radius="0.1") as net:
+        out, conf = net.output("M.OUTPUT"), net.output("M.CONFIDENCE")
+    assert out.shape == (3, 2) and conf.shape == (3,)
+    assert np.allclose(out[0], centre(15, 20, 60, 80), atol=1e-6)
+    assert np.allclose(out[1], centre(60, 40, 60, 80), atol=1e-6)
+    big = disc_map(60, 80, [(15, 20, 6, 1.0)]).sum()
+    small = disc_map(60, 80, [(60, 40, 4, 1.0)]).sum()
+    assert np.allclose(conf[:2], [big / (big + small), small / (big + small)], atol=1e-6)
+    assert conf[2] == 0 and np.array_equal(out[2], [0, 0])     # the speck is too small
+
+
+def test_threshold_and_value_weighting(tmp_path):
+    image = disc_map(40, 40, [(20, 20, 5, 0.05)])
+    image[10, 30] = 1.0
+    with run(tmp_path, "SpatialClustering", {"INPUT": image}, threshold="0.1") as net:
+        assert np.allclose(net.output("M.OUTPUT")[0], centre(30, 10, 40, 40))
+        assert net.output("M.CONFIDENCE")[0] == 1
+
+
+def test_clusters_keep_their_rows_while_they_move(tmp_path):
+    frames = []
+    for k in range(5):           # A moves right, B moves left; they swap sides
+        frames.append(disc_map(50, 100, [(20 + 15 * k, 15, 4, 1.0),
+                                         (80 - 15 * k, 35, 5, 1.0)]))
+    out = run_sequence(tmp_path, np.array(frames), '<module class="SpatialClustering" '
+                       'name="M" no_of_clusters="2" cluster_radius="0.08"/>', "OUTPUT")
+    first = out[0][0]
+    a_row = int(np.argmin(first[:, 0]))
+    for k, (positions,) in enumerate(out):
+        assert np.allclose(positions[a_row], centre(20 + 15 * k, 15, 50, 100), atol=1e-6)
+        assert np.allclose(positions[1 - a_row], centre(80 - 15 * k, 35, 50, 100), atol=1e-6)
+
+
+def test_sorting_orders_by_confidence(tmp_path):
+    image = disc_map(40, 80, [(10, 20, 3, 1.0), (60, 20, 6, 1.0)])
+    with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters="2",
+             sorting="yes", min_cluster_area="0") as net:
+        assert np.allclose(net.output("M.OUTPUT"), [centre(60, 20, 40, 80),
+                                                   centre(10, 20, 40, 80)], atol=1e-6)
+
+
+def test_synthetic_camera_discs_are_found(tmp_path):
+    net = load_body(tmp_path, '''
+        <module class="SyntheticCamera" name="C" blobs="1" size_x="320" size_y="240"/>
+        <module class="SpatialClustering" name="S" threshold="0.8" cluster_radius="0.05"/>
+        <connection source="C.RED" target="S.INPUT" delay="0"/>''')
+    with net:
+        for _ in range(4):
+            net.step()
+            assert np.allclose(net.output("S.OUTPUT")[0], net.output("C.POSITIONS")[0],
+                               atol=1e-6)
+
+
+CALIBRATION = "640 480 320 240 600 600 0 0 0 0"
+
+
+def markers(tmp_path, ids="3 7", extra=""):
+    return load_body(tmp_path, f'''
+        <module class="SyntheticCamera" name="C" blobs="0" markers="{ids}"/>
+        <module class="MarkerTracker" name="M" calibration="{CALIBRATION}" {extra}/>
+        <connection source="C.OUTPUT" target="M.INPUT" delay="0"/>''')
+
+
+def test_marker_ids_corners_and_positions(tmp_path):
+    with markers(tmp_path, "7 3 12") as net:
+        net.step()
+        assert net.output("M.MARKER_COUNT")[0] == 3
+        table = net.output("M.MARKERS")
+        assert table.shape == (10, 28)
+        assert table[:3, 0].tolist() == [3, 7, 12] and table[3:].sum() == 0
+        truth = dict(zip([7, 3, 12], net.output("C.MARKER_CORNERS")))
+        pixel = np.tile([1 / 640, 1 / 480], 4)
+        for row in table[:3]:
+            assert np.all(np.abs(row[4:12] - truth[int(row[0])]) < 0.75 * pixel)
+            assert np.allclose(row[2:4], truth[int(row[0])].reshape(4, 2).mean(axis=0),
+                               atol=0.5 / 640)
+        assert np.array_equal(net.output("M.OBJECT_ID").ravel()[:3], [3, 7, 12])
+        assert np.array_equal(net.output("M.EDGES")[:3], table[:3, 4:12])
+        assert np.array_equal(net.output("M.CONFIDENCE").ravel(), [1, 1, 1] + [0] * 7)
+
+
+def test_marker_pose_from_its_size_and_the_calibration(tmp_path):
+    with markers(tmp_path, "3") as net:
+        net.step()
+        corners = net.output("C.MARKER_CORNERS")[0].reshape(4, 2) * [640, 480] - 0.5
+        side = corners[1, 0] - corners[0, 0]               # 80 pixels
+        distance = 600 * 45 / side
+        u, v = corners.mean(axis=0)
+        pose = net.output("M.MATRIX")[0].reshape(4, 4)
+        forward, left, up = pose[:3, 3]                    # the Ikaros frame
+        assert abs(forward - distance) < 0.01 * distance
+        assert abs(left - (-(u - 320) * distance / 600)) < 1.0
+        assert abs(up - (-(v - 240) * distance / 600)) < 1.0
+        assert pose[0, 2] < -0.9                           # the marker faces the camera
+        assert np.array_equal(net.output("M.MODEL_VIEW"), pose)
+        assert np.array_equal(net.output("M.PROJECTION"),
+                              [[600, 0, 320, 0], [0, 600, 240, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+
+
+def test_marker_pose_in_the_camera_frame(tmp_path):
+    with markers(tmp_path, "3", 'coordinate_system="artoolkit"') as net:
+        net.step()
+        x, y, z = net.output("M.MATRIX")[0].reshape(4, 4)[:3, 3]
+        assert 300 < z < 380 and x < 0 and y > 0               # left of and below the centre
+
+
+def test_no_markers_and_bad_calibration(tmp_path):
+    with markers(tmp_path, "") as net:
+        net.step()
+        assert net.output("M.MARKER_COUNT")[0] == 0
+        assert np.array_equal(net.output("M.MODEL_VIEW"), np.eye(4))
+    with pytest.raises(ModelError, match="calibration needs at least"):
+        run(tmp_path, "MarkerTracker", {"INPUT": np.zeros((40, 40))}, calibration="1 2")
+
+
+def test_camera_position_from_a_known_marker(tmp_path):
+    with markers(tmp_path, "3 7") as net:
+        net.step()
+        seen = net.output("M.MATRIX")[1].reshape(4, 4).astype(np.float64)
+    world = np.array([[1, 0, 0, 500], [0, 1, 0, 100], [0, 0, 1, 0], [0, 0, 0, 1]], float)
+    table = np.zeros((10, 28), np.float32)
+    table[0, 0], table[0, 1], table[0, 12:] = 7, 1, seen.ravel()
+    with run(tmp_path, "CalibrateCameraPosition", {"INPUT": table},
+             marker_number="7") as net:
+        assert np.allclose(net.output("M.CAMERA"), world @ np.linalg.inv(seen), atol=1e-3)
+        assert net.output("M.FOUND")[0] == 1
+        assert any("camera position from marker 7" in m for *_, m in net.log)
+    with run(tmp_path, "CalibrateCameraPosition", {"INPUT": table}) as net:   # id 1218
+        assert net.output("M.FOUND")[0] == 0 and np.array_equal(net.output("M.CAMERA"),
+                                                                np.eye(4))
+
+
+def textured_square_frames(steps, dx, dy, rows=120, cols=160, side=30):
+    rng = np.random.default_rng(5)
+    patch = cv2.resize(rng.random((6, 6)).astype(np.float32), (side, side),
+                       interpolation=cv2.INTER_NEAREST)
+    frames, truth = [], []
+    for k in range(steps):
+        frame = np.full((rows, cols), 0.5, np.float32)
+        x, y = 40 + dx * k, 40 + dy * k
+        frame[y:y + side, x:x + side] = patch
+        frames.append(frame)
+        truth.append(((x + side / 2) / cols, (y + side / 2) / rows))
+    return np.array(frames), np.array(truth)
+
+
+def test_dtracker_follows_a_moving_square(tmp_path):
+    frames, truth = textured_square_frames(12, 3, 2)
+    out = run_sequence(tmp_path, frames, '<module class="DTracker" name="M" '
+                       'box="0.25 0.333333 0.4375 0.583333"/>', "TRACKER_POSITION",
+                       "TRACKING", "TRACKER_BOUNDS")
+    for k, (position, tracking, bounds) in enumerate(out):
+        assert tracking[0] == 1
+        assert np.all(np.abs(position - truth[k]) < [4 / 160, 4 / 120]), k
+        corners = bounds.reshape(4, 2)
+        assert np.allclose(corners.mean(axis=0), position, atol=1e-6)
+
+
+def test_dtracker_loses_an_object_that_vanishes(tmp_path):
+    frames, _ = textured_square_frames(4, 2, 0)
+    frames[3] = 0.5                                          # the square is gone
+    out = run_sequence(tmp_path, frames, '<module class="DTracker" name="M" '
+                       'box="0.25 0.333333 0.4375 0.583333"/>', "TRACKING", "TRACKER_POSITION")
+    assert [t[0] for t, _ in out] == [1, 1, 1, 0]
+    assert np.array_equal(out[3][1], out[2][1])              # the box stays
+
+
+def test_dtracker_starts_at_a_box_input(tmp_path):
+    frames, truth = textured_square_frames(6, 2, 3)
+    body = ('<module class="Constant" name="B" data="0.25 0.333333 0.4375 0.583333"/>'
+            '<module class="DTracker" name="M"/>'
+            '<connection source="F.OUTPUT" target="M.INPUT" delay="0"/>'
+            '<connection source="B.OUTPUT" target="M.BOX" delay="0"/>')
+    from sequences import load_sequence
+    with load_sequence(tmp_path, frames, body) as net:
+        for k in range(6):
+            net.step()
+            assert np.all(np.abs(net.output("M.TRACKER_POSITION") - truth[k]) <
+                          [2 / 160, 2 / 120]), k
+
+
+def test_a_large_cluster_radius_counts_in_floats(tmp_path):
+    image = disc_map(60, 600, [(300, 30, 20, 1.0)])          # radius 0.5: a 601-pixel square
+    with run(tmp_path, "SpatialClustering", {"INPUT": image}, cluster_radius="0.5") as net:
+        assert np.allclose(net.output("M.OUTPUT")[0], centre(300, 30, 60, 600), atol=1e-6)
+
+
+def test_markers_with_a_fixed_threshold(tmp_path):
+    with markers(tmp_path, "3 7", 'threshold="128"') as net:
+        net.step()
+        assert net.output("M.OBJECT_ID").ravel()[:2].tolist() == [3, 7]
