@@ -308,8 +308,9 @@ def _print_failure(row: dict) -> None:
 
 def local_runner(workers: int | None):
     """Runs the specs in ``workers`` local processes (in this process when 1). A worker
-    process that dies (killed, out of memory) fails the runs it held, which are tried
-    again in a new pool while they have retries left."""
+    process that dies (killed, out of memory) fails only the run that was in it (each run
+    of the broken pool is run again alone to find it), which is tried again while it has
+    retries left."""
     def run(specs: list[RunSpec], retries: int, reporter: _Reporter) -> list[dict]:
         count = workers or os.cpu_count() or 1
         try:
@@ -345,11 +346,11 @@ def _in_processes(specs, count: int, retries: int, reporter) -> list[dict]:
         rows.append(row)
         reporter.done(row)
     while queue:
+        suspects = []       # runs that were in the pool when one of its processes died
         with cf.ProcessPoolExecutor(max_workers=count, mp_context=context) as pool:
             running: dict = {}
-            broken = False
-            while (queue and not broken) or running:
-                while queue and len(running) < count and not broken:
+            while (queue and not suspects) or running:
+                while queue and len(running) < count and not suspects:
                     spec, attempt = queue.pop()
                     running[pool.submit(run_one, spec)] = (spec, attempt)
                 done, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
@@ -358,11 +359,24 @@ def _in_processes(specs, count: int, retries: int, reporter) -> list[dict]:
                     try:
                         row = future.result()
                     except cf.process.BrokenProcessPool:
-                        broken = True
-                        row = _error_row(spec, "a worker process died while this run was "
-                                               "in it")
+                        suspects.append((spec, attempt))
+                        continue
                     finish(spec, attempt, row)
+        # A broken pool fails every run it held; run each again alone to learn which one
+        # took its process down (only that one is charged).
+        for spec, attempt in suspects:
+            finish(spec, attempt, _alone(spec, context))
     return rows
+
+
+def _alone(spec: RunSpec, context) -> dict:
+    """Run one spec in a process of its own; a process that dies fails the run."""
+    import concurrent.futures as cf
+    with cf.ProcessPoolExecutor(max_workers=1, mp_context=context) as pool:
+        try:
+            return pool.submit(run_one, spec).result()
+        except cf.process.BrokenProcessPool:
+            return _error_row(spec, "a worker process died while this run was in it")
 
 
 def _error_row(spec: RunSpec, error: str) -> dict:
