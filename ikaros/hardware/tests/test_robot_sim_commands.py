@@ -5,7 +5,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -60,13 +59,27 @@ def test_simulator_command(argv, use):
         assert path, process.stderr.read()
         assert use(path)
         assert "Ctrl-C stops it" in process.stderr.readline()
-        time.sleep(0.3)             # sim_cli installs its SIGTERM handler after these lines
         process.send_signal(signal.SIGTERM)
         assert process.wait(timeout=10) == 0
     finally:
         if process.poll() is None:
             process.kill()
             process.wait(timeout=10)
+
+
+def test_a_sigterm_while_the_simulator_starts_ends_it_cleanly():
+    starting = ("import os, signal, sys\n"
+                "from ikaros.hardware import sim_cli, ssc32_sim\n"
+                "start = ssc32_sim.start\n"
+                "def start_and_get_terminated(options):\n"
+                "    os.kill(os.getpid(), signal.SIGTERM)\n"
+                "    return start(options)\n"
+                "ssc32_sim.start = start_and_get_terminated\n"
+                "sys.exit(sim_cli.main(['ssc32']))\n")
+    result = subprocess.run([sys.executable, "-c", starting], capture_output=True, text=True,
+                            env=dict(os.environ, PYTHONPATH=ROOT), timeout=30)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith("/dev/pts/")
 
 
 def test_bad_simulator_options_are_reported():
