@@ -1,7 +1,6 @@
 """Tests of TouchBoard against a simulated board on a pseudo-terminal, and of
 TouchBoardGraph."""
 import threading
-import time
 
 import pytest
 import serial
@@ -10,21 +9,13 @@ from ikaros.errors import ModelError
 from ikaros.hardware.pty_device import PtyDevice
 from ikaros.hardware.touchboard import DataStreamReader, parse_line
 from ikaros.hardware.touchboard_sim import SimulatedTouchBoard
-from ikaros.testing import load_body as load
+from ikaros.testing import load_body as load, step_until
 
 
 @pytest.fixture
 def board():
     with SimulatedTouchBoard() as sim:
         yield sim
-
-
-def step_until(net, condition, seconds=5.0):
-    deadline = time.monotonic() + seconds
-    while not condition():
-        assert time.monotonic() < deadline, "timed out"
-        net.step()
-        time.sleep(0.002)
 
 
 def test_values_and_touches_come_from_the_board(tmp_path, board):
