@@ -120,7 +120,7 @@ def openapi() -> dict:
         "/api/classes": _get("Every module class: {name: class description}", obj),
         "/api/status": _get("Run state and timing figures", _STATUS),
         "/api/control": _post(
-            "Change the run mode",
+            "Change the run mode; \"stop\" ends the run (every module's stop() is called)",
             {"type": "object", "required": ["state"], "additionalProperties": False,
              "properties": {"state": {"enum": ["stop", "pause", "step", "play",
                                                "realtime"]}}}, _STATUS,

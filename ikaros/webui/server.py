@@ -381,7 +381,12 @@ class WebUI:
         if net.stopped:
             raise ApiError(409, "the run has ended; apply, open or reload a model to run "
                                 "again")
-        if state in ("step", "play", "realtime") and not kernel_thread_alive(ctrl):
+        if state == STOP:           # the run ends: every module's stop(), devices made safe
+            try:
+                await run_in_threadpool(ctrl.end)
+            except TimeoutError as e:
+                raise ApiError(500, str(e)) from None
+        elif state in ("step", "play", "realtime") and not kernel_thread_alive(ctrl):
             ctrl.start(state)
         else:
             ctrl.set_state(state)
