@@ -88,3 +88,14 @@ def test_bad_simulator_options_are_reported():
                              "--x", "-1"], capture_output=True, text=True, env=env, timeout=30)
     assert result.returncode == 1
     assert "e-puck simulator: the start position (-1.0, 0.2) is inside a wall" in result.stderr
+
+
+def test_a_device_string_opens_a_simulator_or_names_a_real_device():
+    from ikaros.hardware.simulators import open_device_string
+    assert open_device_string("/dev/ttyUSB0") == ("/dev/ttyUSB0", None)
+    path, simulator = open_device_string("sim:ssc32")
+    try:
+        assert path == simulator.path and path.startswith("/dev/pts/")
+        assert use_ssc32(path)
+    finally:
+        simulator.stop()

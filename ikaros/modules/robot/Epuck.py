@@ -77,7 +77,7 @@ class Epuck(Module):
     def init(self):
         from ikaros.hardware import safety
         from ikaros.hardware.epuck import Epuck as Robot
-        from ikaros.hardware.simulators import is_simulated, start_from_device_string
+        from ikaros.hardware.simulators import open_device_string
         self._simulator = self._robot = self._watchdog = self._exit_key = None
         self._lock = threading.Lock()
         if self.camera != "none" and not 0 < self.width * self.height * \
@@ -88,10 +88,7 @@ class Epuck(Module):
         self._sent = {}
         self._last_encoders = None
         try:
-            device = self.port
-            if is_simulated(device):
-                self._simulator = start_from_device_string(device)
-                device = self._simulator.path
+            device, self._simulator = open_device_string(self.port)
             self._robot = Robot(device, int(self.baud_rate))
             if self.calibrate and self.proximity_on:
                 self._robot.calibrate()

@@ -80,11 +80,8 @@ class SSC32(Module):
         return values
 
     def _open(self, board_class):
-        from ikaros.hardware.simulators import is_simulated, start_from_device_string
-        device = self.port
-        if is_simulated(device):
-            self._simulator = start_from_device_string(device)
-            device = self._simulator.path
+        from ikaros.hardware.simulators import open_device_string
+        device, self._simulator = open_device_string(self.port)
         try:
             self._board = board_class(device, int(self.baud_rate))
         except Exception:
