@@ -237,7 +237,9 @@ def test_control_runs_steps_and_pauses(client, net):
     client.post("/api/control", json={"state": "pause"})
     assert client.post("/api/control", json={"state": "stop"}).json()["state"] == "stop"
     assert net.stopped and not net.controller.running              # the run has ended
-    _error(client.post("/api/control", json={"state": "step"}), 409)
+    client.post("/api/control", json={"state": "step"})            # and runs again from 0
+    again = client.app.state.ui.net
+    assert again is not net and _wait(lambda: again.tick == 1)
 
 
 def test_control_bad_requests(client, net):

@@ -1,5 +1,6 @@
 """The web UI's stop ends the run as the end of a batch run does: every module's stop() is
-called once, at once; the UI can then apply, open or reload a model."""
+called once, at once; play, step, real time or pause then run the model again from tick 0
+(as Ikaros 3 reloads its file), and the UI can apply, open or reload a model."""
 from __future__ import annotations
 
 import time
@@ -82,10 +83,26 @@ def test_stop_calls_every_modules_stop_once_before_it_answers(client, folder):
     assert stops(folder) == [f"A {tick - 1}", f"B {tick - 1}"]      # the last tick run
     assert net.stopped and not net.controller.running
     assert client.get("/api/status").json()["state"] == "stop"
-    assert client.post("/api/control", json={"state": "play"}).status_code == 409
     assert client.post("/api/control", json={"state": "stop"}).status_code == 409
-    client.app.state.ui.net.close()
+    net.close()
     assert len(stops(folder)) == 2                                    # never twice
+
+
+def test_play_after_a_stop_runs_the_model_again_from_tick_0_with_its_edits(client, folder):
+    client.post("/api/control", json={"state": "step"})
+    assert wait_for(lambda: client.get("/api/status").json()["tick"] == 1)
+    tree = client.get("/api/model").json()["tree"]
+    tree["children"].append({"tag": "module", "attrs": {"class": "Stopwatch", "name": "C"}})
+    assert client.post("/api/apply", json={"tree": tree}).status_code == 200   # not saved
+    assert client.post("/api/control", json={"state": "stop"}).status_code == 200
+    assert stops(folder) == ["A 0", "B 0", "A -1", "B -1", "C -1"]
+    old = client.app.state.ui.net
+    assert client.post("/api/control", json={"state": "step"}).status_code == 200
+    net = client.app.state.ui.net
+    assert net is not old and not net.stopped
+    assert wait_for(lambda: net.tick == 1)
+    assert net.output("C.TICKS").tolist() == [1]                      # the applied edit is kept
+    assert len(stops(folder)) == 5
 
 
 def test_stop_before_any_tick_ends_the_run_too(client, folder):

@@ -262,8 +262,9 @@ def test_the_web_ui_stop_button_leaves_the_servos_safe(tmp_path, bus):
 
     from ikaros.webui.server import create_app
     net = model(tmp_path, bus.path, goals="200", params='servo_id="1" watchdog="60"')
+    app = create_app(net)
     try:
-        with TestClient(create_app(net)) as client:
+        with TestClient(app) as client:
             assert client.post("/api/control", json={"state": "play"}).status_code == 200
             assert wait_for(lambda: bus.servo(1).torque, 5.0)
             client.post("/api/control", json={"state": "pause"})
@@ -271,10 +272,15 @@ def test_the_web_ui_stop_button_leaves_the_servos_safe(tmp_path, bus):
             assert bus.servo(1).torque                          # paused: held until the watchdog
             assert client.post("/api/control", json={"state": "stop"}).status_code == 200
             assert not bus.servo(1).torque                      # stopped: safe at once
+            client.post("/api/control", json={"state": "play"})     # the model runs again
+            assert wait_for(lambda: bus.servo(1).torque, 5.0)
+            client.post("/api/control", json={"state": "stop"})
+            assert not bus.servo(1).torque
     finally:
-        net.controller.stop()
-        net.controller.join(5)
-        net.close()
+        for each in {net, app.state.ui.net}:
+            each.controller.stop()
+            each.controller.join(5)
+            each.close()
 
 
 def test_the_safe_state_command_holds_until_resume(tmp_path, bus):
