@@ -48,3 +48,16 @@ def step_until(nets: Network | Iterable[Network], condition: Callable[[], bool],
             net.step()
         if pause:
             time.sleep(pause)
+
+
+def wait_for(condition: Callable[[], object], seconds: float = 2.0,
+             pause: float = 0.005) -> bool:
+    """Whether ``condition()`` holds within ``seconds``, asking every ``pause`` seconds (for
+    what a device, a simulator or another thread does in its own time)."""
+    deadline = time.monotonic() + seconds
+    while True:
+        if condition():
+            return True
+        if time.monotonic() >= deadline:
+            return False
+        time.sleep(pause)

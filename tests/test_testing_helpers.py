@@ -1,7 +1,7 @@
 """ikaros.testing.step_until: steps one or several networks until a condition holds."""
 import pytest
 
-from ikaros.testing import load_body, step_until
+from ikaros.testing import load_body, step_until, wait_for
 
 TICKER = '<module class="Constant" name="C" data="1"/>'
 
@@ -27,3 +27,9 @@ def test_step_until_fails_after_its_time(tmp_path):
             step_until(net, lambda: False, 0.05)
     finally:
         net.close()
+
+
+def test_wait_for_says_whether_the_condition_came_in_time():
+    answers = iter([False, False, True])
+    assert wait_for(lambda: next(answers), 1.0, pause=0) is True
+    assert wait_for(lambda: 0, 0.02) is False

@@ -3,7 +3,6 @@ called once, at once; play, step, real time or pause then run the model again fr
 (as Ikaros 3 reloads its file), and the UI can apply, open or reload a model."""
 from __future__ import annotations
 
-import time
 import warnings
 
 import pytest
@@ -12,6 +11,7 @@ warnings.filterwarnings("ignore", message=".*httpx.*")
 
 import ikaros  # noqa: E402
 from ikaros.module import WARNING  # noqa: E402
+from ikaros.testing import wait_for  # noqa: E402
 from ikaros.webui.server import create_app  # noqa: E402
 from starlette.testclient import TestClient  # noqa: E402
 
@@ -64,13 +64,6 @@ def client(folder):
 def stops(folder) -> list[str]:
     path = folder / "stops.txt"
     return path.read_text().splitlines() if path.exists() else []
-
-
-def wait_for(condition, seconds=5.0):
-    deadline = time.monotonic() + seconds
-    while not condition() and time.monotonic() < deadline:
-        time.sleep(0.01)
-    return condition()
 
 
 def test_stop_calls_every_modules_stop_once_before_it_answers(client, folder):

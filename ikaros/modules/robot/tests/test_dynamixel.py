@@ -11,7 +11,7 @@ import pytest
 
 from ikaros.errors import ModelError, RunError
 from ikaros.hardware.dynamixel.simulator import VirtualDynamixelBus
-from ikaros.testing import load_body
+from ikaros.testing import load_body, wait_for
 
 XM = "XM430-W350"
 
@@ -27,13 +27,6 @@ def model(tmp_path, device, goals="200 0 90", params="", extra=""):
 def bus():
     with VirtualDynamixelBus({1: XM, 2: XM, 4: "XL430-W250"}, 2) as sim:
         yield sim
-
-
-def wait_for(condition, seconds=2.0):
-    deadline = time.monotonic() + seconds
-    while not condition() and time.monotonic() < deadline:
-        time.sleep(0.01)
-    return condition()
 
 
 def test_nothing_moves_at_start_up_and_goals_reach_the_servos(tmp_path, bus):
