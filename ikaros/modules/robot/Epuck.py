@@ -189,19 +189,8 @@ class Epuck(Module):
                 self._sent.clear()
 
     def stop(self):
-        from ikaros.hardware import DeviceError, safety
-        if getattr(self, "_watchdog", None) is not None:
-            self._watchdog.close()
-        try:
-            if getattr(self, "_robot", None) is not None:
-                self._safe_state()
-        except DeviceError as error:
-            self.error(f"the e-puck could not be put in the safe state: {error}")
-        finally:
-            safety.cancel(getattr(self, "_exit_key", None))
-            robot, self._robot = getattr(self, "_robot", None), None
-            if robot is not None:
-                robot.close()
-            if getattr(self, "_simulator", None) is not None:
-                self._simulator.stop()
-                self._simulator = None
+        from ikaros.hardware import safety
+        safety.shut_down(self._watchdog, self._safe_state, self._exit_key, self._robot,
+                         self._simulator, lambda error: self.error(
+                             f"the e-puck could not be put in the safe state: {error}"))
+        self._robot = self._simulator = None

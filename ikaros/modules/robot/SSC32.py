@@ -139,18 +139,8 @@ class SSC32(Module):
                 self._move_home()
 
     def stop(self):
-        from ikaros.hardware import DeviceError, safety
-        if self._watchdog is not None:
-            self._watchdog.close()
-        try:
-            self._safe_state()
-        except DeviceError as error:
-            self.error(f"the servos could not be put in the safe state: {error}")
-        finally:
-            safety.cancel(self._exit_key)
-            board, self._board = self._board, None
-            if board is not None:
-                board.close()
-            if self._simulator is not None:
-                self._simulator.stop()
-                self._simulator = None
+        from ikaros.hardware import safety
+        safety.shut_down(self._watchdog, self._safe_state, self._exit_key, self._board,
+                         self._simulator, lambda error: self.error(
+                             f"the servos could not be put in the safe state: {error}"))
+        self._board = self._simulator = None
