@@ -15,12 +15,6 @@ from .module import DEBUG, FATAL_ERROR, PRINT
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        self.print_usage(sys.stderr)
-        print(f"ikaros: error: {message}", file=sys.stderr)
-        raise SystemExit(EXIT_USAGE)
-
 
 def _ticks(text: str) -> int:
     if not text.lstrip("+").isdigit():
@@ -76,7 +70,7 @@ def _seconds(text: str) -> float:
 
 
 def parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="ikaros", description="Run an Ikaros model (.ikg).",
+    p = argparse.ArgumentParser(prog="ikaros", description="Run an Ikaros model (.ikg).",
                 epilog="name=value pairs set attributes of the top group and win over the "
                        "file. Exit status: 0 success, 1 model or run error, 2 bad usage.")
     p.add_argument("args", nargs="*", metavar="[name=value ...] MODEL.ikg")

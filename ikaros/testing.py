@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import os
+import time
+from typing import Callable, Iterable
 
 import numpy as np
 
@@ -31,3 +33,31 @@ def matrix_text(a, spec: str = "") -> str:
     """
     return "; ".join(" ".join(format(float(v), spec) for v in np.ravel(row))
                      for row in np.atleast_2d(a))
+
+
+def step_until(nets: Network | Iterable[Network], condition: Callable[[], bool], /,
+               seconds: float = 5.0, pause: float = 0.002) -> None:
+    """Step the network (or every network of a list) until ``condition()`` holds, pausing
+    ``pause`` seconds between steps for a device, socket or thread to answer; fail with an
+    AssertionError after ``seconds``."""
+    nets = [nets] if isinstance(nets, Network) else list(nets)
+    deadline = time.monotonic() + seconds
+    while not condition():
+        assert time.monotonic() < deadline, f"timed out after {seconds} s"
+        for net in nets:
+            net.step()
+        if pause:
+            time.sleep(pause)
+
+
+def wait_for(condition: Callable[[], object], seconds: float = 2.0,
+             pause: float = 0.005) -> bool:
+    """Whether ``condition()`` holds within ``seconds``, asking every ``pause`` seconds (for
+    what a device, a simulator or another thread does in its own time)."""
+    deadline = time.monotonic() + seconds
+    while True:
+        if condition():
+            return True
+        if time.monotonic() >= deadline:
+            return False
+        time.sleep(pause)

@@ -11,12 +11,6 @@ from ..errors import ModelError
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        self.print_usage(sys.stderr)
-        print(f"ikaros sweep: error: {message}", file=sys.stderr)
-        raise SystemExit(EXIT_USAGE)
-
 
 def _whole(minimum: int):
     def parse(text: str) -> int:
@@ -27,7 +21,7 @@ def _whole(minimum: int):
 
 
 def parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="ikaros sweep",
+    p = argparse.ArgumentParser(prog="ikaros sweep",
                 description="Run a model once for every combination of the --set values, "
                             "in parallel (local processes, or Ray), and collect a results "
                             "table.",

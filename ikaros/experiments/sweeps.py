@@ -2,6 +2,7 @@
 processes or on Ray, with a results table (pandas) and one recording per run."""
 from __future__ import annotations
 
+import importlib.util
 import itertools
 import logging
 import math
@@ -260,12 +261,8 @@ def _backend(backend: str, workers, address) -> str:
         return backend
     if address:
         return "ray"
-    if workers is None:
-        try:
-            import ray  # noqa: F401
-            return "ray"
-        except ImportError:
-            pass
+    if workers is None and importlib.util.find_spec("ray") is not None:
+        return "ray"
     return "local"
 
 

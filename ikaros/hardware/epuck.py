@@ -31,7 +31,7 @@ import math
 import numpy as np
 
 from ikaros.hardware import DeviceError
-from ikaros.hardware.serial_port import open_serial
+from ikaros.hardware.serial_port import SerialDevice
 
 DEFAULT_BAUD_RATE = 115200
 MAX_STEPS_PER_SECOND = 1000
@@ -98,13 +98,13 @@ def acceleration_figures(raw) -> tuple[float, float, float]:
     return magnitude, orientation, inclination
 
 
-class Epuck:
+class Epuck(SerialDevice):
     """An e-puck on a serial port (Bluetooth, a cable, or the simulator's pseudo-terminal)."""
 
+    what = "e-puck"
+
     def __init__(self, device: str, baud_rate: int = DEFAULT_BAUD_RATE, timeout: float = 0.5):
-        self.device = device
-        self.timeout = timeout
-        self.port = open_serial(device, baud_rate, timeout=timeout, what="e-puck")
+        super().__init__(device, baud_rate, timeout)
 
     def ask(self, letter: str, *args: int) -> list[int]:
         """Send a command and return the values of its reply. A reply left over from an
@@ -138,13 +138,6 @@ class Epuck:
             self.port.reset_input_buffer()
         except Exception as error:
             raise DeviceError(f"the e-puck at '{self.device}' cannot be read: {error}") from None
-
-    def _write(self, data: bytes) -> None:
-        try:
-            self.port.write(data)
-        except Exception as error:
-            raise DeviceError(f"the e-puck at '{self.device}' cannot be written to: "
-                              f"{error}") from None
 
     def _values(self, letter: str, count: int) -> list[int]:
         values = self.ask(letter)
@@ -206,16 +199,6 @@ class Epuck:
         data = self._read(width * height * (1 + mode), "camera image")
         return decode_image(data, mode, width, height)
 
-    def _read(self, count: int, what: str) -> bytes:
-        try:
-            data = self.port.read(count)
-        except Exception as error:
-            raise DeviceError(f"the e-puck at '{self.device}' cannot be read: {error}") from None
-        if len(data) < count:
-            raise DeviceError(f"the e-puck at '{self.device}' does not answer ({what}: "
-                              f"{len(data)} of {count} bytes within {self.timeout} s)")
-        return data
-
     def safe_state(self) -> None:
         """Wheels stopped, every LED off, no sound. Every step is tried even when one gets a
         wrong reply (the first failure is raised at the end); a robot that does not answer
@@ -232,10 +215,3 @@ class Epuck:
                 failure = failure or error
         if failure is not None:
             raise failure
-
-    def close(self) -> None:
-        try:
-            self.port.flush()
-            self.port.close()
-        except Exception:
-            pass

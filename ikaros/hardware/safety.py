@@ -6,8 +6,10 @@ its network, ``sys.exit``, an uncaught exception) every registered call runs onc
 reverse order of registration. Drivers remove their entry when they close normally.
 
 :class:`Watchdog` calls its action when nobody has called :meth:`Watchdog.kick` for
-``timeout`` seconds: a driver kicks it every tick, so a run that is paused, stopped from the
-web UI or hung in another module brings its hardware to the safe state after ``timeout``.
+``timeout`` seconds: a driver kicks it every tick, so a run that is paused or hung in another
+module brings its hardware to the safe state after ``timeout``.
+
+:func:`shut_down` is the end of a driver's run, the same for every driver.
 """
 from __future__ import annotations
 
@@ -87,3 +89,24 @@ class Watchdog:
                     self.action()
                 except Exception as error:
                     log.error("the watchdog could not reach the safe state: %s", error)
+
+
+def shut_down(watchdog: Watchdog | None, make_safe: Callable[[], None], exit_key: int | None,
+              device, simulator, report: Callable[[Exception], None]) -> None:
+    """End a driver's run, every step tried: the watchdog ends, ``make_safe()`` puts an open
+    ``device`` in its safe state (a DeviceError there goes to ``report``), the call at exit
+    is cancelled, and the device (``close()``) and its simulator (``stop()``) are closed."""
+    from . import DeviceError
+    if watchdog is not None:
+        watchdog.close()
+    try:
+        if device is not None:
+            make_safe()
+    except DeviceError as error:
+        report(error)
+    finally:
+        cancel(exit_key)
+        if device is not None:
+            device.close()
+        if simulator is not None:
+            simulator.stop()

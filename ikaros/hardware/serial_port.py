@@ -42,3 +42,43 @@ def describe_error(error: Exception) -> str:
     if number == 13 or "Permission denied" in text:
         return "permission denied (add yourself to the 'dialout' group, see docs/robots.md)"
     return text
+
+
+class SerialDevice:
+    """A device on a serial port: opens it, and turns failed reads and writes into
+    DeviceErrors naming the device (``the SSC-32 at '/dev/ttyUSB0' does not answer ...``).
+    A driver sets ``what`` and builds its commands on :meth:`_write` and :meth:`_read`."""
+
+    what = "serial device"
+
+    def __init__(self, device: str, baud_rate: int, timeout: float):
+        self.device = device
+        self.timeout = timeout
+        self.port = open_serial(device, baud_rate, timeout=timeout, what=self.what)
+
+    def _write(self, data: bytes) -> None:
+        try:
+            self.port.write(data)
+        except Exception as error:       # pyserial raises SerialException or OSError
+            raise DeviceError(f"the {self.what} at '{self.device}' cannot be written to: "
+                              f"{error}") from None
+
+    def _read(self, count: int, what: str) -> bytes:
+        """Exactly ``count`` bytes of the reply ``what``, or a DeviceError."""
+        try:
+            reply = self.port.read(count)
+        except Exception as error:
+            raise DeviceError(f"the {self.what} at '{self.device}' cannot be read: "
+                              f"{error}") from None
+        if len(reply) < count:
+            raise DeviceError(f"the {self.what} at '{self.device}' does not answer ({what}: "
+                              f"{len(reply)} of {count} bytes within {self.timeout} s)")
+        return reply
+
+    def close(self) -> None:
+        """Close the port once everything written has gone out."""
+        try:
+            self.port.flush()
+            self.port.close()
+        except Exception:
+            pass

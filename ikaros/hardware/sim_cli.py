@@ -28,6 +28,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     options = build_parser().parse_args(argv)
+    finished = threading.Event()
+    signal.signal(signal.SIGTERM, lambda *_: finished.set())   # before the device: never killed by -15
     try:
         device = simulator_module(options.simulator).start(options)
     except DeviceError as error:
@@ -35,8 +37,6 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     print(device.path, flush=True)
     print(f"{options.simulator} simulator at {device.path}; Ctrl-C stops it", file=sys.stderr, flush=True)
-    finished = threading.Event()
-    signal.signal(signal.SIGTERM, lambda *_: finished.set())
     try:
         while not finished.wait(0.2):
             pass

@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import importlib
 from types import ModuleType
+from typing import Any
 from urllib.parse import parse_qsl
 
 from ikaros.hardware import DeviceError
@@ -37,6 +38,15 @@ PREFIX = "sim:"
 def is_simulated(device: str) -> bool:
     """True when a device attribute names a simulator rather than a real device."""
     return device.strip().startswith(PREFIX)
+
+
+def open_device_string(device: str) -> tuple[str, Any]:
+    """What a driver opens for its device attribute, and the simulator started for it:
+    ``(path, simulator)`` for ``sim:NAME?options``, ``(device, None)`` for a real device."""
+    if not is_simulated(device):
+        return device, None
+    simulator = start_from_device_string(device)
+    return simulator.path, simulator
 
 
 def simulator_module(name: str) -> ModuleType:

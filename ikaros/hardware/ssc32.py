@@ -17,7 +17,7 @@ from __future__ import annotations
 from typing import Iterable, Sequence
 
 from ikaros.hardware import DeviceError
-from ikaros.hardware.serial_port import open_serial
+from ikaros.hardware.serial_port import SerialDevice
 
 PULSE_MIN = 500
 PULSE_MAX = 2500
@@ -73,30 +73,13 @@ def _check_channel(channel: int) -> None:
         raise ValueError(f"channel {channel} is outside 0..{CHANNELS - 1}")
 
 
-class SSC32:
+class SSC32(SerialDevice):
     """An SSC-32 on a serial port (a real one, or a simulator's pseudo-terminal)."""
 
+    what = "SSC-32"
+
     def __init__(self, device: str, baud_rate: int = DEFAULT_BAUD_RATE, timeout: float = 0.2):
-        self.device = device
-        self.timeout = timeout
-        self.port = open_serial(device, baud_rate, timeout=timeout, what="SSC-32")
-
-    def _write(self, data: bytes) -> None:
-        try:
-            self.port.write(data)
-        except Exception as error:       # pyserial raises SerialException or OSError
-            raise DeviceError(f"the SSC-32 at '{self.device}' cannot be written to: "
-                              f"{error}") from None
-
-    def _read(self, count: int, what: str) -> bytes:
-        try:
-            reply = self.port.read(count)
-        except Exception as error:
-            raise DeviceError(f"the SSC-32 at '{self.device}' cannot be read: {error}") from None
-        if len(reply) < count:
-            raise DeviceError(f"the SSC-32 at '{self.device}' does not answer ({what}: "
-                              f"{len(reply)} of {count} bytes within {self.timeout} s)")
-        return reply
+        super().__init__(device, baud_rate, timeout)
 
     def move(self, pulses: dict[int, int], time_ms: int | None = None,
              speeds: dict[int, int] | None = None) -> None:
@@ -141,11 +124,3 @@ class SSC32:
         channels = list(channels)
         if channels:
             self._write(move_command({c: 0 for c in channels}))
-
-    def close(self) -> None:
-        """Close the port once everything written has gone out."""
-        try:
-            self.port.flush()
-            self.port.close()
-        except Exception:
-            pass

@@ -1,51 +1,61 @@
 """A simulated Touch Board on a pseudo-terminal: writes DataStream lines as the board does.
 
-Minimal and self-contained; it belongs on the shared simulated-serial-device base
-(ikaros/hardware/pty_device.py) once that is merged.
+Built on :class:`ikaros.hardware.pty_device.PtyDevice`::
+
+    with SimulatedTouchBoard() as board:
+        board.set("FDAT", range(600, 613))
+        ... open board.path as the board's serial port ...
 """
 from __future__ import annotations
 
-import os
 import threading
-import tty
 
+from .pty_device import PtyDevice
 from .touchboard import LABELS, format_line
 
 ELECTRODES = 13
 
 
-class SimulatedTouchBoard:
-    """Opens a pseudo-terminal whose other end (``port``) a program opens as the board's
-    serial port, and writes every kind of DataStream line every ``interval`` seconds.
-    ``set(label, values)`` changes what is written."""
+class SimulatedTouchBoard(PtyDevice):
+    """Writes every kind of DataStream line every ``interval`` seconds while started;
+    ``set(label, values)`` changes what is written. What a driver sends is ignored, as the
+    board's DataStream firmware does."""
+
+    name = "touchboard"
 
     def __init__(self, interval: float = 0.01):
-        self.master, slave = os.openpty()
-        tty.setraw(slave)
-        self.port = os.ttyname(slave)
-        self._slave = slave
-        self.values = {label: [0] * ELECTRODES for label in LABELS}
-        self.lock = threading.Lock()
+        super().__init__()
         self.interval = interval
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, daemon=True)
-        self._thread.start()
+        self.values = {label: [0] * ELECTRODES for label in LABELS}
+        self._values_lock = threading.Lock()
+        self._halt = threading.Event()
+        self._streamer: threading.Thread | None = None
 
     def set(self, label: str, values) -> None:
-        with self.lock:
+        with self._values_lock:
             self.values[label] = list(values)
 
-    def _run(self) -> None:
-        while not self._stop.wait(self.interval):
-            with self.lock:
-                data = b"".join(format_line(k, v) for k, v in self.values.items())
-            try:
-                os.write(self.master, data)
-            except OSError:
-                return
+    def received(self, data: bytes) -> None:
+        pass
 
-    def close(self) -> None:
-        self._stop.set()
-        self._thread.join(2)
-        os.close(self.master)
-        os.close(self._slave)
+    def start(self) -> "SimulatedTouchBoard":
+        super().start()
+        if self._streamer is None:
+            self._halt.clear()
+            self._streamer = threading.Thread(target=self._stream, name="touchboard-sim-stream",
+                                              daemon=True)
+            self._streamer.start()
+        return self
+
+    def stop(self) -> None:
+        self._halt.set()            # the streamer ends before the pseudo-terminal closes
+        if self._streamer is not None:
+            self._streamer.join(timeout=2.0)
+            self._streamer = None
+        super().stop()
+
+    def _stream(self) -> None:
+        while not self._halt.wait(self.interval):
+            with self._values_lock:
+                data = b"".join(format_line(label, values) for label, values in self.values.items())
+            self.send(data)

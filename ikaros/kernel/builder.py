@@ -245,7 +245,7 @@ class Builder:
         try:
             module.configure()
         except module_faults() as e:
-            if is_interrupt(e):
+            if is_interrupt(e) or (isinstance(e, ModelError) and e.filename is not None):
                 raise
             raise inst.node.error(f"configure failed: {fault_text(e)}") from None
 

@@ -67,7 +67,20 @@ class Controller:
         self.set_state(REALTIME)
 
     def stop(self) -> None:
+        """Leave the loop after the current tick; the run can go on (``start``, ``run``)."""
         self.set_state(STOP)
+
+    def end(self, timeout: float = 30.0) -> None:
+        """Stop the loop and end the run as the end of a batch run does: the network
+        closes, so every module's stop() is called once and drivers put their devices in
+        the safe state at once. The network runs no more ticks after this."""
+        self.stop()
+        thread = self._thread
+        if thread is not None and thread is not threading.current_thread():
+            thread.join(timeout)
+            if thread.is_alive():
+                raise TimeoutError(f"the run did not stop within {timeout:g} s")
+        self.net.close()
 
     # --- requests between ticks ----------------------------------------------------------
     def call(self, fn, *args, **kwargs):

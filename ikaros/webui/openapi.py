@@ -120,7 +120,8 @@ def openapi() -> dict:
         "/api/classes": _get("Every module class: {name: class description}", obj),
         "/api/status": _get("Run state and timing figures", _STATUS),
         "/api/control": _post(
-            "Change the run mode",
+            "Change the run mode; \"stop\" ends the run (every module's stop() is called) "
+            "and a later mode runs the model again from tick 0",
             {"type": "object", "required": ["state"], "additionalProperties": False,
              "properties": {"state": {"enum": ["stop", "pause", "step", "play",
                                                "realtime"]}}}, _STATUS,

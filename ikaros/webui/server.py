@@ -307,6 +307,7 @@ class WebUI:
         self.hub = Hub(net, self.status, self.logbook, budget, max_rate, status_interval)
         self._classes = None
         self._changing = threading.Lock()       # one apply / open / new at a time
+        self._ended_by_stop = None              # the network whose run the stop button ended
         # What the command line set beside the file, kept while the model is rebuilt
         # (dropped when another model is opened or a new one made).
         self._overrides = _overrides_of(net)
@@ -379,12 +380,34 @@ class WebUI:
                                 f'{json.dumps(state)[:40]}')
         net, ctrl = self.net, self.net.controller
         if net.stopped:
+            if net is self._ended_by_stop and state != STOP:
+                return await self._rebuild(state)
             raise ApiError(409, "the run has ended; apply, open or reload a model to run "
                                 "again")
-        if state in ("step", "play", "realtime") and not kernel_thread_alive(ctrl):
+        if state == STOP:           # the run ends: every module's stop(), devices made safe
+            try:
+                await run_in_threadpool(ctrl.end)
+            except TimeoutError as e:
+                raise ApiError(500, str(e)) from None
+            self._ended_by_stop = net
+        elif state in ("step", "play", "realtime") and not kernel_thread_alive(ctrl):
             ctrl.start(state)
         else:
             ctrl.set_state(state)
+        return Json(self.status())
+
+    async def _rebuild(self, state: str):
+        """Run again after a stop: the model as it was built (with the edits applied to it)
+        is built anew and runs from tick 0 in ``state``, as Ikaros 3 reloads its file."""
+        with self._change():
+            filename = self.net.filename
+            model = await self._call(self._model_json)
+            tree = self._tree({"tree": model["tree"]}, filename)
+            try:
+                new = await self._build(filename, tree, self._overrides)
+            except (ModelError, BuildTimeout) as e:
+                return Json({"error": str(e), "node": None, "path": None}, status_code=422)
+            await self._swap(new, state)
         return Json(self.status())
 
     async def parameter(self, request: Request):

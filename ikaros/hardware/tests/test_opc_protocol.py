@@ -10,6 +10,7 @@ from ikaros.hardware import DeviceError
 from ikaros.hardware.opc import (OPCClient, message, parse_messages, pixel_message,
                                  split_address)
 from ikaros.hardware.opc_sim import VirtualOPCServer
+from ikaros.testing import wait_for
 
 
 def test_message_header_and_pixel_payload():
@@ -37,13 +38,6 @@ def test_addresses():
     assert split_address("localhost") == ("localhost", 7890)
     with pytest.raises(DeviceError, match="host:port"):
         split_address("host:abc")
-
-
-def wait_for(condition, seconds=1.0):
-    deadline = time.monotonic() + seconds
-    while not condition() and time.monotonic() < deadline:
-        time.sleep(0.005)
-    return condition()
 
 
 def test_pixels_reach_the_server():

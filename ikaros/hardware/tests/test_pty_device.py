@@ -9,7 +9,7 @@ import serial
 
 from ikaros.hardware import DeviceError
 from ikaros.hardware.pty_device import PtyDevice
-from ikaros.hardware.serial_port import open_serial, require
+from ikaros.hardware.serial_port import SerialDevice, open_serial, require
 
 
 class EchoUpper(PtyDevice):
@@ -58,6 +58,29 @@ def test_disconnect_makes_the_driver_fail():
             port.write(b"x\r")
             port.read(2)
         port.close()
+
+
+class EchoBox(SerialDevice):
+    what = "echo box"
+
+
+def test_a_serial_device_names_itself_in_every_failure():
+    with EchoUpper() as device:
+        box = EchoBox(device.path, 115200, timeout=0.1)
+        box._write(b"ab\r")
+        assert box._read(3, "echo") == b"AB\r"
+        with pytest.raises(DeviceError) as silent:
+            box._write(b"cd")                       # no end of line: no reply
+            box._read(3, "echo")
+        assert str(silent.value) == (f"the echo box at '{device.path}' does not answer "
+                                     "(echo: 0 of 3 bytes within 0.1 s)")
+        box.close()
+        with pytest.raises(DeviceError, match=f"the echo box at '{device.path}' cannot be "
+                                              "written to: "):
+            box._write(b"x\r")
+        with pytest.raises(DeviceError, match=f"the echo box at '{device.path}' cannot be "
+                                              "read: "):
+            box._read(1, "echo")
 
 
 def test_baudrate_delays_replies_by_the_line_time():

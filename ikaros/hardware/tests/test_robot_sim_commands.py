@@ -5,7 +5,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -60,7 +59,6 @@ def test_simulator_command(argv, use):
         assert path, process.stderr.read()
         assert use(path)
         assert "Ctrl-C stops it" in process.stderr.readline()
-        time.sleep(0.3)             # sim_cli installs its SIGTERM handler after these lines
         process.send_signal(signal.SIGTERM)
         assert process.wait(timeout=10) == 0
     finally:
@@ -69,9 +67,35 @@ def test_simulator_command(argv, use):
             process.wait(timeout=10)
 
 
+def test_a_sigterm_while_the_simulator_starts_ends_it_cleanly():
+    starting = ("import os, signal, sys\n"
+                "from ikaros.hardware import sim_cli, ssc32_sim\n"
+                "start = ssc32_sim.start\n"
+                "def start_and_get_terminated(options):\n"
+                "    os.kill(os.getpid(), signal.SIGTERM)\n"
+                "    return start(options)\n"
+                "ssc32_sim.start = start_and_get_terminated\n"
+                "sys.exit(sim_cli.main(['ssc32']))\n")
+    result = subprocess.run([sys.executable, "-c", starting], capture_output=True, text=True,
+                            env=dict(os.environ, PYTHONPATH=ROOT), timeout=30)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith("/dev/pts/")
+
+
 def test_bad_simulator_options_are_reported():
     env = dict(os.environ, PYTHONPATH=ROOT)
     result = subprocess.run([sys.executable, "-m", "ikaros.hardware.sim_cli", "epuck",
                              "--x", "-1"], capture_output=True, text=True, env=env, timeout=30)
     assert result.returncode == 1
     assert "e-puck simulator: the start position (-1.0, 0.2) is inside a wall" in result.stderr
+
+
+def test_a_device_string_opens_a_simulator_or_names_a_real_device():
+    from ikaros.hardware.simulators import open_device_string
+    assert open_device_string("/dev/ttyUSB0") == ("/dev/ttyUSB0", None)
+    path, simulator = open_device_string("sim:ssc32")
+    try:
+        assert path == simulator.path and path.startswith("/dev/pts/")
+        assert use_ssc32(path)
+    finally:
+        simulator.stop()

@@ -79,13 +79,21 @@ def _port(ports: dict, name: str, size: int | None = None):
     return buf
 
 
+def _elementwise(inputs: dict, outputs: dict, *names: str):
+    """OUTPUT and the inputs ``names``, each connected and of OUTPUT's size, else None."""
+    out = _port(outputs, "OUTPUT")
+    if out is None:
+        return None
+    found = [_port(inputs, name, out.size) for name in names]
+    return None if any(port is None for port in found) else (out, *found)
+
+
 def _binary(op):
     def emit(frag, module, inputs, outputs):
-        out = _port(outputs, "OUTPUT")
-        a = out and _port(inputs, "INPUT1", out.size)
-        b = out and _port(inputs, "INPUT2", out.size)
-        if a is None or b is None:
+        ports = _elementwise(inputs, outputs, "INPUT1", "INPUT2")
+        if ports is None:
             return None
+        out, a, b = ports
         frag.emit(op, out.offset, out.size, a.offset, b.offset)
         return no_parameters
     return emit
@@ -98,10 +106,10 @@ def no_parameters(params, base) -> bool:
 
 def _unary(op, module_ok=None):
     def emit(frag, module, inputs, outputs):
-        out = _port(outputs, "OUTPUT")
-        x = out and _port(inputs, "INPUT", out.size)
-        if x is None:
+        ports = _elementwise(inputs, outputs, "INPUT")
+        if ports is None:
             return None
+        out, x = ports
         frag.emit(op, out.offset, out.size, x.offset)
         if module_ok is None:
             return no_parameters
@@ -110,10 +118,10 @@ def _unary(op, module_ok=None):
 
 
 def _subtract(frag, module, inputs, outputs):
-    out = _port(outputs, "OUTPUT")
-    a = out and _port(inputs, "INPUT1", out.size)
-    if a is None:
+    ports = _elementwise(inputs, outputs, "INPUT1")
+    if ports is None:
         return None
+    out, a = ports
     if "INPUT2" not in module._ik_connected:
         frag.emit(ops.COPY, out.offset, out.size, a.offset)
         return no_parameters
@@ -125,10 +133,10 @@ def _subtract(frag, module, inputs, outputs):
 
 
 def _scale(frag, module, inputs, outputs):
-    out = _port(outputs, "OUTPUT")
-    x = out and _port(inputs, "INPUT", out.size)
-    if x is None:
+    ports = _elementwise(inputs, outputs, "INPUT")
+    if ports is None:
         return None
+    out, x = ports
     scale = -1
     if "SCALE" in module._ik_connected:
         s = _port(inputs, "SCALE")
@@ -145,10 +153,10 @@ def _scale(frag, module, inputs, outputs):
 
 
 def _threshold(frag, module, inputs, outputs):
-    out = _port(outputs, "OUTPUT")
-    x = out and _port(inputs, "INPUT", out.size)
-    if x is None:
+    ports = _elementwise(inputs, outputs, "INPUT")
+    if ports is None:
         return None
+    out, x = ports
     p = frag.slots(3)
     frag.emit(ops.THRESHOLD, out.offset, out.size, x.offset, -1, p)
 
@@ -186,10 +194,10 @@ def _constant(frag, module, inputs, outputs):
 
 
 def _integrator(frag, module, inputs, outputs):
-    out = _port(outputs, "OUTPUT")
-    x = out and _port(inputs, "INPUT", out.size)
-    if x is None:
+    ports = _elementwise(inputs, outputs, "INPUT")
+    if ports is None:
         return None
+    out, x = ports
     p = frag.slots(6)
     frag.emit(ops.INTEGRATE, out.offset, out.size, x.offset, -1, p)
     limit = type(module)._limit

@@ -52,3 +52,19 @@ def test_a_ctrl_c_in_one_stop_does_not_skip_the_others(folder):
     with pytest.raises(KeyboardInterrupt):
         net.close()
     assert sorted(stopped(folder)) == ["First", "Second"]
+
+
+@pytest.mark.parametrize("in_a_thread", [False, True], ids=["no loop", "loop running"])
+def test_the_controllers_end_stops_the_loop_and_every_module_once(folder, in_a_thread):
+    net = load_body(folder, f'<module class="Recorder" name="A" log="{folder}/stopped.txt"/>\n'
+                            f'<module class="Recorder" name="B" log="{folder}/stopped.txt"/>')
+    ctrl = net.controller
+    if in_a_thread:
+        ctrl.start("play")
+    else:
+        net.step()
+    ctrl.end()
+    assert net.stopped and not ctrl.running
+    assert stopped(folder) == ["A", "B"]
+    net.close()
+    assert stopped(folder) == ["A", "B"]

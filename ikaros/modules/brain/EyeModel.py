@@ -1,6 +1,4 @@
 """EyeModel: pupil control."""
-import numpy as np
-
 from ikaros.module import Input, Module, Output, Parameter
 
 

@@ -1,6 +1,4 @@
 """M02_Thalamus: the thalamus of Morén's (2002) model of emotional learning."""
-import numpy as np
-
 from ikaros.module import Input, Module, Output
 
 

@@ -7,7 +7,6 @@ import numpy as np
 from ikaros.module import Module, Output, Parameter, require
 
 from . import _audio
-from ._files import resolve
 
 
 class InputSound(Module):
@@ -47,25 +46,15 @@ class InputSound(Module):
     def init(self):
         self._stream = None
         if self.filename:
-            try:
-                self._data, self.rate = _audio.read_sound(resolve(self, self.filename),
-                                                          self.samplerate, self.channels)
-            except (RuntimeError, OSError) as e:
-                raise ValueError(f'cannot read the sound file "{self.filename}": {e}') \
-                    from None
+            self._data, self.rate = _audio.read_sound(self, self.filename, self.samplerate,
+                                                      self.channels)
             self._position = 0
             return
         self.rate = self.samplerate or 44100
         self._blocks = collections.deque()
         self._lock = threading.Lock()
-        device = int(self.device) if str(self.device).isdigit() else self.device
-        try:
-            self._stream = _audio.open_input_stream(self.rate, self.channels, self._take,
-                                                    device)
-        except OSError as e:
-            raise ValueError(f"cannot open the microphone: {e} (sounddevice needs the "
-                             f"PortAudio library: apt-get install libportaudio2 on "
-                             f"Debian)") from None
+        self._stream = _audio.open_input_stream(self.rate, self.channels, self._take,
+                                                self.device)
 
     def _take(self, block):
         """Called by the audio stream's thread with each block of frames."""

@@ -4,7 +4,6 @@ import numpy as np
 from ikaros.module import Input, Module, Output, Parameter, require
 
 from . import _audio
-from ._files import resolve
 
 
 class SoundOutput(Module):
@@ -36,23 +35,14 @@ class SoundOutput(Module):
     def init(self):
         sounds, rate = [], None
         for name in self._files:
-            try:
-                data, rate = _audio.read_sound(resolve(self, name), rate, 2)
-            except (RuntimeError, OSError) as e:    # soundfile's errors
-                raise ValueError(f'cannot read the sound file "{name}": {e}') from None
+            data, rate = _audio.read_sound(self, name, rate, 2)
             sounds.append(data)
         if self.INPUT.size < len(sounds):
             self.warning(f"INPUT has {self.INPUT.size} elements for {len(sounds)} sounds: "
                          f"sounds {self.INPUT.size + 1} to {len(sounds)} never play")
         self._mixer = _audio.Mixer(sounds, 2)
         self._last = np.zeros(min(self.INPUT.size, len(sounds)), np.float32)
-        device = int(self.device) if str(self.device).isdigit() else self.device
-        try:
-            self._stream = _audio.open_output_stream(rate, 2, self._mixer.fill, device)
-        except OSError as e:            # no PortAudio, no device
-            raise ValueError(f"cannot open the sound output: {e} (sounddevice needs the "
-                             f"PortAudio library: apt-get install libportaudio2 on "
-                             f"Debian)") from None
+        self._stream = _audio.open_output_stream(rate, 2, self._mixer.fill, self.device)
 
     def tick(self):
         now = self.INPUT.reshape(-1)[:len(self._last)]

@@ -1,6 +1,5 @@
 """Sound for the audio modules: reading files, a mixer of playing sounds, and the audio
-streams (sounddevice), which tests replace through ``open_output_stream`` and
-``open_input_stream``."""
+streams (sounddevice, which tests replace through ``_sounddevice``)."""
 from __future__ import annotations
 
 import threading
@@ -9,13 +8,20 @@ import numpy as np
 
 from ikaros.module import require
 
+from ._files import resolve
 
-def read_sound(path: str, samplerate: int | None, channels: int) -> tuple[np.ndarray, int]:
-    """A sound file as float32 (frames, channels), converted to ``channels`` (mono is
-    repeated, more channels are averaged) and, when ``samplerate`` is given, resampled to it
-    by linear interpolation. Returns (samples, sample rate)."""
+
+def read_sound(module, name: str, samplerate: int | None,
+               channels: int) -> tuple[np.ndarray, int]:
+    """The sound file ``name`` (relative to the module's model file) as float32 (frames,
+    channels), converted to ``channels`` (mono is repeated, more channels are averaged)
+    and, when ``samplerate`` is given, resampled to it by linear interpolation. Returns
+    (samples, sample rate); a file that cannot be read is a ValueError naming it."""
     soundfile = require("soundfile", "soundfile", extra="sound")
-    data, rate = soundfile.read(path, dtype="float32", always_2d=True)
+    try:
+        data, rate = soundfile.read(resolve(module, name), dtype="float32", always_2d=True)
+    except (RuntimeError, OSError) as e:        # soundfile's errors
+        raise ValueError(f'cannot read the sound file "{name}": {e}') from None
     if data.shape[1] != channels:
         data = np.repeat(data.mean(axis=1, keepdims=True), channels, axis=1)
     if samplerate and rate != samplerate and len(data):
@@ -63,27 +69,31 @@ def _sounddevice():
     return require("sounddevice", "sounddevice", extra="sound")
 
 
-def open_output_stream(samplerate: int, channels: int, fill, device=None):
+def open_output_stream(samplerate: int, channels: int, fill, device: str = ""):
     """A started output stream that asks ``fill(out)`` for each block of frames; it has
-    ``close()``. Needs sounddevice (and the PortAudio library)."""
-    sd = _sounddevice()
-
-    def callback(outdata, frames, time, status):
-        fill(outdata)
-    stream = sd.OutputStream(samplerate=samplerate, channels=channels, dtype="float32",
-                             callback=callback, device=device or None)
-    stream.start()
-    return stream
+    ``close()``. ``device``: sounddevice's name or number of the output, empty for the
+    default. Needs sounddevice (and the PortAudio library)."""
+    return _open_stream(_sounddevice().OutputStream, samplerate, channels, fill, device,
+                        "the sound output")
 
 
-def open_input_stream(samplerate: int, channels: int, take, device=None):
+def open_input_stream(samplerate: int, channels: int, take, device: str = ""):
     """A started input stream that passes each block of frames (frames, channels) to
     ``take``; it has ``close()``."""
-    sd = _sounddevice()
+    return _open_stream(_sounddevice().InputStream, samplerate, channels, take, device,
+                        "the microphone")
 
-    def callback(indata, frames, time, status):
-        take(indata)
-    stream = sd.InputStream(samplerate=samplerate, channels=channels, dtype="float32",
-                            callback=callback, device=device or None)
-    stream.start()
+
+def _open_stream(stream_class, samplerate: int, channels: int, handle, device: str,
+                 what: str):
+    def callback(data, frames, time, status):
+        handle(data)
+    device = int(device) if str(device).isdigit() else device
+    try:
+        stream = stream_class(samplerate=samplerate, channels=channels, dtype="float32",
+                              callback=callback, device=device or None)
+        stream.start()
+    except OSError as e:            # no PortAudio, no device
+        raise ValueError(f"cannot open {what}: {e} (sounddevice needs the PortAudio "
+                         f"library: apt-get install libportaudio2 on Debian)") from None
     return stream

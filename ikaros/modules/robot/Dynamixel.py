@@ -101,15 +101,12 @@ class Dynamixel(Module):
         # The bus is scanned here (the servos found give the output sizes) and given back;
         # init opens it again, so a model whose build fails later leaves no port open.
         from ikaros.hardware.dynamixel.servos import open_bus, release_bus
-        from ikaros.hardware.simulators import is_simulated, start_from_device_string
+        from ikaros.hardware.simulators import open_device_string
         self._simulator = None
         self._group = None
         self._watchdog = None
         self._exit_key = None
-        device = str(self.device)
-        if is_simulated(device):
-            self._simulator = start_from_device_string(device)
-            device = self._simulator.path
+        device, self._simulator = open_device_string(str(self.device))
         wanted = [int(i) for i in np.asarray(self.servo_id).reshape(-1)] or None
         self._latency = None if self.serial_latency < 0 else float(self.serial_latency)
         try:

@@ -39,14 +39,10 @@ class DynamixelConfigure(Module):
     CHANGE_MODE = Output("1 when SET writes value", size="1")
 
     def init(self):
-        from ikaros.hardware.simulators import is_simulated, start_from_device_string
+        from ikaros.hardware.simulators import open_device_string
         self._simulator = None
         self._bus = None
-        device = str(self.device)
-        if is_simulated(device):
-            self._simulator = start_from_device_string(device)
-            device = self._simulator.path
-        self._device = device
+        self._device, self._simulator = open_device_string(str(self.device))
         self._last_set = 0.0
         self._scan()
 

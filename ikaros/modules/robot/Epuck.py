@@ -77,7 +77,7 @@ class Epuck(Module):
     def init(self):
         from ikaros.hardware import safety
         from ikaros.hardware.epuck import Epuck as Robot
-        from ikaros.hardware.simulators import is_simulated, start_from_device_string
+        from ikaros.hardware.simulators import open_device_string
         self._simulator = self._robot = self._watchdog = self._exit_key = None
         self._lock = threading.Lock()
         if self.camera != "none" and not 0 < self.width * self.height * \
@@ -88,10 +88,7 @@ class Epuck(Module):
         self._sent = {}
         self._last_encoders = None
         try:
-            device = self.port
-            if is_simulated(device):
-                self._simulator = start_from_device_string(device)
-                device = self._simulator.path
+            device, self._simulator = open_device_string(self.port)
             self._robot = Robot(device, int(self.baud_rate))
             if self.calibrate and self.proximity_on:
                 self._robot.calibrate()
@@ -192,19 +189,8 @@ class Epuck(Module):
                 self._sent.clear()
 
     def stop(self):
-        from ikaros.hardware import DeviceError, safety
-        if getattr(self, "_watchdog", None) is not None:
-            self._watchdog.close()
-        try:
-            if getattr(self, "_robot", None) is not None:
-                self._safe_state()
-        except DeviceError as error:
-            self.error(f"the e-puck could not be put in the safe state: {error}")
-        finally:
-            safety.cancel(getattr(self, "_exit_key", None))
-            robot, self._robot = getattr(self, "_robot", None), None
-            if robot is not None:
-                robot.close()
-            if getattr(self, "_simulator", None) is not None:
-                self._simulator.stop()
-                self._simulator = None
+        from ikaros.hardware import safety
+        safety.shut_down(self._watchdog, self._safe_state, self._exit_key, self._robot,
+                         self._simulator, lambda error: self.error(
+                             f"the e-puck could not be put in the safe state: {error}"))
+        self._robot = self._simulator = None

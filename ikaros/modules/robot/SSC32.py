@@ -80,11 +80,8 @@ class SSC32(Module):
         return values
 
     def _open(self, board_class):
-        from ikaros.hardware.simulators import is_simulated, start_from_device_string
-        device = self.port
-        if is_simulated(device):
-            self._simulator = start_from_device_string(device)
-            device = self._simulator.path
+        from ikaros.hardware.simulators import open_device_string
+        device, self._simulator = open_device_string(self.port)
         try:
             self._board = board_class(device, int(self.baud_rate))
         except Exception:
@@ -142,18 +139,8 @@ class SSC32(Module):
                 self._move_home()
 
     def stop(self):
-        from ikaros.hardware import DeviceError, safety
-        if self._watchdog is not None:
-            self._watchdog.close()
-        try:
-            self._safe_state()
-        except DeviceError as error:
-            self.error(f"the servos could not be put in the safe state: {error}")
-        finally:
-            safety.cancel(self._exit_key)
-            board, self._board = self._board, None
-            if board is not None:
-                board.close()
-            if self._simulator is not None:
-                self._simulator.stop()
-                self._simulator = None
+        from ikaros.hardware import safety
+        safety.shut_down(self._watchdog, self._safe_state, self._exit_key, self._board,
+                         self._simulator, lambda error: self.error(
+                             f"the servos could not be put in the safe state: {error}"))
+        self._board = self._simulator = None

@@ -1,6 +1,4 @@
 """Constant: outputs a fixed array."""
-import numpy as np
-
 from ikaros.module import Module, Output, Parameter
 
 

@@ -35,13 +35,14 @@ def free_port() -> int:
 
 
 class Server:
-    """``python -m ikaros -w PORT MODEL`` on 127.0.0.1, with JSON helpers for its API."""
+    """``python -m ikaros -w PORT [OPTIONS] MODEL`` on 127.0.0.1, with JSON helpers for its
+    API (``options=["--replay"]`` with a recording for MODEL serves a replay)."""
 
-    def __init__(self, model: str, start_within: float = 30):
+    def __init__(self, model: str, start_within: float = 30, options: tuple = ()):
         self.port = free_port()
         self.base = f"http://127.0.0.1:{self.port}"
         self.proc = subprocess.Popen([sys.executable, "-m", "ikaros", "-w", str(self.port),
-                                      model], cwd=ROOT, stdout=subprocess.PIPE,
+                                      *options, model], cwd=ROOT, stdout=subprocess.PIPE,
                                      stderr=subprocess.STDOUT)
         deadline = time.monotonic() + start_within
         while True:
@@ -98,13 +99,13 @@ class Server:
         return tick
 
 
-def in_own_browser(model: str, open_page, check) -> None:
-    """Serve a model, open the app in Chromium, then run ``open_page(server, page)`` and
-    ``check(server, page)``. The browser runs in a thread of its own, with its own
+def in_own_browser(model: str, open_page, check, options: tuple = ()) -> None:
+    """Serve a model (with the command-line ``options`` of :class:`Server`), open the app in
+    Chromium, then run ``open_page(server, page)`` and ``check(server, page)``. The browser runs in a thread of its own, with its own
     Playwright: the sync API cannot start inside another module's running Playwright
     (test_browser.py keeps one for the whole session)."""
     os.makedirs(ARTIFACTS, exist_ok=True)
-    server = Server(model)
+    server = Server(model, options=options)
     failure = []
 
     def run():

@@ -1,8 +1,6 @@
 """The record button in the browser: pressed, the running model is recorded into an HDF5
 file in the models folder; pressed again, the recording ends."""
 import os
-import subprocess
-import sys
 import time
 
 import numpy as np
@@ -11,7 +9,6 @@ import pytest
 pytest.importorskip("h5py")
 pytest.importorskip("xarray")
 
-import browsing  # noqa: E402
 from browsing import in_own_browser  # noqa: E402
 
 import ikaros  # noqa: E402
@@ -52,28 +49,7 @@ def test_the_record_button_records_into_the_models_folder(tmp_path):
     np.testing.assert_array_equal(ds["Counter.OUTPUT"].values[:, 0], ticks + 1)
 
 
-class ReplayServer(browsing.Server):
-    """``python -m ikaros -w PORT --replay RECORDING``."""
-
-    def __init__(self, recording: str, start_within: float = 30):
-        self.port = browsing.free_port()
-        self.base = f"http://127.0.0.1:{self.port}"
-        self.proc = subprocess.Popen([sys.executable, "-m", "ikaros", "-w", str(self.port),
-                                      "--replay", recording], cwd=browsing.ROOT,
-                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
-        deadline = time.monotonic() + start_within
-        while True:
-            try:
-                self.get("/api/status")
-                return
-            except OSError:
-                if self.proc.poll() is not None or time.monotonic() > deadline:
-                    self.stop()
-                    pytest.fail(self.proc.stdout.read().decode(errors="replace"))
-                time.sleep(0.1)
-
-
-def test_replay_scrubs_through_a_recording_in_its_views(tmp_path, monkeypatch):
+def test_replay_scrubs_through_a_recording_in_its_views(tmp_path):
     path = tmp_path / "counter.ikg"
     path.write_text('<group name="R"><module class="Sweep" name="Counter" step="1" '
                     'max="1e9"/><view name="V"><table source="Counter.OUTPUT" '
@@ -82,7 +58,6 @@ def test_replay_scrubs_through_a_recording_in_its_views(tmp_path, monkeypatch):
     with net.record(str(tmp_path / "run.h5")):
         net.run(ticks=300)
     net.close()
-    monkeypatch.setattr(browsing, "Server", ReplayServer)
 
     def open_page(server, page):
         page.wait_for_selector("#replay-slider")
@@ -97,4 +72,4 @@ def test_replay_scrubs_through_a_recording_in_its_views(tmp_path, monkeypatch):
         page.locator(".widget-table", has_text="121").wait_for()
         assert not page.errors
 
-    browsing.in_own_browser(str(tmp_path / "run.h5"), open_page, check)
+    in_own_browser(str(tmp_path / "run.h5"), open_page, check, options=["--replay"])

@@ -234,10 +234,12 @@ def test_control_runs_steps_and_pauses(client, net):
     assert net.tick == t
     assert client.post("/api/control", json={"state": "realtime"}).json()["state"] == \
         "realtime"
-    client.post("/api/control", json={"state": "stop"})
-    assert _wait(lambda: not net.controller._thread.is_alive())
-    client.post("/api/control", json={"state": "step"})          # starts the loop again
-    assert _wait(lambda: net.tick == t + 1 or net.tick > t)
+    client.post("/api/control", json={"state": "pause"})
+    assert client.post("/api/control", json={"state": "stop"}).json()["state"] == "stop"
+    assert net.stopped and not net.controller.running              # the run has ended
+    client.post("/api/control", json={"state": "step"})            # and runs again from 0
+    again = client.app.state.ui.net
+    assert again is not net and _wait(lambda: again.tick == 1)
 
 
 def test_control_bad_requests(client, net):

@@ -10,7 +10,7 @@ import pytest
 
 from ikaros.errors import ModelError
 from ikaros.module import WARNING, EXCEPTION
-from ikaros.testing import load_body as load
+from ikaros.testing import load_body as load, step_until
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))))))
@@ -30,15 +30,6 @@ def server_body(port, source='<module class="Sweep" name="S" min="0" max="1000" 
 
 def client_body(port, attrs=""):
     return f'<module class="IPCClient" name="Client" port="{port}" {attrs}/>'
-
-
-def step_until(nets, condition, seconds=5.0):
-    """Step every network until condition() holds; fail after ``seconds``."""
-    deadline = time.monotonic() + seconds
-    while not condition():
-        assert time.monotonic() < deadline, "timed out"
-        for net in nets:
-            net.step()
 
 
 def messages(net, level):

@@ -14,11 +14,21 @@ RATE = 8000
 
 
 class FakeStream:
-    def __init__(self, samplerate, channels, callback, device=None):
-        self.samplerate, self.channels, self.callback = samplerate, channels, callback
-        self.device = device
-        self.closed = False
+    """Stands in for sounddevice's OutputStream and InputStream."""
+
+    def __init__(self, samplerate, channels, dtype, callback, device=None):
+        assert dtype == "float32"
+        self.samplerate, self.channels, self.device = samplerate, channels, device
+        self._callback = callback
+        self.started = self.closed = False
         STREAMS.append(self)
+
+    def start(self):
+        self.started = True
+
+    def callback(self, data):
+        """What the audio thread does with each block."""
+        self._callback(data, len(data), None, None)
 
     def pull(self, frames):
         out = np.zeros((frames, self.channels), np.float32)
@@ -35,8 +45,8 @@ STREAMS = []
 @pytest.fixture
 def streams(monkeypatch):
     STREAMS.clear()
-    monkeypatch.setattr(_audio, "open_output_stream", FakeStream)
-    monkeypatch.setattr(_audio, "open_input_stream", FakeStream)
+    fake = type("sounddevice", (), {"OutputStream": FakeStream, "InputStream": FakeStream})
+    monkeypatch.setattr(_audio, "_sounddevice", lambda: fake)
     return STREAMS
 
 
@@ -55,6 +65,7 @@ def test_a_rise_plays_a_sound_and_playing_says_so(tmp_path, streams):
     try:
         stream = streams[0]
         assert (stream.samplerate, stream.channels, stream.device) == (RATE, 2, 3)
+        assert stream.started
         net.step()
         assert net.output("S.PLAYING").tolist() == [0, 0]
         assert not stream.pull(10).any()
@@ -102,15 +113,26 @@ def test_sound_output_errors(tmp_path, streams):
                        '<connection source="C.OUTPUT" target="S.INPUT"/>')
 
 
-def test_no_audio_device_is_a_clear_load_error(tmp_path, monkeypatch):
-    def no_portaudio(*args, **kwargs):
+@pytest.mark.parametrize("module, message", [
+    ('<module class="Constant" name="C" data="1"/><module class="SoundOutput" name="S" '
+     'sounds="a.wav" device="3"/><connection source="C.OUTPUT" target="S.INPUT"/>',
+     "cannot open the sound output: PortAudio library not found .*libportaudio2"),
+    ('<module class="InputSound" name="M" device="3"/>',
+     "cannot open the microphone: PortAudio library not found .*libportaudio2")],
+    ids=["output", "microphone"])
+def test_no_audio_device_is_a_clear_load_error(tmp_path, monkeypatch, module, message):
+    devices = []
+
+    def no_portaudio(**settings):
+        devices.append(settings["device"])
         raise OSError("PortAudio library not found")
-    monkeypatch.setattr(_audio, "open_output_stream", no_portaudio)
+    fake = type("sounddevice", (), {"OutputStream": staticmethod(no_portaudio),
+                                    "InputStream": staticmethod(no_portaudio)})
+    monkeypatch.setattr(_audio, "_sounddevice", lambda: fake)
     write(tmp_path / "a.wav", np.zeros(10))
-    with pytest.raises(ModelError, match="cannot open the sound output.*libportaudio2"):
-        load(tmp_path, '<module class="Constant" name="C" data="1"/>'
-                       '<module class="SoundOutput" name="S" sounds="a.wav"/>'
-                       '<connection source="C.OUTPUT" target="S.INPUT"/>')
+    with pytest.raises(ModelError, match=message):
+        load(tmp_path, module)
+    assert devices == [3]                       # a number names the device by its index
 
 
 def test_a_file_is_read_block_by_block_with_a_level(tmp_path):

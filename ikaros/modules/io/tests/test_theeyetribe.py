@@ -8,7 +8,7 @@ from ikaros.errors import ModelError
 from ikaros.hardware.eyetribe import HEARTBEAT, PUSH_REQUEST, messages
 from ikaros.hardware.eyetribe_sim import SimulatedEyeTribe, frame
 from ikaros.module import WARNING
-from ikaros.testing import load_body as load
+from ikaros.testing import load_body as load, step_until
 
 
 @pytest.fixture
@@ -16,14 +16,6 @@ def tracker():
     sim = SimulatedEyeTribe()
     yield sim
     sim.close()
-
-
-def step_until(net, condition, seconds=5.0):
-    deadline = time.monotonic() + seconds
-    while not condition():
-        assert time.monotonic() < deadline, "timed out"
-        net.step()
-        time.sleep(0.005)
 
 
 def test_frames_reach_the_outputs(tmp_path, tracker):

@@ -1,28 +1,21 @@
 """Tests of TouchBoard against a simulated board on a pseudo-terminal, and of
 TouchBoardGraph."""
-import time
+import threading
 
 import pytest
+import serial
 
 from ikaros.errors import ModelError
+from ikaros.hardware.pty_device import PtyDevice
 from ikaros.hardware.touchboard import DataStreamReader, parse_line
 from ikaros.hardware.touchboard_sim import SimulatedTouchBoard
-from ikaros.testing import load_body as load
+from ikaros.testing import load_body as load, step_until
 
 
 @pytest.fixture
 def board():
-    sim = SimulatedTouchBoard()
-    yield sim
-    sim.close()
-
-
-def step_until(net, condition, seconds=5.0):
-    deadline = time.monotonic() + seconds
-    while not condition():
-        assert time.monotonic() < deadline, "timed out"
-        net.step()
-        time.sleep(0.002)
+    with SimulatedTouchBoard() as sim:
+        yield sim
 
 
 def test_values_and_touches_come_from_the_board(tmp_path, board):
@@ -30,8 +23,8 @@ def test_values_and_touches_come_from_the_board(tmp_path, board):
     board.set("FDAT", fdat)
     board.set("DIFF", [5] * 13)
     board.set("TOUCH", [0, 1] + [0] * 10 + [1])
-    net = load(tmp_path, f'<module class="TouchBoard" name="T" port="{board.port}"/>'
-                         f'<module class="TouchBoard" name="D" port="{board.port}" '
+    net = load(tmp_path, f'<module class="TouchBoard" name="T" port="{board.path}"/>'
+                         f'<module class="TouchBoard" name="D" port="{board.path}" '
                          f'data="DIFF" electrodes="13"/>')
     try:
         assert net.output("T.OUTPUT").shape == (11,)
@@ -50,6 +43,23 @@ def test_values_and_touches_come_from_the_board(tmp_path, board):
 def test_a_port_that_cannot_be_opened_is_a_load_error(tmp_path):
     with pytest.raises(ModelError, match='cannot open the Touch Board\'s port "/no/such"'):
         load(tmp_path, '<module class="TouchBoard" name="T" port="/no/such"/>')
+
+
+def test_the_simulated_board_streams_on_its_pseudo_terminal_until_stopped():
+    board = SimulatedTouchBoard(interval=0.005)
+    assert isinstance(board, PtyDevice)
+    with board:
+        board.set("TOUCH", [1] * 13)
+        port = serial.Serial(board.path, 115200, timeout=1.0)
+        try:
+            reader, lines = DataStreamReader(), []
+            while ("TOUCH", [1] * 13) not in lines:
+                chunk = port.read(256)
+                assert chunk, "the board sent nothing"
+                lines += reader.feed(chunk)
+        finally:
+            port.close()
+    assert "touchboard-sim-stream" not in [t.name for t in threading.enumerate()]
 
 
 def test_the_datastream_lines_are_parsed_across_reads():

@@ -11,7 +11,7 @@ import pytest
 
 from ikaros.errors import ModelError, RunError
 from ikaros.hardware.dynamixel.simulator import VirtualDynamixelBus
-from ikaros.testing import load_body
+from ikaros.testing import load_body, wait_for
 
 XM = "XM430-W350"
 
@@ -27,13 +27,6 @@ def model(tmp_path, device, goals="200 0 90", params="", extra=""):
 def bus():
     with VirtualDynamixelBus({1: XM, 2: XM, 4: "XL430-W250"}, 2) as sim:
         yield sim
-
-
-def wait_for(condition, seconds=2.0):
-    deadline = time.monotonic() + seconds
-    while not condition() and time.monotonic() < deadline:
-        time.sleep(0.01)
-    return condition()
 
 
 def test_nothing_moves_at_start_up_and_goals_reach_the_servos(tmp_path, bus):
@@ -261,21 +254,26 @@ def test_the_web_ui_stop_button_leaves_the_servos_safe(tmp_path, bus):
     from starlette.testclient import TestClient
 
     from ikaros.webui.server import create_app
-    net = model(tmp_path, bus.path, goals="200", params='servo_id="1" watchdog="0.3"')
+    net = model(tmp_path, bus.path, goals="200", params='servo_id="1" watchdog="60"')
+    app = create_app(net)
     try:
-        with TestClient(create_app(net)) as client:
+        with TestClient(app) as client:
             assert client.post("/api/control", json={"state": "play"}).status_code == 200
             assert wait_for(lambda: bus.servo(1).torque, 5.0)
-            client.post("/api/control", json={"state": "stop"})
-            assert wait_for(lambda: not bus.servo(1).torque, 3.0)             # by the watchdog
-            client.post("/api/control", json={"state": "play"})             # and back under control
-            assert wait_for(lambda: bus.servo(1).torque, 5.0)
             client.post("/api/control", json={"state": "pause"})
+            time.sleep(0.1)
+            assert bus.servo(1).torque                          # paused: held until the watchdog
+            assert client.post("/api/control", json={"state": "stop"}).status_code == 200
+            assert not bus.servo(1).torque                      # stopped: safe at once
+            client.post("/api/control", json={"state": "play"})     # the model runs again
+            assert wait_for(lambda: bus.servo(1).torque, 5.0)
+            client.post("/api/control", json={"state": "stop"})
+            assert not bus.servo(1).torque
     finally:
-        net.controller.stop()
-        net.controller.join(5)
-        net.close()
-    assert not bus.servo(1).torque
+        for each in {net, app.state.ui.net}:
+            each.controller.stop()
+            each.controller.join(5)
+            each.close()
 
 
 def test_the_safe_state_command_holds_until_resume(tmp_path, bus):

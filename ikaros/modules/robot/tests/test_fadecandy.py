@@ -9,7 +9,7 @@ import pytest
 
 from ikaros.errors import ModelError, RunError
 from ikaros.hardware.opc_sim import VirtualOPCServer
-from ikaros.testing import load_body
+from ikaros.testing import load_body, wait_for
 
 CHANNELS = '<channel name="EYES" channel="1" size="3"/><channel name="MOUTH" channel="2" size="2"/>'
 
@@ -22,13 +22,6 @@ def model(tmp_path, address, params='start_server="no"', channels=CHANNELS):
             '<connection source="R.OUTPUT" target="LED.EYES_RED" delay="0"/>\n'
             '<connection source="B.OUTPUT" target="LED.MOUTH_BLUE" delay="0"/>')
     return load_body(tmp_path, body)
-
-
-def wait_for(condition, seconds=1.0):
-    deadline = time.monotonic() + seconds
-    while not condition() and time.monotonic() < deadline:
-        time.sleep(0.005)
-    return condition()
 
 
 def test_channels_become_inputs_and_pixels_arrive(tmp_path):
