@@ -60,7 +60,7 @@ def build_tree(tree, filename: str, *, strict: bool = False, lenient: bool = Fal
     registry = None
     if classes:
         import os
-        from .model.registry import CodeClassRegistry
+        from .kernel.codeclasses import CodeClassRegistry
         registry = CodeClassRegistry([os.path.dirname(os.path.abspath(filename))], classes)
     return Builder(filename, overrides, model=tree, diagnostics=diagnostics, limits=limits,
                    registry=registry).build()

@@ -41,6 +41,7 @@ class Network:
         self.diagnostics = builder.diagnostics        # the load's settings and warnings
         self.warnings = builder.diagnostics.warnings   # load-time warnings (ModelWarning)
         self._overrides = builder.overrides
+        self.limits = builder.limits
         self.top = top
         self.clock = builder.clock
         self.schedule = order
@@ -473,6 +474,15 @@ class Network:
             change()
         else:
             job.apply(change)
+
+    def apply(self, model) -> "Network":
+        """The network of ``model`` (an ``ikaros.Group``, or a model tree) taking over from
+        this one, as the editor's Apply does: modules that did not change keep their state
+        and the run goes on from this tick; this network is closed. When ``model`` does not
+        build, ModelError is raised and this network is unchanged. Returns the new network."""
+        from .carry import rebuild
+        tree, classes = model.model_tree() if hasattr(model, "model_tree") else (model, None)
+        return rebuild(self, tree, classes)
 
     def save(self, filename: str) -> None:
         """Write the model back as .ikg; loading it gives the same network."""

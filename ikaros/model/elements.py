@@ -392,10 +392,15 @@ class Group(_Ports, Element):
         """Build the network, as ``ikaros.load`` builds a file (same checks, same errors;
         an error names the line of the code that made the element)."""
         from .. import build_tree
+        tree, classes = self.model_tree()
+        return build_tree(tree, self._top().filename, strict=strict, lenient=lenient,
+                          quiet=quiet, max_memory=max_memory, classes=classes, **overrides)
+
+    def model_tree(self) -> tuple[Node, dict[str, type[Module]]]:
+        """A copy of the model tree, and the Module subclasses given in code by name (what
+        ``Network.apply`` builds)."""
         top = self._top()
-        return build_tree(top.node.copy(), top.filename, strict=strict, lenient=lenient,
-                          quiet=quiet, max_memory=max_memory, classes=top._classes,
-                          **overrides)
+        return top.node.copy(), dict(top._classes)
 
     def _repr_html_(self) -> str:
         from .html import model_html

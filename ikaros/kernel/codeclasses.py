@@ -2,7 +2,7 @@
 before the model's folders, installed packages and the standard library."""
 from __future__ import annotations
 
-from ..kernel.classes import ClassEntry, ClassRegistry
+from .classes import ClassEntry, ClassRegistry
 from ..module import Module
 
 
