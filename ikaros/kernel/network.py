@@ -329,7 +329,21 @@ class Network:
         with ``real_time``). Without ``ticks``, run until the model's ``stop`` tick, end of
         file or an error. Returns ``tick``, the ticks completed so far."""
         self._check_running()
-        return self.controller.run(REALTIME if real_time else PLAY, ticks)
+        mode = REALTIME if real_time else PLAY
+        from ..notebook import in_notebook, run_with_progress
+        if ticks is not None and ticks > 1 and in_notebook():   # a progress bar in the cell
+            return run_with_progress(self, lambda: self.controller.run(mode, ticks), ticks)
+        return self.controller.run(mode, ticks)
+
+    def show(self, width: int | str = "100%", height: int = 600):
+        """Show the web UI's views of this network in a notebook cell (served on 127.0.0.1
+        by a background thread that stops with the kernel)."""
+        from ..notebook import show
+        return show(self, width, height)
+
+    def _repr_html_(self) -> str:
+        from ..notebook import network_html
+        return network_html(self)
 
     @property
     def controller(self) -> Controller:

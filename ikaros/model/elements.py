@@ -403,7 +403,7 @@ class Group(_Ports, Element):
         return top.node.copy(), dict(top._classes)
 
     def _repr_html_(self) -> str:
-        from .html import model_html
+        from ..notebook import model_html
         return model_html(self)
 
 
