@@ -115,7 +115,7 @@ class Port:
         while element is not seen_from:
             if element.parent is None:
                 raise ModelError(f'{self} is not inside group "{seen_from.name}": connect it '
-                                 f'in a group that holds both ends')
+                                 f'in a group that holds both ends', *caller())
             names.append(element.name)
             element = element.parent
         return ".".join(reversed(names)) + "." + self.name + self.selector

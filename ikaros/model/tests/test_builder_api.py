@@ -196,3 +196,30 @@ def test_selectors_must_be_whole_numbers_or_ranges():
         c.OUTPUT["a"]
     with pytest.raises(ValueError):
         c.OUTPUT[1:]
+
+
+def test_connecting_a_port_from_outside_the_group_names_the_line():
+    model = ikaros.Group("M")
+    inner = model.group("Inner")
+    c = model.module("Constant", "C", data="1")
+    s = inner.module("Scale", "S")
+    line = here() + 2
+    with pytest.raises(ikaros.ModelError) as e:
+        inner.connect(c.OUTPUT, s.INPUT)
+    assert e.value.line == line and 'not inside group "Inner"' in str(e.value)
+
+
+def test_an_element_read_from_a_file_keeps_its_file_line(tmp_path):
+    path = tmp_path / "m.ikg"
+    path.write_text('<?xml version="1.0"?>\n<group name="M">\n'
+                    '    <module class="Nope" name="X"/>\n</group>\n')
+    model = ikaros.Group.read(str(path))
+    with pytest.raises(ikaros.ModelError) as e:
+        model.build()
+    assert (e.value.filename, e.value.line) == (str(path), 3)
+    model.remove("X")
+    line = here() + 1
+    model.module("AlsoNope", "Y")
+    with pytest.raises(ikaros.ModelError) as e:
+        model.build()
+    assert (e.value.filename, e.value.line) == (__file__, line)
