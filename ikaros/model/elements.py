@@ -26,7 +26,19 @@ def caller() -> tuple[str | None, int | None]:
     if frame is None:
         return None, None
     file = frame.f_code.co_filename
+    cell = _notebook_cell(file)
+    if cell is not None:
+        return cell, frame.f_lineno
     return (file if file.startswith("<") else os.path.abspath(file)), frame.f_lineno
+
+
+def _notebook_cell(file: str) -> str | None:
+    """How IPython names the cell that ``file`` stands for (``Cell In[3]``), if it is one."""
+    ipython = sys.modules.get("IPython")
+    shell = ipython.get_ipython() if ipython is not None else None
+    name = getattr(getattr(shell, "compile", None), "format_code_name", None)
+    label = name(file) if name is not None else None
+    return f"{label[0]} {label[1]}" if label else None
 
 
 def _text(value: Any) -> str:

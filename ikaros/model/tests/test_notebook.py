@@ -1,6 +1,7 @@
 """Notebooks: HTML tables, the web UI in a cell, a progress bar, and the example notebook
 run top to bottom."""
 import os
+import re
 
 import httpx
 import pytest
@@ -86,3 +87,6 @@ def test_the_example_notebook_runs_top_to_bottom():
     assert any("ikaros model PIDSweep" in h for h in html)
     assert any("<iframe src=\"http://127.0.0.1:" in h for h in html)
     assert any("image/png" in o.get("data", {}) for o in outputs)
+    printed = "".join(o.get("text", "") for o in outputs if o.output_type == "stream")
+    assert re.search(r'Cell In\[\d+\]:2: <module name="PID">: parameter "Kp" of PID: '
+                     r'"fast" is not a number', printed), printed
