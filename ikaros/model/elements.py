@@ -150,12 +150,22 @@ def _selector(key) -> str:
 
 
 class _Ports:
-    """Ports as attributes: ``element.OUTPUT``."""
+    """Ports as attributes: ``element.OUTPUT`` (``element.port("name")`` for a port whose
+    name is also a method's)."""
 
     def __getattr__(self, name: str) -> Port:
         if name.startswith("_"):
             raise AttributeError(name)
         return Port(self, name)
+
+    def port(self, name: str) -> Port:
+        return Port(self, name)
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | set(self._port_names()))
+
+    def _port_names(self) -> list[str]:
+        return []
 
 
 class ModuleElement(_Ports, Element):
@@ -165,6 +175,23 @@ class ModuleElement(_Ports, Element):
     @property
     def class_name(self) -> str:
         return self.node.attrs.get("class", "")
+
+    def _port_names(self) -> list[str]:
+        """The ports its class declares (for completion in notebooks), when it is found."""
+        from ..kernel.classes import ClassRegistry
+        top = self.parent._top() if self.parent is not None else None
+        cls = top._classes.get(self.class_name) if top is not None else None
+        try:
+            if cls is None:
+                folder = os.path.dirname(top.filename) if top is not None else os.getcwd()
+                entry = ClassRegistry([folder]).find(self.class_name)
+                if entry is None or entry.is_group:
+                    return []
+                cls = entry.module_class()
+            desc = cls.description
+        except (ModelError, ImportError):
+            return []
+        return [p.name for p in list(desc.inputs) + list(desc.outputs)]
 
 
 class Connection(Element):

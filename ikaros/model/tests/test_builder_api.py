@@ -223,3 +223,13 @@ def test_an_element_read_from_a_file_keeps_its_file_line(tmp_path):
     with pytest.raises(ikaros.ModelError) as e:
         model.build()
     assert (e.value.filename, e.value.line) == (__file__, line)
+
+
+def test_ports_are_listed_for_completion_and_reached_by_name():
+    model = ikaros.Group("M")
+    pid = model.module("PIDController", "PID")
+    double = model.module(Doubler, "D")
+    assert {"INPUT", "SETPOINT", "OUTPUT", "GATED"} <= set(dir(pid))
+    assert {"INPUT", "OUTPUT", "set", "connect"} - set(dir(double)) == {"connect"}
+    assert "OUTPUT" not in dir(model.module("NoSuchClass", "X"))
+    assert pid.port("set").name == "set" and pid.port("set").address(model) == "PID.set"
