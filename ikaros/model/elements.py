@@ -5,6 +5,7 @@ as a file is. An element made in code records the Python file and line that made
 errors name them."""
 from __future__ import annotations
 
+import functools
 import os
 import sys
 from typing import Any, Iterator
@@ -20,16 +21,28 @@ _HERE = os.path.dirname(os.path.abspath(__file__))
 def caller() -> tuple[str | None, int | None]:
     """The file and line of the user's code that called into this package."""
     frame = sys._getframe(1)
-    while frame is not None and os.path.dirname(
-            os.path.abspath(frame.f_code.co_filename)) == _HERE:
+    while frame is not None and _is_ours(frame.f_code.co_filename):
         frame = frame.f_back
     if frame is None:
         return None, None
-    file = frame.f_code.co_filename
+    return _where(frame.f_code.co_filename), frame.f_lineno
+
+
+@functools.lru_cache(maxsize=256)
+def _is_ours(file: str) -> bool:
+    return os.path.dirname(os.path.abspath(file)) == _HERE
+
+
+def _where(file: str) -> str:
     cell = _notebook_cell(file)
     if cell is not None:
-        return cell, frame.f_lineno
-    return (file if file.startswith("<") else os.path.abspath(file)), frame.f_lineno
+        return cell
+    return file if file.startswith("<") else _absolute(file)
+
+
+@functools.lru_cache(maxsize=256)
+def _absolute(file: str) -> str:
+    return os.path.abspath(file)
 
 
 def _notebook_cell(file: str) -> str | None:
