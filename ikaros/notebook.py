@@ -121,7 +121,10 @@ class WebView:
 
 
 def show(net, width: int | str = "100%", height: int = 600) -> WebView:
-    """Serve the web UI of ``net`` (once per network) and show it in the cell."""
+    """Serve the web UI of ``net`` (once per network) and show it in the cell. The servers
+    of networks that have ended (closed, or replaced by ``net.apply``) are stopped."""
+    for old in [v for v in _SERVERS.values() if v.net.stopped and v.net is not net]:
+        old.stop()
     view = _SERVERS.get(id(net))
     if view is None or not view.running:
         view = _SERVERS[id(net)] = WebView(net, width, height)

@@ -63,6 +63,19 @@ def test_show_serves_the_web_ui_on_the_loopback_until_stopped():
         httpx.get(view.url + "api/status", timeout=2)
 
 
+def test_showing_a_network_stops_the_servers_of_ended_ones():
+    model = small_model()
+    net = model.build()
+    first = net.show()
+    net = net.apply(model)
+    second = net.show()
+    try:
+        assert not first.running and second.running and second is not first
+        assert httpx.get(second.url + "api/status", timeout=10).json()["tick"] == 0
+    finally:
+        second.stop()
+
+
 def test_run_shows_a_progress_bar_only_in_a_notebook(monkeypatch, capsys):
     net = small_model().build()
     net.run(ticks=5)
