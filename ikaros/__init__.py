@@ -4,6 +4,14 @@
     net = ikaros.load("model.ikg", gain=2)   # keyword overrides set top-group attributes
     net.run(ticks=100)
     print(net.output("Arm.PID.OUTPUT"))
+
+or in code:
+
+    model = ikaros.Group("Arm", tick_duration=0.01)
+    ramp = model.module("Sweep", "Ramp", step=0.1)
+    pid = model.module("PIDController", "PID", Kp=0.5)
+    model.connect(ramp.OUTPUT, pid.INPUT)
+    net = model.build()
 """
 from __future__ import annotations
 
@@ -12,10 +20,11 @@ from .errors import ModelError, RunError
 from .language.diagnostics import Diagnostics, ModelWarning
 from .kernel.classes import classes as _classes
 from .kernel.network import Network
+from .model import Group
 from .module import Input, Module, Output, Parameter
 
 __version__ = "0.1.0"
-__all__ = ["load", "classes", "Network", "Module", "Parameter", "Input", "Output",
+__all__ = ["load", "classes", "Group", "Network", "Module", "Parameter", "Input", "Output",
            "ModelError", "ModelWarning", "RunError", "ClassDescription", "open_recording",
            "sweep"]
 
@@ -41,6 +50,15 @@ def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
     does (they are errors by default). ``max_memory`` limits the memory of all buffers
     (bytes, or text such as ``"512M"``; default half the physical memory).
     """
+    return build_tree(None, filename, strict=strict, lenient=lenient, quiet=quiet,
+                      max_memory=max_memory, **overrides)
+
+
+def build_tree(tree, filename: str, *, strict: bool = False, lenient: bool = False,
+               quiet: bool = False, max_memory: int | str | None = None,
+               classes: dict | None = None, **overrides) -> Network:
+    """Build a model tree (``tree``, or the file ``filename`` read when it is None) as
+    ``load`` does. ``classes`` are Module subclasses given in code, by class name."""
     from .kernel.builder import Builder
     from .limits import LimitError, Limits
     try:
@@ -48,8 +66,13 @@ def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
     except LimitError as e:
         raise ModelError(f"max_memory: {e}") from None
     diagnostics = Diagnostics(strict=strict, lenient=lenient, quiet=quiet)
-    return Builder(filename, overrides, diagnostics=diagnostics, limits=limits,
-                   network_factory=_network).build()
+    registry = None
+    if classes:
+        import os
+        from .kernel.codeclasses import CodeClassRegistry
+        registry = CodeClassRegistry([os.path.dirname(os.path.abspath(filename))], classes)
+    return Builder(filename, overrides, model=tree, diagnostics=diagnostics, limits=limits,
+                   registry=registry, network_factory=_network).build()
 
 
 def _network(*built) -> Network:

@@ -61,3 +61,19 @@ def wait_for(condition: Callable[[], object], seconds: float = 2.0,
         if time.monotonic() >= deadline:
             return False
         time.sleep(pause)
+
+
+# Examples whose values differ from run to run whatever the kernel does: servos of a
+# simulator that move in real time, and OpenCV's float filters, which round the last bit
+# differently from run to run (docs/images.md) and so may tip a threshold.
+_NOT_REPEATABLE = {"epi.ikg", "lucs_arm.ikg", "arm_playback.ikg"}
+
+
+def repeatable_examples(root: str) -> list[str]:
+    """The example models below ``root/examples`` that give the same values on every run
+    (for tests that compare two runs tick by tick)."""
+    import glob
+    return sorted(p for p in glob.glob(os.path.join(root, "examples", "**", "*.ikg"),
+                                       recursive=True)
+                  if os.path.basename(p) not in _NOT_REPEATABLE
+                  and os.path.basename(os.path.dirname(p)) != "vision")

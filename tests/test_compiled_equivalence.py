@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import ikaros
+from ikaros.testing import repeatable_examples
 from ikaros.errors import RunError
 
 pytest.importorskip("numba", reason="the compiled tick needs numba (pip install ikaros[fast])")
@@ -18,15 +19,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CONFORMANCE = sorted(p for p in glob.glob(os.path.join(ROOT, "tests", "conformance", "models",
                                                        "*.ikg"))
                      if not os.path.basename(p).startswith("err_"))
-# Examples whose values differ from run to run whatever the kernel does are not compared:
-# servos of a simulator that move in real time, and OpenCV's float filters, which round the
-# last bit differently from run to run (docs/images.md) and so may tip a threshold. None of
-# their modules run in the compiled tick.
-NOT_REPEATABLE = {"epi.ikg", "lucs_arm.ikg", "arm_playback.ikg"}
-EXAMPLES = sorted(p for p in glob.glob(os.path.join(ROOT, "examples", "**", "*.ikg"),
-                                       recursive=True)
-                  if os.path.basename(p) not in NOT_REPEATABLE
-                  and os.path.basename(os.path.dirname(p)) != "vision")
+EXAMPLES = repeatable_examples(ROOT)
 TICKS = 12
 
 

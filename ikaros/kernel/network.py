@@ -43,6 +43,7 @@ class Network:
         self.diagnostics = builder.diagnostics        # the load's settings and warnings
         self.warnings = builder.diagnostics.warnings   # load-time warnings (ModelWarning)
         self._overrides = builder.overrides
+        self.limits = builder.limits
         self.top = top
         self.clock = builder.clock
         self.schedule = order
@@ -380,7 +381,21 @@ class Network:
         if record is not None:
             from ..experiments.memory import run_recorded
             return run_recorded(self, ticks, record, every, real_time)
-        return self.controller.run(REALTIME if real_time else PLAY, ticks)
+        mode = REALTIME if real_time else PLAY
+        from ..notebook import in_notebook, run_with_progress
+        if ticks is not None and ticks > 1 and in_notebook():   # a progress bar in the cell
+            return run_with_progress(self, lambda: self.controller.run(mode, ticks), ticks)
+        return self.controller.run(mode, ticks)
+
+    def show(self, width: int | str = "100%", height: int = 600):
+        """Show the web UI's views of this network in a notebook cell (served on 127.0.0.1
+        by a background thread that stops with the kernel)."""
+        from ..notebook import show
+        return show(self, width, height)
+
+    def _repr_html_(self) -> str:
+        from ..notebook import network_html
+        return network_html(self)
 
     def record(self, filename: str, only: list[str] | str | None = None, every: int = 1):
         """Record outputs (all, or those matching the glob patterns ``only``) every
@@ -538,6 +553,15 @@ class Network:
             change()
         else:
             job.apply(change)
+
+    def apply(self, model) -> "Network":
+        """The network of ``model`` (an ``ikaros.Group``, or a model tree) taking over from
+        this one, as the editor's Apply does: modules that did not change keep their state
+        and the run goes on from this tick; this network is closed. When ``model`` does not
+        build, ModelError is raised and this network is unchanged. Returns the new network."""
+        from .carry import rebuild
+        tree, classes = model.model_tree() if hasattr(model, "model_tree") else (model, None)
+        return rebuild(self, tree, classes)
 
     def save(self, filename: str) -> None:
         """Write the model back as .ikg; loading it gives the same network."""

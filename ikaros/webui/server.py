@@ -32,6 +32,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 from .. import access, limits
 from ..errors import ModelError, RunError
 from ..kernel.control import PAUSE, STATES, STEP, STOP
+from ..kernel.carry import take_over
 from ..language.writer import write_file
 from ..module import Module
 from . import editing
@@ -542,7 +543,7 @@ class WebUI:
                 return Json(editing.error_json(e), status_code=422)
             except BuildTimeout as e:
                 return Json({"error": str(e), "node": None, "path": None}, status_code=422)
-            await self._swap(new, state)
+            await self._swap(new, state, keep_state=True)
         return Json({"ok": True, "network": await self._call(network_json, self.net)})
 
     async def save(self, request: Request):
@@ -642,8 +643,10 @@ class WebUI:
             return new
         return await run_build(build, self.build_timeout)
 
-    async def _swap(self, new, state: str | None) -> None:
-        """Stop and close the running network; run ``new`` in its place."""
+    async def _swap(self, new, state: str | None, keep_state: bool = False) -> None:
+        """Stop and close the running network; run ``new`` in its place (with
+        ``keep_state``, going on from the old one's tick with the state of the modules that
+        did not change: an Apply)."""
         old, ctrl = self.net, self.net.controller
         alive = kernel_thread_alive(ctrl)
         previous = PAUSE if old.stopped or ctrl.state in (STOP, STEP) else ctrl.state
@@ -653,15 +656,14 @@ class WebUI:
         if ctrl.running:
             await run_in_threadpool(new.close)
             raise ApiError(500, "the running network did not stop within 30 s")
-        try:
+        if keep_state:
+            take_over(old, new)     # the modules that did not change keep their state
+        else:
             new.profiling = old.profiling
-        except Exception:
-            pass
+            new.controller.tick_hooks.extend(ctrl.tick_hooks)
+            ctrl.tick_hooks.clear()
         if self._cli_stop is not None:
             new.stop_tick = self._cli_stop
-        hooks = list(ctrl.tick_hooks)
-        ctrl.tick_hooks.clear()
-        new.controller.tick_hooks.extend(hooks)
         await run_in_threadpool(old.close)
         # the wiring: everything that read the old network reads the new one
         self.net = new

@@ -164,7 +164,7 @@ def test_build_a_model_from_nothing_and_save_it(tmp_path):
         # apply: the edited network runs
         page.click("#ed-apply")
         page.wait_for_function("() => document.querySelector('#editor-status').dataset.level === 'ok'")
-        assert "reset" in page.inner_text("#editor-status")
+        assert "kept their state" in page.inner_text("#editor-status")
         deadline = time.monotonic() + 20
         for n in (1, 2, 3):     # two connections of delay 1: the data is through at tick 3
             server.post("/api/control", {"state": "step"})

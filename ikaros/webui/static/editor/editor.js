@@ -72,7 +72,7 @@ export class Editor {
         button("ed-save", "Save", "save to the model's file", () => this.save());
         button("ed-save-as", "Save as…", "save as a new .ikg file", () => this.save(true));
         sep();
-        button("ed-apply", "Apply", "rebuild the network from the edited model (module state is reset)", () => this.apply());
+        button("ed-apply", "Apply", "rebuild the network from the edited model (modules that did not change keep their state)", () => this.apply());
         sep();
         this.undoButton = button("ed-undo", "Undo", "undo (Ctrl-Z)", () => this.model.undo());
         this.redoButton = button("ed-redo", "Redo", "redo (Ctrl-Shift-Z)", () => this.model.redo());
@@ -615,8 +615,8 @@ export class Editor {
             this.errors.clear();
             this.groupError = null;
             this.model.dirty = false;
-            this.setStatus("ok", "Applied: the network was rebuilt and runs from tick 0 (module state was reset).");
-            this.notify("info", "the edited network was applied: rebuilt, module state reset");
+            this.setStatus("ok", "Applied: the network was rebuilt and goes on from its tick; modules that did not change kept their state.");
+            this.notify("info", "the edited network was applied: rebuilt, unchanged modules kept their state");
             this.redraw();
             return true;
         } catch (e) {
