@@ -189,13 +189,15 @@ def openapi() -> dict:
                                      "maxLength": 100}}}, _CHANGED),
         "/api/openapi.json": _get("This description", obj),
     }
+    num_or_none = {"type": ["number", "null"]}
     schemas = {
         "Error": {"type": "object", "required": ["error"],
                   "properties": {"error": {"type": "string"}}},
         "Status": {"type": "object", "properties": {
             "state": {"enum": ["stop", "pause", "step", "play", "realtime"]},
             "tick": {"type": "integer"}, "tick_duration": num, "time": num, "elapsed": num,
-            "ticks_per_second": num, "actual_tick_duration": num, "lag": num, "lag_max": num,
+            "ticks_per_second": num_or_none, "ticks_per_second_mean": num_or_none,
+            "actual_tick_duration": num_or_none, "lag": num, "lag_max": num,
             "lag_p99": num, "resyncs": {"type": "integer"}, "cpu_usage": num, "idle": num,
             "file": {"type": "string"}}},
         "Network": {"type": "object", "properties": {

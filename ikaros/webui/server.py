@@ -38,6 +38,7 @@ from . import editing
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
+from .rates import RUNNING, TickRate
 from .guards import (DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, json_depth,
                      quiet_refused_websockets)
 from .openapi import openapi
@@ -304,6 +305,7 @@ class WebUI:
         self.build_timeout = build_timeout
         self.build_limits = build_limits
         self.logbook = LogBook(net)
+        self.rates = TickRate()
         self.hub = Hub(net, self.status, self.logbook, budget, max_rate, status_interval)
         self._classes = None
         self._changing = threading.Lock()       # one apply / open / new at a time
@@ -320,6 +322,10 @@ class WebUI:
         figures["file"] = os.path.basename(self.net.filename or "")
         if self.net.stopped:
             figures["state"] = "stop"
+        running = figures["state"] in RUNNING
+        figures.update(self.rates.sample(figures["tick"], running))
+        if not running:
+            figures["actual_tick_duration"] = None    # no tick is running to measure
         return figures
 
     def _module(self, path: str):
@@ -381,6 +387,7 @@ class WebUI:
         if net.stopped:
             raise ApiError(409, "the run has ended; apply, open or reload a model to run "
                                 "again")
+        self.status()                       # a rate sample at the change of state
         if state in ("step", "play", "realtime") and not kernel_thread_alive(ctrl):
             ctrl.start(state)
         else:

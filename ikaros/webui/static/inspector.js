@@ -13,6 +13,7 @@ const FIELDS = [
     ]],
     ["Timing", [
         ["ticks_per_second", "ticks/s", (s) => num(s.ticks_per_second, 1)],
+        ["ticks_per_second_mean", "ticks/s (run mean)", (s) => num(s.ticks_per_second_mean, 1)],
         ["tick_duration", "tick duration", (s) => ms(s.tick_duration)],
         ["actual_tick_duration", "actual duration", (s) => ms(s.actual_tick_duration)],
         ["lag", "lag", (s) => ms(s.lag)],

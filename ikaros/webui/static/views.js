@@ -20,9 +20,14 @@ export class ViewRenderer {
 
     async build() {
         let right = 0, bottom = 0;
+        const placed = [];
         for (const attrs of this.view.widgets || []) {
             const x = parseFloat(attrs.x ?? attrs._x) || 0, y = parseFloat(attrs.y ?? attrs._y) || 0;
             const w = parseFloat(attrs.width) || 200, h = parseFloat(attrs.height) || 200;
+            // A widget drawn over an earlier one is see-through (as in the original), so
+            // layered widgets (a path under markers) all show.
+            const overlay = placed.some((r) => x < r.x + r.w && r.x < x + w && y < r.y + r.h && r.y < y + h);
+            placed.push({ x, y, w, h });
             right = Math.max(right, x + w);
             bottom = Math.max(bottom, y + h);
             let widget;
@@ -37,6 +42,7 @@ export class ViewRenderer {
                 this.ctx.notify?.("warning", `${attrs.class}: ${e.message}`);
             }
             Object.assign(widget.el.style, { left: x + "px", top: y + "px", width: w + "px", height: h + "px" });
+            if (overlay) widget.el.classList.add("see-through");
             this.el.appendChild(widget.el);
             this.widgets.push(widget);
         }

@@ -21,9 +21,19 @@ export default class Button extends Widget {
         this.x = this.int(["xindex", "select_x", "x_index"], 0);
         this.y = this.int(["yindex", "select_y", "y_index"], 0);
         this.paramValue = null;
-        b.addEventListener("pointerdown", (e) => { if (e.button === 0) this.press(); });
-        b.addEventListener("pointerup", (e) => { if (e.button === 0) this.release(); });
-        b.addEventListener("keydown", (e) => { if (e.key === " " || e.key === "Enter") { e.preventDefault(); this.press(); this.release(); } });
+        // A push button is held between pointer down and up (wherever the pointer is let go:
+        // the pointer is captured) and is never shown as "on"; a toggle shows its parameter.
+        b.addEventListener("pointerdown", (e) => {
+            if (e.button !== 0) return;
+            b.setPointerCapture?.(e.pointerId);
+            this.held = true;
+            this.pressing = this.press();
+        });
+        const up = () => { if (this.held) { this.held = false; this.release(); } };
+        b.addEventListener("pointerup", up);
+        b.addEventListener("pointercancel", up);
+        b.addEventListener("lostpointercapture", up);
+        b.addEventListener("keydown", (e) => { if (e.key === " " || e.key === "Enter") { e.preventDefault(); this.pressing = this.press(); this.release(); } });
     }
 
     onValue() { return this.num(["value"], 1); }
@@ -45,6 +55,10 @@ export default class Button extends Widget {
                 v = Number(cur) === this.onValue() ? this.offValue() : this.onValue();
             }
             const [x, y] = this.element(this.paramValue);
+            if (this.type !== "toggle") {
+                await this.setParameter(param, v, x, y);
+                return;
+            }
             if (this.paramValue !== null) this.setParameters(new Map([[param, Widget.withElement(this.paramValue, x ?? 0, y ?? 0, v)]]));
             const a = await this.setParameter(param, v, x, y);
             if (a) this.setParameters(new Map([[param, a.value]]));
@@ -53,6 +67,7 @@ export default class Button extends Widget {
 
     async release() {
         this.button.classList.remove("pressed");
+        await this.pressing;                // the release is sent after the press
         if (this.button.disabled) return;
         const up = this.commandTarget("commandUp", "release_command", "command_up");
         if (up) await this.sendCommand(up, this.x, this.y, this.offValue());
@@ -68,7 +83,7 @@ export default class Button extends Widget {
 
     setParameters(values) {
         const p = this.path("parameter");
-        if (!values.has(p)) return;
+        if (this.type !== "toggle" || !values.has(p)) return;
         this.paramValue = values.get(p);
         const on = Number(Widget.element(this.paramValue, this.x, this.y)) === this.onValue();
         this.button.classList.toggle("on", on);

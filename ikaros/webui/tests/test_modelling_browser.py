@@ -1,0 +1,126 @@
+"""The web UI as a modelling tool (issue 16), in a real headless Chromium against the real
+server: each test loads one page and makes several checks on it, each of which failed
+before its fix. Screenshots go to a temporary folder (printed with -s)."""
+from __future__ import annotations
+
+import os
+import tempfile
+import time
+
+from browsing import ROOT, in_own_browser
+
+EXAMPLES = os.path.join(ROOT, "examples")
+DEMO = os.path.join(EXAMPLES, "demo.ikg")
+SHOTS = os.path.join(tempfile.gettempdir(), "ikaros-webui-shots")
+
+
+def shot(page, name):
+    os.makedirs(SHOTS, exist_ok=True)
+    page.screenshot(path=os.path.join(SHOTS, f"{name}.png"))
+
+
+def show_view(page, group: str, index: int):
+    page.click(f"#navigator a[data-group='{group}'][data-view='{index}']")
+    page.wait_for_function(
+        "([g, v]) => { const c = window.ikaros.built; return c && c.group === g && c.view === v; }",
+        arg=[group, index])
+
+
+def wait_for(predicate, timeout=10.0, what="condition"):
+    deadline = time.monotonic() + timeout
+    while not (value := predicate()):
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out waiting for {what}")
+        time.sleep(0.05)
+    return value
+
+
+def measured_rate(server, seconds=1.0):
+    t0, n0 = time.monotonic(), server.tick()
+    time.sleep(seconds)
+    return (server.tick() - n0) / (time.monotonic() - t0)
+
+
+def test_demo_rates_push_button_and_plots(tmp_path):
+    """ticks/s is the rate over the last second after a long pause (defect 1); a push button
+    bound to a parameter is released (defect 3)."""
+    def check(server, page):
+        show_view(page, "", 0)
+        page.click("#run-realtime")               # 50 ticks/s (tick_duration 0.02)
+        wait_for(lambda: server.tick() > 20, what="ticks")
+        page.click("#run-pause")
+        time.sleep(2.5)                           # paused time must not count
+        page.click("#run-realtime")
+        time.sleep(1.5)
+        real = measured_rate(server)
+        shown = float(page.inner_text("#sys-ticks_per_second"))
+        assert abs(shown - real) < 0.15 * real, (shown, real)
+        mean = float(page.inner_text("#sys-ticks_per_second_mean"))
+        assert abs(mean - 50) < 10, mean         # the run's mean leaves the pause out
+        page.click("#run-pause")
+        page.wait_for_function(
+            "() => document.querySelector('#sys-ticks_per_second').textContent === '-' && "
+            "document.querySelector('#sys-actual_tick_duration').textContent === '-'")
+
+        # defect 3: a push button is not left pressed
+        button = page.locator("button.button-control:has-text('Boost')")
+        box = button.bounding_box()
+        page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+        page.mouse.down()
+        wait_for(lambda: server.parameter("Boost.factor") == 3, what="Boost.factor = 3")
+        page.mouse.move(box["x"] + box["width"] + 60, box["y"] - 40)  # let go elsewhere
+        page.mouse.up()
+        wait_for(lambda: server.parameter("Boost.factor") == 1, what="Boost.factor = 1")
+        time.sleep(0.3)
+        assert button.get_attribute("aria-pressed") != "true"
+        assert "on" not in button.get_attribute("class").split()
+        assert "pressed" not in button.get_attribute("class").split()
+        shot(page, "demo-signals")
+
+    in_own_browser(DEMO, lambda s, p: None, check)
+
+
+def test_reaching_view_overlays_and_path_of_rows():
+    """Widgets drawn over others are see-through and the path draws an n x 2 chain
+    (defect 4)."""
+    def check(server, page):
+        show_view(page, "", 0)
+        server.step(3)
+        page.wait_for_function(
+            "(t) => window.ikaros.lastFrame && window.ikaros.lastFrame.tick >= t", arg=3)
+        time.sleep(0.2)
+        backgrounds = page.evaluate("""() => [...document.querySelectorAll('#view-host .widget')]
+            .slice(0, 4).map((w) => getComputedStyle(w).backgroundColor)""")
+        assert all(b in ("rgba(0, 0, 0, 0)", "transparent") for b in backgrounds[1:]), backgrounds
+        # the path (the first widget) draws the arm: dark pixels in its canvas
+        dark = page.evaluate("""() => {
+            const c = document.querySelector('#view-host .widget[data-widget="path"] canvas');
+            const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+            let n = 0;
+            for (let i = 0; i < d.length; i += 4) if (d[i + 3] > 200 && d[i] < 60 && d[i + 1] < 60) n++;
+            return n; }""")
+        assert dark > 200, dark
+        shot(page, "reaching")
+
+    in_own_browser(os.path.join(EXAMPLES, "planar_arm_reaching.ikg"), lambda s, p: None,
+                   check)
+
+
+def test_class_picker_ranks_the_exact_name_first_and_finds_by_description():
+    """Scale + Enter adds a Scale; "sine" finds FunctionGenerator (defect 5)."""
+    def check(server, page):
+        page.click("#toggle-editor")
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        page.click("#ed-add-module")
+        page.fill(".class-search", "sine")
+        page.wait_for_selector(".class-list li[data-class='FunctionGenerator']")
+        page.fill(".class-search", "")
+        page.type(".class-search", "Scale")
+        first = page.locator(".class-list li").first.get_attribute("data-class")
+        assert first == "Scale", first
+        page.press(".class-search", "Enter")
+        page.wait_for_selector("#editor-host rect.box[data-name='Scale']")
+        assert not page.errors, page.errors
+
+    in_own_browser(os.path.join(EXAMPLES, "modules", "Add_example.ikg"), lambda s, p: None,
+                   check)
