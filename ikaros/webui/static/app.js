@@ -142,7 +142,7 @@ class App {
             (g.groups || []).forEach(walk);
         };
         walk(this.network.top);
-        $("#file-name").textContent = this.network.file || "";
+        this.editor.showFileName(this.network.file);
         document.title = `ikaros – ${this.network.name || this.network.file || ""}`;
         const c = this.fromHash() || this.current || { group: "", view: 0 };
         await this.showView(c.group, c.view);

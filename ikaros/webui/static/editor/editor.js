@@ -128,6 +128,12 @@ export class Editor {
             error: (n) => this.errors.get(n) || null,
         });
         document.addEventListener("keydown", (e) => this.onKey(e));
+        // edits that are not on disk: the browser asks before the tab closes or reloads
+        window.addEventListener("beforeunload", (e) => {
+            if (!this.model.unsaved) return;
+            e.preventDefault();
+            e.returnValue = "";
+        });
     }
 
     async setActive(on) {
@@ -197,8 +203,17 @@ export class Editor {
     updateTitle() {
         this.undoButton.disabled = !this.model.canUndo();
         this.redoButton.disabled = !this.model.canRedo();
+        this.showFileName(this.app.network?.file);
+    }
+
+    /** The file name in the toolbar, with "•" while edits are not saved (Apply does not
+     *  save: the mark stays until Save). */
+    showFileName(networkFile) {
+        const el = document.querySelector("#file-name");
+        if (!this.model.tree) { el.textContent = networkFile || ""; return; }
         const name = this.model.file || "(not saved)";
-        document.querySelector("#file-name").textContent = name + (this.model.unsaved ? " •" : "");
+        el.textContent = name + (this.model.unsaved ? " •" : "");
+        el.title = this.model.unsaved ? "edits not saved to the file" : "";
     }
 
     /** Write the present positions of every box of the group into _x/_y (inside an edit). */
