@@ -153,7 +153,11 @@ def openapi() -> dict:
         "/api/model": _get("The model tree of the running network (for the editor)",
                            {"type": "object", "properties": {
                                "file": {"type": "string"}, "folder": {"type": "string"},
-                               "tree": _NODE}}),
+                               "tree": _NODE,
+                               "error": {"$ref": "#/components/schemas/ModelError",
+                                         "description": "only while the model the "
+                                                        "server started with fails to "
+                                                        "build: why, and where"}}}),
         "/api/apply": _editor_post(
             "Rebuild the network from an edited tree and run it from tick 0 (module state "
             "is reset); an invalid tree changes nothing (422)",
@@ -202,7 +206,10 @@ def openapi() -> dict:
             "file": {"type": "string"}}},
         "Network": {"type": "object", "properties": {
             "file": {"type": "string"}, "name": {"type": "string"},
-            "top": {"$ref": "#/components/schemas/Group"}}},
+            "top": {"$ref": "#/components/schemas/Group"},
+            "build_error": {"type": "string", "description": "only while the model the "
+                            "server started with fails to build (an empty network of its "
+                            "name runs)"}}},
         "Group": {"type": "object", "properties": {
             "name": {"type": "string"}, "path": {"type": "string"},
             "groups": {"type": "array", "items": {"$ref": "#/components/schemas/Group"}},

@@ -293,8 +293,11 @@ class WebUI:
     def __init__(self, net, static_dir: str, budget: float, max_rate: float,
                  status_interval: float, models_dir: str | None = None,
                  build_timeout: float = DEFAULT_BUILD_TIMEOUT,
-                 build_limits: limits.Limits | None = None):
+                 build_limits: limits.Limits | None = None, failure: dict | None = None):
         self.net = net
+        # A model that failed to build (webui/broken.py): its tree and error, until a build
+        # from the editor succeeds.
+        self.failure = failure
         self.static_dir = os.path.abspath(static_dir)
         self.model_dir = os.path.dirname(os.path.abspath(net.filename)) if net.filename \
             else None
@@ -362,7 +365,10 @@ class WebUI:
 
     async def network(self, request: Request):
         _query(request)
-        return Json(await self._call(network_json, self.net))
+        out = await self._call(network_json, self.net)
+        if self.failure:
+            out["build_error"] = self.failure["error"]
+        return Json(out)
 
     async def classes(self, request: Request):
         _query(request)
@@ -495,6 +501,10 @@ class WebUI:
 
     def _model_json(self) -> dict:
         net = self.net
+        if self.failure:
+            f = self.failure
+            return {"file": f["file"], "folder": self._folder(), "tree": f["tree"],
+                    "error": {k: f[k] for k in ("error", "node", "path")}}
         tree = editing.tree_json(net.model, os.path.dirname(os.path.abspath(net.filename)))
         return {"file": os.path.basename(net.filename or ""), "folder": self._folder(),
                 "tree": tree}
@@ -649,6 +659,7 @@ class WebUI:
         await run_in_threadpool(old.close)
         # the wiring: everything that read the old network reads the new one
         self.net = new
+        self.failure = None
         self.logbook.net = new
         self.logbook._last = None
         hub = self.hub
@@ -774,7 +785,7 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
                status_interval: float = STATUS_INTERVAL,
                models_dir: str | None = None, max_body: int = DEFAULT_MAX_BODY,
                build_timeout: float = DEFAULT_BUILD_TIMEOUT,
-               max_memory: int | None = None) -> Starlette:
+               max_memory: int | None = None, failure: dict | None = None) -> Starlette:
     """The ASGI app serving ``net``. With ``token``, every request must carry it. With
     ``hosts``, requests whose ``Host`` names another host are refused (a guard against DNS
     rebinding when no token is required). ``budget`` is the time in seconds the kernel may
@@ -783,10 +794,11 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
     in (default: the model's folder). The editor may replace the running network:
     ``app.state.ui.net`` is the current one. ``max_body`` limits request bodies and
     WebSocket messages (bytes); the editor's builds are abandoned after ``build_timeout``
-    seconds and may use ``max_memory`` bytes of buffers."""
+    seconds and may use ``max_memory`` bytes of buffers. ``failure`` is a model that failed
+    to build (``webui.broken.open_broken``), shown in the editor."""
     build_limits = limits.Limits().with_memory(max_memory)
     ui = WebUI(net, static_dir or STATIC_DIR, budget, max_rate, status_interval, models_dir,
-               build_timeout, build_limits)
+               build_timeout, build_limits, failure)
     routes = [
         Route("/", ui.index, methods=["GET"]),
         Route("/api/network", ui.network, methods=["GET"]),

@@ -146,6 +146,8 @@ class App {
         document.title = `ikaros – ${this.network.name || this.network.file || ""}`;
         const c = this.fromHash() || this.current || { group: "", view: 0 };
         await this.showView(c.group, c.view);
+        // the model did not build: it is fixed in the editor
+        if (this.network.build_error && !this.editor.active) await this.editor.setActive(true);
     }
 
     findGroup(path, g = this.network?.top) {

@@ -62,3 +62,48 @@ def test_apply_keeps_the_unsaved_mark_and_closing_asks(tmp_path):
 
     in_own_browser(str(tmp_path / "add.ikg"), open_editor, check)
     assert 'name="Group"' in (tmp_path / "add.ikg").read_text()
+
+
+BROKEN = """<group name="Broken">
+    <module class="Constant" name="C" data="1 2"/>
+    <module class="Scale" name="S" factor="two"/>
+    <connection source="C.OUTPUT" target="S.INPUT"/>
+</group>
+"""
+
+
+def test_a_model_that_fails_to_build_opens_in_the_editor(tmp_path):
+    """Part 11: `ikaros broken.ikg` serves the editor with the error on the element at fault;
+    fixed there and applied, it runs. Batch mode still exits 1."""
+    from ikaros.cli import main
+    model = tmp_path / "broken.ikg"
+    model.write_text(BROKEN)
+    assert main(["-b", "-s", "2", str(model)]) == 1
+
+    def opened(server, page):
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+
+    def check(server, page):
+        assert server.get("/api/network")["build_error"].endswith('"two" is not a number '
+                                                                  '(unexpected "t" in "two")')
+        assert page.locator("body.editing").count() == 1       # the editor opened itself
+        bad = page.locator("#editor-host g.box-group.has-error")
+        bad.wait_for()
+        assert bad.get_attribute("data-name") == "S"
+        note = page.inner_text("#editor-host .error-note .editor-error")
+        assert 'parameter "factor" of S: "two" is not a number' in note
+        assert page.inner_text("#editor-status").startswith("Did not build: broken.ikg:3:")
+        page.screenshot(path=str(tmp_path / "broken.png"))
+        page.locator("#editor-host g.box-group[data-name='S'] rect.box").click()
+        field = page.locator("#editor-inspector [data-param='factor']")
+        field.fill("2")
+        field.press("Tab")
+        page.click("#ed-apply")
+        page.wait_for_function("() => document.querySelector('#editor-status').dataset.level === 'ok'")
+        assert "build_error" not in server.get("/api/network")
+        assert server.step(2) == 2
+        assert server.data("S.OUTPUT")["data"]["S.OUTPUT"] == [2, 4]
+        assert page.locator("#editor-host .error-note").count() == 0
+
+    in_own_browser(str(model), opened, no_errors(check))
+    assert model.read_text() == BROKEN            # Apply is not Save

@@ -162,6 +162,8 @@ export class Editor {
             this.errors.clear();
             this.groupError = null;
             if (!this.model.group(this.groupPath)) this.groupPath = "";
+            // the file did not build: its error on the element at fault
+            if (m.error) this.showError({ message: m.error.error, body: m.error }, "Did not build", " Fix it here, then Apply.");
         } catch (e) {
             this.setStatus("error", "model: " + e.message);
         }
@@ -640,8 +642,9 @@ export class Editor {
         }
     }
 
-    /** A 422 from apply or open: the error next to the element at fault. */
-    showError(e) {
+    /** A 422 from apply or open (or the file that did not build): the error next to the
+     *  element at fault. */
+    showError(e, what = "Not applied", then = " The previous network keeps running.") {
         this.errors.clear();
         this.groupError = null;
         const body = e.body || {};
@@ -663,7 +666,7 @@ export class Editor {
         } else {
             this.groupError = message;
         }
-        this.setStatus("error", "Not applied: " + message.replace(/\.?$/, ".") + " The previous network keeps running.");
+        this.setStatus("error", `${what}: ` + message.replace(/\.?$/, ".") + then);
         this.notify("error", message);
         this.render();
     }
