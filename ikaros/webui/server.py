@@ -16,6 +16,7 @@ import os
 import secrets
 import socket
 import threading
+from functools import partial
 from http.cookies import SimpleCookie
 from urllib.parse import parse_qs
 
@@ -35,6 +36,7 @@ from ..kernel.control import PAUSE, STATES, STEP, STOP
 from ..language.writer import write_file
 from ..module import Module
 from . import editing
+from . import state as run_tools
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
@@ -298,6 +300,7 @@ class WebUI:
         # A model that failed to build (webui/broken.py): its tree and error, until a build
         # from the editor succeeds.
         self.failure = failure
+        self.on_quit = None                     # set by serve(): ends the server
         self.static_dir = os.path.abspath(static_dir)
         self.model_dir = os.path.dirname(os.path.abspath(net.filename)) if net.filename \
             else None
@@ -323,6 +326,8 @@ class WebUI:
     def status(self) -> dict:
         figures = plain(self.net.controller.figures())
         figures["file"] = os.path.basename(self.net.filename or "")
+        stop = self.net.stop_tick
+        figures["stop_tick"] = stop if stop is not None and stop >= 0 else None
         if self.net.stopped:
             figures["state"] = "stop"
         running = figures["state"] in RUNNING
@@ -817,6 +822,10 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
         Route("/api/open", ui.open, methods=["POST"]),
         Route("/api/new", ui.new, methods=["POST"]),
         Route("/api/openapi.json", ui.openapi, methods=["GET"]),
+        Route("/api/state", partial(run_tools.state, ui), methods=["POST"]),
+        Route("/api/profiling", partial(run_tools.profiling, ui), methods=["GET", "POST"]),
+        Route("/api/startup", partial(run_tools.startup, ui), methods=["GET"]),
+        Route("/api/quit", partial(run_tools.quit_, ui), methods=["POST"]),
         WebSocketRoute("/api/ws", ui.websocket),
         Mount("/static", app=StaticFiles(directory=ui.static_dir, check_dir=False),
               name="static"),
@@ -913,6 +922,11 @@ def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = No
                             timeout_graceful_shutdown=3, ws_per_message_deflate=False,
                             ws_max_size=app_options.get("max_body", DEFAULT_MAX_BODY))
     server = uvicorn.Server(config)
+
+    def quit_server():
+        app.state.ui.net.controller.stop()
+        server.should_exit = True
+    app.state.ui.on_quit = quit_server
     quiet_refused_websockets()
     ctrl = net.controller
     previous_hook = threading.excepthook

@@ -42,10 +42,11 @@ class App {
         this.lastFrame = null;
         this.params = new Map();
         this.messages = new Messages($("#messages"));
-        this.system = new SystemInspector($("#system-inspector"));
+        this.system = new SystemInspector($("#system-inspector"), (l, m) => this.messages.local(l, m));
         this.controls = new Controls($("#controls"), {
             onStatus: (s) => this.showStatus(s),
             notify: (l, m) => this.messages.local(l, m),
+            scope: () => (this.editor?.active ? this.editor.selectedComponentPath() : null),
         });
         this.ctx = {
             groupPath: "",

@@ -107,3 +107,71 @@ def test_a_model_that_fails_to_build_opens_in_the_editor(tmp_path):
 
     in_own_browser(str(model), opened, no_errors(check))
     assert model.read_text() == BROKEN            # Apply is not Save
+
+
+RUN_MODEL = """<group name="Run" stop="300">
+    <module class="FunctionGenerator" name="F" type="ramp" frequency="0.01"/>
+    <module class="Scale" name="S" factor="2"/>
+    <connection source="F.OUTPUT" target="S.INPUT" delay="2"/>
+</group>
+"""
+
+
+def test_run_controls_state_profiling_startup_and_quit(tmp_path):
+    """Part 9: fast-forward, "n / N" with a progress bar, the run state in words, state
+    save / reset / load from the State menu, the profiling and start-up windows, quit."""
+    model = tmp_path / "run.ikg"
+    model.write_text(RUN_MODEL)
+
+    def state_item(page, item):
+        page.click("#state-menu > summary")
+        page.click(f"#{item}")
+
+    def check(server, page):
+        assert page.inner_text("#run-state") == "paused"
+        assert page.inner_text("#tick") == "0 / 300"
+        assert page.is_visible("#tick-progress")
+        page.click("#run-fastforward")
+        wait_for(lambda: server.get("/api/status")["state"] == "pause" and server.tick() == 300,
+                 what="the stop tick")
+        page.wait_for_function("() => document.querySelector('#tick').textContent === '300 / 300'")
+        assert page.get_attribute("#run-fastforward", "aria-pressed") == "false"
+        assert page.evaluate("document.querySelector('#tick-progress').value") == 1
+        page.wait_for_function("() => document.querySelector('#run-state').textContent === 'paused'")
+        after = server.data("F.OUTPUT", "S.OUTPUT")["data"]
+
+        state_item(page, "state-save")
+        page.fill("#state-file", "mine")
+        page.click("#dialog-ok")
+        wait_for(lambda: (tmp_path / "mine.state").exists(), what="the state file")
+        state_item(page, "state-reset")
+        page.wait_for_function("() => document.querySelector('#tick').textContent === '0 / 300'")
+        assert server.data("F.OUTPUT", "S.OUTPUT")["data"] == {"F.OUTPUT": [0], "S.OUTPUT": [0]}
+        page.click("#open-profiling")
+        page.click("#run-step")
+        page.click("#run-step")
+        page.wait_for_function("() => document.querySelectorAll('#profiling-table tbody tr').length === 2 && "
+                               "[...document.querySelectorAll('#profiling-table tbody tr')].every((r) => r.cells[2].textContent === '2')")
+        totals = page.eval_on_selector_all("#profiling-table tbody tr", "(rs) => rs.map((r) => parseFloat(r.cells[5].textContent))")
+        assert totals == sorted(totals, reverse=True)
+        page.wait_for_function("() => document.querySelector('#tick').textContent === '2 / 300'")
+        state_item(page, "state-load")
+        page.fill("#state-file", "mine.state")
+        page.click("#dialog-ok")
+        page.wait_for_function("() => document.querySelector('#tick').textContent === '300 / 300'")
+        assert server.data("F.OUTPUT", "S.OUTPUT")["data"] == after
+
+        page.click("#open-startup")
+        steps = page.eval_on_selector_all("#startup-table tbody tr", "(rs) => rs.map((r) => r.cells[0].textContent)")
+        assert steps[0] == "read the model file" and steps[-2:] == ["init of the modules", "total"]
+        page.screenshot(path=str(tmp_path / "run-tools.png"))
+        page.click("#startup-window button")
+        page.click("#profiling-window button")
+        assert server.get("/api/profiling")["on"] is False      # closed: measuring off
+
+        page.on("dialog", lambda d: d.accept())
+        state_item(page, "quit")
+        assert server.proc.wait(15) == 0                         # the server has ended
+        page.wait_for_function("() => document.body.dataset.quit === 'yes'")
+
+    in_own_browser(str(model), lambda s, p: None, no_errors(check))

@@ -482,6 +482,16 @@ export class Editor {
         this.render();
     }
 
+    /** The dotted path of the one module or group selected, or null (the scope of the
+     *  state menu's save, load and reset). */
+    selectedComponentPath() {
+        if (this.selection.size !== 1) return null;
+        const [n] = this.selection;
+        if (!isComponent(n)) return null;
+        const path = [this.groupPath, n.attrs.name].filter(Boolean).join(".");
+        return path || null;
+    }
+
     /** Open the group of a module (dotted path) and select the module. */
     selectPath(path) {
         const i = path.lastIndexOf(".");
