@@ -40,6 +40,7 @@ from . import state as run_tools
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
+from .history import MAX_POINTS
 from .rates import RUNNING, TickRate
 from .guards import (DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, json_depth,
                      quiet_refused_websockets)
@@ -749,11 +750,11 @@ class WebUI:
         elif kind == "ping":
             client.send_text({"type": "pong", "t": msg.get("t")})
         elif kind == "subscribe":
-            self.hub.subscribe(client, self._subscriptions(msg))
+            self.hub.subscribe(client, *self._subscriptions(msg))
         else:
             raise ApiError(400, f'unknown message type "{kind}" (subscribe, ready, ping)')
 
-    def _subscriptions(self, msg: dict) -> list[tuple[str, str]]:
+    def _subscriptions(self, msg: dict) -> tuple[list[tuple[str, str]], dict[str, int]]:
         for key in msg:
             if key not in ("type", "buffers"):
                 raise ApiError(400, f'unknown field "{key}" in subscribe')
@@ -762,13 +763,13 @@ class WebUI:
             raise ApiError(400, 'subscribe needs "buffers": a list of {"path", "format"}')
         if len(buffers) > MAX_SUBSCRIPTIONS:
             raise ApiError(400, f"at most {MAX_SUBSCRIPTIONS} buffers")
-        subs = []
+        subs, points = [], {}
         for b in buffers:
             if not isinstance(b, dict) or not isinstance(b.get("path"), str):
                 raise ApiError(400, 'each buffer must be {"path": "A.OUTPUT", "format": '
                                     '"raw"}')
             for key in b:
-                if key not in ("path", "format"):
+                if key not in ("path", "format", "points"):
                     raise ApiError(400, f'unknown field "{key}" in a buffer')
             path, fmt = b["path"].strip(), b.get("format", "raw")
             if fmt not in FORMATS:
@@ -780,8 +781,15 @@ class WebUI:
                 if not image_shape_ok(shape):
                     raise ApiError(400, f'"{path}" of shape {list(shape)} is not an image: '
                                         f'{fmt} needs (rows, cols) or (3, rows, cols)')
+            if "points" in b:
+                n = b["points"]
+                if fmt != "history" or not isinstance(n, int) or isinstance(n, bool) \
+                        or not 1 <= n <= MAX_POINTS:
+                    raise ApiError(400, f'"points" of "{path}" must be a whole number '
+                                        f'1..{MAX_POINTS}, with the format "history"')
+                points[path] = n
             subs.append((path, fmt))
-        return subs
+        return subs, points
 
 
 def create_app(net, token: str | None = None, static_dir: str | None = None, *,
