@@ -6,6 +6,7 @@ import { SystemInspector } from "./inspector.js";
 import { Messages } from "./messages.js";
 import { ModuleInspector } from "./module-inspector.js";
 import { Navigator } from "./navigator.js";
+import { Panes } from "./panes.js";
 import { ViewRenderer } from "./views.js";
 import { Editor } from "./editor/editor.js";
 
@@ -76,6 +77,7 @@ class App {
         $("#toggle-nav").addEventListener("click", () => document.body.classList.toggle("hide-nav"));
         $("#toggle-system").addEventListener("click", () => document.body.classList.toggle("hide-system"));
         $("#toggle-messages").addEventListener("click", () => document.body.classList.toggle("hide-messages"));
+        this.panes = new Panes();
         $("#clear-messages").addEventListener("click", () => this.messages.clear());
         window.addEventListener("hashchange", () => {
             const c = this.fromHash();
@@ -206,14 +208,21 @@ class App {
     views() { return [this.mainView, this.moduleInspector.view].filter(Boolean); }
 
     resubscribe() {
-        const seen = new Set();
+        const seen = new Map();
         const subs = [];
         for (const v of this.views()) {
             for (const s of v.subscriptions()) {
                 const key = s.path + "|" + s.format;
-                if (!s.path || seen.has(key)) continue;
-                seen.add(key);
-                subs.push({ path: s.path, format: s.format || "raw" });
+                if (!s.path) continue;
+                if (seen.has(key)) {        // a history shared by plots: the widest one's points
+                    const had = seen.get(key);
+                    if (s.points && had.points) had.points = Math.max(had.points, s.points);
+                    continue;
+                }
+                const sub = { path: s.path, format: s.format || "raw" };
+                if (s.points) sub.points = s.points;
+                seen.set(key, sub);
+                subs.push(sub);
             }
         }
         this.socket.subscribe(subs);
