@@ -5,7 +5,8 @@ import { api, postJSON } from "./api.js";
 import { ask } from "./editor/files.js";
 
 export const STATES = ["stop", "pause", "step", "play", "fastforward", "realtime"];
-const LABELS = { stop: "■ Stop", pause: "❚❚ Pause", step: "▶❚ Step", play: "▶ Play", fastforward: "▶▶ Fast", realtime: "◷ Real time" };
+const ICONS = { stop: "■", pause: "❚❚", step: "▶❚", play: "▶", fastforward: "▶▶", realtime: "◷" };
+const LABELS = { stop: "Stop", pause: "Pause", step: "Step", play: "Play", fastforward: "Fast", realtime: "Real time" };
 const TITLES = {
     stop: "stop the run loop", pause: "pause after the current tick", step: "run one tick",
     play: "run as fast as possible", fastforward: "run as fast as possible, showing data only ten times a second",
@@ -14,13 +15,24 @@ const TITLES = {
 // the run state in words (shown beside the buttons, not by colour alone)
 export const STATE_TEXT = { stop: "stopped", pause: "paused", step: "stepping", play: "playing", fastforward: "fast-forward", realtime: "real time" };
 
-function button(parent, id, text, title, fn) {
+function button(parent, id, text, title, fn, icon = "") {
     const b = document.createElement("button");
     b.id = id;
     b.className = "run-button";
-    b.textContent = text;
+    if (icon) {
+        // the word hides in a narrow window; the icon and the name stay
+        const i = document.createElement("span");
+        i.setAttribute("aria-hidden", "true");
+        i.textContent = icon;
+        const w = document.createElement("span");
+        w.className = "run-label";
+        w.textContent = " " + text;
+        b.append(i, w);
+        b.setAttribute("aria-label", text);
+    } else {
+        b.textContent = text;
+    }
     b.title = title;
-    b.setAttribute("aria-label", title);
     b.addEventListener("click", fn);
     parent.appendChild(b);
     return b;
@@ -37,7 +49,7 @@ export class Controls {
         el.setAttribute("role", "group");
         el.setAttribute("aria-label", "run controls");
         for (const state of STATES) {
-            const b = button(el, "run-" + state, LABELS[state], TITLES[state], () => this.send(state));
+            const b = button(el, "run-" + state, LABELS[state], TITLES[state], () => this.send(state), ICONS[state]);
             b.dataset.state = state;
             b.setAttribute("aria-pressed", "false");
             this.buttons[state] = b;
@@ -52,6 +64,7 @@ export class Controls {
         this.tick.id = "tick";
         this.tick.className = "tick-counter";
         this.tick.title = "tick";
+        this.tick.setAttribute("aria-label", "tick");
         this.tick.textContent = "-";
         el.appendChild(this.tick);
         this.progress = document.createElement("progress");

@@ -4,21 +4,23 @@ import { getJSON, postJSON } from "./api.js";
 
 const ms = (s) => (s * 1000).toFixed(3);
 
-function table(headers, rows, id) {
+/** A table whose first textColumns columns are text (left) and the rest numbers (right). */
+function table(headers, rows, id, textColumns = 1) {
     const t = document.createElement("table");
     t.className = "inspector-table tool-window-table";
     t.id = id;
     const head = t.createTHead().insertRow();
-    for (const h of headers) {
+    for (const [i, h] of headers.entries()) {
         const th = document.createElement("th");
         th.scope = "col";
         th.textContent = h;
+        if (i >= textColumns) th.className = "value";
         head.appendChild(th);
     }
     const body = t.createTBody();
     for (const r of rows) {
         const tr = body.insertRow();
-        r.forEach((v, i) => { const td = tr.insertCell(); td.textContent = v; if (i) td.className = "value"; });
+        r.forEach((v, i) => { const td = tr.insertCell(); td.textContent = v; if (i >= textColumns) td.className = "value"; });
     }
     return t;
 }
@@ -72,7 +74,7 @@ export async function openProfiling(notify) {
     const show = (p) => {
         const total = p.modules.reduce((a, m) => a + m.total, 0) || 1;
         const rows = p.modules.map((m) => [m.module, m.class, String(m.count), ms(m.mean), ms(m.max), ms(m.total), (100 * m.total / total).toFixed(1)]);
-        w.body.replaceChildren(table(["module", "class", "ticks", "mean ms", "max ms", "total ms", "%"], rows, "profiling-table"));
+        w.body.replaceChildren(table(["module", "class", "ticks", "mean ms", "max ms", "total ms", "%"], rows, "profiling-table", 2));
     };
     try {
         wasOn = (await getJSON("/api/profiling")).on;

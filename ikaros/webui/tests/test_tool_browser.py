@@ -175,3 +175,93 @@ def test_run_controls_state_profiling_startup_and_quit(tmp_path):
         page.wait_for_function("() => document.body.dataset.quit === 'yes'")
 
     in_own_browser(str(model), lambda s, p: None, no_errors(check))
+
+
+AXE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vendor", "axe-core", "axe.min.js")
+# the sliders and the drop-down menu of the demo's views belong to the widgets' part of the
+# work and are audited there
+NOT_AUDITED = [".widget-slider-horizontal .widget-body", ".widget-slider-vertical .widget-body",
+               ".widget-drop-down-menu .widget-body"]
+SERIOUS = """async (exclude) => (await axe.run({exclude: exclude.map((s) => [s])},
+    {resultTypes: ['violations']})).violations
+    .filter((v) => v.impact === 'serious' || v.impact === 'critical')
+    .map((v) => `${v.id}: ${v.nodes.slice(0, 3).map((n) => n.target.join(' ')).join(', ')}`)"""
+
+
+def test_layout_at_1000_by_700_panes_and_accessibility(tmp_path):
+    """Part 12: at 1000 x 700 everything fits; panes resize (drag and keys) and collapse;
+    the run state is text; a clear focus ring; axe-core finds no serious violation in the
+    views, the editor, the state menu and the tool windows."""
+    demo = os.path.join(ROOT, "examples", "demo.ikg")
+
+    def fits(page):
+        return page.evaluate("""() => {
+            const out = [...document.querySelectorAll('#toolbar > *, #main > *, #messages')]
+                .filter((e) => e.getClientRects().length && e.getBoundingClientRect().right > innerWidth + 0.5)
+                .map((e) => e.id || e.className);
+            return {out, scroll: document.documentElement.scrollWidth, bottom: document.querySelector('#messages').getBoundingClientRect().bottom};
+        }""")
+
+    def check(server, page):
+        page.set_viewport_size({"width": 1000, "height": 700})
+        page.wait_for_timeout(300)
+        f = fits(page)
+        assert f["out"] == [] and f["scroll"] <= 1000 and f["bottom"] <= 700, f
+        page.add_script_tag(path=AXE)
+        assert page.evaluate(SERIOUS, NOT_AUDITED) == []
+
+        # the run state in words, and the pressed button says so too
+        page.click("#run-play")
+        page.wait_for_function("() => document.querySelector('#run-state').textContent === 'playing'")
+        assert page.get_attribute("#run-play", "aria-pressed") == "true"
+        assert page.get_attribute("#run-play", "aria-label") == "Play"
+        page.click("#run-pause")
+
+        # a clear focus ring on the control reached with the keyboard
+        page.keyboard.press("Tab")                   # from Pause, clicked last, to Step
+        ring = page.evaluate("() => { const s = getComputedStyle(document.activeElement); return [document.activeElement.id, s.outlineStyle, s.outlineWidth]; }")
+        assert ring == ["run-step", "solid", "2px"]
+
+        # resize the navigator by dragging, the messages with the keyboard
+        nav = page.locator("#navigator").bounding_box()["width"]
+        handle = page.locator("#split-navigator").bounding_box()
+        x, y = handle["x"] + 3, handle["y"] + 100
+        page.mouse.move(x, y)
+        page.mouse.down()
+        page.mouse.move(x + 80, y, steps=4)
+        page.mouse.up()
+        assert abs(page.locator("#navigator").bounding_box()["width"] - (nav + 80)) <= 1
+        messages = page.locator("#messages").bounding_box()["height"]
+        page.focus("#split-messages")
+        page.keyboard.press("ArrowUp")
+        page.keyboard.press("ArrowUp")
+        assert abs(page.locator("#messages").bounding_box()["height"] - (messages + 20)) <= 1
+        assert page.get_attribute("#split-messages", "aria-valuenow") == str(round(messages + 20))
+        page.keyboard.press("Home")
+
+        # collapse: the navigator, then the system inspector (the empty column goes too)
+        view = page.locator("#view-area").bounding_box()["width"]
+        page.click("#toggle-nav")
+        page.click("#toggle-system")
+        assert page.get_attribute("#toggle-nav", "aria-pressed") == "false"
+        assert page.locator("#view-area").bounding_box()["width"] >= 1000 - 2
+        assert page.locator("#view-area").bounding_box()["width"] > view
+        page.click("#toggle-nav")
+        page.click("#toggle-system")
+        f = fits(page)
+        assert f["out"] == [] and f["scroll"] <= 1000, f
+
+        # the editor, the state menu and the tool windows pass the audit too
+        page.click("#toggle-editor")
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        page.locator("#editor-host g.box-group[data-name='Gain'] rect.box").click()
+        page.click("#state-menu > summary")
+        page.click("#open-profiling")
+        page.click("#open-startup")
+        page.wait_for_selector("#startup-table")
+        f = fits(page)
+        assert f["out"] == [] and f["scroll"] <= 1000, f
+        page.screenshot(path=str(tmp_path / "layout-1000x700.png"))
+        assert page.evaluate(SERIOUS, NOT_AUDITED) == []
+
+    in_own_browser(demo, lambda s, p: None, no_errors(check))

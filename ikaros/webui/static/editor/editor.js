@@ -85,6 +85,7 @@ export class Editor {
         ];
         this.widgetMenu = h("select", "tool small");
         this.widgetMenu.id = "ed-add-widget";
+        this.widgetMenu.setAttribute("aria-label", "add a widget");
         this.widgetMenu.add(new Option("+ Widget", ""));
         for (const name of Object.keys(WIDGETS)) this.widgetMenu.add(new Option(name, name));
         this.widgetMenu.addEventListener("change", () => { const c = this.widgetMenu.value; this.widgetMenu.value = ""; if (c) this.addWidget(c); });

@@ -60,6 +60,9 @@ export class EditorInspector {
         l.title = tip;
         const c = tr.insertCell();
         c.appendChild(control);
+        // the field's accessible name is its label
+        const field = control.matches?.("input, select, textarea") ? control : control.querySelector?.("input, select, textarea");
+        if (field && !field.hasAttribute("aria-label")) field.setAttribute("aria-label", label);
         return tr;
     }
 
