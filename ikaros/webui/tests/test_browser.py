@@ -165,7 +165,7 @@ def test_play_runs_and_the_system_inspector_shows_the_figures(page, server):
     page.wait_for_function(
         "() => Number(document.querySelector('#sys-tick').textContent) > 0 && "
         "document.querySelector('#sys-ui_rtt').textContent.endsWith('ms')")
-    assert page.inner_text("#sys-state") == "play"
+    assert page.inner_text("#sys-state") == "playing"      # the state in words
     assert page.inner_text("#sys-file") == "demo.ikg"
     for key in ["time", "ticks_per_second", "tick_duration", "actual_tick_duration", "lag",
                 "cpu_usage", "idle", "ui_updates", "ui_lag"]:
