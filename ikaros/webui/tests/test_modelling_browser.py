@@ -124,3 +124,72 @@ def test_class_picker_ranks_the_exact_name_first_and_finds_by_description():
 
     in_own_browser(os.path.join(EXAMPLES, "modules", "Add_example.ikg"), lambda s, p: None,
                    check)
+
+
+PLOTS = """<?xml version="1.0"?>
+<group name="P">
+    <module class="FunctionGenerator" name="Big" type="sin" offset="10" amplitude="5" frequency="0.1" />
+    <module class="FunctionGenerator" name="Flip" type="ticksquare" basetime="2" tickduty="1" />
+    <view name="Plots">
+        <plot source="Big.OUTPUT" title="big" x="20" y="20" width="300" height="200" unit="volt" />
+        <plot source="Flip.OUTPUT" title="flip" x="340" y="20" width="300" height="200" buffer_size="2000" />
+    </view>
+</group>
+"""
+
+PLOT_DATA = """(title) => {
+    const w = window.ikaros.mainView.widgets.find((w) => w.el.dataset.title === title);
+    return {xs: [...w.xs], lo: [...w.lo[0]], hi: [...w.hi[0]]};
+}"""
+
+SERIES_PIXELS = """(title) => {
+    const c = document.querySelector(`#view-host .widget[data-title='${title}'] canvas`);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i + 3] > 100 && d[i + 2] > 150 && d[i] < 90) n++;
+    return n;
+}"""
+
+
+def test_plots_auto_range_axes_single_sample_and_every_tick(tmp_path):
+    """A plot shows its one sample, ranges over the data with labelled axes (defect 6),
+    and, played fast, shows every tick of a signal that flips each tick (part 7)."""
+    model = tmp_path / "plots.ikg"
+    model.write_text(PLOTS)
+
+    def check(server, page):
+        page.wait_for_function("() => window.ikaros.built && window.ikaros.mainView.widgets.length === 2")
+        page.wait_for_function(f"() => ({SERIES_PIXELS})('big') > 0")       # tick 0 alone
+        server.step(5)
+        page.wait_for_function(f"() => ({PLOT_DATA})('big').xs.length >= 6")
+        axes = page.evaluate("""() => {
+            const w = window.ikaros.mainView.widgets.find((w) => w.el.dataset.title === 'big');
+            return {labels: w.plot.axes.map((a) => a.label),
+                    ticks: w.plot.axes.map((a) => a._values), y: [w.plot.scales.y.min, w.plot.scales.y.max]};
+        }""")
+        assert axes["labels"] == ["tick", "volt"], axes
+        assert len(axes["ticks"][0]) >= 3 and len(axes["ticks"][1]) >= 3, axes   # tick labels
+        numbers = [float(v) for v in axes["ticks"][1]]    # 0 (tick 0) to 11.9 (tick 5)
+        assert -1 <= min(numbers) <= 0 and 10 <= max(numbers) <= 13, numbers
+        assert -1 <= axes["y"][0] <= 0 and 11.9 <= axes["y"][1] <= 13, axes
+        assert [float(v) for v in axes["ticks"][0]][0] >= 0, axes     # from the first tick
+
+        server.post("/api/control", {"state": "play"})
+        time.sleep(1.0)
+        server.post("/api/control", {"state": "pause"})
+        tick = server.tick()
+        assert tick > 300
+        page.wait_for_function("(t) => window.ikaros.lastFrame.tick === t", arg=tick)
+        time.sleep(0.2)
+        d = page.evaluate(PLOT_DATA, "flip")
+        xs, lo, hi = d["xs"], d["lo"], d["hi"]
+        assert tick - 20 <= xs[-1] <= tick and xs[-1] - xs[0] >= 1900   # 2000 ticks shown
+        for i in range(len(xs) - 1):
+            if xs[i + 1] - xs[i] == 1 and lo[i] == hi[i] and lo[i + 1] == hi[i + 1]:
+                assert lo[i] != lo[i + 1], (xs[i], lo[i], lo[i + 1])   # flips every tick
+            else:                                 # a column of several ticks: both values
+                assert (lo[i], hi[i]) == (0, 1), (xs[i], xs[i + 1], lo[i], hi[i])
+        shot(page, "plots")
+        assert not page.errors, page.errors
+
+    in_own_browser(str(model), lambda s, p: None, check)
