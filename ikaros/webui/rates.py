@@ -27,16 +27,18 @@ class TickRate:
         self.run_time = 0.0
         self.run_ticks = 0
 
-    def sample(self, tick: int, running: bool, now: float | None = None) -> dict:
+    def sample(self, tick: int, running: bool, now: float | None = None,
+               tick_duration: float = 0.0) -> dict:
         """Record a sample; returns ``{"ticks_per_second", "ticks_per_second_mean"}``
-        (``None`` where nothing is known: the rate over the last second while not running,
-        the mean before anything ran)."""
+        (``None`` where nothing is known: the rate while not running, the mean before
+        anything ran). Within 50 ms of a start the rate is 1 / ``tick_duration`` (the
+        last tick's measured duration), when that is known."""
         now = time.perf_counter() if now is None else now
         if self.last is not None and tick < self.last[1]:
             self.reset()                    # a new network (apply, open) starts at 0
         if self.last is not None:
             t0, tick0, was_running = self.last
-            if was_running or running:      # an interval with a state change counts whole
+            if was_running:                 # changes of state are sampled as they happen
                 self.run_time += now - t0
                 self.run_ticks += tick - tick0
             if running and not was_running:
@@ -48,6 +50,9 @@ class TickRate:
         rate = None
         if running:
             t0, tick0 = self.samples[0]
-            rate = (tick - tick0) / (now - t0) if now - t0 > 0.05 else None
+            if now - t0 > 0.05:
+                rate = (tick - tick0) / (now - t0)
+            elif tick_duration > 0:
+                rate = 1.0 / tick_duration
         mean = self.run_ticks / self.run_time if self.run_time > 0.05 else None
         return {"ticks_per_second": rate, "ticks_per_second_mean": mean}

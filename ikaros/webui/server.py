@@ -332,7 +332,8 @@ class WebUI:
         if self.net.stopped:
             figures["state"] = "stop"
         running = figures["state"] in RUNNING
-        figures.update(self.rates.sample(figures["tick"], running))
+        figures.update(self.rates.sample(figures["tick"], running,
+                                         tick_duration=figures["actual_tick_duration"] or 0.0))
         if not running:
             figures["actual_tick_duration"] = None    # no tick is running to measure
         return figures
