@@ -1,6 +1,8 @@
 // A view: widgets placed at (x, y) with width x height as the model file says.
 import { widgetClass } from "./widgets/index.js";
 
+const MIN_ZOOM = 0.6;
+
 export class ViewRenderer {
     /**
      * @param container element to draw into
@@ -48,7 +50,20 @@ export class ViewRenderer {
         }
         this.el.style.width = right + 20 + "px";
         this.el.style.height = bottom + 20 + "px";
+        this.naturalWidth = right + 20;
+        this.fitter = new ResizeObserver(() => this.fit());
+        this.fitter.observe(this.container);
+        this.fit();
         return this;
+    }
+
+    /** A view wider than its pane is scaled down to fit it (to MIN_ZOOM at most; beyond
+     *  that the pane scrolls), so that no widget is cut off. */
+    fit() {
+        const room = this.container.clientWidth;
+        if (!room || !this.naturalWidth) return;
+        const zoom = Math.max(MIN_ZOOM, Math.min(1, room / this.naturalWidth));
+        this.el.style.zoom = zoom < 1 ? String(zoom) : "";
     }
 
     subscriptions() { return this.widgets.flatMap((w) => w.subscriptions()); }
@@ -67,6 +82,7 @@ export class ViewRenderer {
     }
 
     destroy() {
+        this.fitter?.disconnect();
         for (const w of this.widgets) { try { w.destroy(); } catch { } }
         this.el.remove();
     }

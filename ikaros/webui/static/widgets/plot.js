@@ -45,6 +45,9 @@ export default class Plot extends Widget {
         this.resizer.observe(this.body);
     }
 
+    /** Per plotted element, its values in order (the largest of each envelope column). */
+    get series() { return this.hi; }
+
     subscriptions() {
         const p = this.path("source");
         if (!p) return [];
