@@ -265,3 +265,69 @@ def test_layout_at_1000_by_700_panes_and_accessibility(tmp_path):
         assert page.evaluate(SERIOUS, NOT_AUDITED) == []
 
     in_own_browser(demo, lambda s, p: None, no_errors(check))
+
+
+def test_a_2000_module_group_pans_zooms_selects_and_cuts(tmp_path):
+    """Part 10 (in part): a 2000-module group (benchmarks/models.py) opens in the editor; a
+    wheel or drag moves the painted layer and the drawing follows at rest; small text is
+    left out when zoomed out; select all, a rubber band, cut and paste. The figures are
+    printed (pytest -s); benchmarks/editor.py measures them properly."""
+    import sys
+    sys.path.insert(0, os.path.join(ROOT, "benchmarks"))
+    import models
+    model = models.chain(str(tmp_path), 2000)
+    boxes = "() => document.querySelectorAll('#editor-host rect.box').length"
+    selected = "() => document.querySelectorAll('#editor-host g.box-group.selected').length"
+
+    def check(server, page):
+        page.wait_for_timeout(1500)          # the page idles: the class list comes meanwhile
+        t0 = time.perf_counter()
+        open_editor(server, page)
+        page.evaluate("() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)))")
+        print(f"\n2000 modules: the editor painted in {(time.perf_counter() - t0) * 1000:.0f} ms")
+        assert page.evaluate(boxes) == 2001
+        assert page.evaluate("() => document.querySelector('#editor-host svg').classList.contains('very-far')")
+
+        # a wheel moves the painted layer; at rest the drawing itself is transformed
+        before = page.get_attribute("#editor-host svg > g.viewport", "transform")
+        page.mouse.move(700, 500)
+        page.mouse.wheel(0, -400)
+        page.wait_for_function("() => document.querySelector('#editor-host svg').style.transform !== ''")
+        page.wait_for_function("() => document.querySelector('#editor-host svg').style.transform === ''")
+        assert page.get_attribute("#editor-host svg > g.viewport", "transform") != before
+        fps = page.evaluate("""async () => {
+            const svg = document.querySelector('#editor-host svg.network-view');
+            let frames = 0; const t0 = performance.now();
+            await new Promise((done) => { const step = (t) => { frames++;
+                svg.dispatchEvent(new WheelEvent('wheel', {deltaY: frames % 20 < 10 ? -40 : 40, clientX: 700, clientY: 500, bubbles: true, cancelable: true}));
+                if (t - t0 < 1000) requestAnimationFrame(step); else done(); }; requestAnimationFrame(step); });
+            return frames / ((performance.now() - t0) / 1000); }""")
+        print(f"2000 modules: zoom at {fps:.0f} frames/s")
+
+        # select all; then a rubber band (alt-drag on the background: a new selection)
+        page.locator("#editor-host svg").focus()
+        page.keyboard.press("Control+a")
+        page.wait_for_function(f"() => ({selected})() === 2001")
+        page.click("#ed-fit")
+        page.evaluate("() => { const v = window.ikaros.editor.netView; v.setTransform({k: 1, x: 20, y: 20}); }")
+        rects = page.evaluate("""() => ['Source', 'S0', 'S1', 'S2'].map((n) =>
+            document.querySelector(`#editor-host rect.box[data-name='${n}']`).getBoundingClientRect().toJSON())""")
+        host = page.locator("#editor-host").bounding_box()
+        x0 = host["x"] + 10                                    # clear of the splitter
+        y0 = min(r["top"] for r in rects[:3]) - 5
+        x1 = (rects[2]["right"] + rects[3]["left"]) / 2        # between S1 and S2
+        y1 = max(r["bottom"] for r in rects[:3]) + 5
+        page.keyboard.down("Alt")
+        page.mouse.move(x0, y0)
+        page.mouse.down()
+        page.mouse.move(x1, y1, steps=5)
+        page.mouse.up()
+        page.keyboard.up("Alt")
+        names = page.eval_on_selector_all("#editor-host g.box-group.selected", "(gs) => gs.map((g) => g.dataset.name)")
+        assert sorted(names) == ["S0", "S1", "Source"], names
+        page.click("#ed-cut")
+        page.wait_for_function(f"() => ({boxes})() === 1998")
+        page.click("#ed-paste")
+        page.wait_for_function(f"() => ({boxes})() === 2001")
+
+    in_own_browser(model, lambda s, p: None, no_errors(check))

@@ -41,6 +41,18 @@ export class Editor {
         this.notify = (level, message) => app.messages.local(level, message);
         this.buildChrome();
         this.model.addEventListener("change", (e) => this.onModelChange(e.detail));
+        this.classesLoaded = null;
+        // the class list takes the server a second to gather: fetched while the page idles,
+        // so that the editor opens at once
+        setTimeout(() => this.loadClasses(), 500);
+    }
+
+    loadClasses() {
+        this.classesLoaded ||= api.classes().then((c) => { this.classes = c; }).catch((e) => {
+            this.classesLoaded = null;
+            this.notify("error", "classes: " + e.message);
+        });
+        return this.classesLoaded;
     }
 
     // --- chrome --------------------------------------------------------------------------
@@ -94,6 +106,8 @@ export class Editor {
         button("ed-copy", "Copy", "copy (Ctrl-C)", () => this.copy());
         button("ed-paste", "Paste", "paste (Ctrl-V)", () => this.paste());
         button("ed-duplicate", "Duplicate", "duplicate (Ctrl-D)", () => this.duplicate());
+        button("ed-cut", "Cut", "cut (Ctrl-X)", () => this.cut());
+        button("ed-select-all", "Select all", "select every element (Ctrl-A)", () => this.selectAll());
         sep();
         this.layoutTools = [
             button("ed-align-left", "⇤ Align", "align the selected boxes on the left", () => this.align("x")),
@@ -146,9 +160,7 @@ export class Editor {
         document.querySelector("#view-host").hidden = on;
         document.querySelector("#view-title").hidden = on;
         if (on) {
-            if (!Object.keys(this.classes).length) {
-                try { this.classes = await api.classes(); } catch (e) { this.notify("error", "classes: " + e.message); }
-            }
+            if (!Object.keys(this.classes).length) await this.loadClasses();
             if (!this.model.tree) await this.reload();
             else this.render();
         } else {
@@ -405,6 +417,34 @@ export class Editor {
 
     duplicate() { this.copy(); this.paste(); }
 
+    /** Copy the selection, then delete it (read-only elements stay). */
+    cut() {
+        this.copy();
+        if (this.clipboard) this.deleteSelection();
+    }
+
+    /** Select the boxes a rubber band touched (added to the selection when additive). */
+    band(keys, additive) {
+        if (!additive) this.selection.clear();
+        for (const k of keys) {
+            const n = this.graph.boxes.find((b) => b.key === k)?.node;
+            if (n && n !== this.group()) this.selection.add(n);
+        }
+        this.redraw();
+    }
+
+    /** Every box and connection of the open group, or every widget of the open view. */
+    selectAll() {
+        if (this.mode === "network") {
+            const nodes = (this.graph?.boxes || []).filter((b) => b.node && b.node !== this.group()).map((b) => b.node)
+                .concat((this.graph?.edges || []).map((e) => e.node).filter(Boolean));
+            this.select([...new Set(nodes)]);
+        } else {
+            const v = this.currentView();
+            this.select(v ? kids(v) : []);
+        }
+    }
+
     // --- views -----------------------------------------------------------------------------
 
     currentView() {
@@ -603,6 +643,7 @@ export class Editor {
                     onOpenGroup: (name) => this.openGroup(this.groupPath ? `${this.groupPath}.${name}` : name),
                     onMove: (moves) => this.onMove(moves),
                     onConnect: (from, to) => this.onConnect(from, to),
+                    onBand: (keys, additive) => this.band(keys, additive),
                 });
                 this.netView.shownGroup = null;
             }
@@ -748,6 +789,8 @@ export class Editor {
         else if (mod && k === "c") this.copy();
         else if (mod && k === "v") this.paste();
         else if (mod && k === "d") this.duplicate();
+        else if (mod && k === "x") this.cut();
+        else if (mod && k === "a") this.selectAll();
         else if (mod && k === "s") this.save();
         else if (!mod && (e.key === "Delete" || e.key === "Backspace")) this.deleteSelection();
         else return;

@@ -2,6 +2,7 @@
 // layered, left to right along the data flow) for groups whose file gives no _x, _y.
 import { kids, elements, splitAddress } from "./model.js";
 
+export const ELK_LIMIT = 300;   // boxes; a bigger group is laid out by simpleLayout
 export const BOX_W = 170, HEADER = 38, PORT_H = 18, PIN_W = 120, PIN_H = 26;
 
 /**
@@ -118,7 +119,8 @@ export async function layout(graph, { force = false } = {}) {
         placePins(graph, pos);
     } else {
         try {
-            pos = await elkLayout(graph);
+            // elkjs takes seconds on thousands of boxes: big groups get the simple layout
+            pos = graph.boxes.length > ELK_LIMIT ? simpleLayout(graph) : await elkLayout(graph);
         } catch (e) {
             console.warn("elk layout failed, using the simple one:", e);
             pos = simpleLayout(graph);

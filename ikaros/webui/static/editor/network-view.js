@@ -1,11 +1,13 @@
 // The network view of one group: SVG boxes with input ports on the left and output ports on
 // the right, connections as curves labelled with their delay, the group's inputs and outputs
-// as pins at the edges. Zoom (wheel), pan (drag the background), select (click, shift-click),
+// as pins at the edges. Zoom (wheel), pan (drag the background), select (click, shift-click,
+// or a rubber band: shift- or alt-drag on the background),
 // move (drag boxes), connect (drag from an output port to an input port), open a group
 // (double-click). The view changes nothing itself: it reports to its owner.
 import { HEADER, PORT_H, portOffset } from "./layout.js";
 
 const SVG = "http://www.w3.org/2000/svg";
+const REST_MS = 150;     // a pan or zoom gesture is drawn anew after this long at rest
 
 function el(tag, attrs = {}, parent = null) {
     const e = document.createElementNS(SVG, tag);
@@ -36,7 +38,7 @@ function middle(x1, y1, x2, y2) {
 export class NetworkView {
     /**
      * handlers: onSelect(nodes, additive), onOpenGroup(name), onMove(Map key -> {x, y}),
-     * onConnect(from {box, port}, to {box, port})
+     * onConnect(from {box, port}, to {box, port}), onBand(box keys, additive)
      */
     constructor(host, handlers) {
         this.host = host;
@@ -62,8 +64,26 @@ export class NetworkView {
     destroy() { this.svg.remove(); }
 
     setTransform(t) {
+        clearTimeout(this.settle);
         this.t = { ...t };
+        this.committed = { ...this.t };
+        this.svg.style.transform = "";
         this.root.setAttribute("transform", `translate(${this.t.x},${this.t.y}) scale(${this.t.k})`);
+        // level of detail: small text is left out when it could not be read anyway
+        this.svg.classList.toggle("far", this.t.k < 0.5);
+        this.svg.classList.toggle("very-far", this.t.k < 0.3);
+    }
+
+    /** A transform during a wheel or a drag: the drawing already painted is moved and
+     *  scaled as one layer by the compositor (the SVG is not drawn again, so big groups
+     *  pan and zoom smoothly); it is drawn at the new transform once the gesture rests. */
+    gesture(t) {
+        const c = this.committed || this.t;
+        this.t = { ...t };
+        const f = t.k / c.k;
+        this.svg.style.transform = `translate(${t.x - f * c.x}px, ${t.y - f * c.y}px) scale(${f})`;
+        clearTimeout(this.settle);
+        this.settle = setTimeout(() => this.setTransform(this.t), REST_MS);
     }
 
     /** Fit the drawing into the view. */
@@ -82,18 +102,19 @@ export class NetworkView {
         this.setTransform({ k, x: 20 - x0 * k, y: 20 - y0 * k });
     }
 
-    zoom(factor, cx = null, cy = null) {
+    zoom(factor, cx = null, cy = null, gesture = false) {
         const r = this.svg.getBoundingClientRect();
         if (cx === null) { cx = r.width / 2; cy = r.height / 2; }
         const k = Math.min(4, Math.max(0.1, this.t.k * factor));
         const f = k / this.t.k;
-        this.setTransform({ k, x: cx - (cx - this.t.x) * f, y: cy - (cy - this.t.y) * f });
+        const t = { k, x: cx - (cx - this.t.x) * f, y: cy - (cy - this.t.y) * f };
+        if (gesture) this.gesture(t); else this.setTransform(t);
     }
 
     onWheel(e) {
         e.preventDefault();
         const r = this.svg.getBoundingClientRect();
-        this.zoom(Math.exp(-e.deltaY * 0.0015), e.clientX - r.left, e.clientY - r.top);
+        this.zoom(Math.exp(-e.deltaY * 0.0015), e.clientX - r.left, e.clientY - r.top, true);
     }
 
     /** Screen point to drawing coordinates. */
@@ -234,7 +255,22 @@ export class NetworkView {
             if (edge) this.h.onSelect([edge.node], e.shiftKey);
             return;
         }
+        if (e.shiftKey || e.altKey) {          // a rubber band selects the boxes it touches
+            const p = this.local(e);
+            this.drag = { kind: "band", p0: p, additive: e.shiftKey,
+                rect: el("rect", { class: "rubber-band", x: p.x, y: p.y, width: 0, height: 0 }, this.tempLayer) };
+            e.preventDefault();
+            return;
+        }
         this.drag = { kind: "pan", ...start, t0: { ...this.t }, moved: false };
+    }
+
+    /** The keys of the boxes that a rectangle in drawing coordinates touches. */
+    boxesIn(x0, y0, x1, y1) {
+        return this.graph.boxes.filter((b) => {
+            const p = this.pos.get(b.key);
+            return p && p.x < x1 && p.x + b.w > x0 && p.y < y1 && p.y + b.h > y0;
+        }).map((b) => b.key);
     }
 
     onMoveEvent(e) {
@@ -243,7 +279,7 @@ export class NetworkView {
         if (d.kind === "pan") {
             const dx = e.clientX - d.cx, dy = e.clientY - d.cy;
             if (Math.abs(dx) + Math.abs(dy) > 2) d.moved = true;
-            this.setTransform({ k: d.t0.k, x: d.t0.x + dx, y: d.t0.y + dy });
+            this.gesture({ k: d.t0.k, x: d.t0.x + dx, y: d.t0.y + dy });
         } else if (d.kind === "move") {
             const dx = (e.clientX - d.cx) / this.t.k, dy = (e.clientY - d.cy) / this.t.k;
             if (Math.abs(dx) + Math.abs(dy) > 2) d.moved = true;
@@ -253,6 +289,11 @@ export class NetworkView {
                 this.pos.set(b.key, p);
             }
             this.show(this.graph, this.pos, { errors: this.errors, selection: this.selection });
+        } else if (d.kind === "band") {
+            const p = this.local(e);
+            d.box = [Math.min(p.x, d.p0.x), Math.min(p.y, d.p0.y), Math.max(p.x, d.p0.x), Math.max(p.y, d.p0.y)];
+            const [x0, y0, x1, y1] = d.box;
+            for (const [k, v] of Object.entries({ x: x0, y: y0, width: x1 - x0, height: y1 - y0 })) d.rect.setAttribute(k, v);
         } else if (d.kind === "connect") {
             const p = this.local(e);
             d.path.setAttribute("d", curve(d.start.x, d.start.y, p.x, p.y));
@@ -266,6 +307,11 @@ export class NetworkView {
         const d = this.drag;
         this.drag = null;
         if (!d) return;
+        if (d.kind === "pan" && d.moved) this.setTransform(this.t);
+        if (d.kind === "band") {
+            d.rect.remove();
+            if (d.box) this.h.onBand?.(this.boxesIn(...d.box), d.additive);
+        }
         if (d.kind === "pan" && !d.moved) this.h.onSelect([], false);
         if (d.kind === "move" && d.moved) this.h.onMove(new Map(d.boxes.map(({ b }) => [b.key, this.pos.get(b.key)])));
         if (d.kind === "connect") {
