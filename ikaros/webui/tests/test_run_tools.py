@@ -132,3 +132,21 @@ def test_profiling_startup_quit_and_fast_forward(client):
     quits = []
     c.ui.on_quit = lambda: quits.append(1)
     assert c.post("/api/quit", json={}).json() == {"ok": True} and quits == [1]
+
+
+def test_a_group_of_groups_gets_a_default_view_of_its_subgroups(tmp_path):
+    (tmp_path / "g.ikg").write_text("""<group name="Top">
+    <group name="A"><module class="Constant" name="K" data="1 2"/>
+        <group name="Deep"><module class="Constant" name="D" data="3"/></group></group>
+    <group name="B"><module class="Constant" name="L" data="4"/></group>
+</group>""")
+    net = ikaros.load(str(tmp_path / "g.ikg"))
+    with TestClient(create_app(net)) as c:
+        top = c.get("/api/network").json()["top"]
+        (view,) = top["views"]
+        assert view["default"] is True
+        assert [(w["source"], w["source_path"], w["x"], w["y"]) for w in view["widgets"]] == [
+            ("A.K.OUTPUT", "A.K.OUTPUT", 20, 20), ("B.L.OUTPUT", "B.L.OUTPUT", 240, 20)]
+        a = next(g for g in top["groups"] if g["name"] == "A")
+        assert [w["source"] for w in a["views"][0]["widgets"]] == ["K.OUTPUT"]
+    net.close()
