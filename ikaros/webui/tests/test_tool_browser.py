@@ -331,3 +331,55 @@ def test_a_2000_module_group_pans_zooms_selects_and_cuts(tmp_path):
         page.wait_for_function(f"() => ({boxes})() === 2001")
 
     in_own_browser(model, lambda s, p: None, no_errors(check))
+
+
+LABELS_MODEL = """<group name="Labels">
+    <module class="Constant" name="C" data="1" _x="0" _y="0"/>
+    <module class="Add" name="A" _x="500" _y="0"/>
+    <module class="Constant" name="InTheWay" data="2" _x="170" _y="-40"/>
+    <connection source="C.OUTPUT" target="A.INPUT1" delay="1"/>
+    <connection source="C.OUTPUT" target="A.INPUT2" delay="2"/>
+</group>
+"""
+
+LABEL_PLACES = """() => {
+    const svg = document.querySelector('#editor-host svg');
+    const labels = [...svg.querySelectorAll('g.edge-label')].map((g) => {
+        const r = g.querySelector('rect');
+        const box = [+r.getAttribute('x'), +r.getAttribute('y'), +r.getAttribute('x') + +r.getAttribute('width'), +r.getAttribute('y') + +r.getAttribute('height')];
+        const path = svg.querySelector(`g.edge[data-edge='${g.dataset.edge}'] path.edge-line`);
+        const cx = (box[0] + box[2]) / 2, cy = (box[1] + box[3]) / 2;
+        let off = Infinity;
+        const n = path.getTotalLength();
+        for (let s = 0; s <= n; s += 0.5) { const p = path.getPointAtLength(s); off = Math.min(off, Math.hypot(p.x - cx, p.y - cy)); }
+        return {text: g.querySelector('text').textContent, box, off};
+    });
+    const boxes = [...svg.querySelectorAll('g.box-group')].map((g) => {
+        const m = /translate\\(([-\\d.]+),([-\\d.]+)\\)/.exec(g.getAttribute('transform'));
+        const r = g.querySelector('rect.box');
+        return [+m[1], +m[2], +m[1] + +r.getAttribute('width'), +m[2] + +r.getAttribute('height')];
+    });
+    return {labels, boxes};
+}"""
+
+
+def test_delay_badges_sit_on_their_edges_and_never_overlap(tmp_path):
+    """Part 10: two connections between the same two modules, and a box where their middles
+    are: each label stays on its own curve, clear of the other label and of every box."""
+    model = tmp_path / "labels.ikg"
+    model.write_text(LABELS_MODEL)
+
+    def overlap(a, b):
+        return min(a[2], b[2]) > max(a[0], b[0]) and min(a[3], b[3]) > max(a[1], b[1])
+
+    def check(server, page):
+        places = page.evaluate(LABEL_PLACES)
+        labels = places["labels"]
+        assert sorted(x["text"] for x in labels) == ["1", "2"]
+        for x in labels:
+            assert x["off"] < 1.0, x                               # on its own curve
+            assert not any(overlap(x["box"], b) for b in places["boxes"]), x
+        assert not overlap(labels[0]["box"], labels[1]["box"]), labels
+        page.screenshot(path=str(tmp_path / "labels.png"))
+
+    in_own_browser(str(model), open_editor, no_errors(check))

@@ -29,10 +29,39 @@ function curve(x1, y1, x2, y2) {
     return `M${a} C${b} ${c} ${d}`;
 }
 
-/** The middle of the curve (t = 1/2). */
-function middle(x1, y1, x2, y2) {
+/** The point at t (0..1) of the curve. */
+function pointAt(x1, y1, x2, y2, t) {
     const [a, b, c, d] = controls(x1, y1, x2, y2);
-    return [0, 1].map((i) => 0.125 * a[i] + 0.375 * b[i] + 0.375 * c[i] + 0.125 * d[i]);
+    const u = 1 - t;
+    return [0, 1].map((i) => u * u * u * a[i] + 3 * u * u * t * b[i] + 3 * u * t * t * c[i] + t * t * t * d[i]);
+}
+
+// Where a label may sit along its connection, best first: the middle, then out to the ends.
+const LABEL_T = [0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8, 0.12, 0.88];
+const CELL = 64;      // the grid cell of the label placer (drawing units)
+
+/** Rectangles indexed by grid cell, to find overlaps among thousands quickly. */
+class RectGrid {
+    constructor() { this.cells = new Map(); }
+    *keys([x0, y0, x1, y1]) {
+        for (let i = Math.floor(x0 / CELL); i <= Math.floor(x1 / CELL); i++)
+            for (let j = Math.floor(y0 / CELL); j <= Math.floor(y1 / CELL); j++) yield i + "," + j;
+    }
+    add(r) { for (const k of this.keys(r)) { if (!this.cells.has(k)) this.cells.set(k, []); this.cells.get(k).push(r); } }
+    /** The area of r covered by the rectangles stored. */
+    overlap(r) {
+        let area = 0;
+        const seen = new Set();
+        for (const k of this.keys(r)) {
+            for (const q of this.cells.get(k) || []) {
+                if (seen.has(q)) continue;
+                seen.add(q);
+                const w = Math.min(r[2], q[2]) - Math.max(r[0], q[0]), h = Math.min(r[3], q[3]) - Math.max(r[1], q[1]);
+                if (w > 0 && h > 0) area += w * h;
+            }
+        }
+        return area;
+    }
 }
 
 export class NetworkView {
@@ -138,7 +167,9 @@ export class NetworkView {
         const labelLayer = el("g", { class: "edge-labels" }, this.root);
         this.tempLayer = el("g", { class: "temp" }, this.root);
         for (const b of graph.boxes) this.drawBox(boxLayer, b);
+        this.labels = [];
         graph.edges.forEach((e, i) => this.drawEdge(edgeLayer, labelLayer, e, i));
+        this.placeLabels(labelLayer);
         if (groupError) {
             const f = el("foreignObject", { x: 8, y: 8, width: 600, height: 80, class: "group-error" }, this.svg);
             const d = document.createElement("div");
@@ -209,17 +240,39 @@ export class NetworkView {
         el("path", { class: "edge-hit", d }, g);
         el("path", { class: "edge-line", d }, g);
         const label = [e.delay, e.from.selector, e.to.selector ? "→" + e.to.selector : ""].filter(Boolean).join(" ");
-        const [mx, my] = middle(a.x, a.y, b.x, b.y);
-        if (label) {
-            const lg = el("g", { class: `edge-label${selected ? " selected" : ""}`, "data-edge": String(i) }, labels);
-            const w = 8 + 7 * label.length;
-            el("rect", { x: mx - w / 2, y: my - 9, width: w, height: 18, rx: 9 }, lg);
-            const t = el("text", { x: mx, y: my + 4, "text-anchor": "middle" }, lg);
-            t.textContent = label;
-            const title = el("title", {}, lg);
-            title.textContent = `${e.node.attrs.source} → ${e.node.attrs.target}, delay ${e.delay}`;
+        if (label) this.labels.push({ text: label, i, selected, error, e, ends: [a.x, a.y, b.x, b.y] });
+        else if (error) { const [mx, my] = pointAt(a.x, a.y, b.x, b.y, 0.5); this.errorNote(labels, mx - 20, my + 12, error); }
+    }
+
+    /** Put every connection's label (its delay badge) on its own curve where it overlaps
+     *  no other label and no box: the middle when free, else the free place nearest to it,
+     *  else the place of least overlap. */
+    placeLabels(layer) {
+        const taken = new RectGrid();
+        for (const b of this.graph.boxes) {
+            const p = this.pos.get(b.key);
+            if (p) taken.add([p.x, p.y, p.x + b.w, p.y + b.h]);
         }
-        if (error) this.errorNote(labels, mx - 20, my + 12, error);
+        for (const L of this.labels) {
+            const w = 8 + 7 * L.text.length, hh = 9;
+            let best = null;
+            for (const t of LABEL_T) {
+                const [x, y] = pointAt(...L.ends, t);
+                const r = [x - w / 2, y - hh, x + w / 2, y + hh];
+                const cost = taken.overlap(r);
+                if (!best || cost < best.cost) best = { x, y, r, cost };
+                if (cost === 0) break;
+            }
+            taken.add(best.r);
+            const { x: mx, y: my } = best;
+            const lg = el("g", { class: `edge-label${L.selected ? " selected" : ""}`, "data-edge": String(L.i) }, layer);
+            el("rect", { x: mx - w / 2, y: my - hh, width: w, height: 2 * hh, rx: hh }, lg);
+            const t = el("text", { x: mx, y: my + 4, "text-anchor": "middle" }, lg);
+            t.textContent = L.text;
+            const title = el("title", {}, lg);
+            title.textContent = `${L.e.node.attrs.source} → ${L.e.node.attrs.target}, delay ${L.e.delay}`;
+            if (L.error) this.errorNote(layer, mx - 20, my + 12, L.error);
+        }
     }
 
     // --- interaction ---------------------------------------------------------------------
