@@ -7,6 +7,8 @@ import os
 import tempfile
 import time
 
+import numpy as np
+
 from browsing import ROOT, in_own_browser
 
 EXAMPLES = os.path.join(ROOT, "examples")
@@ -224,6 +226,95 @@ def test_plots_auto_range_axes_single_sample_and_every_tick(tmp_path):
             else:                                 # a column of several ticks: both values
                 assert (lo[i], hi[i]) == (0, 1), (xs[i], xs[i + 1], lo[i], hi[i])
         shot(page, "plots")
+        assert not page.errors, page.errors
+
+    in_own_browser(str(model), lambda s, p: None, check)
+
+
+WIDGETS = """<?xml version="1.0"?>
+<group name="W">
+    <module class="FunctionGenerator" name="Spikes" type="ticksquare" basetime="3" tickduty="1" size="4" />
+    <module class="Randomizer" name="Noise" outputsize="50" seed="3" />
+    <module class="Constant" name="Pts" data="0 1; 1 3; 2 5" />
+    <module class="Constant" name="Field" data="[[[1, 0, 1], [0, 1, 0]], [[0, 1, 0], [1, 0, -1]]]" />
+    <module class="Constant" name="Box" data="1 2 3 4 5; 2 4 6 8 10" />
+    <module class="Constant" name="One" data="1" />
+    <module class="Scale" name="SX" factor="0" />
+    <module class="Scale" name="SY" factor="0" />
+    <connection source="One.OUTPUT" target="SX.INPUT" />
+    <connection source="One.OUTPUT" target="SY.INPUT" />
+    <module class="Constant" name="Color" data="0.2 0.4 0.6" />
+    <module class="Constant" name="Gaze" data="0.5 -0.3" />
+    <module class="Constant" name="Pupil" data="0.8 0.2" />
+    <module class="Constant" name="Spot" data="0.3 0.7" />
+    <view name="New widgets">
+        <event-raster source="Spikes.OUTPUT" title="raster" x="0" y="0" width="300" height="150" history="3000" />
+        <scatter-plot source="Pts.OUTPUT" title="scatter" x="300" y="0" width="200" height="150" />
+        <histogram source="Noise.OUTPUT" title="histogram" x="500" y="0" width="200" height="150" bins="5" />
+        <boxplot source="Box.OUTPUT" title="boxplot" x="700" y="0" width="200" height="150" />
+        <polar-plot source="Box.OUTPUT" title="polar" x="0" y="150" width="200" height="150" />
+        <vector-field source="Field.OUTPUT" title="vectors" x="200" y="150" width="200" height="150" />
+        <joystick x_parameter="SX.factor" y_parameter="SY.factor" title="joystick" x="400" y="150" width="150" height="150" />
+        <color-picker parameter="Color.data" title="colour" x="550" y="150" width="150" height="80" />
+        <epi-head eye_direction_source="Gaze.OUTPUT" pupil_size_source="Pupil.OUTPUT" title="epi" x="700" y="150" width="150" height="150" />
+        <trace source="Spot.OUTPUT" title="trace" x="0" y="300" width="150" height="150" />
+    </view>
+</group>
+"""
+
+PAINTED = """(title) => {
+    const c = document.querySelector(`#view-host .widget[data-title='${title}'] canvas`);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 3; i < d.length; i += 4) if (d[i] > 100) n++;
+    return n;
+}"""
+
+WIDGET = "(title) => window.ikaros.mainView.widgets.find((w) => w.el.dataset.title === title)"
+
+
+def test_the_new_widgets(tmp_path):
+    """The original's widgets we lacked draw their data (part 8); the event raster gets
+    every event of a fast run (part 7); the joystick and the colour picker set parameters."""
+    model = tmp_path / "widgets.ikg"
+    model.write_text(WIDGETS)
+
+    def check(server, page):
+        page.wait_for_function("() => window.ikaros.built && window.ikaros.mainView.widgets.length === 10")
+        server.step(1)
+        for title in ("scatter", "histogram", "boxplot", "polar", "vectors", "epi", "trace", "raster"):
+            page.wait_for_function(f"() => ({PAINTED})('{title}') > 40", timeout=5000)
+        assert page.evaluate(f"() => ({WIDGET})('histogram').counts.reduce((a, b) => a + b)") == 50
+        assert page.evaluate(f"() => ({WIDGET})('boxplot').boxes.map((b) => b.median)") == [3, 6]
+
+        server.post("/api/control", {"state": "play"})
+        time.sleep(1.0)
+        server.post("/api/control", {"state": "pause"})
+        tick = server.tick()
+        page.wait_for_function("(t) => window.ikaros.lastFrame.tick === t", arg=tick)
+        time.sleep(0.2)
+        # ticksquare is 1 on ticks 1, 4, 7, ... (t - 1 divisible by 3), in 4 elements
+        count = page.evaluate(f"() => ({WIDGET})('raster').count")
+        assert tick > 1000 and count == 4 * ((tick - 1) // 3 + 1), (tick, count)
+
+        pad = page.locator(".widget[data-title='joystick'] .joystick-pad")
+        box = pad.bounding_box()
+        cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+        page.mouse.move(cx, cy)
+        page.mouse.down()
+        page.mouse.move(cx + box["width"] * 0.3, cy - box["height"] * 0.3, steps=4)
+        wait_for(lambda: server.parameter("SX.factor") > 0.5 and server.parameter("SY.factor") > 0.5,
+                 what="the joystick's parameters")
+        page.mouse.up()
+        wait_for(lambda: server.parameter("SX.factor") == 0 and server.parameter("SY.factor") == 0,
+                 what="back to the centre")
+
+        page.wait_for_function("() => !document.querySelector('.color-picker').disabled")
+        page.evaluate("""() => { const i = document.querySelector('.color-picker');
+            i.value = '#ff0080'; i.dispatchEvent(new Event('input')); }""")
+        wait_for(lambda: np.allclose(server.parameter("Color.data"), [1.0, 0.0, 128 / 255]),
+                 what="the colour")
+        shot(page, "new-widgets")
         assert not page.errors, page.errors
 
     in_own_browser(str(model), lambda s, p: None, check)
