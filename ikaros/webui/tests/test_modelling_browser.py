@@ -141,11 +141,42 @@ def test_reaching_view_overlays_and_path_of_rows():
                    check)
 
 
-def test_class_picker_ranks_the_exact_name_first_and_finds_by_description():
-    """Scale + Enter adds a Scale; "sine" finds FunctionGenerator (defect 5)."""
+NESTED = """<?xml version="1.0"?>
+<group name="T">
+    <module class="Constant" name="A" data="1" />
+    <group name="G">
+        <module class="Constant" name="B" data="2" />
+        <group name="H">
+            <module class="Constant" name="C" data="3" />
+        </group>
+        <view name="V">
+            <plot source="B.OUTPUT" title="b" x="20" y="20" width="200" height="100" />
+        </view>
+    </group>
+</group>
+"""
+
+
+def test_class_picker_and_widget_sources_from_any_group(tmp_path):
+    """Scale + Enter adds a Scale; "sine" finds FunctionGenerator (defect 5). A widget's
+    source menu offers the outputs of every group, and a search field narrows it
+    (defect 6)."""
+    model = tmp_path / "nested.ikg"
+    model.write_text(NESTED)
+
     def check(server, page):
         page.click("#toggle-editor")
         page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        page.evaluate("() => window.ikaros.editor.openGroup('G', 0)")
+        page.click("#editor-host .widget-frame[data-widget='plot']")
+        menu = "#editor-inspector select[data-attr='source']"
+        options = page.eval_on_selector_all(menu + " option", "(os) => os.map((o) => o.value)")
+        assert {"B.OUTPUT", "H.C.OUTPUT", ".A.OUTPUT"} <= set(options), options
+        page.fill("#editor-inspector input[data-search='source']", "c out")
+        shown = page.eval_on_selector_all(menu + " option", "(os) => os.filter((o) => !o.hidden && o.value).map((o) => o.value)")
+        assert shown == ["H.C.OUTPUT"], shown
+        page.select_option(menu, ".A.OUTPUT")
+        page.evaluate("() => window.ikaros.editor.openGroup('', -1)")
         page.click("#ed-add-module")
         page.fill(".class-search", "sine")
         page.wait_for_selector(".class-list li[data-class='FunctionGenerator']")
@@ -157,8 +188,7 @@ def test_class_picker_ranks_the_exact_name_first_and_finds_by_description():
         page.wait_for_selector("#editor-host rect.box[data-name='Scale']")
         assert not page.errors, page.errors
 
-    in_own_browser(os.path.join(EXAMPLES, "modules", "Add_example.ikg"), lambda s, p: None,
-                   check)
+    in_own_browser(str(model), lambda s, p: None, check)
 
 
 PLOTS = """<?xml version="1.0"?>

@@ -499,11 +499,25 @@ export class Editor {
         this.edit("move widget", () => setWidgetBox(w, box));
     }
 
+    /** Every output a widget here can show: this group's modules' and its subgroups'
+     *  outputs (paths from this group), then every other module output of the model (a
+     *  leading "." starts at the top group). */
     sourcesInGroup() {
-        const out = [];
-        for (const m of kids(this.group(), "module")) for (const o of this.classes[m.attrs.class]?.outputs || []) out.push(`${m.attrs.name}.${o.name}`);
+        const out = [], elsewhere = [], here = this.groupPath;
         for (const s of kids(this.group(), "group")) for (const o of kids(s, "output")) out.push(`${s.attrs.name}.${o.attrs.name}`);
-        return out;
+        const walk = (g, path) => {
+            for (const m of kids(g, "module")) {
+                for (const o of this.classes[m.attrs.class]?.outputs || []) {
+                    const full = [path, m.attrs.name, o.name].filter(Boolean).join(".");
+                    if (!here) out.push(full);
+                    else if (full.startsWith(here + ".")) out.push(full.slice(here.length + 1));
+                    else elsewhere.push("." + full);
+                }
+            }
+            for (const s of kids(g, "group")) walk(s, [path, s.attrs.name].filter(Boolean).join("."));
+        };
+        walk(this.model.tree, "");
+        return [...out, ...elsewhere];
     }
 
     parametersInGroup() {

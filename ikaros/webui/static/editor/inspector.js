@@ -222,6 +222,21 @@ export class EditorInspector {
     }
 
     widgetPanel(n) {
+        // a menu with a search field above it that keeps only the options holding its words
+        const searchable = (select) => {
+            const box = h("div", "searchable-pick");
+            const find = h("input", "param-input");
+            find.type = "search";
+            find.placeholder = "search";
+            find.dataset.search = select.dataset.attr;
+            find.setAttribute("aria-label", `search ${select.dataset.attr}`);
+            find.addEventListener("input", () => {
+                const words = find.value.toLowerCase().split(/\s+/).filter(Boolean);
+                for (const o of select.options) o.hidden = o.value !== "" && !words.every((w) => o.value.toLowerCase().includes(w));
+            });
+            box.append(find, select);
+            return box;
+        };
         const cls = widgetClassOf(n);
         this.el.appendChild(h("div", "module-class", `widget: ${cls}`));
         const t = this.table();
@@ -237,7 +252,7 @@ export class EditorInspector {
             s.addEventListener("change", () => this.set(n, key, s.value));
             return s;
         };
-        this.row(t, "source", pick("source", this.ctx.sources()), "an output in this group");
+        this.row(t, "source", searchable(pick("source", this.ctx.sources())), "an output of any module (a leading . starts at the top group)");
         if ("parameter" in n.attrs || ["slider-horizontal", "slider-vertical", "switch", "drop-down-menu", "button", "text", "grid"].includes(cls)) {
             this.row(t, "parameter", pick("parameter", this.ctx.parameters()), "a parameter in this group");
         }
