@@ -277,6 +277,11 @@ WIDGETS = """<?xml version="1.0"?>
     <module class="Constant" name="Gaze" data="0.5 -0.3" />
     <module class="Constant" name="Pupil" data="0.8 0.2" />
     <module class="Constant" name="Spot" data="0.3 0.7" />
+    <module class="Constant" name="Look" data="30 10" />
+    <module class="Scale" name="MX" factor="0" />
+    <module class="Scale" name="MY" factor="0" />
+    <connection source="One.OUTPUT" target="MX.INPUT" />
+    <connection source="One.OUTPUT" target="MY.INPUT" />
     <view name="New widgets">
         <event-raster source="Spikes.OUTPUT" title="raster" x="0" y="0" width="300" height="150" history="3000" />
         <scatter-plot source="Pts.OUTPUT" title="scatter" x="300" y="0" width="200" height="150" />
@@ -288,6 +293,12 @@ WIDGETS = """<?xml version="1.0"?>
         <color-picker parameter="Color.data" title="colour" x="550" y="150" width="150" height="80" />
         <epi-head eye_direction_source="Gaze.OUTPUT" pupil_size_source="Pupil.OUTPUT" title="epi" x="700" y="150" width="150" height="150" />
         <trace source="Spot.OUTPUT" title="trace" x="0" y="300" width="150" height="150" />
+        <surface-plot source="Box.OUTPUT" title="surface" x="150" y="300" width="200" height="150" />
+        <navigation-hud heading_source="Look.OUTPUT" title="heading" x="350" y="300" width="200" height="80" />
+        <pan-tilt-hud source="Look.OUTPUT" title="pantilt" x="550" y="300" width="150" height="100" />
+        <button type="radio" parameter="MX.factor" value="0" label="A" x="700" y="300" width="60" height="40" show_title="no" />
+        <button type="radio" parameter="MX.factor" value="2" label="B" x="760" y="300" width="60" height="40" show_title="no" />
+        <button type="multi" parameter="MY.factor" values="0,1,2" labels="low,mid,high" x="700" y="340" width="120" height="40" show_title="no" />
     </view>
 </group>
 """
@@ -310,11 +321,34 @@ def test_the_new_widgets(tmp_path):
     model.write_text(WIDGETS)
 
     def check(server, page):
-        page.wait_for_function("() => window.ikaros.built && window.ikaros.mainView.widgets.length === 10")
+        page.wait_for_function("() => window.ikaros.built && window.ikaros.mainView.widgets.length === 16")
         server.step(1)
-        for title in ("scatter", "histogram", "boxplot", "polar", "vectors", "epi", "trace", "raster"):
+        for title in ("scatter", "histogram", "boxplot", "polar", "vectors", "epi", "trace", "raster",
+                      "heading", "pantilt"):
             page.wait_for_function(f"() => ({PAINTED})('{title}') > 40", timeout=5000)
         assert page.evaluate(f"() => ({WIDGET})('histogram').counts.reduce((a, b) => a + b)") == 50
+        # the surface: a WebGL canvas, read through a 2-D copy; fire colours where the
+        # values are high
+        page.wait_for_function("""() => {
+            const src = document.querySelector("#view-host .widget[data-title='surface'] canvas");
+            const c = document.createElement('canvas'); c.width = src.width; c.height = src.height;
+            const g = c.getContext('2d'); g.drawImage(src, 0, 0);
+            const d = g.getImageData(0, 0, c.width, c.height).data;
+            let warm = 0;
+            for (let i = 0; i < d.length; i += 4) if (d[i] > 150 && d[i] > d[i + 2] + 60) warm++;
+            return warm > 200; }""", timeout=5000)
+        # radio buttons of one parameter, and a multi-state button
+        page.click("button.button-control:text-is('B')")
+        wait_for(lambda: server.parameter("MX.factor") == 2, what="MX.factor = 2")
+        page.wait_for_function("""() => {
+            const [a, b] = ['A', 'B'].map((t) => [...document.querySelectorAll('button.button-control')].find((x) => x.textContent === t));
+            return a.getAttribute('aria-pressed') === 'false' && b.getAttribute('aria-pressed') === 'true'; }""")
+        multi = page.locator("button.button-control:text-is('low')")
+        multi.click()
+        wait_for(lambda: server.parameter("MY.factor") == 1, what="MY.factor = 1")
+        page.locator("button.button-control:text-is('mid')").click()
+        wait_for(lambda: server.parameter("MY.factor") == 2, what="MY.factor = 2")
+        page.wait_for_selector("button.button-control:text-is('high')")
         assert page.evaluate(f"() => ({WIDGET})('boxplot').boxes.map((b) => b.median)") == [3, 6]
 
         server.post("/api/control", {"state": "play"})

@@ -30,6 +30,9 @@ export const WIDGETS = {
     "color-picker": () => import("./color-picker.js"),
     "epi-head": () => import("./epi-head.js"),
     "trace": () => import("./trace.js"),
+    "navigation-hud": () => import("./navigation-hud.js"),
+    "pan-tilt-hud": () => import("./pan-tilt-hud.js"),
+    "surface-plot": () => import("./surface-plot.js"),
 };
 
 // Other spellings met in model files.
