@@ -162,6 +162,7 @@ def test_run_controls_state_profiling_startup_and_quit(tmp_path):
         assert server.data("F.OUTPUT", "S.OUTPUT")["data"] == after
 
         page.click("#open-startup")
+        page.wait_for_selector("#startup-table")
         steps = page.eval_on_selector_all("#startup-table tbody tr", "(rs) => rs.map((r) => r.cells[0].textContent)")
         assert steps[0] == "read the model file" and steps[-2:] == ["init of the modules", "total"]
         page.screenshot(path=str(tmp_path / "run-tools.png"))
@@ -339,6 +340,15 @@ LABELS_MODEL = """<group name="Labels">
     <module class="Constant" name="InTheWay" data="2" _x="170" _y="-40"/>
     <connection source="C.OUTPUT" target="A.INPUT1" delay="1"/>
     <connection source="C.OUTPUT" target="A.INPUT2" delay="2"/>
+    <group name="G" _x="0" _y="300">
+        <input name="IN1"/><input name="IN2"/>
+        <output name="OUT1" source="K.OUTPUT"/><output name="OUT2" source="K.OUTPUT"/>
+        <output name="OUT3" source="K.OUTPUT"/>
+        <module class="Constant" name="K" data="5"/>
+    </group>
+    <module class="Scale" name="S" _x="500" _y="300"/>
+    <connection source="C.OUTPUT" target="G.IN1" delay="3"/>
+    <connection source="G.OUT1" target="S.INPUT" delay="4"/>
 </group>
 """
 
@@ -363,9 +373,14 @@ LABEL_PLACES = """() => {
 }"""
 
 
-def test_delay_badges_sit_on_their_edges_and_never_overlap(tmp_path):
+GROUP_PORTS = """() => [...document.querySelectorAll("#editor-host g.box-group[data-name='G'] g.port")]
+    .map((p) => p.dataset.side + ':' + p.dataset.port)"""
+
+
+def test_delay_badges_on_their_edges_and_group_ports_collapsed(tmp_path):
     """Part 10: two connections between the same two modules, and a box where their middles
-    are: each label stays on its own curve, clear of the other label and of every box."""
+    are: each label stays on its own curve, clear of the other label and of every box. A
+    subgroup shows only the ports its connections use, and all of them when expanded."""
     model = tmp_path / "labels.ikg"
     model.write_text(LABELS_MODEL)
 
@@ -375,11 +390,22 @@ def test_delay_badges_sit_on_their_edges_and_never_overlap(tmp_path):
     def check(server, page):
         places = page.evaluate(LABEL_PLACES)
         labels = places["labels"]
-        assert sorted(x["text"] for x in labels) == ["1", "2"]
+        assert sorted(x["text"] for x in labels) == ["1", "2", "3", "4"]
         for x in labels:
             assert x["off"] < 1.0, x                               # on its own curve
             assert not any(overlap(x["box"], b) for b in places["boxes"]), x
-        assert not overlap(labels[0]["box"], labels[1]["box"]), labels
+        for i, x in enumerate(labels):
+            assert not any(overlap(x["box"], y["box"]) for y in labels[i + 1:]), labels
         page.screenshot(path=str(tmp_path / "labels.png"))
+
+        assert page.evaluate(GROUP_PORTS) == ["in:IN1", "out:OUT1"]
+        toggle = page.locator("#editor-host g.port-toggle[data-key='c:G']")
+        assert toggle.locator("text").text_content() == "+3"
+        assert toggle.get_attribute("aria-label") == "show all 3 hidden ports of G"
+        toggle.click()
+        page.wait_for_function(f"() => ({GROUP_PORTS})().length === 5")
+        assert page.evaluate(GROUP_PORTS) == ["in:IN1", "in:IN2", "out:OUT1", "out:OUT2", "out:OUT3"]
+        page.locator("#editor-host g.port-toggle[data-key='c:G']").click()
+        page.wait_for_function(f"() => ({GROUP_PORTS})().length === 2")
 
     in_own_browser(str(model), open_editor, no_errors(check))

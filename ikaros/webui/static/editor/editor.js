@@ -423,6 +423,20 @@ export class Editor {
         if (this.clipboard) this.deleteSelection();
     }
 
+    /** The keys of the subgroups of a group whose unused ports are shown. */
+    expandedPorts(groupPath) {
+        this.portsShown ||= new Map();
+        if (!this.portsShown.has(groupPath)) this.portsShown.set(groupPath, new Set());
+        return this.portsShown.get(groupPath);
+    }
+
+    /** Show or hide a subgroup's unused ports (a view setting: the model is not changed). */
+    togglePorts(key) {
+        const set = this.expandedPorts(this.groupPath);
+        if (set.has(key)) set.delete(key); else set.add(key);
+        this.render();
+    }
+
     /** Select the boxes a rubber band touched (added to the selection when additive). */
     band(keys, additive) {
         if (!additive) this.selection.clear();
@@ -658,10 +672,11 @@ export class Editor {
                     onMove: (moves) => this.onMove(moves),
                     onConnect: (from, to) => this.onConnect(from, to),
                     onBand: (keys, additive) => this.band(keys, additive),
+                    onTogglePorts: (key) => this.togglePorts(key),
                 });
                 this.netView.shownGroup = null;
             }
-            const graph = graphOf(g, this.classes);
+            const graph = graphOf(g, this.classes, this.expandedPorts(this.groupPath));
             const { positions, automatic } = await layout(graph);
             if (seq !== this.renderSeq) return;
             this.graph = graph;

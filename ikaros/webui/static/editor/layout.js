@@ -8,9 +8,10 @@ export const BOX_W = 170, HEADER = 38, PORT_H = 18, PIN_W = 120, PIN_H = 26;
 /**
  * The graph of a group node: boxes (modules, subgroups; the group's inputs, outputs and
  * addresses outside the group as pins at the edges) and edges (connections, and the sources
- * of group outputs). classes: {name: description} from /api/classes.
+ * of group outputs). classes: {name: description} from /api/classes. A subgroup shows only
+ * its connected ports unless its key is in ``expanded``; ``hidden`` counts the others.
  */
-export function graphOf(g, classes = {}) {
+export function graphOf(g, classes = {}, expanded = new Set()) {
     const boxes = new Map();
     const add = (b) => { boxes.set(b.key, b); return b; };
     for (const { node, readOnly } of elements(g)) {
@@ -60,8 +61,30 @@ export function graphOf(g, classes = {}) {
         const from = end(node.attrs.source, "source");
         edges.push({ node, readOnly: true, outputSource: true, from, to: { box: boxes.get("o:" + node.attrs.name), port: "" }, delay: "" });
     }
+    collapsePorts(boxes, edges, expanded);
     for (const b of boxes.values()) Object.assign(b, size(b));
     return { boxes: [...boxes.values()], edges };
+}
+
+/** Subgroups show only the ports a connection uses, unless expanded: a group's inside is
+ *  not the business of the group around it. */
+function collapsePorts(boxes, edges, expanded) {
+    for (const b of boxes.values()) {
+        if (b.kind !== "group") continue;
+        const used = { in: new Set(), out: new Set() };
+        for (const e of edges) {
+            if (e.from.box === b) used.out.add(e.from.port);
+            if (e.to.box === b) used.in.add(e.to.port);
+        }
+        const all = b.inputs.length + b.outputs.length;
+        b.expanded = expanded.has(b.key);
+        if (!b.expanded) {
+            b.inputs = b.inputs.filter((p) => used.in.has(p));
+            b.outputs = b.outputs.filter((p) => used.out.has(p));
+        }
+        b.hidden = all - b.inputs.length - b.outputs.length;
+        b.collapsible = all > 0 && (b.expanded ? used.in.size + used.out.size < all : b.hidden > 0);
+    }
 }
 
 function size(b) {

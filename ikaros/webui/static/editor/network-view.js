@@ -67,7 +67,8 @@ class RectGrid {
 export class NetworkView {
     /**
      * handlers: onSelect(nodes, additive), onOpenGroup(name), onMove(Map key -> {x, y}),
-     * onConnect(from {box, port}, to {box, port}), onBand(box keys, additive)
+     * onConnect(from {box, port}, to {box, port}), onBand(box keys, additive),
+     * onTogglePorts(box key)
      */
     constructor(host, handlers) {
         this.host = host;
@@ -199,6 +200,16 @@ export class NetworkView {
             name.textContent = b.name;
             const cls = el("text", { class: "box-class", x: b.w / 2, y: 29, "text-anchor": "middle" }, g);
             cls.textContent = b.kind === "group" ? "group ▸" : b.label + (b.unknown ? " (unknown class)" : "");
+            if (b.collapsible) {
+                // show or hide the ports no connection uses
+                const tg = el("g", { class: "port-toggle", "data-key": b.key, role: "button", tabindex: "0",
+                    "aria-label": b.expanded ? `hide the unused ports of ${b.name}` : `show all ${b.hidden} hidden ports of ${b.name}` }, g);
+                el("rect", { x: b.w - 34, y: 3, width: 30, height: 14, rx: 7 }, tg);
+                const t = el("text", { x: b.w - 19, y: 14, "text-anchor": "middle" }, tg);
+                t.textContent = b.expanded ? "−" : `+${b.hidden}`;
+                const tip = el("title", {}, tg);
+                tip.textContent = b.expanded ? "hide the unused ports" : `${b.hidden} unused ports: show them`;
+            }
         } else {
             const t = el("text", { class: "box-name", x: b.w / 2, y: b.h / 2 + 4, "text-anchor": "middle" }, g);
             t.textContent = (b.kind.startsWith("external") ? "⋯ " : "") + b.name;
@@ -280,6 +291,12 @@ export class NetworkView {
     onDown(e) {
         if (e.button !== 0) return;
         this.svg.focus({ preventScroll: true });
+        const toggle = e.target.closest?.(".port-toggle");
+        if (toggle) {
+            this.h.onTogglePorts?.(toggle.dataset.key);
+            e.preventDefault();
+            return;
+        }
         const port = e.target.closest?.(".port");
         const boxEl = e.target.closest?.(".box-group");
         const edgeEl = e.target.closest?.("[data-edge]");
