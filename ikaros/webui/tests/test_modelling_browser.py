@@ -176,6 +176,18 @@ def test_class_picker_and_widget_sources_from_any_group(tmp_path):
         shown = page.eval_on_selector_all(menu + " option", "(os) => os.filter((o) => !o.hidden && o.value).map((o) => o.value)")
         assert shown == ["H.C.OUTPUT"], shown
         page.select_option(menu, ".A.OUTPUT")
+        # every attribute of the class with a control of its type (part 8)
+        inspector = "#editor-inspector "
+        assert page.get_attribute(inspector + "input[data-attr='buffer_size']", "type") == "number"
+        assert page.eval_on_selector_all(inspector + "select[data-attr='auto_range'] option",
+                                         "(os) => os.map((o) => o.value)") == ["", "yes", "no"]
+        assert page.locator(inspector + "input.color-swatch").count() >= 1
+        page.fill(inspector + "input[data-attr='buffer_size']", "300")
+        page.press(inspector + "input[data-attr='buffer_size']", "Tab")
+        page.select_option(inspector + "select[data-attr='auto_range']", "yes")
+        attrs = page.evaluate("() => { const [w] = window.ikaros.editor.selection; return w.attrs; }")
+        assert attrs["buffer_size"] == "300" and attrs["auto_range"] == "yes" and \
+            attrs["source"] == ".A.OUTPUT", attrs
         page.evaluate("() => window.ikaros.editor.openGroup('', -1)")
         page.click("#ed-add-module")
         page.fill(".class-search", "sine")

@@ -2,6 +2,7 @@
 // input or output, or widget, each with the control its type needs (number, checkbox, menu
 // for options, text, matrix). Every change is one undoable edit through ctx.edit.
 import { isValidName, splitAddress, widgetClassOf } from "./model.js";
+import { SPELLINGS, templateOf } from "../widgets/templates.js";
 
 function h(tag, cls, text) {
     const e = document.createElement(tag);
@@ -221,6 +222,42 @@ export class EditorInspector {
         this.extraAttributes(n, new Set(["name", "source"]));
     }
 
+    /** A control for a widget attribute of a type from widgets/templates.js. */
+    typed(n, key, type, searchable) {
+        const value = n.attrs[key] ?? "";
+        const menu = (choices) => {
+            const s = h("select", "param-input");
+            s.dataset.attr = key;
+            s.add(new Option("(default)", ""));
+            for (const x of choices) s.add(new Option(x, x));
+            if (value && !choices.includes(value)) s.add(new Option(value, value));
+            s.value = value;
+            s.addEventListener("change", () => this.set(n, key, s.value));
+            return s;
+        };
+        if (Array.isArray(type)) return menu(type);
+        if (type === "bool") return menu(["yes", "no"]);
+        if (type === "source") return searchable(menu(this.ctx.sources()));
+        if (type === "parameter") return menu(this.ctx.parameters());
+        const input = this.text(n, key);
+        if (type === "number" || type === "int") {
+            input.type = "number";
+            input.step = type === "int" ? "1" : "any";
+            return input;
+        }
+        if (type !== "color") return input;
+        const box = h("div", "color-field");
+        const swatch = h("input", "color-swatch");
+        swatch.type = "color";
+        swatch.setAttribute("aria-label", `${key} colour`);
+        const c = document.createElement("canvas").getContext("2d");
+        c.fillStyle = value.split(",")[0] || "#000000";
+        swatch.value = c.fillStyle.startsWith("#") ? c.fillStyle : "#000000";
+        swatch.addEventListener("change", () => this.set(n, key, swatch.value));
+        box.append(input, swatch);
+        return box;
+    }
+
     widgetPanel(n) {
         // a menu with a search field above it that keeps only the options holding its words
         const searchable = (select) => {
@@ -274,6 +311,14 @@ export class EditorInspector {
             this.row(st, key.replace("_", " "), c);
         }
         this.row(st, "style", this.text(n, "style", { placeholder: "CSS, e.g. background: #eef" }));
-        this.extraAttributes(n, new Set(["class", "title", "source", "parameter", "x", "y", "_x", "_y", "width", "height", "color", "show_title", "show_frame", "style"]));
+        const known = new Set(["class", "title", "source", "parameter", "x", "y", "_x", "_y", "width", "height", "color", "show_title", "show_frame", "style"]);
+        const wt = this.table("Widget");
+        for (const [name, type] of templateOf(cls)) {
+            const key = [name, ...(SPELLINGS[name] || [])].find((k) => k in n.attrs) ?? name;
+            if (known.has(key)) continue;
+            known.add(key);
+            this.row(wt, name, this.typed(n, key, type, searchable));
+        }
+        this.extraAttributes(n, known);
     }
 }
