@@ -5,6 +5,7 @@ each check failed before its feature. Screenshots go to tmp_path only."""
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import time
 
@@ -407,5 +408,68 @@ def test_delay_badges_on_their_edges_and_group_ports_collapsed(tmp_path):
         assert page.evaluate(GROUP_PORTS) == ["in:IN1", "in:IN2", "out:OUT1", "out:OUT2", "out:OUT3"]
         page.locator("#editor-host g.port-toggle[data-key='c:G']").click()
         page.wait_for_function(f"() => ({GROUP_PORTS})().length === 2")
+
+    in_own_browser(str(model), open_editor, no_errors(check))
+
+
+ROUTED_MODEL = """<group name="Routed">
+    <module class="Constant" name="A" data="1"/>
+    <module class="Scale" name="B"/>
+    <module class="Add" name="C"/>
+    <connection source="A.OUTPUT" target="B.INPUT"/>
+    <connection source="B.OUTPUT" target="C.INPUT1"/>
+    <connection source="A.OUTPUT" target="C.INPUT2"/>
+</group>
+"""
+
+ROUTES = """() => {
+    const svg = document.querySelector('#editor-host svg');
+    const boxes = [...svg.querySelectorAll('g.box-group')].map((g) => {
+        const m = /translate\\(([-\\d.]+),([-\\d.]+)\\)/.exec(g.getAttribute('transform'));
+        const r = g.querySelector('rect.box');
+        return [+m[1], +m[2], +m[1] + +r.getAttribute('width'), +m[2] + +r.getAttribute('height')];
+    });
+    const edges = [...svg.querySelectorAll('g.edge')].map((g) => ({
+        routed: g.classList.contains('routed'),
+        points: (g.querySelector('path.edge-line').getAttribute('d').match(/-?[\\d.]+,-?[\\d.]+/g) || []).map((p) => p.split(',').map(Number)),
+        d: g.querySelector('path.edge-line').getAttribute('d')}));
+    return {boxes, edges};
+}"""
+
+
+def test_connections_are_routed_around_boxes(tmp_path):
+    """Part 10: with elkjs's layout, connections are orthogonal polylines that pass no box;
+    moving a box turns them back into curves until Auto layout routes them again."""
+    model = tmp_path / "routed.ikg"
+    model.write_text(ROUTED_MODEL)
+
+    def crosses(seg, box):
+        (x0, y0), (x1, y1) = seg
+        bx0, by0, bx1, by1 = box[0] + 1, box[1] + 1, box[2] - 1, box[3] - 1
+        return min(x0, x1) < bx1 and max(x0, x1) > bx0 and min(y0, y1) < by1 and max(y0, y1) > by0
+
+    def check_routed(page):
+        r = page.evaluate(ROUTES)
+        assert len(r["edges"]) == 3 and all(e["routed"] for e in r["edges"]), r["edges"]
+        for e in r["edges"]:
+            assert not re.search("[Cc]", e["d"]), e["d"]              # no curves
+            segments = list(zip(e["points"], e["points"][1:]))
+            for (x0, y0), (x1, y1) in segments:
+                assert abs(x0 - x1) < 0.01 or abs(y0 - y1) < 0.01    # orthogonal
+            for seg in segments:
+                assert not any(crosses(seg, b) for b in r["boxes"]), (seg, r["boxes"])
+
+    def check(server, page):
+        check_routed(page)
+        page.screenshot(path=str(tmp_path / "routed.png"))
+        b = page.locator("#editor-host g.box-group[data-name='B'] rect.box").bounding_box()
+        page.mouse.move(b["x"] + 20, b["y"] + 10)
+        page.mouse.down()
+        page.mouse.move(b["x"] + 20, b["y"] + 150, steps=4)
+        page.mouse.up()
+        page.wait_for_function("() => !document.querySelector('#editor-host g.edge.routed')")
+        page.click("#ed-auto-layout")
+        page.wait_for_function("() => document.querySelectorAll('#editor-host g.edge.routed').length === 3")
+        check_routed(page)
 
     in_own_browser(str(model), open_editor, no_errors(check))

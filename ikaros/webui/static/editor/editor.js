@@ -6,7 +6,7 @@ import { WIDGETS } from "../widgets/index.js";
 import { pickClass } from "./class-list.js";
 import { ask, files, pickFile } from "./files.js";
 import { EditorInspector } from "./inspector.js";
-import { graphOf, layout, storedPosition } from "./layout.js";
+import { edgeKey, graphOf, layout, storedPosition } from "./layout.js";
 import { EditorModel, GROUP_WIDGETS, clone, elements, kids, node, setWidgetBox, treeAsNetwork, viewsOf, widgetBox } from "./model.js";
 import { NetworkView } from "./network-view.js";
 import { ViewEditor } from "./view-editor.js";
@@ -323,7 +323,8 @@ export class Editor {
 
     async autoLayout() {
         if (!this.graph) return;
-        const { positions } = await layout(this.graph, { force: true });
+        const { positions, routes } = await layout(this.graph, { force: true });
+        this.keepRoutes(routes, positions);
         this.edit("auto layout", () => {
             for (const b of this.graph.boxes) {
                 const p = positions.get(b.key);
@@ -421,6 +422,27 @@ export class Editor {
     cut() {
         this.copy();
         if (this.clipboard) this.deleteSelection();
+    }
+
+    /** Keep the routes of an automatic layout with the positions they were made for. */
+    keepRoutes(routes, positions) {
+        if (routes) this.routing = { group: this.groupPath, routes, at: new Map([...positions].map(([k, p]) => [k, { ...p }])) };
+    }
+
+    /** The routes still true to the drawing: none once a box was moved, added or removed
+     *  (connections are then curves until the next Auto layout); a pin placed anew drops
+     *  only its own connections' routes. */
+    validRoutes() {
+        const r = this.routing, out = new Map();
+        if (!r || r.group !== this.groupPath || !this.graph) return out;
+        const same = (k) => { const a = r.at.get(k), b = this.positions.get(k); return a && b && a.x === b.x && a.y === b.y; };
+        const comps = this.graph.boxes.filter((b) => isComponent(b.node));
+        if (!comps.every((b) => same(b.key)) || comps.length !== [...r.at.keys()].filter((k) => k.startsWith("c:")).length) return out;
+        for (const e of this.graph.edges) {
+            const key = edgeKey(e);
+            if (e.from.box && e.to.box && same(e.from.box.key) && same(e.to.box.key) && r.routes.has(key)) out.set(key, r.routes.get(key));
+        }
+        return out;
     }
 
     /** The keys of the subgroups of a group whose unused ports are shown. */
@@ -590,7 +612,7 @@ export class Editor {
     redraw() {
         if (!this.active) return;
         if (this.mode === "network" && this.netView && this.graph) {
-            this.netView.show(this.graph, this.positions, { errors: this.visibleErrors(), selection: this.selection, groupError: this.groupError });
+            this.netView.show(this.graph, this.positions, { errors: this.visibleErrors(), selection: this.selection, groupError: this.groupError, routes: this.validRoutes() });
         } else if (this.viewEditor && this.currentView()) {
             this.viewEditor.show(this.currentView(), this.selection, this.errors);
         }
@@ -677,8 +699,9 @@ export class Editor {
                 this.netView.shownGroup = null;
             }
             const graph = graphOf(g, this.classes, this.expandedPorts(this.groupPath));
-            const { positions, automatic } = await layout(graph);
+            const { positions, automatic, routes } = await layout(graph);
             if (seq !== this.renderSeq) return;
+            this.keepRoutes(routes, positions);
             this.graph = graph;
             this.positions = positions;
             this.automatic = automatic;

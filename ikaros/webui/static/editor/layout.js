@@ -136,20 +136,21 @@ export async function layout(graph, { force = false } = {}) {
     const comps = graph.boxes.filter(isComponent);
     const stored = new Map(comps.map((b) => [b.key, storedPosition(b)]));
     const manual = !force && comps.length > 0 && comps.every((b) => stored.get(b.key));
-    let pos;
+    let pos, routes = null;
     if (manual) {
         pos = new Map(comps.map((b) => [b.key, stored.get(b.key)]));
         placePins(graph, pos);
     } else {
         try {
             // elkjs takes seconds on thousands of boxes: big groups get the simple layout
-            pos = graph.boxes.length > ELK_LIMIT ? simpleLayout(graph) : await elkLayout(graph);
+            if (graph.boxes.length > ELK_LIMIT) pos = simpleLayout(graph);
+            else ({ pos, routes } = await elkLayout(graph));
         } catch (e) {
             console.warn("elk layout failed, using the simple one:", e);
             pos = simpleLayout(graph);
         }
     }
-    return { positions: pos, automatic: !manual };
+    return { positions: pos, automatic: !manual, routes };
 }
 
 function placePins(graph, pos) {
@@ -166,6 +167,9 @@ function placePins(graph, pos) {
     right.forEach((b, i) => pos.set(b.key, { x: maxX + 80, y: minY + i * (PIN_H + 20) }));
 }
 
+/** What names a connection across layouts: its source and target as written. */
+export function edgeKey(e) { return `${e.node?.attrs.source}>${e.node?.attrs.target || e.node?.attrs.name}`; }
+
 async function elkLayout(graph) {
     const ELK = await loadElk();
     const elk = new ELK();
@@ -180,7 +184,7 @@ async function elkLayout(graph) {
         if (b.kind === "output" || b.kind === "external-out") opts["org.eclipse.elk.layered.layering.layerConstraint"] = "LAST_SEPARATE";
         return { id: b.key, width: b.w, height: b.h, ports, layoutOptions: opts };
     });
-    const edges = graph.edges.filter((e) => e.from.box && e.to.box).map((e, i) => ({
+    const edges = graph.edges.map((e, i) => [e, i]).filter(([e]) => e.from.box && e.to.box).map(([e, i]) => ({
         id: "e" + i, sources: [pid(e.from.box, "out", e.from.port)], targets: [pid(e.to.box, "in", e.to.port)],
     }));
     const result = await elk.layout({
@@ -193,10 +197,26 @@ async function elkLayout(graph) {
             "org.eclipse.elk.spacing.componentComponent": "60",
             "org.eclipse.elk.layered.crossingMinimization.strategy": "LAYER_SWEEP",
             "org.eclipse.elk.padding": "[top=40,left=40,bottom=40,right=40]",
+            "org.eclipse.elk.edgeRouting": "ORTHOGONAL",
+            "org.eclipse.elk.layered.spacing.edgeNodeBetweenLayers": "20",
         },
         children, edges,
     });
-    return new Map(result.children.map((c) => [c.id, { x: Math.round(c.x), y: Math.round(c.y) }]));
+    const pos = new Map(result.children.map((c) => [c.id, { x: Math.round(c.x), y: Math.round(c.y) }]));
+    // the connections as elkjs routed them around the boxes: points relative to the rounded
+    // box positions, keyed by edgeKey
+    const routes = new Map();
+    const shift = new Map(result.children.map((c) => [c.id, [Math.round(c.x) - c.x, Math.round(c.y) - c.y]]));
+    for (const re of result.edges || []) {
+        const sec = re.sections?.[0];
+        const e = graph.edges[+re.id.slice(1)];
+        if (!sec || !e) continue;
+        const [sx, sy] = shift.get(e.from.box.key), [tx, ty] = shift.get(e.to.box.key);
+        const pts = [[sec.startPoint.x + sx, sec.startPoint.y + sy], ...(sec.bendPoints || []).map((b) => [b.x, b.y]),
+            [sec.endPoint.x + tx, sec.endPoint.y + ty]];
+        routes.set(edgeKey(e), pts);
+    }
+    return { pos, routes };
 }
 
 /** Longest-path layers along the connections, boxes stacked in each layer. */

@@ -4,7 +4,7 @@
 // or a rubber band: shift- or alt-drag on the background),
 // move (drag boxes), connect (drag from an output port to an input port), open a group
 // (double-click). The view changes nothing itself: it reports to its owner.
-import { HEADER, PORT_H, portOffset } from "./layout.js";
+import { HEADER, PORT_H, edgeKey, portOffset } from "./layout.js";
 
 const SVG = "http://www.w3.org/2000/svg";
 const REST_MS = 150;     // a pan or zoom gesture is drawn anew after this long at rest
@@ -34,6 +34,20 @@ function pointAt(x1, y1, x2, y2, t) {
     const [a, b, c, d] = controls(x1, y1, x2, y2);
     const u = 1 - t;
     return [0, 1].map((i) => u * u * u * a[i] + 3 * u * u * t * b[i] + 3 * u * t * t * c[i] + t * t * t * d[i]);
+}
+
+/** The point at fraction t of a polyline's length. */
+function alongPolyline(pts, t) {
+    const lengths = pts.slice(1).map((p, i) => Math.hypot(p[0] - pts[i][0], p[1] - pts[i][1]));
+    let rest = t * lengths.reduce((a, b) => a + b, 0);
+    for (let i = 0; i < lengths.length; i++) {
+        if (rest <= lengths[i] || i === lengths.length - 1) {
+            const f = lengths[i] ? Math.min(1, rest / lengths[i]) : 0;
+            return [pts[i][0] + f * (pts[i + 1][0] - pts[i][0]), pts[i][1] + f * (pts[i + 1][1] - pts[i][1])];
+        }
+        rest -= lengths[i];
+    }
+    return pts[0];
 }
 
 // Where a label may sit along its connection, best first: the middle, then out to the ends.
@@ -156,8 +170,9 @@ export class NetworkView {
     // --- drawing -------------------------------------------------------------------------
 
     /** Draw a graph: positions Map(key -> {x, y}); errors Map(node -> message); selection Set(node). */
-    show(graph, positions, { errors = new Map(), selection = new Set(), groupError = null } = {}) {
+    show(graph, positions, { errors = new Map(), selection = new Set(), groupError = null, routes = new Map() } = {}) {
         this.graph = graph;
+        this.routes = routes;
         this.pos = positions;
         this.errors = errors;
         this.selection = selection;
@@ -247,12 +262,16 @@ export class NetworkView {
         const error = this.errors.get(e.node);
         const g = el("g", { class: `edge${selected ? " selected" : ""}${error ? " has-error" : ""}${e.outputSource ? " output-source" : ""}`,
             "data-edge": String(i), "data-source": e.node.attrs.source || "", "data-target": e.node.attrs.target || e.node.attrs.name || "" }, layer);
-        const d = curve(a.x, a.y, b.x, b.y);
+        // routed around the boxes (elkjs, orthogonal) while the layout is elkjs's own
+        const route = this.routes.get(edgeKey(e));
+        const d = route ? "M" + route.map((p) => p.join(",")).join(" L") : curve(a.x, a.y, b.x, b.y);
+        if (route) g.classList.add("routed");
         el("path", { class: "edge-hit", d }, g);
         el("path", { class: "edge-line", d }, g);
         const label = [e.delay, e.from.selector, e.to.selector ? "→" + e.to.selector : ""].filter(Boolean).join(" ");
-        if (label) this.labels.push({ text: label, i, selected, error, e, ends: [a.x, a.y, b.x, b.y] });
-        else if (error) { const [mx, my] = pointAt(a.x, a.y, b.x, b.y, 0.5); this.errorNote(labels, mx - 20, my + 12, error); }
+        const at = route ? (t) => alongPolyline(route, t) : (t) => pointAt(a.x, a.y, b.x, b.y, t);
+        if (label) this.labels.push({ text: label, i, selected, error, e, at });
+        else if (error) { const [mx, my] = at(0.5); this.errorNote(labels, mx - 20, my + 12, error); }
     }
 
     /** Put every connection's label (its delay badge) on its own curve where it overlaps
@@ -268,7 +287,7 @@ export class NetworkView {
             const w = 8 + 7 * L.text.length, hh = 9;
             let best = null;
             for (const t of LABEL_T) {
-                const [x, y] = pointAt(...L.ends, t);
+                const [x, y] = L.at(t);
                 const r = [x - w / 2, y - hh, x + w / 2, y + hh];
                 const cost = taken.overlap(r);
                 if (!best || cost < best.cost) best = { x, y, r, cost };
