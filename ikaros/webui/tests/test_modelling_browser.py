@@ -151,6 +151,7 @@ NESTED = """<?xml version="1.0"?>
         </group>
         <view name="V">
             <plot source="B.OUTPUT" title="b" x="20" y="20" width="200" height="100" />
+            <bar-graph source="B.OUTPUT" title="bars" x="240" y="20" width="200" height="100" />
         </view>
     </group>
 </group>
@@ -188,6 +189,28 @@ def test_class_picker_and_widget_sources_from_any_group(tmp_path):
         attrs = page.evaluate("() => { const [w] = window.ikaros.editor.selection; return w.attrs; }")
         assert attrs["buffer_size"] == "300" and attrs["auto_range"] == "yes" and \
             attrs["source"] == ".A.OUTPUT", attrs
+
+        # to front, copy the view as XML, and the grid spacing (part 8)
+        page.click(inspector + "button[data-action='to-front']")
+        titles = page.evaluate("""() => window.ikaros.editor.model.group('G').children
+            .filter((c) => c.tag === 'view')[0].children.map((w) => w.attrs.title)""")
+        assert titles == ["bars", "b"], titles
+        page.context.grant_permissions(["clipboard-read", "clipboard-write"], origin=server.base)
+        page.click("#editor-host .widget-frame[data-title='b']")
+        page.click(inspector + "button[data-action='copy-xml']")
+        page.wait_for_selector(inspector + "button[data-action='copy-xml']:text-is('Copied')")
+        xml = page.evaluate("() => navigator.clipboard.readText()")
+        assert xml.startswith('<view name="V">') and xml.index('title="bars"') < xml.index('title="b"')
+        assert 'buffer_size="300"' in xml and 'source=".A.OUTPUT"' in xml, xml
+        page.click("button[data-grid='larger']")
+        frame = page.locator("#editor-host .widget-frame[data-title='b']")
+        box = frame.bounding_box()
+        page.mouse.move(box["x"] + 50, box["y"] + 30)
+        page.mouse.down()
+        page.mouse.move(box["x"] + 63, box["y"] + 41, steps=3)
+        page.mouse.up()
+        attrs = page.evaluate("() => { const [w] = window.ikaros.editor.selection; return w.attrs; }")
+        assert int(attrs["x"]) % 20 == 0 and int(attrs["y"]) % 20 == 0 and attrs["x"] != "20", attrs
         page.evaluate("() => window.ikaros.editor.openGroup('', -1)")
         page.click("#ed-add-module")
         page.fill(".class-search", "sine")

@@ -141,6 +141,7 @@ export class Editor {
             sources: () => this.sourcesInGroup(),
             parameters: () => this.parametersInGroup(),
             error: (n) => this.errors.get(n) || null,
+            parentOf: (n) => { const c = this.model.chain(n); return c && c.length > 1 ? c[c.length - 2] : null; },
         });
         document.addEventListener("keydown", (e) => this.onKey(e));
         // edits that are not on disk: the browser asks before the tab closes or reloads

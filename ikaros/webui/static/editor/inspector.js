@@ -3,6 +3,9 @@
 // for options, text, matrix). Every change is one undoable edit through ctx.edit.
 import { isValidName, splitAddress, widgetClassOf } from "./model.js";
 import { SPELLINGS, templateOf } from "../widgets/templates.js";
+import { viewXml } from "../view-xml.js";
+
+const NOT_WIDGETS = new Set(["module", "group", "connection", "input", "output", "parameter", "view", "define", "description"]);
 
 function h(tag, cls, text) {
     const e = document.createElement(tag);
@@ -222,6 +225,39 @@ export class EditorInspector {
         this.extraAttributes(n, new Set(["name", "source"]));
     }
 
+    /** Bring to front, send to back (the order of the view's elements is the drawing
+     *  order) and copy the view as XML. */
+    widgetActions(n) {
+        const bar = h("div", "widget-actions");
+        const move = (label, toFront) => {
+            const b = h("button", "tool small", label);
+            b.dataset.action = toFront ? "to-front" : "to-back";
+            b.addEventListener("click", () => {
+                const parent = this.ctx.parentOf(n);
+                if (!parent) return;
+                this.ctx.edit(label.toLowerCase(), () => {
+                    const i = parent.children.indexOf(n);
+                    parent.children.splice(i, 1);
+                    // the drawing order counts only widgets: a widget goes before or after them all
+                    const widgets = parent.children.map((c, k) => [c, k]).filter(([c]) => !c.tag.startsWith("#") && !NOT_WIDGETS.has(c.tag));
+                    const at = toFront ? (widgets.length ? widgets[widgets.length - 1][1] + 1 : parent.children.length) : (widgets.length ? widgets[0][1] : 0);
+                    parent.children.splice(at, 0, n);
+                });
+            });
+            return b;
+        };
+        const copy = h("button", "tool small", "Copy view as XML");
+        copy.dataset.action = "copy-xml";
+        copy.addEventListener("click", async () => {
+            const parent = this.ctx.parentOf(n);
+            if (!parent) return;
+            try { await navigator.clipboard.writeText(viewXml(parent)); copy.textContent = "Copied"; }
+            catch (e) { copy.textContent = "Copy failed: " + e.message; }
+        });
+        bar.append(move("To front", true), move("To back", false), copy);
+        this.el.appendChild(bar);
+    }
+
     /** A control for a widget attribute of a type from widgets/templates.js. */
     typed(n, key, type, searchable) {
         const value = n.attrs[key] ?? "";
@@ -320,5 +356,6 @@ export class EditorInspector {
             this.row(wt, name, this.typed(n, key, type, searchable));
         }
         this.extraAttributes(n, known);
+        this.widgetActions(n);
     }
 }
