@@ -221,6 +221,22 @@ def test_class_picker_and_widget_sources_from_any_group(tmp_path):
         assert first == "Scale", first
         page.press(".class-search", "Enter")
         page.wait_for_selector("#editor-host rect.box[data-name='Scale']")
+
+        # defect 6: new and pasted modules never land on top of each other
+        page.click("#ed-add-module")
+        page.fill(".class-search", "Scale")
+        page.press(".class-search", "Enter")
+        page.click("#editor-host g.box-group[data-name='A'] rect.box")
+        page.click("#ed-copy")
+        page.click("#ed-paste")
+        page.click("#ed-paste")
+        page.wait_for_function("() => document.querySelectorAll('#editor-host rect.box').length >= 6")
+        rects = page.evaluate("""() => [...document.querySelectorAll('#editor-host rect.box')].map((r) => {
+            const b = r.getBoundingClientRect(); return [r.dataset.name, b.x, b.y, b.width, b.height]; })""")
+        for i, a in enumerate(rects):
+            for b in rects[i + 1:]:
+                apart = a[1] + a[3] <= b[1] or b[1] + b[3] <= a[1] or a[2] + a[4] <= b[2] or b[2] + b[4] <= a[2]
+                assert apart, (a, b)
         assert not page.errors, page.errors
 
     in_own_browser(str(model), lambda s, p: None, check)
