@@ -418,14 +418,20 @@ class Hub:
         since = c.seen.get(path, -1)
         if since > snap.tick:               # a new network counts from 0 again
             since = -1
-        if path not in snap.history:        # no ring yet: this tick's value alone
+        if path not in snap.history:        # no ring yet: this tick's value (below)
             arr = snap.plan.arrays[path]
-            found = (np.array([snap.tick]), arr.reshape(1, -1), tuple(arr.shape))
+            found = (np.empty(0, np.int64), np.empty((0, arr.size), np.float32),
+                     tuple(arr.shape))
         else:
             found = snap.history[path]
         ticks, rows, shape = found
         keep = ticks > since
         ticks, rows = ticks[keep], rows[keep]
+        if snap.tick > since and (len(ticks) == 0 or ticks[-1] < snap.tick):
+            # subscribed while paused: the ring has not seen this tick, the snapshot has
+            arr = snap.plan.arrays[path]
+            ticks = np.append(ticks, snap.tick)
+            rows = np.concatenate([rows, arr.reshape(1, -1)])
         if fmt == "events":
             payload, head = encode_events(ticks, rows, shape, since)
         else:

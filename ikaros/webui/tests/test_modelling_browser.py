@@ -433,3 +433,55 @@ def test_the_new_widgets(tmp_path):
         assert not page.errors, page.errors
 
     in_own_browser(str(model), lambda s, p: None, check)
+
+
+VIEW_REPORT = """() => window.ikaros.mainView.widgets.map((w) => {
+    const c = w.el.querySelector('canvas');
+    let painted = null;
+    if (c && c.width && c.height) {
+        const copy = document.createElement('canvas'); copy.width = c.width; copy.height = c.height;
+        const g = copy.getContext('2d'); g.drawImage(c, 0, 0);
+        const d = g.getImageData(0, 0, c.width, c.height).data;
+        painted = 0;
+        for (let i = 3; i < d.length; i += 4) if (d[i] > 100) painted++;
+    }
+    return {cls: w.attrs?.class, title: w.el.dataset.title, subs: w.subscriptions().length,
+            painted, samples: w.xs ? w.xs.length : null, error: w.el.classList.contains('widget-error')};
+})"""
+
+EXAMPLE_MODELS = ["demo.ikg", "hello.ikg", "conditioning.ikg", "planar_arm_reaching.ikg",
+                  "qlearning_maze.ikg", os.path.join("modules", "World2D_example.ikg")]
+
+
+def test_every_example_view_draws_its_data():
+    """Each view of the examples, after a few ticks: no widget fails to build, every
+    widget fed by data draws (a canvas with pixels, a plot with samples). Screenshots of
+    every view are kept."""
+    failures = []
+    for name in EXAMPLE_MODELS:
+        def check(server, page, name=name):
+            server.step(3)
+            links = page.eval_on_selector_all(
+                "#navigator a[data-view]", "(ls) => ls.map((l) => [l.dataset.group, Number(l.dataset.view)])")
+            assert links, name
+            for group, view in links:
+                page.evaluate("([g, v]) => window.ikaros.showView(g, v)", [group, view])
+                page.wait_for_function(
+                    "([g, v]) => { const c = window.ikaros.built; return c && c.group === g && c.view === v; }",
+                    arg=[group, view])
+                page.wait_for_function(
+                    "(t) => window.ikaros.lastFrame && window.ikaros.lastFrame.tick >= t", arg=3)
+                time.sleep(0.3)
+                shot(page, f"example-{os.path.basename(name)}-{group or 'top'}-{view}")
+                for w in page.evaluate(VIEW_REPORT):
+                    where = f"{name} {group or 'top'} view {view}: {w['cls']} {w['title']!r}"
+                    if w["error"]:
+                        failures.append(where + " did not build")
+                    elif w["subs"] and w["samples"] is not None and w["samples"] == 0:
+                        failures.append(where + " has no samples")
+                    elif w["subs"] and w["painted"] is not None and w["painted"] == 0:
+                        failures.append(where + " drew nothing")
+            assert not page.errors, page.errors
+
+        in_own_browser(os.path.join(EXAMPLES, name), lambda s, p: None, check)
+    assert not failures, failures

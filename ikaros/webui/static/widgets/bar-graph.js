@@ -70,5 +70,12 @@ export default class BarGraph extends CanvasWidget {
             }
             pos += 0.5;
         }
+        // the zero line (the bars' base), drawn even when every bar is 0
+        g.strokeStyle = this.cssVar("--muted-color", "#888");
+        g.lineWidth = 1;
+        g.beginPath();
+        if (horizontal) { g.moveTo(zero * w, 0); g.lineTo(zero * w, h); }
+        else { const y = (h - labelSpace) * (1 - zero); g.moveTo(0, y); g.lineTo(w, y); }
+        g.stroke();
     }
 }
