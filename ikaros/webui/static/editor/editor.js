@@ -6,7 +6,7 @@ import { WIDGETS } from "../widgets/index.js";
 import { pickClass } from "./class-list.js";
 import { ask, files, pickFile } from "./files.js";
 import { EditorInspector } from "./inspector.js";
-import { edgeKey, graphOf, layout, storedPosition } from "./layout.js";
+import { edgeKey, graphOf, layout, loadElk, storedPosition } from "./layout.js";
 import { EditorModel, GROUP_WIDGETS, clone, elements, kids, node, setWidgetBox, treeAsNetwork, viewsOf, widgetBox } from "./model.js";
 import { NetworkView } from "./network-view.js";
 import { ViewEditor } from "./view-editor.js";
@@ -44,7 +44,7 @@ export class Editor {
         this.classesLoaded = null;
         // the class list takes the server a second to gather: fetched while the page idles,
         // so that the editor opens at once
-        setTimeout(() => this.loadClasses(), 500);
+        setTimeout(() => this.loadClasses().then(() => loadElk()).catch(() => { }), 500);
     }
 
     loadClasses() {
@@ -720,6 +720,7 @@ export class Editor {
                 this.viewEditor = new ViewEditor(this.host, {
                     onSelect: (nodes, additive) => this.select(nodes, additive),
                     onGeometry: (w, box) => this.onGeometry(w, box),
+                    live: () => ({ ctx: { ...this.app.ctx, groupPath: this.groupPath }, changed: () => this.app.resubscribe() }),
                 });
             }
             if (!this.currentView()) { this.mode = "network"; this.render(); return; }

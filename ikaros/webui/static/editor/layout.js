@@ -113,7 +113,9 @@ export function storedPosition(b) {
 }
 
 let elkLoading = null;
-function loadElk() {
+/** Load elkjs (the first automatic layout needs it; the editor loads it while the page
+ *  idles, so that the editor opens at once). */
+export function loadElk() {
     if (window.ELK) return Promise.resolve(window.ELK);
     if (!elkLoading) {
         elkLoading = new Promise((resolve, reject) => {

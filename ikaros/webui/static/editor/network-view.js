@@ -8,6 +8,10 @@ import { HEADER, PORT_H, edgeKey, portOffset } from "./layout.js";
 
 const SVG = "http://www.w3.org/2000/svg";
 const REST_MS = 150;     // a pan or zoom gesture is drawn anew after this long at rest
+const CULL_LIMIT = 400;  // boxes; a bigger group is drawn only around the view
+
+const overlaps = (a, b) => a[0] < b[2] && a[2] > b[0] && a[1] < b[3] && a[3] > b[1];
+const inside = (a, b) => a[0] >= b[0] && a[1] >= b[1] && a[2] <= b[2] && a[3] <= b[3];
 
 function el(tag, attrs = {}, parent = null) {
     const e = document.createElementNS(SVG, tag);
@@ -116,6 +120,16 @@ export class NetworkView {
         // level of detail: small text is left out when it could not be read anyway
         this.svg.classList.toggle("far", this.t.k < 0.5);
         this.svg.classList.toggle("very-far", this.t.k < 0.3);
+        // a big group is drawn only around the view: draw again when the view leaves it
+        if (this.drawn && !inside(this.visible(0), this.drawn)) this.draw();
+    }
+
+    /** The part of the drawing in view, widened by ``margin`` views on each side. */
+    visible(margin) {
+        const r = this.svg.getBoundingClientRect();
+        const w = (r.width || 800) / this.t.k, h = (r.height || 600) / this.t.k;
+        const x = -this.t.x / this.t.k, y = -this.t.y / this.t.k;
+        return [x - margin * w, y - margin * h, x + (1 + margin) * w, y + (1 + margin) * h];
     }
 
     /** A transform during a wheel or a drag: the drawing already painted is moved and
@@ -176,15 +190,32 @@ export class NetworkView {
         this.pos = positions;
         this.errors = errors;
         this.selection = selection;
+        this.groupError = groupError;
+        this.draw();
+    }
+
+    /** Draw the graph; a group of more than CULL_LIMIT boxes only within a view around the
+     *  one on screen (the rest is drawn when panned or zoomed to). */
+    draw() {
+        const { graph, groupError } = this;
+        this.drawn = graph.boxes.length > CULL_LIMIT ? this.visible(1) : null;
+        const shown = (b) => {
+            if (!this.drawn) return true;
+            const p = this.pos.get(b.key);
+            return p && overlaps([p.x, p.y, p.x + b.w, p.y + b.h], this.drawn);
+        };
+        const drawnBoxes = new Set(graph.boxes.filter(shown));
         this.root.textContent = "";
         this.svg.querySelectorAll(":scope > .group-error").forEach((x) => x.remove());
         const edgeLayer = el("g", { class: "edges" }, this.root);
         const boxLayer = el("g", { class: "boxes" }, this.root);
         const labelLayer = el("g", { class: "edge-labels" }, this.root);
         this.tempLayer = el("g", { class: "temp" }, this.root);
-        for (const b of graph.boxes) this.drawBox(boxLayer, b);
+        for (const b of drawnBoxes) this.drawBox(boxLayer, b);
         this.labels = [];
-        graph.edges.forEach((e, i) => this.drawEdge(edgeLayer, labelLayer, e, i));
+        graph.edges.forEach((e, i) => {
+            if (drawnBoxes.has(e.from.box) || drawnBoxes.has(e.to.box)) this.drawEdge(edgeLayer, labelLayer, e, i);
+        });
         this.placeLabels(labelLayer);
         if (groupError) {
             const f = el("foreignObject", { x: 8, y: 8, width: 600, height: 80, class: "group-error" }, this.svg);
