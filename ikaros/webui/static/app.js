@@ -205,7 +205,7 @@ class App {
         this.pollParameters();
     }
 
-    views() { return [this.mainView, this.moduleInspector.view].filter(Boolean); }
+    views() { return [this.mainView, this.moduleInspector.view, this.editor?.viewEditor].filter(Boolean); }
 
     resubscribe() {
         const seen = new Map();

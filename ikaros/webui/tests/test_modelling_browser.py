@@ -169,6 +169,10 @@ def test_class_picker_and_widget_sources_from_any_group(tmp_path):
         page.click("#toggle-editor")
         page.wait_for_selector("#editor-host[data-ready] svg.network-view")
         page.evaluate("() => window.ikaros.editor.openGroup('G', 0)")
+        # the widgets are live while the view is edited: the plot has B's value (2)
+        page.wait_for_function("""() => { const v = window.ikaros.editor.viewEditor;
+            const p = v && v.live.find((w) => w.attrs.class === 'plot');
+            return p && p.hi.length && p.hi[0].at(-1) === 2; }""")
         page.click("#editor-host .widget-frame[data-widget='plot']")
         menu = "#editor-inspector select[data-attr='source']"
         options = page.eval_on_selector_all(menu + " option", "(os) => os.map((o) => o.value)")

@@ -1,8 +1,9 @@
 // The view editor: the widgets of one view as frames that can be selected, moved (drag) and
 // resized (the corner handle), snapped to a grid of 5 to 160 px (grid − and + halve and
-// double it; 10 px at first). Adding, deleting and restyling go
-// through the editor's toolbar and inspector.
+// double it; 10 px at first). Each frame shows its widget live, with data, as the view
+// does. Adding, deleting and restyling go through the editor's toolbar and inspector.
 import { kids, widgetBox, widgetClassOf } from "./model.js";
+import { widgetClass } from "../widgets/index.js";
 
 const GRIDS = [5, 10, 20, 40, 80, 160];     // grid spacings, px (- halves, + doubles)
 
@@ -15,6 +16,8 @@ export class ViewEditor {
         this.el.className = "view view-editor";
         host.appendChild(this.el);
         this.drag = null;
+        this.live = [];                      // the frames' widgets, with data
+        this.liveToken = {};
         this.grid = GRIDS.includes(Number(localStorage.getItem("ikaros-view-grid"))) ? Number(localStorage.getItem("ikaros-view-grid")) : 10;
         this.gridBar = document.createElement("div");
         this.gridBar.className = "view-grid-bar";
@@ -48,7 +51,43 @@ export class ViewEditor {
 
     snap(v) { return Math.round(v / this.grid) * this.grid; }
 
+    // --- live widgets: each frame shows its widget with data while the view is edited ------
+
+    /** Build the real widget inside a frame (it takes no pointer events: the frame is
+     *  dragged); the frame's text stays for a class that fails to build. */
+    async makeLive(frame, body, node, cls) {
+        const live = this.h.live?.();
+        if (!live) return;
+        const token = this.liveToken;
+        const Cls = await widgetClass(cls);
+        if (!Cls || token !== this.liveToken) return;
+        let widget;
+        try { widget = new Cls({ ...node.attrs, class: cls, show_title: "no" }, live.ctx); } catch { return; }
+        widget.el.classList.add("live-widget");
+        Object.assign(widget.el.style, { position: "absolute", inset: "0", pointerEvents: "none" });
+        body.textContent = "";
+        body.style.position = "relative";
+        body.appendChild(widget.el);
+        frame.classList.add("live");
+        this.live.push(widget);
+        clearTimeout(this.liveTimer);
+        this.liveTimer = setTimeout(() => live.changed(), 0);    // subscribe once for all
+    }
+
+    dropLive() {
+        for (const w of this.live || []) { try { w.destroy(); } catch { } }
+        this.live = [];
+        this.liveToken = {};
+    }
+
+    subscriptions() { return this.live.flatMap((w) => w.subscriptions()); }
+    parameters() { return this.live.flatMap((w) => w.parameters()); }
+    update(frame) { for (const w of this.live) { try { w.update(frame); } catch { } } }
+    setParameters(values) { for (const w of this.live) { try { w.setParameters(values); } catch { } } }
+
     destroy() {
+        this.dropLive();
+        this.h.live?.().changed();
         this.gridBar.remove();
         window.removeEventListener("pointermove", this.move);
         window.removeEventListener("pointerup", this.up);
@@ -57,6 +96,7 @@ export class ViewEditor {
 
     show(view, selection, errors = new Map()) {
         this.view = view;
+        this.dropLive();
         this.el.textContent = "";
         this.frames = new Map();
         let right = 600, bottom = 400;
@@ -89,6 +129,7 @@ export class ViewEditor {
             }
             this.el.appendChild(f);
             this.frames.set(f, w);
+            this.makeLive(f, b, w, cls);
         }
         this.el.style.width = right + "px";
         this.el.style.height = bottom + "px";
