@@ -265,6 +265,11 @@ def test_layout_at_1000_by_700_panes_and_accessibility(tmp_path):
         assert f["out"] == [] and f["scroll"] <= 1000, f
         page.screenshot(path=str(tmp_path / "layout-1000x700.png"))
         assert page.evaluate(SERIOUS, NOT_AUDITED) == []
+        page.click("#startup-window button")
+        page.click("#profiling-window button")
+        page.click("#ed-add-module")                 # the class picker
+        page.fill(".class-search", "scale")
+        assert page.evaluate(SERIOUS, NOT_AUDITED) == []
 
     in_own_browser(demo, lambda s, p: None, no_errors(check))
 

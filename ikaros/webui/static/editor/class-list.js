@@ -17,8 +17,13 @@ export function pickClass(classes) {
         const search = h("input", "class-search");
         search.type = "search";
         search.placeholder = "search classes (name, description, inputs, outputs)";
+        search.setAttribute("aria-label", "search classes");
         const list = h("ul", "class-list");
+        list.tabIndex = 0;                      // scrolled with the keyboard too
+        list.setAttribute("aria-label", "classes");
         const info = h("div", "class-info");
+        info.tabIndex = 0;
+        info.setAttribute("aria-label", "the class's description");
         const cols = h("div", "class-columns");
         cols.append(list, info);
         body.append(search, cols);
