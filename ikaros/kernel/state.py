@@ -225,16 +225,33 @@ def load(net, filename: str, scope: str | None = None) -> dict:
     return {k: v for k, v in data.items() if k != "items"}
 
 
+class _Zeros:
+    """An array that was all zeros after init: kept as its shape only (most outputs are,
+    and a big model's buffers need not be held twice)."""
+
+    def __init__(self, shape, dtype):
+        self.shape, self.dtype = shape, dtype
+
+    def array(self) -> np.ndarray:
+        return np.zeros(self.shape, self.dtype)
+
+
 def capture_initial(net) -> dict:
     """The state right after init, kept for ``reset``."""
-    return {path: value for path, (_, value) in values(net).items()}
+    out = {}
+    for path, (_, value) in values(net).items():
+        zero = isinstance(value, np.ndarray) and not value.any()
+        out[path] = _Zeros(value.shape, value.dtype) if zero else value
+    return out
 
 
 def reset(net, scope: str | None = None) -> None:
     """Every module in ``scope`` back to its state right after init; with the whole
     network, the tick goes back to 0."""
     now = values(net, scope)
-    _write(net, scope, {path: net.initial_state[path] for path in now})
+    initial = {path: net.initial_state[path] for path in now}
+    _write(net, scope, {path: v.array() if isinstance(v, _Zeros) else v
+                        for path, v in initial.items()})
     if not scope:
         net.tick = 0
         net.clock.tick = 0
