@@ -12,6 +12,9 @@
 import uPlot from "../vendor/uplot/uPlot.esm.js";
 import { Widget } from "./widget.js";
 
+// steps between the tick labels of the x axis: whole ticks only
+const TICK_STEPS = [1, 2, 5].flatMap((m) => [1, 10, 100, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8].map((p) => m * p)).sort((a, b) => a - b);
+
 let cssAdded = false;
 function addCss() {
     if (cssAdded) return;
@@ -146,7 +149,7 @@ export default class Plot extends Widget {
                 y: fixed ? { range: [this.num(["min", "y_min"]), this.num(["max", "y_max"])] }
                     : { range: (u, lo, hi) => this.autoRange(lo, hi, includeZero) },
             },
-            axes: [axis(this.bool(["show_x_axis"], true), this.str(["x_label"], "tick")), yAxis],
+            axes: [{ ...axis(this.bool(["show_x_axis"], true), this.str(["x_label"], "tick")), incrs: TICK_STEPS }, yAxis],
         };
     }
 
