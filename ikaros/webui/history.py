@@ -11,7 +11,9 @@ frame before, per client:
 - ``history``: every sample when there are at most ``points`` of them (the plot's width in
   pixels), otherwise a min/max envelope: ``points`` columns of equal tick spans, each with
   the smallest and largest value of every element within it, so that no peak is lost;
-- ``events``: every (tick, element) whose value is above 0, as pairs, never thinned.
+- ``events``: every (tick, element) whose value is above 0, as pairs, never thinned; these
+  buffers are recorded on every tick even when the budget is spent (a row of a spike
+  vector costs microseconds), so no event is lost while the client keeps up with the ring.
 """
 from __future__ import annotations
 
@@ -30,8 +32,9 @@ MAX_EVENTS = 1 << 20          # pairs in one frame at most (the rest are counted
 class Ring:
     """The last ``capacity`` rows of one buffer, each labelled with its tick."""
 
-    def __init__(self, src: np.ndarray):
+    def __init__(self, src: np.ndarray, always: bool = False):
         self.src = src
+        self.always = always                # recorded even when the budget is spent
         self.size = max(1, int(src.size))
         self.capacity = int(np.clip(MAX_FLOATS // self.size, MIN_TICKS, MAX_TICKS))
         self.rows = np.zeros((self.capacity, self.size), np.float32)
@@ -65,12 +68,15 @@ class Recorder:
         self._start = 0                     # where the next tick begins (fair under budget)
         self.skipped = 0                    # rows not recorded for lack of time
 
-    def set_sources(self, sources: dict[str, np.ndarray]) -> None:
-        """Replace the buffers (server thread); a ring of an unchanged buffer is kept."""
+    def set_sources(self, sources: dict[str, np.ndarray], events: set[str] = frozenset()
+                    ) -> None:
+        """Replace the buffers (server thread); a ring of an unchanged buffer is kept. The
+        buffers in ``events`` are recorded every tick whatever the budget: no event is lost."""
         rings = {}
         for path, src in sources.items():
             old = self.rings.get(path)
-            rings[path] = old if old is not None and old.src is src else Ring(src)
+            keep = old is not None and old.src is src and old.always == (path in events)
+            rings[path] = old if keep else Ring(src, path in events)
         self.rings = rings                  # one assignment: the hook sees old or new
 
     def hook(self) -> None:
@@ -82,16 +88,20 @@ class Recorder:
         start = perf()
         tick = self.net.tick
         n = len(rings)
+        spent = False
         for k in range(n):
             i = (self._start + k) % n
+            ring = rings[i]
+            if spent and not ring.always:
+                self.skipped += 1
+                continue
             try:
-                rings[i].record(tick)
+                ring.record(tick)
             except Exception:               # a hook must never raise into the kernel
                 pass
-            if perf() - start > self.budget and k + 1 < n:
-                self.skipped += n - k - 1
+            if not spent and perf() - start > self.budget and k + 1 < n:
+                spent = True
                 self._start = (i + 1) % n
-                return
 
     def read(self, since: dict[str, int]) -> dict[str, tuple[np.ndarray, np.ndarray, tuple]]:
         """(ticks, rows, shape) of every ring after the tick given for its path (kernel

@@ -309,13 +309,17 @@ class Hub:
     def _update_plan(self) -> None:
         paths: dict[str, None] = {}
         kept: dict[str, None] = {}
+        events: set[str] = set()
         for c in self.clients:
             for path, fmt in c.subs:
                 paths[path] = None
                 if fmt in HISTORY_FORMATS:
                     kept[path] = None
-        if list(kept) != list(self.history.rings):
-            self.history.set_sources({p: self.net.buffer_array(p) for p in kept})
+                if fmt == "events":
+                    events.add(path)
+        rings = self.history.rings
+        if list(kept) != list(rings) or any(rings[p].always != (p in events) for p in kept):
+            self.history.set_sources({p: self.net.buffer_array(p) for p in kept}, events)
         if list(paths) == [e[0] for e in self.snap.plan.entries]:
             return
         self.snap.set_sources({p: self.net.buffer_array(p) for p in paths})

@@ -87,6 +87,10 @@ def test_recorder_stays_within_its_budget():
     assert sum(r.count for r in rec.rings.values()) == 1 and rec.skipped == 49
     rec.hook()
     assert sum(r.count for r in rec.rings.values()) == 2    # the next ring's turn
+    rec.set_sources(arrays, events={"A7", "A9"})            # event buffers: every tick
+    rec.hook()
+    assert rec.rings["A7"].count == 1 and rec.rings["A9"].count == 1
+    assert sum(r.count for r in rec.rings.values()) == 2 + 3   # one in its turn, A7, A9
 
 
 @pytest.fixture

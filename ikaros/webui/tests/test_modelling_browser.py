@@ -348,6 +348,7 @@ WIDGETS = """<?xml version="1.0"?>
         <color-picker parameter="Color.data" title="colour" x="550" y="150" width="150" height="80" />
         <epi-head eye_direction_source="Gaze.OUTPUT" pupil_size_source="Pupil.OUTPUT" title="epi" x="700" y="150" width="150" height="150" />
         <trace source="Spot.OUTPUT" title="trace" x="0" y="300" width="150" height="150" />
+        <bar-graph source="Box.OUTPUT" title="bars" x="0" y="450" width="200" height="100" />
         <surface-plot source="Box.OUTPUT" title="surface" x="150" y="300" width="200" height="150" />
         <navigation-hud heading_source="Look.OUTPUT" title="heading" x="350" y="300" width="200" height="80" />
         <pan-tilt-hud source="Look.OUTPUT" title="pantilt" x="550" y="300" width="150" height="100" />
@@ -376,7 +377,7 @@ def test_the_new_widgets(tmp_path):
     model.write_text(WIDGETS)
 
     def check(server, page):
-        page.wait_for_function("() => window.ikaros.built && window.ikaros.mainView.widgets.length === 16")
+        page.wait_for_function("() => window.ikaros.built && window.ikaros.mainView.widgets.length === 17")
         server.step(1)
         for title in ("scatter", "histogram", "boxplot", "polar", "vectors", "epi", "trace", "raster",
                       "heading", "pantilt"):
@@ -405,6 +406,9 @@ def test_the_new_widgets(tmp_path):
         wait_for(lambda: server.parameter("MY.factor") == 2, what="MY.factor = 2")
         page.wait_for_selector("button.button-control:text-is('high')")
         assert page.evaluate(f"() => ({WIDGET})('boxplot').boxes.map((b) => b.median)") == [3, 6]
+        # a bar graph without min and max ranges over its data (0..10 and a margin)
+        low, high = page.evaluate(f"() => ({WIDGET})('bars').valueRange")
+        assert low <= 0 and 10 < high <= 11, (low, high)
 
         server.post("/api/control", {"state": "play"})
         time.sleep(1.0)
@@ -415,6 +419,7 @@ def test_the_new_widgets(tmp_path):
         # ticksquare is 1 on ticks 1, 4, 7, ... (t - 1 divisible by 3), in 4 elements
         count = page.evaluate(f"() => ({WIDGET})('raster').count")
         assert tick > 1000 and count == 4 * ((tick - 1) // 3 + 1), (tick, count)
+        assert page.evaluate(f"() => ({WIDGET})('raster').missed") == 0
 
         pad = page.locator(".widget[data-title='joystick'] .joystick-pad")
         box = pad.bounding_box()

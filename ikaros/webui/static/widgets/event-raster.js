@@ -27,6 +27,7 @@ export default class EventRaster extends CanvasWidget {
         const d = item.data;
         for (let i = 0; i + 1 < d.length; i += 2) this.events.push([item.first_tick + d[i], d[i + 1]]);
         this.count += d.length / 2;
+        this.missed = (this.missed || 0) + (item.missed || 0);     // ticks the ring lost
         this.last = item.last_tick;
         const from = this.last - this.window();
         let k = 0;
