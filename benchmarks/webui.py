@@ -3,6 +3,7 @@
     python benchmarks/webui.py                 # about 60 s
     python benchmarks/webui.py --seconds 3 --rounds 2
     python benchmarks/webui.py --real-time     # lag at 1 kHz instead of ticks per second
+    python benchmarks/webui.py --format history   # the client keeps every tick (plots)
 
 Runs robot_320 (benchmarks/models.py) in play mode (as fast as possible) in the
 controller's background thread, with the web UI server (uvicorn, on 127.0.0.1, a free port)
@@ -91,6 +92,9 @@ def main(argv=None) -> int:
     ap.add_argument("--seconds", type=float, default=2.0, help="length of one phase")
     ap.add_argument("--rounds", type=int, default=12, help="alternations of the two phases")
     ap.add_argument("--buffers", type=int, default=20, help="buffers the client subscribes to")
+    ap.add_argument("--format", default="raw", choices=["raw", "history", "events"],
+                    help="how the client subscribes: history and events keep every tick "
+                         "(the per-tick ring of ikaros/webui/history.py)")
     ap.add_argument("--max-rate", type=float, default=None,
                     help="the server's cap on data frames per second (default: the server's)")
     ap.add_argument("--real-time", action="store_true",
@@ -133,7 +137,7 @@ def main(argv=None) -> int:
     frames = spawn.Value("l", 0)
     proc = spawn.Process(target=client_process, daemon=True,
                          args=(f"ws://127.0.0.1:{port}/api/ws", paths, go, stop, quit_, frames,
-                               connected))
+                               connected, args.format))
     proc.start()
     idle, busy, fps = [], [], []
     for _ in range(args.rounds):

@@ -140,8 +140,9 @@ def _split_args(p, args: list[str]) -> tuple[str | None, dict]:
     return model, overrides
 
 
-def _serve(net, opts) -> int:
-    """Serve the model in the web UI until Ctrl-C; the kernel runs in a background thread."""
+def _serve(net, opts, failure: dict | None = None) -> int:
+    """Serve the model in the web UI until Ctrl-C; the kernel runs in a background thread.
+    ``failure``: the model failed to build and ``net`` stands in for it (webui/broken.py)."""
     from .kernel.control import PAUSE, PLAY, REALTIME
     from .webui.server import ServeError, is_loopback, new_token, serve
     host = opts.bind
@@ -161,7 +162,7 @@ def _serve(net, opts) -> int:
         net.profiling = opts.profile
         serve(net, host, 8000 if opts.port is None else opts.port, token, state,
               on_ready=ready, models_dir=opts.models, max_memory=opts.max_memory,
-              build_timeout=opts.build_timeout)
+              build_timeout=opts.build_timeout, failure=failure)
     except ServeError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
         return EXIT_ERROR
@@ -256,8 +257,17 @@ def main(argv: list[str] | None = None) -> int:
                 return EXIT_ERROR
         if opts.strict and opts.lenient:
             p.error("--strict and --lenient can not be used together")
-        net = load(model, strict=opts.strict, lenient=opts.lenient, quiet=opts.quiet,
-                   max_memory=opts.max_memory, **overrides)
+        failure = None
+        try:
+            net = load(model, strict=opts.strict, lenient=opts.lenient, quiet=opts.quiet,
+                       max_memory=opts.max_memory, **overrides)
+        except ModelError as e:
+            if opts.batch:
+                raise
+            from .webui.broken import open_broken     # fixed in the browser's editor
+            net, failure = open_broken(model, overrides, e, max_memory=opts.max_memory)
+            print(f"ikaros: error: {e}\nikaros: the model opens in the web UI's editor "
+                  f"to be fixed", file=sys.stderr)
         net.log_level = FATAL_ERROR if opts.quiet else DEBUG if opts.verbose else PRINT
         if opts.info:
             print(net.info())
@@ -269,7 +279,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"ikaros: error: --record: {e}", file=sys.stderr)
             return EXIT_ERROR
         if not opts.batch:
-            return _serve(net, opts)
+            return _serve(net, opts, failure)
         try:
             net.profiling = opts.profile
             with experiment_options.batch_session(net, opts, recording):

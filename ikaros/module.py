@@ -169,7 +169,7 @@ class Clock:
 RESERVED = {"name", "path", "clock", "element", "init", "tick", "command", "stop", "configure",
             "set_sizes", "add_input", "add_output", "input_shape", "output_shape",
             "set_output_shape", "connected", "notify", "print", "warning", "error",
-            "fatal_error", "end_of_file", "description", "parameter_names"}
+            "fatal_error", "end_of_file", "description", "parameter_names", "state"}
 
 
 def parameter_attribute(name: str) -> str:
@@ -198,6 +198,11 @@ class Module:
         for name in list(params) + [attribute_name(n) for n in list(inputs) + list(outputs)]:
             if name in RESERVED:
                 raise TypeError(f"{cls.__name__}: '{name}' is a reserved name in the module API")
+        state = getattr(cls, "state", ())
+        if not isinstance(state, tuple) or not all(isinstance(n, str) and n.isidentifier()
+                                                   for n in state):
+            raise TypeError(f"{cls.__name__}.state must be a tuple of attribute names (the "
+                            f"module's state kept by save, load and reset of the state)")
         doc = " ".join((cls.__doc__ or "").split())
         cls.description = ClassDescription(cls.__name__, doc, list(params.values()),
                                            list(inputs.values()), list(outputs.values()))

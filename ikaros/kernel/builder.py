@@ -23,6 +23,7 @@ from .classes import ClassRegistry
 from .layout import layout, runs_into
 from .ranges import check_parameter
 from .schedule import schedule
+from .startup import StartupSteps
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
 from .sizes import SizeError, WAIT, rule_shape, shape_expression
 from .tree import Component, Group, ModuleInstance, Scope, find_component
@@ -74,6 +75,7 @@ class Builder:
         self.buffers: dict[ModuleInstance, tuple[dict, dict]] = {}
         self._folders: dict[str, str] = {}     # the folder of each file read
         self._sources: dict[tuple, Buffer] = {}   # (group, address) -> a connection's source
+        self.startup = StartupSteps()           # the time of each build step
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
@@ -656,18 +658,29 @@ class Builder:
         with _collector_paused(), collecting(self.diagnostics), \
                 applied(self.limits or current_limits()):
             if self.model is None:
-                self.model = read_file(self.filename, self._text, root_tag="group")
+                with self.startup.step("read the model file"):
+                    self.model = read_file(self.filename, self._text, root_tag="group")
             return self._build()
 
     def _build(self):
         from .network import Network
-        top = self.build_tree()
-        for inst in self.instances:
-            self.instantiate(inst)
-            self.make_buffers(inst)
-        for order, (node, group) in enumerate(self.connections):
-            self.connect(order, node, group)
-        self.resolve_sizes()
+        step = self.startup.step
+        with step("groups and modules"):
+            top = self.build_tree()
+        with step("classes and ports"):
+            for inst in self.instances:
+                self.instantiate(inst)
+                self.make_buffers(inst)
+        with step("connections"):
+            for order, (node, group) in enumerate(self.connections):
+                self.connect(order, node, group)
+        with step("sizes"):
+            self.resolve_sizes()
+        with step("delays and schedule"):
+            order, runs, edges = self._schedule()
+        return (self.network_factory or Network)(self, top, order, runs, edges)
+
+    def _schedule(self):
         memo: dict = {}
         runs = []
         edges: dict = {}
@@ -678,8 +691,7 @@ class Builder:
                         runs.append(run)
                         if run.delay == 0:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)
-        order = schedule(self.instances, edges)
-        return (self.network_factory or Network)(self, top, order, runs, edges)
+        return schedule(self.instances, edges), runs, edges
 
 
 def _missing(node: Node, message: str) -> ModelError:

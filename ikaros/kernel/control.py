@@ -1,5 +1,5 @@
-"""The control API: run modes (stop, pause, step, play, real time) shared by the command
-line and the web UI, with requests applied between ticks."""
+"""The control API: run modes (stop, pause, step, play, fast-forward, real time) shared by
+the command line and the web UI, with requests applied between ticks."""
 from __future__ import annotations
 
 import gc
@@ -12,7 +12,10 @@ from ..module import WARNING
 from .timing import Waiter
 
 STOP, PAUSE, STEP, PLAY, REALTIME = "stop", "pause", "step", "play", "realtime"
-STATES = (STOP, PAUSE, STEP, PLAY, REALTIME)
+FASTFORWARD = "fastforward"
+STATES = (STOP, PAUSE, STEP, PLAY, FASTFORWARD, REALTIME)
+# Fast-forward is play with the tick hooks (the web UI's copies) run at most this often.
+FASTFORWARD_HOOK_INTERVAL = 0.1     # seconds
 DEFAULT_RESYNC_LAG = 0.1   # seconds late before real time resynchronises instead of catching up
 
 
@@ -148,6 +151,7 @@ class Controller:
     def _run_loop(self) -> None:
         net, timing = self.net, self.net.timing
         perf = time.perf_counter
+        hooks_done, skipped = 0.0, False
         while True:
             self._drain()
             state = self.state
@@ -165,6 +169,10 @@ class Controller:
                     else:
                         self._steps -= 1
             if state == PAUSE:
+                if skipped:                 # the last fast-forwarded tick is seen
+                    skipped = False
+                    for hook in self.tick_hooks:
+                        hook()
                 self._wake.wait(0.05)
                 self._wake.clear()
                 continue
@@ -184,6 +192,11 @@ class Controller:
                     self._resync(now, lag)
             timing.tick_started(now, lag)
             net._tick()
+            if state == FASTFORWARD:
+                skipped = now - hooks_done < FASTFORWARD_HOOK_INTERVAL
+                if skipped:
+                    continue
+                hooks_done = now
             for hook in self.tick_hooks:
                 hook()
         self._drain()

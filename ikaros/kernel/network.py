@@ -25,6 +25,7 @@ from .limits import check_memory as _check_memory
 from .ranges import check_parameter
 from .timing import Timing
 from .scope import VariableError, from_python
+from .state import capture_initial
 from .tree import Group, ModuleInstance, find_component
 
 DEFAULT_TICK_DURATION = 0.01   # seconds, when a model sets none
@@ -69,9 +70,14 @@ class Network:
         self.clock.tick_duration = self._tick_duration()
         self.stop_tick = self._whole_number("stop", minimum=-1)
         self.threads = self._whole_number("threads", minimum=1)
-        self._allocate()
-        self._compile()
-        self._init_modules()
+        self.startup = builder.startup
+        with self.startup.step("memory"):
+            self._allocate()
+        with self.startup.step("compile the tick"):
+            self._compile()
+        with self.startup.step("init of the modules"):
+            self._init_modules()
+        self.initial_state = capture_initial(self)      # what reset_state goes back to
         self._check_checksum()
 
     # --- setup ---------------------------------------------------------------------------

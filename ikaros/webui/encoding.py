@@ -14,7 +14,8 @@ import struct
 
 import numpy as np
 
-FORMATS = ("raw", "png", "jpeg")
+FORMATS = ("raw", "png", "jpeg", "history", "events")
+RAW_FORMATS = ("raw", "history", "events")      # float32 payloads
 IMAGE_FORMATS = ("png", "jpeg")
 JPEG_QUALITY = 85
 PNG_COMPRESS_LEVEL = 1      # fast: the data are live, not archived
@@ -61,12 +62,13 @@ def encode_array(array: np.ndarray, fmt: str) -> bytes:
     return image_bytes(array, fmt)
 
 
-def encode_frame(tick: int, time: float, items: list[tuple[str, str, tuple, bytes]]) -> bytes:
-    """A binary data frame from (path, format, shape, payload) items."""
+def encode_frame(tick: int, time: float, items: list[tuple]) -> bytes:
+    """A binary data frame from (path, format, shape, payload) items; an item may have a
+    fifth element, a dict of more header fields for its buffer (history formats)."""
     buffers, offset = [], 0
-    for path, fmt, shape, payload in items:
+    for path, fmt, shape, payload, *more in items:
         buffers.append({"path": path, "format": fmt, "shape": list(shape), "offset": offset,
-                        "length": len(payload)})
+                        "length": len(payload), **(more[0] if more else {})})
         offset += len(payload)
     header = json.dumps({"tick": int(tick), "time": float(time), "buffers": buffers},
                         separators=(",", ":")).encode("utf-8")
@@ -82,7 +84,7 @@ def decode_frame(frame: bytes) -> tuple[dict, dict]:
     out = {}
     for b in header["buffers"]:
         payload = body[b["offset"]:b["offset"] + b["length"]]
-        if b["format"] == "raw":
+        if b["format"] in RAW_FORMATS:
             out[b["path"]] = np.frombuffer(payload, dtype="<f4").reshape(b["shape"]).copy()
         else:
             out[b["path"]] = bytes(payload)

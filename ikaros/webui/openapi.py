@@ -66,6 +66,8 @@ def _q(name: str, description: str, schema: dict, required: bool = False) -> dic
 
 
 _NUMBERS = {"$ref": "#/components/schemas/Numbers"}
+_STATES = ["stop", "pause", "step", "play", "fastforward", "realtime"]
+_STATE_FILE = r"^[A-Za-z0-9_][A-Za-z0-9_. -]*\.state$"
 _VALUE = {"description": "a number, bool, string, or (nested) list of numbers; text is "
                          "read as in a model file",
           "anyOf": [{"type": "number"}, {"type": "boolean"}, {"type": "string"}, _NUMBERS]}
@@ -111,6 +113,15 @@ def _element(root: bool) -> dict:
             "description": "a model tree: its root is a <group>" if root else "an element"}
 
 
+_PROFILE = {"type": "object", "required": ["on", "modules"], "properties": {
+    "on": {"type": "boolean"},
+    "modules": {"type": "array", "items": {
+        "type": "object", "required": ["module", "class", "count", "mean", "max", "total"],
+        "properties": {"module": {"type": "string"}, "class": {"type": "string"},
+                       "count": {"type": "integer"}, "mean": {"type": "number"},
+                       "max": {"type": "number"}, "total": {"type": "number"}}}}}}
+
+
 def openapi() -> dict:
     num = {"type": "number"}
     obj = {"type": "object"}
@@ -123,8 +134,7 @@ def openapi() -> dict:
             "Change the run mode; \"stop\" ends the run (every module's stop() is called) "
             "and a later mode runs the model again from tick 0",
             {"type": "object", "required": ["state"], "additionalProperties": False,
-             "properties": {"state": {"enum": ["stop", "pause", "step", "play",
-                                               "realtime"]}}}, _STATUS,
+             "properties": {"state": {"enum": _STATES}}}, _STATUS,
             **{"409": "the run has ended: apply, open or reload a model"}),
         "/api/parameter": _post(
             "Set a module parameter (or one element of an array or matrix parameter)",
@@ -164,13 +174,17 @@ def openapi() -> dict:
         "/api/model": _get("The model tree of the running network (for the editor)",
                            {"type": "object", "properties": {
                                "file": {"type": "string"}, "folder": {"type": "string"},
-                               "tree": _NODE}}),
+                               "tree": _NODE,
+                               "error": {"$ref": "#/components/schemas/ModelError",
+                                         "description": "only while the model the "
+                                                        "server started with fails to "
+                                                        "build: why, and where"}}}),
         "/api/apply": _editor_post(
             "Rebuild the network from an edited tree and run it from tick 0 (module state "
             "is reset); an invalid tree changes nothing (422)",
             {"type": "object", "required": ["tree"], "additionalProperties": False,
              "properties": {"tree": _ROOT, "state": {
-                 "enum": ["pause", "step", "play", "realtime"],
+                 "enum": ["pause", "step", "play", "fastforward", "realtime"],
                  "description": "the run state after the rebuild (default: as before)"}}},
             {"type": "object", "properties": {"ok": {"type": "boolean"},
                                               "network": {"$ref": "#/components/schemas/"
@@ -216,19 +230,63 @@ def openapi() -> dict:
                                 _REPLAY, **{"409": "not replaying a recording, or the run "
                                                    "has ended"})},
         "/api/openapi.json": _get("This description", obj),
+        "/api/state": _post(
+            "Save, load or reset the state of the model (or of one module or group): "
+            "outputs, delay lines and the state the classes declare",
+            {"type": "object", "required": ["action"], "additionalProperties": False,
+             "properties": {
+                 "action": {"enum": ["save", "load", "reset"]},
+                 "filename": {"type": "string", "pattern": _STATE_FILE,
+                              "description": "a plain name in the models folder (default: "
+                                             "the model's name with .state); not for reset"},
+                 "scope": {"type": "string", "description": "a module or group path; "
+                                                          "default: the whole network"}}},
+            {"type": "object", "required": ["ok", "action", "tick", "scope"], "properties": {
+                "ok": {"type": "boolean"}, "action": {"type": "string"},
+                "tick": {"type": "integer"}, "scope": {"type": "string"},
+                "file": {"type": "string"}, "item_count": {"type": "integer"}}},
+            **{"403": "not a plain .state name in the models folder, or cross-origin",
+               "422": "the file does not fit the network (item, type or shape named), or a "
+                      "reset given a file name",
+               "500": "the file can not be written"}),
+        "/api/profiling": {**_get("Per-module time, most total time first", _PROFILE),
+                           **_post("Switch the measuring of per-module time on or off",
+                                   {"type": "object", "required": ["on"],
+                                    "additionalProperties": False,
+                                    "properties": {"on": {"type": "boolean"}}}, _PROFILE)},
+        "/api/startup": _get("The build steps of the running network and their times",
+                             {"type": "object", "required": ["steps", "total"],
+                              "properties": {"total": num, "steps": {
+                                  "type": "array", "items": {
+                                      "type": "object", "required": ["step", "seconds"],
+                                      "properties": {"step": {"type": "string"},
+                                                     "seconds": num}}}}}),
+        "/api/quit": _post("Stop the run (every module's stop is called) and end the server",
+                           {"type": "object", "additionalProperties": False,
+                            "properties": {}},
+                           {"type": "object", "properties": {"ok": {"type": "boolean"}}},
+                           **{"409": "the server was not started by ikaros (an app made "
+                                     "with create_app only)"}),
     }
+    num_or_none = {"type": ["number", "null"]}
     schemas = {
         "Error": {"type": "object", "required": ["error"],
                   "properties": {"error": {"type": "string"}}},
         "Status": {"type": "object", "properties": {
-            "state": {"enum": ["stop", "pause", "step", "play", "realtime"]},
+            "state": {"enum": _STATES},
+            "stop_tick": {"type": ["integer", "null"],
+                          "description": "the tick the run pauses at (-s N), or null"},
             "tick": {"type": "integer"}, "tick_duration": num, "time": num, "elapsed": num,
-            "ticks_per_second": num, "actual_tick_duration": num, "lag": num, "lag_max": num,
+            "ticks_per_second": num_or_none, "ticks_per_second_mean": num_or_none,
+            "actual_tick_duration": num_or_none, "lag": num, "lag_max": num,
             "lag_p99": num, "resyncs": {"type": "integer"}, "cpu_usage": num, "idle": num,
             "file": {"type": "string"}}},
         "Network": {"type": "object", "properties": {
             "file": {"type": "string"}, "name": {"type": "string"},
-            "top": {"$ref": "#/components/schemas/Group"}}},
+            "top": {"$ref": "#/components/schemas/Group"},
+            "build_error": {"type": "string", "description": "only while the model the "
+                            "server started with fails to build (an empty network of its "
+                            "name runs)"}}},
         "Group": {"type": "object", "properties": {
             "name": {"type": "string"}, "path": {"type": "string"},
             "groups": {"type": "array", "items": {"$ref": "#/components/schemas/Group"}},

@@ -16,6 +16,7 @@ import os
 import secrets
 import socket
 import threading
+from functools import partial
 from http.cookies import SimpleCookie
 from urllib.parse import parse_qs
 
@@ -36,9 +37,12 @@ from ..kernel.carry import take_over
 from ..language.writer import write_file
 from ..module import Module
 from . import editing
+from . import state as run_tools
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
+from .history import MAX_POINTS
+from .rates import RUNNING, TickRate
 from .guards import (DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, json_depth,
                      quiet_refused_websockets)
 from .openapi import openapi
@@ -293,8 +297,12 @@ class WebUI:
     def __init__(self, net, static_dir: str, budget: float, max_rate: float,
                  status_interval: float, models_dir: str | None = None,
                  build_timeout: float = DEFAULT_BUILD_TIMEOUT,
-                 build_limits: limits.Limits | None = None):
+                 build_limits: limits.Limits | None = None, failure: dict | None = None):
         self.net = net
+        # A model that failed to build (webui/broken.py): its tree and error, until a build
+        # from the editor succeeds.
+        self.failure = failure
+        self.on_quit = None                     # set by serve(): ends the server
         self.static_dir = os.path.abspath(static_dir)
         self.model_dir = os.path.dirname(os.path.abspath(net.filename)) if net.filename \
             else None
@@ -305,6 +313,7 @@ class WebUI:
         self.build_timeout = build_timeout
         self.build_limits = build_limits
         self.logbook = LogBook(net)
+        self.rates = TickRate()
         self.hub = Hub(net, self.status, self.logbook, budget, max_rate, status_interval)
         self._classes = None
         self._changing = threading.Lock()       # one apply / open / new at a time
@@ -320,8 +329,15 @@ class WebUI:
     def status(self) -> dict:
         figures = plain(self.net.controller.figures())
         figures["file"] = os.path.basename(self.net.filename or "")
+        stop = self.net.stop_tick
+        figures["stop_tick"] = stop if stop is not None and stop >= 0 else None
         if self.net.stopped:
             figures["state"] = "stop"
+        running = figures["state"] in RUNNING
+        figures.update(self.rates.sample(figures["tick"], running,
+                                         tick_duration=figures["actual_tick_duration"] or 0.0))
+        if not running:
+            figures["actual_tick_duration"] = None    # no tick is running to measure
         return figures
 
     def _module(self, path: str):
@@ -358,7 +374,10 @@ class WebUI:
 
     async def network(self, request: Request):
         _query(request)
-        return Json(await self._call(network_json, self.net))
+        out = await self._call(network_json, self.net)
+        if self.failure:
+            out["build_error"] = self.failure["error"]
+        return Json(out)
 
     async def classes(self, request: Request):
         _query(request)
@@ -385,6 +404,7 @@ class WebUI:
                 return await self._rebuild(state)
             raise ApiError(409, "the run has ended; apply, open or reload a model to run "
                                 "again")
+        self.status()                       # a rate sample at the change of state
         if state == STOP:           # the run ends: every module's stop(), devices made safe
             try:
                 await run_in_threadpool(ctrl.end)
@@ -512,6 +532,10 @@ class WebUI:
 
     def _model_json(self) -> dict:
         net = self.net
+        if self.failure:
+            f = self.failure
+            return {"file": f["file"], "folder": self._folder(), "tree": f["tree"],
+                    "error": {k: f[k] for k in ("error", "node", "path")}}
         tree = editing.tree_json(net.model, os.path.dirname(os.path.abspath(net.filename)))
         return {"file": os.path.basename(net.filename or ""), "folder": self._folder(),
                 "tree": tree}
@@ -667,6 +691,7 @@ class WebUI:
         await run_in_threadpool(old.close)
         # the wiring: everything that read the old network reads the new one
         self.net = new
+        self.failure = None
         self.logbook.net = new
         self.logbook._last = None
         hub = self.hub
@@ -751,11 +776,11 @@ class WebUI:
         elif kind == "ping":
             client.send_text({"type": "pong", "t": msg.get("t")})
         elif kind == "subscribe":
-            self.hub.subscribe(client, self._subscriptions(msg))
+            self.hub.subscribe(client, *self._subscriptions(msg))
         else:
             raise ApiError(400, f'unknown message type "{kind}" (subscribe, ready, ping)')
 
-    def _subscriptions(self, msg: dict) -> list[tuple[str, str]]:
+    def _subscriptions(self, msg: dict) -> tuple[list[tuple[str, str]], dict[str, int]]:
         for key in msg:
             if key not in ("type", "buffers"):
                 raise ApiError(400, f'unknown field "{key}" in subscribe')
@@ -764,13 +789,13 @@ class WebUI:
             raise ApiError(400, 'subscribe needs "buffers": a list of {"path", "format"}')
         if len(buffers) > MAX_SUBSCRIPTIONS:
             raise ApiError(400, f"at most {MAX_SUBSCRIPTIONS} buffers")
-        subs = []
+        subs, points = [], {}
         for b in buffers:
             if not isinstance(b, dict) or not isinstance(b.get("path"), str):
                 raise ApiError(400, 'each buffer must be {"path": "A.OUTPUT", "format": '
                                     '"raw"}')
             for key in b:
-                if key not in ("path", "format"):
+                if key not in ("path", "format", "points"):
                     raise ApiError(400, f'unknown field "{key}" in a buffer')
             path, fmt = b["path"].strip(), b.get("format", "raw")
             if fmt not in FORMATS:
@@ -782,8 +807,15 @@ class WebUI:
                 if not image_shape_ok(shape):
                     raise ApiError(400, f'"{path}" of shape {list(shape)} is not an image: '
                                         f'{fmt} needs (rows, cols) or (3, rows, cols)')
+            if "points" in b:
+                n = b["points"]
+                if fmt != "history" or not isinstance(n, int) or isinstance(n, bool) \
+                        or not 1 <= n <= MAX_POINTS:
+                    raise ApiError(400, f'"points" of "{path}" must be a whole number '
+                                        f'1..{MAX_POINTS}, with the format "history"')
+                points[path] = n
             subs.append((path, fmt))
-        return subs
+        return subs, points
 
 
 def create_app(net, token: str | None = None, static_dir: str | None = None, *,
@@ -792,7 +824,7 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
                status_interval: float = STATUS_INTERVAL,
                models_dir: str | None = None, max_body: int = DEFAULT_MAX_BODY,
                build_timeout: float = DEFAULT_BUILD_TIMEOUT,
-               max_memory: int | None = None) -> Starlette:
+               max_memory: int | None = None, failure: dict | None = None) -> Starlette:
     """The ASGI app serving ``net``. With ``token``, every request must carry it. With
     ``hosts``, requests whose ``Host`` names another host are refused (a guard against DNS
     rebinding when no token is required). ``budget`` is the time in seconds the kernel may
@@ -801,10 +833,11 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
     in (default: the model's folder). The editor may replace the running network:
     ``app.state.ui.net`` is the current one. ``max_body`` limits request bodies and
     WebSocket messages (bytes); the editor's builds are abandoned after ``build_timeout``
-    seconds and may use ``max_memory`` bytes of buffers."""
+    seconds and may use ``max_memory`` bytes of buffers. ``failure`` is a model that failed
+    to build (``webui.broken.open_broken``), shown in the editor."""
     build_limits = limits.Limits().with_memory(max_memory)
     ui = WebUI(net, static_dir or STATIC_DIR, budget, max_rate, status_interval, models_dir,
-               build_timeout, build_limits)
+               build_timeout, build_limits, failure)
     routes = [
         Route("/", ui.index, methods=["GET"]),
         Route("/api/network", ui.network, methods=["GET"]),
@@ -823,6 +856,10 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
         Route("/api/open", ui.open, methods=["POST"]),
         Route("/api/new", ui.new, methods=["POST"]),
         Route("/api/openapi.json", ui.openapi, methods=["GET"]),
+        Route("/api/state", partial(run_tools.state, ui), methods=["POST"]),
+        Route("/api/profiling", partial(run_tools.profiling, ui), methods=["GET", "POST"]),
+        Route("/api/startup", partial(run_tools.startup, ui), methods=["GET"]),
+        Route("/api/quit", partial(run_tools.quit_, ui), methods=["POST"]),
         WebSocketRoute("/api/ws", ui.websocket),
         Mount("/static", app=StaticFiles(directory=ui.static_dir, check_dir=False),
               name="static"),
@@ -922,6 +959,11 @@ def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = No
                             timeout_graceful_shutdown=3, ws_per_message_deflate=False,
                             ws_max_size=app_options.get("max_body", DEFAULT_MAX_BODY))
     server = uvicorn.Server(config)
+
+    def quit_server():
+        app.state.ui.net.controller.stop()
+        server.should_exit = True
+    app.state.ui.on_quit = quit_server
     quiet_refused_websockets()
     ctrl = net.controller
     previous_hook = threading.excepthook

@@ -21,6 +21,8 @@ import numpy as np
 
 from ..module import LEVEL_NAMES
 from .encoding import IMAGE_FORMATS, encode_array, encode_frame
+from .history import (DEFAULT_POINTS, HISTORY_FORMATS, Recorder, encode_events,
+                      encode_history)
 
 DEFAULT_BUDGET = 0.001        # seconds of copying per tick at most
 DEFAULT_MAX_RATE = 15.0       # snapshots per second at most: what keeps a busy kernel within 5 %
@@ -77,6 +79,7 @@ class Plan:
 class Snapshot:
     def __init__(self, plan: Plan, tick: int, time_: float):
         self.plan, self.tick, self.time = plan, tick, time_
+        self.history: dict = {}             # path -> (ticks, rows, shape) (history.py)
 
 
 class _Job:
@@ -97,6 +100,7 @@ class Snapshotter:
         self.plan = Plan({}, 0)
         self._job: _Job | None = None
         self.copies = 0               # snapshots completed (for tests and figures)
+        self.read_history: Callable[[], dict] | None = None   # kernel thread, at the end
 
     def set_sources(self, sources: dict[str, np.ndarray]) -> None:
         """Replace the plan (in the server's thread; a job in flight keeps its own)."""
@@ -137,6 +141,8 @@ class Snapshotter:
             self._job = None
             self.copies += 1
             snap = Snapshot(job.plan, self.net.tick, float(self.net.clock.time))
+            if self.read_history is not None:
+                snap.history = self.read_history()
         except Exception:                   # a hook must never raise into the kernel
             self._job = None
             snap = None
@@ -213,6 +219,8 @@ class Client:
         self.frame: bytes | None = None           # the newest frame not yet sent
         self.status: str | None = None            # the newest status not yet sent
         self.texts: collections.deque = collections.deque(maxlen=256)
+        self.points: dict[str, int] = {}          # history columns per path
+        self.seen: dict[str, int] = {}            # last tick sent per history path
         self.wake = asyncio.Event()
         self.frames_sent = 0
 
@@ -247,6 +255,8 @@ class Hub:
         self.status = status
         self.logbook = logbook
         self.snap = Snapshotter(net, budget)
+        self.history = Recorder(net, budget)
+        self.snap.read_history = self._read_history
         self.min_interval = 1.0 / max_rate if max_rate and max_rate > 0 else 0.0
         self.status_interval = status_interval
         self.clients: set[Client] = set()
@@ -264,6 +274,7 @@ class Hub:
             self.in_flight = False
             self._ticker = None
         if not self._hooked:
+            self.net.controller.tick_hooks.append(self.history.hook)
             self.net.controller.tick_hooks.append(self.snap.hook)
             self._hooked = True
         self.clients.add(client)
@@ -277,8 +288,11 @@ class Hub:
         self.clients.discard(client)
         self._update_plan()
 
-    def subscribe(self, client: Client, subs: list[tuple[str, str]]) -> None:
+    def subscribe(self, client: Client, subs: list[tuple[str, str]],
+                  points: dict[str, int] | None = None) -> None:
         client.subs = subs
+        client.points = dict(points or {})
+        client.seen = {}
         client.version += 1
         client.last = None
         self._update_plan()
@@ -294,9 +308,18 @@ class Hub:
 
     def _update_plan(self) -> None:
         paths: dict[str, None] = {}
+        kept: dict[str, None] = {}
+        events: set[str] = set()
         for c in self.clients:
-            for path, _ in c.subs:
+            for path, fmt in c.subs:
                 paths[path] = None
+                if fmt in HISTORY_FORMATS:
+                    kept[path] = None
+                if fmt == "events":
+                    events.add(path)
+        rings = self.history.rings
+        if list(kept) != list(rings) or any(rings[p].always != (p in events) for p in kept):
+            self.history.set_sources({p: self.net.buffer_array(p) for p in kept}, events)
         if list(paths) == [e[0] for e in self.snap.plan.entries]:
             return
         self.snap.set_sources({p: self.net.buffer_array(p) for p in paths})
@@ -366,11 +389,24 @@ class Hub:
             self.in_flight = False
         self.poke()
 
+    def _read_history(self) -> dict:
+        """The history rows every client still needs (kernel thread, between ticks)."""
+        since: dict[str, int] = {}
+        for c in list(self.clients):
+            for path, fmt in c.subs:
+                if fmt in HISTORY_FORMATS:
+                    seen = c.seen.get(path, -1)
+                    since[path] = min(since.get(path, seen), seen)
+        return self.history.read(since) if since else {}
+
     @staticmethod
     def _send_frame(c: Client, snap: Snapshot, cache: dict) -> None:
         arrays = snap.plan.arrays
         items = []
         for path, fmt in c.subs:
+            if fmt in HISTORY_FORMATS:
+                items.append(Hub._history_item(c, snap, path, fmt))
+                continue
             key = (path, fmt)
             if key not in cache:
                 cache[key] = encode_array(arrays[path], fmt)
@@ -379,6 +415,35 @@ class Hub:
         c.ready = False
         c.last = (snap.tick, c.version)
         c.wake.set()
+
+    @staticmethod
+    def _history_item(c: Client, snap: Snapshot, path: str, fmt: str) -> tuple:
+        """What a client has not seen of a history buffer (history.py)."""
+        since = c.seen.get(path, -1)
+        if since > snap.tick:               # a new network counts from 0 again
+            since = -1
+        if path not in snap.history:        # no ring yet: this tick's value (below)
+            arr = snap.plan.arrays[path]
+            found = (np.empty(0, np.int64), np.empty((0, arr.size), np.float32),
+                     tuple(arr.shape))
+        else:
+            found = snap.history[path]
+        ticks, rows, shape = found
+        keep = ticks > since
+        ticks, rows = ticks[keep], rows[keep]
+        if snap.tick > since and (len(ticks) == 0 or ticks[-1] < snap.tick):
+            # subscribed while paused: the ring has not seen this tick, the snapshot has
+            arr = snap.plan.arrays[path]
+            ticks = np.append(ticks, snap.tick)
+            rows = np.concatenate([rows, arr.reshape(1, -1)])
+        if fmt == "events":
+            payload, head = encode_events(ticks, rows, shape, since)
+        else:
+            payload, head = encode_history(ticks, rows, shape, since,
+                                           c.points.get(path, DEFAULT_POINTS))
+        if len(ticks):
+            c.seen[path] = int(ticks[-1])
+        return (path, fmt, head.pop("shape"), payload, head)
 
     # --- status and log ------------------------------------------------------------------
     def _status_message(self) -> dict:

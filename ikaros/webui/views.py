@@ -36,6 +36,7 @@ GEOMETRY = ("x", "y", "width", "height")
 DEFAULT_SIZE = 200
 DEFAULT_GAP = 20
 DEFAULT_COLUMNS = 3
+DEFAULT_LIMIT = 24        # plots in a default view
 
 
 def widget_class(name: str) -> str:
@@ -242,21 +243,32 @@ def group_views(net, group: Group) -> list[dict]:
 
 
 def default_view(net, group: Group) -> dict:
-    """One plot per output of the group's modules: three per row, 200 x 200 px, 20 px
-    apart."""
+    """One plot per output of the group's modules, three per row, 200 x 200 px, 20 px apart;
+    a group without modules of its own shows those of its subgroups, nearest first, so the
+    view is never blank. At most DEFAULT_LIMIT plots."""
     widgets = []
-    for comp in group.children.values():
-        if not isinstance(comp, ModuleInstance):
-            continue
-        for name, _ in module_ports(net, comp)[1]:
-            i = len(widgets)
-            source = f"{comp.name}.{name}"
-            widgets.append({
-                "class": "plot",
-                "x": DEFAULT_GAP + (i % DEFAULT_COLUMNS) * (DEFAULT_SIZE + DEFAULT_GAP),
-                "y": DEFAULT_GAP + (i // DEFAULT_COLUMNS) * (DEFAULT_SIZE + DEFAULT_GAP),
-                "width": DEFAULT_SIZE, "height": DEFAULT_SIZE, "title": source,
-                "source": source, "source_path": _buffer(net, comp, name)})
+    level = [("", group)]
+    while level and len(widgets) < DEFAULT_LIMIT:
+        deeper = []
+        for prefix, g in level:
+            for comp in g.children.values():
+                if not isinstance(comp, ModuleInstance):
+                    deeper.append((f"{prefix}{comp.name}.", comp))
+                    continue
+                for name, _ in module_ports(net, comp)[1]:
+                    if len(widgets) == DEFAULT_LIMIT:
+                        break
+                    i = len(widgets)
+                    source = f"{prefix}{comp.name}.{name}"
+                    widgets.append({
+                        "class": "plot",
+                        "x": DEFAULT_GAP + (i % DEFAULT_COLUMNS) * (DEFAULT_SIZE + DEFAULT_GAP),
+                        "y": DEFAULT_GAP + (i // DEFAULT_COLUMNS) * (DEFAULT_SIZE + DEFAULT_GAP),
+                        "width": DEFAULT_SIZE, "height": DEFAULT_SIZE, "title": source,
+                        "source": source, "source_path": _buffer(net, comp, name)})
+        if widgets:         # the nearest level that has outputs is the view
+            break
+        level = deeper
     return {"name": group.name, "widgets": widgets, "default": True}
 
 

@@ -27,6 +27,7 @@ class PIDController(Module):
     (all its outputs and its integral keep their values), for a measurement that is missing.
     GATED: an element whose value is 0 or below is switched off: its OUTPUT and every signal
     and memory of it are 0, so it starts afresh when the gate opens again."""
+    state = ("_last_d", "_fresh")     # the derivative's memory (saved with the outputs)
 
     Kb = Parameter(0.0, "the bias: a constant added to the control value")
     Kp = Parameter(0.1, "the proportional gain")

@@ -79,8 +79,8 @@ export function splitCommand(path) {
 /**
  * Decode one binary data frame: 4 bytes little-endian header length N, N bytes of JSON,
  * then payloads at header offsets. Returns {tick, time, buffers: Map("path|format" -> item)}
- * where an item is {path, format, shape, data} with data a Float32Array (raw) or a Blob
- * (png/jpeg).
+ * where an item is {path, format, shape, data} with data a Float32Array (raw, history,
+ * events; these two also keep their header fields) or a Blob (png/jpeg).
  */
 export function decodeFrame(buffer) {
     const view = new DataView(buffer);
@@ -91,7 +91,7 @@ export function decodeFrame(buffer) {
     for (const b of header.buffers || []) {
         const start = base + b.offset;
         let data;
-        if (b.format === "raw" || !b.format) {
+        if (b.format === "raw" || b.format === "history" || b.format === "events" || !b.format) {
             const bytes = buffer.slice(start, start + b.length);   // copy: keeps alignment
             if (littleEndian) {
                 data = new Float32Array(bytes);
@@ -104,7 +104,8 @@ export function decodeFrame(buffer) {
             data = new Blob([new Uint8Array(buffer, start, b.length)],
                 { type: b.format === "png" ? "image/png" : "image/jpeg" });
         }
-        const item = { path: b.path, format: b.format || "raw", shape: b.shape || [], data };
+        // history/events buffers keep their header fields (mode, ticks, buffer_shape, ...)
+        const item = { ...b, path: b.path, format: b.format || "raw", shape: b.shape || [], data };
         buffers.set(item.path + "|" + item.format, item);
     }
     return { tick: header.tick, time: header.time, buffers };

@@ -7,6 +7,7 @@ import { SystemInspector } from "./inspector.js";
 import { Messages } from "./messages.js";
 import { ModuleInspector } from "./module-inspector.js";
 import { Navigator } from "./navigator.js";
+import { Panes } from "./panes.js";
 import { ViewRenderer } from "./views.js";
 import { Editor } from "./editor/editor.js";
 
@@ -43,10 +44,11 @@ class App {
         this.lastFrame = null;
         this.params = new Map();
         this.messages = new Messages($("#messages"));
-        this.system = new SystemInspector($("#system-inspector"));
+        this.system = new SystemInspector($("#system-inspector"), (l, m) => this.messages.local(l, m));
         this.controls = new Controls($("#controls"), {
             onStatus: (s) => this.showStatus(s),
             notify: (l, m) => this.messages.local(l, m),
+            scope: () => (this.editor?.active ? this.editor.selectedComponentPath() : null),
         });
         this.recordButton = new RecordButton($("#controls"), { notify: (l, m) => this.messages.local(l, m) });
         this.replayBar = new ReplayBar($("#controls"), { notify: (l, m) => this.messages.local(l, m), recordButton: this.recordButton });
@@ -78,6 +80,7 @@ class App {
         $("#toggle-nav").addEventListener("click", () => document.body.classList.toggle("hide-nav"));
         $("#toggle-system").addEventListener("click", () => document.body.classList.toggle("hide-system"));
         $("#toggle-messages").addEventListener("click", () => document.body.classList.toggle("hide-messages"));
+        this.panes = new Panes();
         $("#clear-messages").addEventListener("click", () => this.messages.clear());
         window.addEventListener("hashchange", () => {
             const c = this.fromHash();
@@ -145,10 +148,12 @@ class App {
             (g.groups || []).forEach(walk);
         };
         walk(this.network.top);
-        $("#file-name").textContent = this.network.file || "";
+        this.editor.showFileName(this.network.file);
         document.title = `ikaros – ${this.network.name || this.network.file || ""}`;
         const c = this.fromHash() || this.current || { group: "", view: 0 };
         await this.showView(c.group, c.view);
+        // the model did not build: it is fixed in the editor
+        if (this.network.build_error && !this.editor.active) await this.editor.setActive(true);
     }
 
     findGroup(path, g = this.network?.top) {
@@ -203,17 +208,24 @@ class App {
         this.pollParameters();
     }
 
-    views() { return [this.mainView, this.moduleInspector.view].filter(Boolean); }
+    views() { return [this.mainView, this.moduleInspector.view, this.editor?.viewEditor].filter(Boolean); }
 
     resubscribe() {
-        const seen = new Set();
+        const seen = new Map();
         const subs = [];
         for (const v of this.views()) {
             for (const s of v.subscriptions()) {
                 const key = s.path + "|" + s.format;
-                if (!s.path || seen.has(key)) continue;
-                seen.add(key);
-                subs.push({ path: s.path, format: s.format || "raw" });
+                if (!s.path) continue;
+                if (seen.has(key)) {        // a history shared by plots: the widest one's points
+                    const had = seen.get(key);
+                    if (s.points && had.points) had.points = Math.max(had.points, s.points);
+                    continue;
+                }
+                const sub = { path: s.path, format: s.format || "raw" };
+                if (s.points) sub.points = s.points;
+                seen.set(key, sub);
+                subs.push(sub);
             }
         }
         this.socket.subscribe(subs);

@@ -1,4 +1,7 @@
-// The system inspector: the kernel's figures and the UI's own.
+// The system inspector: the kernel's figures and the UI's own, and the profiling and
+// start-up windows.
+import { openProfiling, openStartup } from "./run-windows.js";
+import { STATE_TEXT } from "./controls.js";
 const ms = (s) => (typeof s === "number" ? (s * 1000).toFixed(2) + " ms" : "-");
 const pct = (f) => (typeof f === "number" ? (f * 100).toFixed(1) + " %" : "-");
 const num = (v, d = 1) => (typeof v === "number" ? v.toFixed(d) : v ?? "-");
@@ -6,13 +9,15 @@ const num = (v, d = 1) => (typeof v === "number" ? v.toFixed(d) : v ?? "-");
 const FIELDS = [
     ["System", [
         ["file", "file", (s) => s.file ?? "-"],
-        ["state", "state", (s) => s.state ?? "-"],
-        ["tick", "tick", (s) => String(s.tick ?? "-")],
+        ["state", "state", (s) => STATE_TEXT[s.state] ?? s.state ?? "-"],
+        ["tick", "tick", (s) => (typeof s.stop_tick === "number" && s.stop_tick > 0 ? `${s.tick} / ${s.stop_tick}` : String(s.tick ?? "-"))],
+        ["progress", "progress", (s) => (typeof s.stop_tick === "number" && s.stop_tick > 0 ? pct(Math.min(1, s.tick / s.stop_tick)) : "-")],
         ["time", "time", (s) => (typeof s.time === "number" ? s.time.toFixed(3) + " s" : "-")],
         ["elapsed", "elapsed", (s) => (typeof s.elapsed === "number" ? s.elapsed.toFixed(1) + " s" : "-")],
     ]],
     ["Timing", [
         ["ticks_per_second", "ticks/s", (s) => num(s.ticks_per_second, 1)],
+        ["ticks_per_second_mean", "ticks/s (run mean)", (s) => num(s.ticks_per_second_mean, 1)],
         ["tick_duration", "tick duration", (s) => ms(s.tick_duration)],
         ["actual_tick_duration", "actual duration", (s) => ms(s.actual_tick_duration)],
         ["lag", "lag", (s) => ms(s.lag)],
@@ -33,7 +38,7 @@ const FIELDS = [
 ];
 
 export class SystemInspector {
-    constructor(el) {
+    constructor(el, notify = () => { }) {
         this.el = el;
         this.values = {};
         const title = document.createElement("div");
@@ -58,6 +63,19 @@ export class SystemInspector {
             }
         }
         el.appendChild(table);
+        const tools = document.createElement("div");
+        tools.className = "inspector-tools";
+        for (const [id, text, title, open] of [["open-profiling", "Profiling", "per-module time, most time first", openProfiling],
+            ["open-startup", "Start-up", "the time of each build step", openStartup]]) {
+            const b = document.createElement("button");
+            b.className = "tool small";
+            b.id = id;
+            b.textContent = text;
+            b.title = title;
+            b.addEventListener("click", () => open(notify));
+            tools.appendChild(b);
+        }
+        el.appendChild(tools);
         this.status = {};
         this.ui = { updatesPerSecond: 0, rtt: null, lagTicks: null, lagSeconds: 0, connected: false };
     }

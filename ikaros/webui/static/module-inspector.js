@@ -4,6 +4,7 @@ import { api } from "./api.js";
 import { ViewRenderer } from "./views.js";
 
 function valueText(v, decimals = 4) {
+    // lines break only between numbers (after ", "), never inside one (base.css)
     if (Array.isArray(v)) {
         if (v.length && Array.isArray(v[0])) return v.map((r) => valueText(r, decimals)).join("; ");
         return v.map((x) => valueText(x, decimals)).join(", ");
@@ -11,6 +12,18 @@ function valueText(v, decimals = 4) {
     if (typeof v === "number") return Number.isInteger(v) ? String(v) : v.toFixed(decimals).replace(/0+$/, "").replace(/\.$/, "");
     if (v === null || v === undefined) return "";
     return String(v);
+}
+
+/** A description's text as nodes: ``code`` and `code` become <code> elements (the
+ *  description's own markup; shown whole, never as raw backticks). */
+export function describe(text) {
+    return String(text).split(/(``[^`]+``|`[^`]+`)/).filter(Boolean).map((part) => {
+        const m = part.match(/^``([^`]+)``$|^`([^`]+)`$/);
+        if (!m) return document.createTextNode(part);
+        const code = document.createElement("code");
+        code.textContent = m[1] ?? m[2];
+        return code;
+    });
 }
 
 function optionList(p) {
@@ -87,7 +100,7 @@ export class ModuleInspector {
         if (info.description) {
             const d = document.createElement("div");
             d.className = "module-description";
-            d.textContent = info.description;
+            d.append(...describe(info.description));
             this.el.appendChild(d);
         }
         this.paramInputs = {};

@@ -8,6 +8,7 @@ export class Navigator {
 
     show(network, current) {
         this.el.textContent = "";
+        this.el.setAttribute("aria-label", "navigator");
         const title = document.createElement("div");
         title.className = "pane-title";
         title.textContent = "Navigator";
@@ -21,17 +22,24 @@ export class Navigator {
     group(g, current, open) {
         const li = document.createElement("li");
         li.className = "tree-group";
-        const details = document.createElement("details");
-        details.open = open || (current && (current.group === g.path || current.group.startsWith(g.path ? g.path + "." : "")));
-        const summary = document.createElement("summary");
+        open = open || (current && (current.group === g.path || current.group.startsWith(g.path ? g.path + "." : "")));
+        // a toggle and a link side by side (a link inside a <summary> is a control inside a
+        // control, which assistive technology can not reach)
+        const row = document.createElement("div");
+        row.className = "tree-row";
+        const toggle = document.createElement("button");
+        toggle.className = "tree-toggle";
+        toggle.setAttribute("aria-expanded", String(Boolean(open)));
+        toggle.setAttribute("aria-label", `${open ? "collapse" : "expand"} ${g.name || "(top)"}`);
+        toggle.textContent = open ? "▾" : "▸";
         const name = document.createElement("a");
         name.href = "#";
         name.className = "group-name";
         name.textContent = g.name || "(top)";
         name.dataset.group = g.path;
         name.addEventListener("click", (e) => { e.preventDefault(); this.onView(g.path, 0); });
-        summary.appendChild(name);
-        details.appendChild(summary);
+        row.append(toggle, name);
+        li.appendChild(row);
         const ul = document.createElement("ul");
         (g.views || []).forEach((v, i) => {
             const item = document.createElement("li");
@@ -59,8 +67,14 @@ export class Navigator {
             ul.appendChild(item);
         }
         for (const sub of g.groups || []) ul.appendChild(this.group(sub, current, false));
-        details.appendChild(ul);
-        li.appendChild(details);
+        ul.hidden = !open;
+        toggle.addEventListener("click", () => {
+            ul.hidden = !ul.hidden;
+            toggle.setAttribute("aria-expanded", String(!ul.hidden));
+            toggle.setAttribute("aria-label", `${ul.hidden ? "expand" : "collapse"} ${g.name || "(top)"}`);
+            toggle.textContent = ul.hidden ? "▸" : "▾";
+        });
+        li.appendChild(ul);
         return li;
     }
 }

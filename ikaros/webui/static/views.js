@@ -1,6 +1,8 @@
 // A view: widgets placed at (x, y) with width x height as the model file says.
 import { widgetClass } from "./widgets/index.js";
 
+const MIN_ZOOM = 0.6;
+
 export class ViewRenderer {
     /**
      * @param container element to draw into
@@ -20,9 +22,14 @@ export class ViewRenderer {
 
     async build() {
         let right = 0, bottom = 0;
+        const placed = [];
         for (const attrs of this.view.widgets || []) {
             const x = parseFloat(attrs.x ?? attrs._x) || 0, y = parseFloat(attrs.y ?? attrs._y) || 0;
             const w = parseFloat(attrs.width) || 200, h = parseFloat(attrs.height) || 200;
+            // A widget drawn over an earlier one is see-through (as in the original), so
+            // layered widgets (a path under markers) all show.
+            const overlay = placed.some((r) => x < r.x + r.w && r.x < x + w && y < r.y + r.h && r.y < y + h);
+            placed.push({ x, y, w, h });
             right = Math.max(right, x + w);
             bottom = Math.max(bottom, y + h);
             let widget;
@@ -37,12 +44,26 @@ export class ViewRenderer {
                 this.ctx.notify?.("warning", `${attrs.class}: ${e.message}`);
             }
             Object.assign(widget.el.style, { left: x + "px", top: y + "px", width: w + "px", height: h + "px" });
+            if (overlay) widget.el.classList.add("see-through");
             this.el.appendChild(widget.el);
             this.widgets.push(widget);
         }
         this.el.style.width = right + 20 + "px";
         this.el.style.height = bottom + 20 + "px";
+        this.naturalWidth = right + 20;
+        this.fitter = new ResizeObserver(() => this.fit());
+        this.fitter.observe(this.container);
+        this.fit();
         return this;
+    }
+
+    /** A view wider than its pane is scaled down to fit it (to MIN_ZOOM at most; beyond
+     *  that the pane scrolls), so that no widget is cut off. */
+    fit() {
+        const room = this.container.clientWidth;
+        if (!room || !this.naturalWidth) return;
+        const zoom = Math.max(MIN_ZOOM, Math.min(1, room / this.naturalWidth));
+        this.el.style.zoom = zoom < 1 ? String(zoom) : "";
     }
 
     subscriptions() { return this.widgets.flatMap((w) => w.subscriptions()); }
@@ -61,6 +82,7 @@ export class ViewRenderer {
     }
 
     destroy() {
+        this.fitter?.disconnect();
         for (const w of this.widgets) { try { w.destroy(); } catch { } }
         this.el.remove();
     }

@@ -6,7 +6,7 @@ import { WIDGETS } from "../widgets/index.js";
 import { pickClass } from "./class-list.js";
 import { ask, files, pickFile } from "./files.js";
 import { EditorInspector } from "./inspector.js";
-import { graphOf, layout, storedPosition } from "./layout.js";
+import { edgeKey, graphOf, layout, loadElk, storedPosition } from "./layout.js";
 import { EditorModel, GROUP_WIDGETS, clone, elements, kids, node, setWidgetBox, treeAsNetwork, viewsOf, widgetBox } from "./model.js";
 import { NetworkView } from "./network-view.js";
 import { ViewEditor } from "./view-editor.js";
@@ -41,6 +41,18 @@ export class Editor {
         this.notify = (level, message) => app.messages.local(level, message);
         this.buildChrome();
         this.model.addEventListener("change", (e) => this.onModelChange(e.detail));
+        this.classesLoaded = null;
+        // the class list takes the server a second to gather: fetched while the page idles,
+        // so that the editor opens at once
+        setTimeout(() => this.loadClasses().then(() => loadElk()).catch(() => { }), 500);
+    }
+
+    loadClasses() {
+        this.classesLoaded ||= api.classes().then((c) => { this.classes = c; }).catch((e) => {
+            this.classesLoaded = null;
+            this.notify("error", "classes: " + e.message);
+        });
+        return this.classesLoaded;
     }
 
     // --- chrome --------------------------------------------------------------------------
@@ -85,6 +97,7 @@ export class Editor {
         ];
         this.widgetMenu = h("select", "tool small");
         this.widgetMenu.id = "ed-add-widget";
+        this.widgetMenu.setAttribute("aria-label", "add a widget");
         this.widgetMenu.add(new Option("+ Widget", ""));
         for (const name of Object.keys(WIDGETS)) this.widgetMenu.add(new Option(name, name));
         this.widgetMenu.addEventListener("change", () => { const c = this.widgetMenu.value; this.widgetMenu.value = ""; if (c) this.addWidget(c); });
@@ -93,6 +106,8 @@ export class Editor {
         button("ed-copy", "Copy", "copy (Ctrl-C)", () => this.copy());
         button("ed-paste", "Paste", "paste (Ctrl-V)", () => this.paste());
         button("ed-duplicate", "Duplicate", "duplicate (Ctrl-D)", () => this.duplicate());
+        button("ed-cut", "Cut", "cut (Ctrl-X)", () => this.cut());
+        button("ed-select-all", "Select all", "select every element (Ctrl-A)", () => this.selectAll());
         sep();
         this.layoutTools = [
             button("ed-align-left", "⇤ Align", "align the selected boxes on the left", () => this.align("x")),
@@ -126,8 +141,15 @@ export class Editor {
             sources: () => this.sourcesInGroup(),
             parameters: () => this.parametersInGroup(),
             error: (n) => this.errors.get(n) || null,
+            parentOf: (n) => { const c = this.model.chain(n); return c && c.length > 1 ? c[c.length - 2] : null; },
         });
         document.addEventListener("keydown", (e) => this.onKey(e));
+        // edits that are not on disk: the browser asks before the tab closes or reloads
+        window.addEventListener("beforeunload", (e) => {
+            if (!this.model.unsaved) return;
+            e.preventDefault();
+            e.returnValue = "";
+        });
     }
 
     async setActive(on) {
@@ -139,9 +161,7 @@ export class Editor {
         document.querySelector("#view-host").hidden = on;
         document.querySelector("#view-title").hidden = on;
         if (on) {
-            if (!Object.keys(this.classes).length) {
-                try { this.classes = await api.classes(); } catch (e) { this.notify("error", "classes: " + e.message); }
-            }
+            if (!Object.keys(this.classes).length) await this.loadClasses();
             if (!this.model.tree) await this.reload();
             else this.render();
         } else {
@@ -156,6 +176,8 @@ export class Editor {
             this.errors.clear();
             this.groupError = null;
             if (!this.model.group(this.groupPath)) this.groupPath = "";
+            // the file did not build: its error on the element at fault
+            if (m.error) this.showError({ message: m.error.error, body: m.error }, "Did not build", " Fix it here, then Apply.");
         } catch (e) {
             this.setStatus("error", "model: " + e.message);
         }
@@ -197,8 +219,17 @@ export class Editor {
     updateTitle() {
         this.undoButton.disabled = !this.model.canUndo();
         this.redoButton.disabled = !this.model.canRedo();
+        this.showFileName(this.app.network?.file);
+    }
+
+    /** The file name in the toolbar, with "•" while edits are not saved (Apply does not
+     *  save: the mark stays until Save). */
+    showFileName(networkFile) {
+        const el = document.querySelector("#file-name");
+        if (!this.model.tree) { el.textContent = networkFile || ""; return; }
         const name = this.model.file || "(not saved)";
-        document.querySelector("#file-name").textContent = name + (this.model.unsaved ? " •" : "");
+        el.textContent = name + (this.model.unsaved ? " •" : "");
+        el.title = this.model.unsaved ? "edits not saved to the file" : "";
     }
 
     /** Write the present positions of every box of the group into _x/_y (inside an edit). */
@@ -293,7 +324,8 @@ export class Editor {
 
     async autoLayout() {
         if (!this.graph) return;
-        const { positions } = await layout(this.graph, { force: true });
+        const { positions, routes } = await layout(this.graph, { force: true });
+        this.keepRoutes(routes, positions);
         this.edit("auto layout", () => {
             for (const b of this.graph.boxes) {
                 const p = positions.get(b.key);
@@ -387,6 +419,69 @@ export class Editor {
 
     duplicate() { this.copy(); this.paste(); }
 
+    /** Copy the selection, then delete it (read-only elements stay). */
+    cut() {
+        this.copy();
+        if (this.clipboard) this.deleteSelection();
+    }
+
+    /** Keep the routes of an automatic layout with the positions they were made for. */
+    keepRoutes(routes, positions) {
+        if (routes) this.routing = { group: this.groupPath, routes, at: new Map([...positions].map(([k, p]) => [k, { ...p }])) };
+    }
+
+    /** The routes still true to the drawing: none once a box was moved, added or removed
+     *  (connections are then curves until the next Auto layout); a pin placed anew drops
+     *  only its own connections' routes. */
+    validRoutes() {
+        const r = this.routing, out = new Map();
+        if (!r || r.group !== this.groupPath || !this.graph) return out;
+        const same = (k) => { const a = r.at.get(k), b = this.positions.get(k); return a && b && a.x === b.x && a.y === b.y; };
+        const comps = this.graph.boxes.filter((b) => isComponent(b.node));
+        if (!comps.every((b) => same(b.key)) || comps.length !== [...r.at.keys()].filter((k) => k.startsWith("c:")).length) return out;
+        for (const e of this.graph.edges) {
+            const key = edgeKey(e);
+            if (e.from.box && e.to.box && same(e.from.box.key) && same(e.to.box.key) && r.routes.has(key)) out.set(key, r.routes.get(key));
+        }
+        return out;
+    }
+
+    /** The keys of the subgroups of a group whose unused ports are shown. */
+    expandedPorts(groupPath) {
+        this.portsShown ||= new Map();
+        if (!this.portsShown.has(groupPath)) this.portsShown.set(groupPath, new Set());
+        return this.portsShown.get(groupPath);
+    }
+
+    /** Show or hide a subgroup's unused ports (a view setting: the model is not changed). */
+    togglePorts(key) {
+        const set = this.expandedPorts(this.groupPath);
+        if (set.has(key)) set.delete(key); else set.add(key);
+        this.render();
+    }
+
+    /** Select the boxes a rubber band touched (added to the selection when additive). */
+    band(keys, additive) {
+        if (!additive) this.selection.clear();
+        for (const k of keys) {
+            const n = this.graph.boxes.find((b) => b.key === k)?.node;
+            if (n && n !== this.group()) this.selection.add(n);
+        }
+        this.redraw();
+    }
+
+    /** Every box and connection of the open group, or every widget of the open view. */
+    selectAll() {
+        if (this.mode === "network") {
+            const nodes = (this.graph?.boxes || []).filter((b) => b.node && b.node !== this.group()).map((b) => b.node)
+                .concat((this.graph?.edges || []).map((e) => e.node).filter(Boolean));
+            this.select([...new Set(nodes)]);
+        } else {
+            const v = this.currentView();
+            this.select(v ? kids(v) : []);
+        }
+    }
+
     // --- views -----------------------------------------------------------------------------
 
     currentView() {
@@ -441,11 +536,25 @@ export class Editor {
         this.edit("move widget", () => setWidgetBox(w, box));
     }
 
+    /** Every output a widget here can show: this group's modules' and its subgroups'
+     *  outputs (paths from this group), then every other module output of the model (a
+     *  leading "." starts at the top group). */
     sourcesInGroup() {
-        const out = [];
-        for (const m of kids(this.group(), "module")) for (const o of this.classes[m.attrs.class]?.outputs || []) out.push(`${m.attrs.name}.${o.name}`);
+        const out = [], elsewhere = [], here = this.groupPath;
         for (const s of kids(this.group(), "group")) for (const o of kids(s, "output")) out.push(`${s.attrs.name}.${o.attrs.name}`);
-        return out;
+        const walk = (g, path) => {
+            for (const m of kids(g, "module")) {
+                for (const o of this.classes[m.attrs.class]?.outputs || []) {
+                    const full = [path, m.attrs.name, o.name].filter(Boolean).join(".");
+                    if (!here) out.push(full);
+                    else if (full.startsWith(here + ".")) out.push(full.slice(here.length + 1));
+                    else elsewhere.push("." + full);
+                }
+            }
+            for (const s of kids(g, "group")) walk(s, [path, s.attrs.name].filter(Boolean).join("."));
+        };
+        walk(this.model.tree, "");
+        return [...out, ...elsewhere];
     }
 
     parametersInGroup() {
@@ -463,6 +572,16 @@ export class Editor {
         this.mode = view === null || view === undefined || view < 0 ? "network" : view;
         this.selection.clear();
         this.render();
+    }
+
+    /** The dotted path of the one module or group selected, or null (the scope of the
+     *  state menu's save, load and reset). */
+    selectedComponentPath() {
+        if (this.selection.size !== 1) return null;
+        const [n] = this.selection;
+        if (!isComponent(n)) return null;
+        const path = [this.groupPath, n.attrs.name].filter(Boolean).join(".");
+        return path || null;
     }
 
     /** Open the group of a module (dotted path) and select the module. */
@@ -494,7 +613,7 @@ export class Editor {
     redraw() {
         if (!this.active) return;
         if (this.mode === "network" && this.netView && this.graph) {
-            this.netView.show(this.graph, this.positions, { errors: this.visibleErrors(), selection: this.selection, groupError: this.groupError });
+            this.netView.show(this.graph, this.positions, { errors: this.visibleErrors(), selection: this.selection, groupError: this.groupError, routes: this.validRoutes() });
         } else if (this.viewEditor && this.currentView()) {
             this.viewEditor.show(this.currentView(), this.selection, this.errors);
         }
@@ -575,12 +694,15 @@ export class Editor {
                     onOpenGroup: (name) => this.openGroup(this.groupPath ? `${this.groupPath}.${name}` : name),
                     onMove: (moves) => this.onMove(moves),
                     onConnect: (from, to) => this.onConnect(from, to),
+                    onBand: (keys, additive) => this.band(keys, additive),
+                    onTogglePorts: (key) => this.togglePorts(key),
                 });
                 this.netView.shownGroup = null;
             }
-            const graph = graphOf(g, this.classes);
-            const { positions, automatic } = await layout(graph);
+            const graph = graphOf(g, this.classes, this.expandedPorts(this.groupPath));
+            const { positions, automatic, routes } = await layout(graph);
             if (seq !== this.renderSeq) return;
+            this.keepRoutes(routes, positions);
             this.graph = graph;
             this.positions = positions;
             this.automatic = automatic;
@@ -598,6 +720,7 @@ export class Editor {
                 this.viewEditor = new ViewEditor(this.host, {
                     onSelect: (nodes, additive) => this.select(nodes, additive),
                     onGeometry: (w, box) => this.onGeometry(w, box),
+                    live: () => ({ ctx: { ...this.app.ctx, groupPath: this.groupPath }, changed: () => this.app.resubscribe() }),
                 });
             }
             if (!this.currentView()) { this.mode = "network"; this.render(); return; }
@@ -625,8 +748,9 @@ export class Editor {
         }
     }
 
-    /** A 422 from apply or open: the error next to the element at fault. */
-    showError(e) {
+    /** A 422 from apply or open (or the file that did not build): the error next to the
+     *  element at fault. */
+    showError(e, what = "Not applied", then = " The previous network keeps running.") {
         this.errors.clear();
         this.groupError = null;
         const body = e.body || {};
@@ -648,7 +772,7 @@ export class Editor {
         } else {
             this.groupError = message;
         }
-        this.setStatus("error", "Not applied: " + message.replace(/\.?$/, ".") + " The previous network keeps running.");
+        this.setStatus("error", `${what}: ` + message.replace(/\.?$/, ".") + then);
         this.notify("error", message);
         this.render();
     }
@@ -719,6 +843,8 @@ export class Editor {
         else if (mod && k === "c") this.copy();
         else if (mod && k === "v") this.paste();
         else if (mod && k === "d") this.duplicate();
+        else if (mod && k === "x") this.cut();
+        else if (mod && k === "a") this.selectAll();
         else if (mod && k === "s") this.save();
         else if (!mod && (e.key === "Delete" || e.key === "Backspace")) this.deleteSelection();
         else return;

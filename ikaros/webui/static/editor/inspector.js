@@ -2,6 +2,10 @@
 // input or output, or widget, each with the control its type needs (number, checkbox, menu
 // for options, text, matrix). Every change is one undoable edit through ctx.edit.
 import { isValidName, splitAddress, widgetClassOf } from "./model.js";
+import { SPELLINGS, templateOf } from "../widgets/templates.js";
+import { viewXml } from "../view-xml.js";
+
+const NOT_WIDGETS = new Set(["module", "group", "connection", "input", "output", "parameter", "view", "define", "description"]);
 
 function h(tag, cls, text) {
     const e = document.createElement(tag);
@@ -60,6 +64,9 @@ export class EditorInspector {
         l.title = tip;
         const c = tr.insertCell();
         c.appendChild(control);
+        // the field's accessible name is its label
+        const field = control.matches?.("input, select, textarea") ? control : control.querySelector?.("input, select, textarea");
+        if (field && !field.hasAttribute("aria-label")) field.setAttribute("aria-label", label);
         return tr;
     }
 
@@ -218,7 +225,91 @@ export class EditorInspector {
         this.extraAttributes(n, new Set(["name", "source"]));
     }
 
+    /** Bring to front, send to back (the order of the view's elements is the drawing
+     *  order) and copy the view as XML. */
+    widgetActions(n) {
+        const bar = h("div", "widget-actions");
+        const move = (label, toFront) => {
+            const b = h("button", "tool small", label);
+            b.dataset.action = toFront ? "to-front" : "to-back";
+            b.addEventListener("click", () => {
+                const parent = this.ctx.parentOf(n);
+                if (!parent) return;
+                this.ctx.edit(label.toLowerCase(), () => {
+                    const i = parent.children.indexOf(n);
+                    parent.children.splice(i, 1);
+                    // the drawing order counts only widgets: a widget goes before or after them all
+                    const widgets = parent.children.map((c, k) => [c, k]).filter(([c]) => !c.tag.startsWith("#") && !NOT_WIDGETS.has(c.tag));
+                    const at = toFront ? (widgets.length ? widgets[widgets.length - 1][1] + 1 : parent.children.length) : (widgets.length ? widgets[0][1] : 0);
+                    parent.children.splice(at, 0, n);
+                });
+            });
+            return b;
+        };
+        const copy = h("button", "tool small", "Copy view as XML");
+        copy.dataset.action = "copy-xml";
+        copy.addEventListener("click", async () => {
+            const parent = this.ctx.parentOf(n);
+            if (!parent) return;
+            try { await navigator.clipboard.writeText(viewXml(parent)); copy.textContent = "Copied"; }
+            catch (e) { copy.textContent = "Copy failed: " + e.message; }
+        });
+        bar.append(move("To front", true), move("To back", false), copy);
+        this.el.appendChild(bar);
+    }
+
+    /** A control for a widget attribute of a type from widgets/templates.js. */
+    typed(n, key, type, searchable) {
+        const value = n.attrs[key] ?? "";
+        const menu = (choices) => {
+            const s = h("select", "param-input");
+            s.dataset.attr = key;
+            s.add(new Option("(default)", ""));
+            for (const x of choices) s.add(new Option(x, x));
+            if (value && !choices.includes(value)) s.add(new Option(value, value));
+            s.value = value;
+            s.addEventListener("change", () => this.set(n, key, s.value));
+            return s;
+        };
+        if (Array.isArray(type)) return menu(type);
+        if (type === "bool") return menu(["yes", "no"]);
+        if (type === "source") return searchable(menu(this.ctx.sources()));
+        if (type === "parameter") return menu(this.ctx.parameters());
+        const input = this.text(n, key);
+        if (type === "number" || type === "int") {
+            input.type = "number";
+            input.step = type === "int" ? "1" : "any";
+            return input;
+        }
+        if (type !== "color") return input;
+        const box = h("div", "color-field");
+        const swatch = h("input", "color-swatch");
+        swatch.type = "color";
+        swatch.setAttribute("aria-label", `${key} colour`);
+        const c = document.createElement("canvas").getContext("2d");
+        c.fillStyle = value.split(",")[0] || "#000000";
+        swatch.value = c.fillStyle.startsWith("#") ? c.fillStyle : "#000000";
+        swatch.addEventListener("change", () => this.set(n, key, swatch.value));
+        box.append(input, swatch);
+        return box;
+    }
+
     widgetPanel(n) {
+        // a menu with a search field above it that keeps only the options holding its words
+        const searchable = (select) => {
+            const box = h("div", "searchable-pick");
+            const find = h("input", "param-input");
+            find.type = "search";
+            find.placeholder = "search";
+            find.dataset.search = select.dataset.attr;
+            find.setAttribute("aria-label", `search ${select.dataset.attr}`);
+            find.addEventListener("input", () => {
+                const words = find.value.toLowerCase().split(/\s+/).filter(Boolean);
+                for (const o of select.options) o.hidden = o.value !== "" && !words.every((w) => o.value.toLowerCase().includes(w));
+            });
+            box.append(find, select);
+            return box;
+        };
         const cls = widgetClassOf(n);
         this.el.appendChild(h("div", "module-class", `widget: ${cls}`));
         const t = this.table();
@@ -234,7 +325,7 @@ export class EditorInspector {
             s.addEventListener("change", () => this.set(n, key, s.value));
             return s;
         };
-        this.row(t, "source", pick("source", this.ctx.sources()), "an output in this group");
+        this.row(t, "source", searchable(pick("source", this.ctx.sources())), "an output of any module (a leading . starts at the top group)");
         if ("parameter" in n.attrs || ["slider-horizontal", "slider-vertical", "switch", "drop-down-menu", "button", "text", "grid"].includes(cls)) {
             this.row(t, "parameter", pick("parameter", this.ctx.parameters()), "a parameter in this group");
         }
@@ -256,6 +347,15 @@ export class EditorInspector {
             this.row(st, key.replace("_", " "), c);
         }
         this.row(st, "style", this.text(n, "style", { placeholder: "CSS, e.g. background: #eef" }));
-        this.extraAttributes(n, new Set(["class", "title", "source", "parameter", "x", "y", "_x", "_y", "width", "height", "color", "show_title", "show_frame", "style"]));
+        const known = new Set(["class", "title", "source", "parameter", "x", "y", "_x", "_y", "width", "height", "color", "show_title", "show_frame", "style"]);
+        const wt = this.table("Widget");
+        for (const [name, type] of templateOf(cls)) {
+            const key = [name, ...(SPELLINGS[name] || [])].find((k) => k in n.attrs) ?? name;
+            if (known.has(key)) continue;
+            known.add(key);
+            this.row(wt, name, this.typed(n, key, type, searchable));
+        }
+        this.extraAttributes(n, known);
+        this.widgetActions(n);
     }
 }

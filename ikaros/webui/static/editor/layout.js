@@ -2,14 +2,16 @@
 // layered, left to right along the data flow) for groups whose file gives no _x, _y.
 import { kids, elements, splitAddress } from "./model.js";
 
+export const ELK_LIMIT = 300;   // boxes; a bigger group is laid out by simpleLayout
 export const BOX_W = 170, HEADER = 38, PORT_H = 18, PIN_W = 120, PIN_H = 26;
 
 /**
  * The graph of a group node: boxes (modules, subgroups; the group's inputs, outputs and
  * addresses outside the group as pins at the edges) and edges (connections, and the sources
- * of group outputs). classes: {name: description} from /api/classes.
+ * of group outputs). classes: {name: description} from /api/classes. A subgroup shows only
+ * its connected ports unless its key is in ``expanded``; ``hidden`` counts the others.
  */
-export function graphOf(g, classes = {}) {
+export function graphOf(g, classes = {}, expanded = new Set()) {
     const boxes = new Map();
     const add = (b) => { boxes.set(b.key, b); return b; };
     for (const { node, readOnly } of elements(g)) {
@@ -59,8 +61,30 @@ export function graphOf(g, classes = {}) {
         const from = end(node.attrs.source, "source");
         edges.push({ node, readOnly: true, outputSource: true, from, to: { box: boxes.get("o:" + node.attrs.name), port: "" }, delay: "" });
     }
+    collapsePorts(boxes, edges, expanded);
     for (const b of boxes.values()) Object.assign(b, size(b));
     return { boxes: [...boxes.values()], edges };
+}
+
+/** Subgroups show only the ports a connection uses, unless expanded: a group's inside is
+ *  not the business of the group around it. */
+function collapsePorts(boxes, edges, expanded) {
+    for (const b of boxes.values()) {
+        if (b.kind !== "group") continue;
+        const used = { in: new Set(), out: new Set() };
+        for (const e of edges) {
+            if (e.from.box === b) used.out.add(e.from.port);
+            if (e.to.box === b) used.in.add(e.to.port);
+        }
+        const all = b.inputs.length + b.outputs.length;
+        b.expanded = expanded.has(b.key);
+        if (!b.expanded) {
+            b.inputs = b.inputs.filter((p) => used.in.has(p));
+            b.outputs = b.outputs.filter((p) => used.out.has(p));
+        }
+        b.hidden = all - b.inputs.length - b.outputs.length;
+        b.collapsible = all > 0 && (b.expanded ? used.in.size + used.out.size < all : b.hidden > 0);
+    }
 }
 
 function size(b) {
@@ -89,7 +113,9 @@ export function storedPosition(b) {
 }
 
 let elkLoading = null;
-function loadElk() {
+/** Load elkjs (the first automatic layout needs it; the editor loads it while the page
+ *  idles, so that the editor opens at once). */
+export function loadElk() {
     if (window.ELK) return Promise.resolve(window.ELK);
     if (!elkLoading) {
         elkLoading = new Promise((resolve, reject) => {
@@ -112,19 +138,21 @@ export async function layout(graph, { force = false } = {}) {
     const comps = graph.boxes.filter(isComponent);
     const stored = new Map(comps.map((b) => [b.key, storedPosition(b)]));
     const manual = !force && comps.length > 0 && comps.every((b) => stored.get(b.key));
-    let pos;
+    let pos, routes = null;
     if (manual) {
         pos = new Map(comps.map((b) => [b.key, stored.get(b.key)]));
         placePins(graph, pos);
     } else {
         try {
-            pos = await elkLayout(graph);
+            // elkjs takes seconds on thousands of boxes: big groups get the simple layout
+            if (graph.boxes.length > ELK_LIMIT) pos = simpleLayout(graph);
+            else ({ pos, routes } = await elkLayout(graph));
         } catch (e) {
             console.warn("elk layout failed, using the simple one:", e);
             pos = simpleLayout(graph);
         }
     }
-    return { positions: pos, automatic: !manual };
+    return { positions: pos, automatic: !manual, routes };
 }
 
 function placePins(graph, pos) {
@@ -141,6 +169,9 @@ function placePins(graph, pos) {
     right.forEach((b, i) => pos.set(b.key, { x: maxX + 80, y: minY + i * (PIN_H + 20) }));
 }
 
+/** What names a connection across layouts: its source and target as written. */
+export function edgeKey(e) { return `${e.node?.attrs.source}>${e.node?.attrs.target || e.node?.attrs.name}`; }
+
 async function elkLayout(graph) {
     const ELK = await loadElk();
     const elk = new ELK();
@@ -155,7 +186,7 @@ async function elkLayout(graph) {
         if (b.kind === "output" || b.kind === "external-out") opts["org.eclipse.elk.layered.layering.layerConstraint"] = "LAST_SEPARATE";
         return { id: b.key, width: b.w, height: b.h, ports, layoutOptions: opts };
     });
-    const edges = graph.edges.filter((e) => e.from.box && e.to.box).map((e, i) => ({
+    const edges = graph.edges.map((e, i) => [e, i]).filter(([e]) => e.from.box && e.to.box).map(([e, i]) => ({
         id: "e" + i, sources: [pid(e.from.box, "out", e.from.port)], targets: [pid(e.to.box, "in", e.to.port)],
     }));
     const result = await elk.layout({
@@ -168,10 +199,26 @@ async function elkLayout(graph) {
             "org.eclipse.elk.spacing.componentComponent": "60",
             "org.eclipse.elk.layered.crossingMinimization.strategy": "LAYER_SWEEP",
             "org.eclipse.elk.padding": "[top=40,left=40,bottom=40,right=40]",
+            "org.eclipse.elk.edgeRouting": "ORTHOGONAL",
+            "org.eclipse.elk.layered.spacing.edgeNodeBetweenLayers": "20",
         },
         children, edges,
     });
-    return new Map(result.children.map((c) => [c.id, { x: Math.round(c.x), y: Math.round(c.y) }]));
+    const pos = new Map(result.children.map((c) => [c.id, { x: Math.round(c.x), y: Math.round(c.y) }]));
+    // the connections as elkjs routed them around the boxes: points relative to the rounded
+    // box positions, keyed by edgeKey
+    const routes = new Map();
+    const shift = new Map(result.children.map((c) => [c.id, [Math.round(c.x) - c.x, Math.round(c.y) - c.y]]));
+    for (const re of result.edges || []) {
+        const sec = re.sections?.[0];
+        const e = graph.edges[+re.id.slice(1)];
+        if (!sec || !e) continue;
+        const [sx, sy] = shift.get(e.from.box.key), [tx, ty] = shift.get(e.to.box.key);
+        const pts = [[sec.startPoint.x + sx, sec.startPoint.y + sy], ...(sec.bendPoints || []).map((b) => [b.x, b.y]),
+            [sec.endPoint.x + tx, sec.endPoint.y + ty]];
+        routes.set(edgeKey(e), pts);
+    }
+    return { pos, routes };
 }
 
 /** Longest-path layers along the connections, boxes stacked in each layer. */

@@ -286,6 +286,14 @@ export class EditorModel extends EventTarget {
 
     /** Paste a clipboard into g: names made unique, connections remapped; returns the new nodes. */
     pasteInto(g, clip, offset = 40) {
+        // pasted boxes move down and right in 40 px steps until none covers a box there
+        // (a box is about 170 x 80, PASTE_ROOM with a margin)
+        const pos = (n) => [parseFloat(n.attrs._x) || 0, parseFloat(n.attrs._y) || 0];
+        const there = kids(g).filter((c) => c.attrs._x !== undefined).map(pos);
+        const placed = clip.nodes.filter((n) => n.attrs._x !== undefined).map(pos);
+        const covers = (d) => placed.some(([x, y]) => there.some(([u, v]) =>
+            Math.abs(x + d - u) < PASTE_ROOM.w && Math.abs(y + d - v) < PASTE_ROOM.h));
+        for (let i = 0; i < 200 && covers(offset); i++) offset += 40;
         const taken = this.names(g);
         const map = new Map();
         const added = [];
@@ -313,6 +321,8 @@ export class EditorModel extends EventTarget {
         return added;
     }
 }
+
+const PASTE_ROOM = { w: 190, h: 100 };
 
 /** Widget attributes that hold "Module.PORT" addresses (sources, parameters, commands). */
 const WIDGET_ADDRESS = /source$|Source$|parameter$|Parameter$|command|Command/;

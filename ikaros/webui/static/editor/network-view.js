@@ -1,11 +1,17 @@
 // The network view of one group: SVG boxes with input ports on the left and output ports on
 // the right, connections as curves labelled with their delay, the group's inputs and outputs
-// as pins at the edges. Zoom (wheel), pan (drag the background), select (click, shift-click),
+// as pins at the edges. Zoom (wheel), pan (drag the background), select (click, shift-click,
+// or a rubber band: shift- or alt-drag on the background),
 // move (drag boxes), connect (drag from an output port to an input port), open a group
 // (double-click). The view changes nothing itself: it reports to its owner.
-import { HEADER, PORT_H, portOffset } from "./layout.js";
+import { HEADER, PORT_H, edgeKey, portOffset } from "./layout.js";
 
 const SVG = "http://www.w3.org/2000/svg";
+const REST_MS = 150;     // a pan or zoom gesture is drawn anew after this long at rest
+const CULL_LIMIT = 400;  // boxes; a bigger group is drawn only around the view
+
+const overlaps = (a, b) => a[0] < b[2] && a[2] > b[0] && a[1] < b[3] && a[3] > b[1];
+const inside = (a, b) => a[0] >= b[0] && a[1] >= b[1] && a[2] <= b[2] && a[3] <= b[3];
 
 function el(tag, attrs = {}, parent = null) {
     const e = document.createElementNS(SVG, tag);
@@ -27,16 +33,60 @@ function curve(x1, y1, x2, y2) {
     return `M${a} C${b} ${c} ${d}`;
 }
 
-/** The middle of the curve (t = 1/2). */
-function middle(x1, y1, x2, y2) {
+/** The point at t (0..1) of the curve. */
+function pointAt(x1, y1, x2, y2, t) {
     const [a, b, c, d] = controls(x1, y1, x2, y2);
-    return [0, 1].map((i) => 0.125 * a[i] + 0.375 * b[i] + 0.375 * c[i] + 0.125 * d[i]);
+    const u = 1 - t;
+    return [0, 1].map((i) => u * u * u * a[i] + 3 * u * u * t * b[i] + 3 * u * t * t * c[i] + t * t * t * d[i]);
+}
+
+/** The point at fraction t of a polyline's length. */
+function alongPolyline(pts, t) {
+    const lengths = pts.slice(1).map((p, i) => Math.hypot(p[0] - pts[i][0], p[1] - pts[i][1]));
+    let rest = t * lengths.reduce((a, b) => a + b, 0);
+    for (let i = 0; i < lengths.length; i++) {
+        if (rest <= lengths[i] || i === lengths.length - 1) {
+            const f = lengths[i] ? Math.min(1, rest / lengths[i]) : 0;
+            return [pts[i][0] + f * (pts[i + 1][0] - pts[i][0]), pts[i][1] + f * (pts[i + 1][1] - pts[i][1])];
+        }
+        rest -= lengths[i];
+    }
+    return pts[0];
+}
+
+// Where a label may sit along its connection, best first: the middle, then out to the ends.
+const LABEL_T = [0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8, 0.12, 0.88];
+const CELL = 64;      // the grid cell of the label placer (drawing units)
+
+/** Rectangles indexed by grid cell, to find overlaps among thousands quickly. */
+class RectGrid {
+    constructor() { this.cells = new Map(); }
+    *keys([x0, y0, x1, y1]) {
+        for (let i = Math.floor(x0 / CELL); i <= Math.floor(x1 / CELL); i++)
+            for (let j = Math.floor(y0 / CELL); j <= Math.floor(y1 / CELL); j++) yield i + "," + j;
+    }
+    add(r) { for (const k of this.keys(r)) { if (!this.cells.has(k)) this.cells.set(k, []); this.cells.get(k).push(r); } }
+    /** The area of r covered by the rectangles stored. */
+    overlap(r) {
+        let area = 0;
+        const seen = new Set();
+        for (const k of this.keys(r)) {
+            for (const q of this.cells.get(k) || []) {
+                if (seen.has(q)) continue;
+                seen.add(q);
+                const w = Math.min(r[2], q[2]) - Math.max(r[0], q[0]), h = Math.min(r[3], q[3]) - Math.max(r[1], q[1]);
+                if (w > 0 && h > 0) area += w * h;
+            }
+        }
+        return area;
+    }
 }
 
 export class NetworkView {
     /**
      * handlers: onSelect(nodes, additive), onOpenGroup(name), onMove(Map key -> {x, y}),
-     * onConnect(from {box, port}, to {box, port})
+     * onConnect(from {box, port}, to {box, port}), onBand(box keys, additive),
+     * onTogglePorts(box key)
      */
     constructor(host, handlers) {
         this.host = host;
@@ -62,8 +112,36 @@ export class NetworkView {
     destroy() { this.svg.remove(); }
 
     setTransform(t) {
+        clearTimeout(this.settle);
         this.t = { ...t };
+        this.committed = { ...this.t };
+        this.svg.style.transform = "";
         this.root.setAttribute("transform", `translate(${this.t.x},${this.t.y}) scale(${this.t.k})`);
+        // level of detail: small text is left out when it could not be read anyway
+        this.svg.classList.toggle("far", this.t.k < 0.5);
+        this.svg.classList.toggle("very-far", this.t.k < 0.3);
+        // a big group is drawn only around the view: draw again when the view leaves it
+        if (this.drawn && !inside(this.visible(0), this.drawn)) this.draw();
+    }
+
+    /** The part of the drawing in view, widened by ``margin`` views on each side. */
+    visible(margin) {
+        const r = this.svg.getBoundingClientRect();
+        const w = (r.width || 800) / this.t.k, h = (r.height || 600) / this.t.k;
+        const x = -this.t.x / this.t.k, y = -this.t.y / this.t.k;
+        return [x - margin * w, y - margin * h, x + (1 + margin) * w, y + (1 + margin) * h];
+    }
+
+    /** A transform during a wheel or a drag: the drawing already painted is moved and
+     *  scaled as one layer by the compositor (the SVG is not drawn again, so big groups
+     *  pan and zoom smoothly); it is drawn at the new transform once the gesture rests. */
+    gesture(t) {
+        const c = this.committed || this.t;
+        this.t = { ...t };
+        const f = t.k / c.k;
+        this.svg.style.transform = `translate(${t.x - f * c.x}px, ${t.y - f * c.y}px) scale(${f})`;
+        clearTimeout(this.settle);
+        this.settle = setTimeout(() => this.setTransform(this.t), REST_MS);
     }
 
     /** Fit the drawing into the view. */
@@ -82,18 +160,19 @@ export class NetworkView {
         this.setTransform({ k, x: 20 - x0 * k, y: 20 - y0 * k });
     }
 
-    zoom(factor, cx = null, cy = null) {
+    zoom(factor, cx = null, cy = null, gesture = false) {
         const r = this.svg.getBoundingClientRect();
         if (cx === null) { cx = r.width / 2; cy = r.height / 2; }
         const k = Math.min(4, Math.max(0.1, this.t.k * factor));
         const f = k / this.t.k;
-        this.setTransform({ k, x: cx - (cx - this.t.x) * f, y: cy - (cy - this.t.y) * f });
+        const t = { k, x: cx - (cx - this.t.x) * f, y: cy - (cy - this.t.y) * f };
+        if (gesture) this.gesture(t); else this.setTransform(t);
     }
 
     onWheel(e) {
         e.preventDefault();
         const r = this.svg.getBoundingClientRect();
-        this.zoom(Math.exp(-e.deltaY * 0.0015), e.clientX - r.left, e.clientY - r.top);
+        this.zoom(Math.exp(-e.deltaY * 0.0015), e.clientX - r.left, e.clientY - r.top, true);
     }
 
     /** Screen point to drawing coordinates. */
@@ -105,19 +184,39 @@ export class NetworkView {
     // --- drawing -------------------------------------------------------------------------
 
     /** Draw a graph: positions Map(key -> {x, y}); errors Map(node -> message); selection Set(node). */
-    show(graph, positions, { errors = new Map(), selection = new Set(), groupError = null } = {}) {
+    show(graph, positions, { errors = new Map(), selection = new Set(), groupError = null, routes = new Map() } = {}) {
         this.graph = graph;
+        this.routes = routes;
         this.pos = positions;
         this.errors = errors;
         this.selection = selection;
+        this.groupError = groupError;
+        this.draw();
+    }
+
+    /** Draw the graph; a group of more than CULL_LIMIT boxes only within a view around the
+     *  one on screen (the rest is drawn when panned or zoomed to). */
+    draw() {
+        const { graph, groupError } = this;
+        this.drawn = graph.boxes.length > CULL_LIMIT ? this.visible(1) : null;
+        const shown = (b) => {
+            if (!this.drawn) return true;
+            const p = this.pos.get(b.key);
+            return p && overlaps([p.x, p.y, p.x + b.w, p.y + b.h], this.drawn);
+        };
+        const drawnBoxes = new Set(graph.boxes.filter(shown));
         this.root.textContent = "";
         this.svg.querySelectorAll(":scope > .group-error").forEach((x) => x.remove());
         const edgeLayer = el("g", { class: "edges" }, this.root);
         const boxLayer = el("g", { class: "boxes" }, this.root);
         const labelLayer = el("g", { class: "edge-labels" }, this.root);
         this.tempLayer = el("g", { class: "temp" }, this.root);
-        for (const b of graph.boxes) this.drawBox(boxLayer, b);
-        graph.edges.forEach((e, i) => this.drawEdge(edgeLayer, labelLayer, e, i));
+        for (const b of drawnBoxes) this.drawBox(boxLayer, b);
+        this.labels = [];
+        graph.edges.forEach((e, i) => {
+            if (drawnBoxes.has(e.from.box) || drawnBoxes.has(e.to.box)) this.drawEdge(edgeLayer, labelLayer, e, i);
+        });
+        this.placeLabels(labelLayer);
         if (groupError) {
             const f = el("foreignObject", { x: 8, y: 8, width: 600, height: 80, class: "group-error" }, this.svg);
             const d = document.createElement("div");
@@ -147,6 +246,16 @@ export class NetworkView {
             name.textContent = b.name;
             const cls = el("text", { class: "box-class", x: b.w / 2, y: 29, "text-anchor": "middle" }, g);
             cls.textContent = b.kind === "group" ? "group ▸" : b.label + (b.unknown ? " (unknown class)" : "");
+            if (b.collapsible) {
+                // show or hide the ports no connection uses
+                const tg = el("g", { class: "port-toggle", "data-key": b.key, role: "button", tabindex: "0",
+                    "aria-label": b.expanded ? `hide the unused ports of ${b.name}` : `show all ${b.hidden} hidden ports of ${b.name}` }, g);
+                el("rect", { x: b.w - 34, y: 3, width: 30, height: 14, rx: 7 }, tg);
+                const t = el("text", { x: b.w - 19, y: 14, "text-anchor": "middle" }, tg);
+                t.textContent = b.expanded ? "−" : `+${b.hidden}`;
+                const tip = el("title", {}, tg);
+                tip.textContent = b.expanded ? "hide the unused ports" : `${b.hidden} unused ports: show them`;
+            }
         } else {
             const t = el("text", { class: "box-name", x: b.w / 2, y: b.h / 2 + 4, "text-anchor": "middle" }, g);
             t.textContent = (b.kind.startsWith("external") ? "⋯ " : "") + b.name;
@@ -184,21 +293,47 @@ export class NetworkView {
         const error = this.errors.get(e.node);
         const g = el("g", { class: `edge${selected ? " selected" : ""}${error ? " has-error" : ""}${e.outputSource ? " output-source" : ""}`,
             "data-edge": String(i), "data-source": e.node.attrs.source || "", "data-target": e.node.attrs.target || e.node.attrs.name || "" }, layer);
-        const d = curve(a.x, a.y, b.x, b.y);
+        // routed around the boxes (elkjs, orthogonal) while the layout is elkjs's own
+        const route = this.routes.get(edgeKey(e));
+        const d = route ? "M" + route.map((p) => p.join(",")).join(" L") : curve(a.x, a.y, b.x, b.y);
+        if (route) g.classList.add("routed");
         el("path", { class: "edge-hit", d }, g);
         el("path", { class: "edge-line", d }, g);
         const label = [e.delay, e.from.selector, e.to.selector ? "→" + e.to.selector : ""].filter(Boolean).join(" ");
-        const [mx, my] = middle(a.x, a.y, b.x, b.y);
-        if (label) {
-            const lg = el("g", { class: `edge-label${selected ? " selected" : ""}`, "data-edge": String(i) }, labels);
-            const w = 8 + 7 * label.length;
-            el("rect", { x: mx - w / 2, y: my - 9, width: w, height: 18, rx: 9 }, lg);
-            const t = el("text", { x: mx, y: my + 4, "text-anchor": "middle" }, lg);
-            t.textContent = label;
-            const title = el("title", {}, lg);
-            title.textContent = `${e.node.attrs.source} → ${e.node.attrs.target}, delay ${e.delay}`;
+        const at = route ? (t) => alongPolyline(route, t) : (t) => pointAt(a.x, a.y, b.x, b.y, t);
+        if (label) this.labels.push({ text: label, i, selected, error, e, at });
+        else if (error) { const [mx, my] = at(0.5); this.errorNote(labels, mx - 20, my + 12, error); }
+    }
+
+    /** Put every connection's label (its delay badge) on its own curve where it overlaps
+     *  no other label and no box: the middle when free, else the free place nearest to it,
+     *  else the place of least overlap. */
+    placeLabels(layer) {
+        const taken = new RectGrid();
+        for (const b of this.graph.boxes) {
+            const p = this.pos.get(b.key);
+            if (p) taken.add([p.x, p.y, p.x + b.w, p.y + b.h]);
         }
-        if (error) this.errorNote(labels, mx - 20, my + 12, error);
+        for (const L of this.labels) {
+            const w = 8 + 7 * L.text.length, hh = 9;
+            let best = null;
+            for (const t of LABEL_T) {
+                const [x, y] = L.at(t);
+                const r = [x - w / 2, y - hh, x + w / 2, y + hh];
+                const cost = taken.overlap(r);
+                if (!best || cost < best.cost) best = { x, y, r, cost };
+                if (cost === 0) break;
+            }
+            taken.add(best.r);
+            const { x: mx, y: my } = best;
+            const lg = el("g", { class: `edge-label${L.selected ? " selected" : ""}`, "data-edge": String(L.i) }, layer);
+            el("rect", { x: mx - w / 2, y: my - hh, width: w, height: 2 * hh, rx: hh }, lg);
+            const t = el("text", { x: mx, y: my + 4, "text-anchor": "middle" }, lg);
+            t.textContent = L.text;
+            const title = el("title", {}, lg);
+            title.textContent = `${L.e.node.attrs.source} → ${L.e.node.attrs.target}, delay ${L.e.delay}`;
+            if (L.error) this.errorNote(layer, mx - 20, my + 12, L.error);
+        }
     }
 
     // --- interaction ---------------------------------------------------------------------
@@ -206,6 +341,12 @@ export class NetworkView {
     onDown(e) {
         if (e.button !== 0) return;
         this.svg.focus({ preventScroll: true });
+        const toggle = e.target.closest?.(".port-toggle");
+        if (toggle) {
+            this.h.onTogglePorts?.(toggle.dataset.key);
+            e.preventDefault();
+            return;
+        }
         const port = e.target.closest?.(".port");
         const boxEl = e.target.closest?.(".box-group");
         const edgeEl = e.target.closest?.("[data-edge]");
@@ -234,7 +375,22 @@ export class NetworkView {
             if (edge) this.h.onSelect([edge.node], e.shiftKey);
             return;
         }
+        if (e.shiftKey || e.altKey) {          // a rubber band selects the boxes it touches
+            const p = this.local(e);
+            this.drag = { kind: "band", p0: p, additive: e.shiftKey,
+                rect: el("rect", { class: "rubber-band", x: p.x, y: p.y, width: 0, height: 0 }, this.tempLayer) };
+            e.preventDefault();
+            return;
+        }
         this.drag = { kind: "pan", ...start, t0: { ...this.t }, moved: false };
+    }
+
+    /** The keys of the boxes that a rectangle in drawing coordinates touches. */
+    boxesIn(x0, y0, x1, y1) {
+        return this.graph.boxes.filter((b) => {
+            const p = this.pos.get(b.key);
+            return p && p.x < x1 && p.x + b.w > x0 && p.y < y1 && p.y + b.h > y0;
+        }).map((b) => b.key);
     }
 
     onMoveEvent(e) {
@@ -243,7 +399,7 @@ export class NetworkView {
         if (d.kind === "pan") {
             const dx = e.clientX - d.cx, dy = e.clientY - d.cy;
             if (Math.abs(dx) + Math.abs(dy) > 2) d.moved = true;
-            this.setTransform({ k: d.t0.k, x: d.t0.x + dx, y: d.t0.y + dy });
+            this.gesture({ k: d.t0.k, x: d.t0.x + dx, y: d.t0.y + dy });
         } else if (d.kind === "move") {
             const dx = (e.clientX - d.cx) / this.t.k, dy = (e.clientY - d.cy) / this.t.k;
             if (Math.abs(dx) + Math.abs(dy) > 2) d.moved = true;
@@ -253,6 +409,11 @@ export class NetworkView {
                 this.pos.set(b.key, p);
             }
             this.show(this.graph, this.pos, { errors: this.errors, selection: this.selection });
+        } else if (d.kind === "band") {
+            const p = this.local(e);
+            d.box = [Math.min(p.x, d.p0.x), Math.min(p.y, d.p0.y), Math.max(p.x, d.p0.x), Math.max(p.y, d.p0.y)];
+            const [x0, y0, x1, y1] = d.box;
+            for (const [k, v] of Object.entries({ x: x0, y: y0, width: x1 - x0, height: y1 - y0 })) d.rect.setAttribute(k, v);
         } else if (d.kind === "connect") {
             const p = this.local(e);
             d.path.setAttribute("d", curve(d.start.x, d.start.y, p.x, p.y));
@@ -266,6 +427,11 @@ export class NetworkView {
         const d = this.drag;
         this.drag = null;
         if (!d) return;
+        if (d.kind === "pan" && d.moved) this.setTransform(this.t);
+        if (d.kind === "band") {
+            d.rect.remove();
+            if (d.box) this.h.onBand?.(this.boxesIn(...d.box), d.additive);
+        }
         if (d.kind === "pan" && !d.moved) this.h.onSelect([], false);
         if (d.kind === "move" && d.moved) this.h.onMove(new Map(d.boxes.map(({ b }) => [b.key, this.pos.get(b.key)])));
         if (d.kind === "connect") {

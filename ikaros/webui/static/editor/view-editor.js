@@ -1,10 +1,11 @@
 // The view editor: the widgets of one view as frames that can be selected, moved (drag) and
-// resized (the corner handle), snapped to a 10 px grid. Adding, deleting and restyling go
-// through the editor's toolbar and inspector.
+// resized (the corner handle), snapped to a grid of 5 to 160 px (grid − and + halve and
+// double it; 10 px at first). Each frame shows its widget live, with data, as the view
+// does. Adding, deleting and restyling go through the editor's toolbar and inspector.
 import { kids, widgetBox, widgetClassOf } from "./model.js";
+import { widgetClass } from "../widgets/index.js";
 
-const SNAP = 10;
-const snap = (v) => Math.round(v / SNAP) * SNAP;
+const GRIDS = [5, 10, 20, 40, 80, 160];     // grid spacings, px (- halves, + doubles)
 
 export class ViewEditor {
     /** handlers: onSelect(nodes, additive), onGeometry(node, box) */
@@ -15,6 +16,24 @@ export class ViewEditor {
         this.el.className = "view view-editor";
         host.appendChild(this.el);
         this.drag = null;
+        this.live = [];                      // the frames' widgets, with data
+        this.liveToken = {};
+        this.grid = GRIDS.includes(Number(localStorage.getItem("ikaros-view-grid"))) ? Number(localStorage.getItem("ikaros-view-grid")) : 10;
+        this.gridBar = document.createElement("div");
+        this.gridBar.className = "view-grid-bar";
+        const step = (k) => {
+            const b = document.createElement("button");
+            b.className = "tool small";
+            b.textContent = k < 0 ? "grid −" : "grid +";
+            b.dataset.grid = k < 0 ? "smaller" : "larger";
+            b.setAttribute("aria-label", k < 0 ? "halve the grid spacing" : "double the grid spacing");
+            b.addEventListener("click", () => this.setGrid(GRIDS[Math.max(0, Math.min(GRIDS.length - 1, GRIDS.indexOf(this.grid) + k))]));
+            return b;
+        };
+        this.gridLabel = document.createElement("span");
+        this.gridBar.append(step(-1), this.gridLabel, step(1));
+        host.insertBefore(this.gridBar, this.el);
+        this.setGrid(this.grid);
         this.el.addEventListener("pointerdown", (e) => this.onDown(e));
         this.move = (e) => this.onMove(e);
         this.up = (e) => this.onUp(e);
@@ -22,7 +41,54 @@ export class ViewEditor {
         window.addEventListener("pointerup", this.up);
     }
 
+    /** The spacing widgets snap to (and the background grid shows), remembered. */
+    setGrid(px) {
+        this.grid = px;
+        localStorage.setItem("ikaros-view-grid", String(px));
+        this.gridLabel.textContent = ` ${px} px `;
+        this.el.style.backgroundSize = `${px}px ${px}px`;
+    }
+
+    snap(v) { return Math.round(v / this.grid) * this.grid; }
+
+    // --- live widgets: each frame shows its widget with data while the view is edited ------
+
+    /** Build the real widget inside a frame (it takes no pointer events: the frame is
+     *  dragged); the frame's text stays for a class that fails to build. */
+    async makeLive(frame, body, node, cls) {
+        const live = this.h.live?.();
+        if (!live) return;
+        const token = this.liveToken;
+        const Cls = await widgetClass(cls);
+        if (!Cls || token !== this.liveToken) return;
+        let widget;
+        try { widget = new Cls({ ...node.attrs, class: cls, show_title: "no" }, live.ctx); } catch { return; }
+        widget.el.classList.add("live-widget");
+        Object.assign(widget.el.style, { position: "absolute", inset: "0", pointerEvents: "none" });
+        body.textContent = "";
+        body.style.position = "relative";
+        body.appendChild(widget.el);
+        frame.classList.add("live");
+        this.live.push(widget);
+        clearTimeout(this.liveTimer);
+        this.liveTimer = setTimeout(() => live.changed(), 0);    // subscribe once for all
+    }
+
+    dropLive() {
+        for (const w of this.live || []) { try { w.destroy(); } catch { } }
+        this.live = [];
+        this.liveToken = {};
+    }
+
+    subscriptions() { return this.live.flatMap((w) => w.subscriptions()); }
+    parameters() { return this.live.flatMap((w) => w.parameters()); }
+    update(frame) { for (const w of this.live) { try { w.update(frame); } catch { } } }
+    setParameters(values) { for (const w of this.live) { try { w.setParameters(values); } catch { } } }
+
     destroy() {
+        this.dropLive();
+        this.h.live?.().changed();
+        this.gridBar.remove();
         window.removeEventListener("pointermove", this.move);
         window.removeEventListener("pointerup", this.up);
         this.el.remove();
@@ -30,6 +96,7 @@ export class ViewEditor {
 
     show(view, selection, errors = new Map()) {
         this.view = view;
+        this.dropLive();
         this.el.textContent = "";
         this.frames = new Map();
         let right = 600, bottom = 400;
@@ -62,6 +129,7 @@ export class ViewEditor {
             }
             this.el.appendChild(f);
             this.frames.set(f, w);
+            this.makeLive(f, b, w, cls);
         }
         this.el.style.width = right + "px";
         this.el.style.height = bottom + "px";
@@ -85,8 +153,8 @@ export class ViewEditor {
         if (Math.abs(dx) + Math.abs(dy) > 2) d.moved = true;
         if (!d.moved) return;
         const b = { ...d.box };
-        if (d.resize) { b.width = Math.max(40, snap(b.width + dx)); b.height = Math.max(30, snap(b.height + dy)); }
-        else { b.x = Math.max(0, snap(b.x + dx)); b.y = Math.max(0, snap(b.y + dy)); }
+        if (d.resize) { b.width = Math.max(40, this.snap(b.width + dx)); b.height = Math.max(30, this.snap(b.height + dy)); }
+        else { b.x = Math.max(0, this.snap(b.x + dx)); b.y = Math.max(0, this.snap(b.y + dy)); }
         d.result = b;
         Object.assign(d.frame.style, { left: b.x + "px", top: b.y + "px", width: b.width + "px", height: b.height + "px" });
     }

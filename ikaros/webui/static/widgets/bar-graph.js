@@ -3,6 +3,7 @@
 // color|stroke_color, fill|fill_color (comma lists cycle per bar), lineWidth|line_width,
 // min|y_min, max|y_max, auto|auto_range, include_zero, decimals, show_values.
 import { CanvasWidget, asRows, formatNumber } from "./widget.js";
+import { dataRange } from "./axes.js";
 
 export default class BarGraph extends CanvasWidget {
     constructor(attrs, ctx) {
@@ -29,7 +30,10 @@ export default class BarGraph extends CanvasWidget {
         const g = this.g, w = this.width, h = this.height;
         const horizontal = this.str(["direction", "orientation"], "vertical") === "horizontal";
         const all = this.rows.flat();
-        const [min, max] = this.range(all, 0, 1);
+        // without min and max the range follows the data (with 0), as Ikaros 3's auto_range
+        const given = this.raw(["min", "y_min", "value_min"]) !== undefined || this.raw(["max", "y_max", "value_max"]) !== undefined;
+        const [min, max] = given ? this.range(all, 0, 1) : dataRange(all, undefined, undefined, this.bool(["include_zero"], true));
+        this.valueRange = [min, max];
         const fills = this.colors(["fill", "fill_color"]);
         const strokes = this.list(["color", "stroke_color"], []);
         const labels = this.list(["labels"], []);
@@ -70,5 +74,12 @@ export default class BarGraph extends CanvasWidget {
             }
             pos += 0.5;
         }
+        // the zero line (the bars' base), drawn even when every bar is 0
+        g.strokeStyle = this.cssVar("--muted-color", "#888");
+        g.lineWidth = 1;
+        g.beginPath();
+        if (horizontal) { g.moveTo(zero * w, 0); g.lineTo(zero * w, h); }
+        else { const y = (h - labelSpace) * (1 - zero); g.moveTo(0, y); g.lineTo(w, y); }
+        g.stroke();
     }
 }

@@ -1,7 +1,10 @@
 // button: runs a command or sets a parameter.
 // Attributes: label, command (sent on press), commandUp|release_command (on release),
 // parameter with value (1, on press) and valueUp|release_value (0, on release),
-// type (push/toggle: a toggle flips the parameter between value and release_value),
+// type (push: value while held; toggle: flips the parameter between value and
+// release_value; radio: sets value, on while the parameter has it, so buttons of one
+// parameter with different values form a group; multi: steps the parameter through
+// "values" (0,1,2) and shows the matching one of "labels"),
 // xindex|select_x, yindex|select_y (the element), enableSource|enabled_source (disabled while
 // its [0][0] is 0), text_color, background_color, tooltip.
 import { Widget } from "./widget.js";
@@ -21,12 +24,27 @@ export default class Button extends Widget {
         this.x = this.int(["xindex", "select_x", "x_index"], 0);
         this.y = this.int(["yindex", "select_y", "y_index"], 0);
         this.paramValue = null;
-        b.addEventListener("pointerdown", (e) => { if (e.button === 0) this.press(); });
-        b.addEventListener("pointerup", (e) => { if (e.button === 0) this.release(); });
-        b.addEventListener("keydown", (e) => { if (e.key === " " || e.key === "Enter") { e.preventDefault(); this.press(); this.release(); } });
+        // A push button is held between pointer down and up (wherever the pointer is let go:
+        // the pointer is captured) and is never shown as "on"; a toggle shows its parameter.
+        b.addEventListener("pointerdown", (e) => {
+            if (e.button !== 0) return;
+            b.setPointerCapture?.(e.pointerId);
+            this.held = true;
+            this.pressing = this.press();
+        });
+        const up = () => { if (this.held) { this.held = false; this.release(); } };
+        b.addEventListener("pointerup", up);
+        b.addEventListener("pointercancel", up);
+        b.addEventListener("lostpointercapture", up);
+        b.addEventListener("keydown", (e) => { if (e.key === " " || e.key === "Enter") { e.preventDefault(); this.pressing = this.press(); this.release(); } });
     }
 
     onValue() { return this.num(["value"], 1); }
+    /** Whether the button shows its parameter's state: toggle, radio (on while the
+     *  parameter has this button's value; buttons of one parameter form a group) and
+     *  multi (steps through "values", showing the matching one of "labels"). */
+    shows() { return ["toggle", "radio", "multi"].includes(this.type); }
+    states() { return this.list(["values"], ["0", "1", "2"]).map(Number); }
     offValue() { return this.num(["valueUp", "release_value", "value_up"], 0); }
     element(value) { return Array.isArray(value) ? [this.x, this.y] : [undefined, undefined]; }
 
@@ -38,13 +56,22 @@ export default class Button extends Widget {
         const param = this.path("parameter");
         if (param) {
             let v = this.onValue();
-            if (this.type === "toggle") {
-                // a toggle flips the value it knows: pressed before the first poll, read it
+            if (this.shows()) {
+                // a toggle flips the value it knows, a multi-state button steps to the next
+                // of its values: pressed before the first poll, it reads the value first
                 if (this.paramValue === null) this.paramValue = await this.readParameter(param);
-                const cur = this.paramValue === null ? null : Widget.element(this.paramValue, this.x, this.y);
-                v = Number(cur) === this.onValue() ? this.offValue() : this.onValue();
+                const cur = this.paramValue === null ? null : Number(Widget.element(this.paramValue, this.x, this.y));
+                if (this.type === "toggle") v = cur === this.onValue() ? this.offValue() : this.onValue();
+                if (this.type === "multi") {
+                    const states = this.states();
+                    v = states[(states.indexOf(cur) + 1) % states.length];
+                }
             }
             const [x, y] = this.element(this.paramValue);
+            if (!this.shows()) {
+                await this.setParameter(param, v, x, y);
+                return;
+            }
             if (this.paramValue !== null) this.setParameters(new Map([[param, Widget.withElement(this.paramValue, x ?? 0, y ?? 0, v)]]));
             const a = await this.setParameter(param, v, x, y);
             if (a) this.setParameters(new Map([[param, a.value]]));
@@ -53,6 +80,7 @@ export default class Button extends Widget {
 
     async release() {
         this.button.classList.remove("pressed");
+        await this.pressing;                // the release is sent after the press
         if (this.button.disabled) return;
         const up = this.commandTarget("commandUp", "release_command", "command_up");
         if (up) await this.sendCommand(up, this.x, this.y, this.offValue());
@@ -64,13 +92,21 @@ export default class Button extends Widget {
     }
 
     subscriptions() { return this.enabledSubscription(); }
-    parameters() { const p = this.path("parameter"); return p && this.type === "toggle" ? [p] : []; }
+    parameters() { const p = this.path("parameter"); return p && this.shows() ? [p] : []; }
 
     setParameters(values) {
         const p = this.path("parameter");
-        if (!values.has(p)) return;
+        if (!this.shows() || !values.has(p)) return;
         this.paramValue = values.get(p);
-        const on = Number(Widget.element(this.paramValue, this.x, this.y)) === this.onValue();
+        const cur = Number(Widget.element(this.paramValue, this.x, this.y));
+        if (this.type === "multi") {
+            const i = this.states().indexOf(cur);
+            const labels = this.list(["labels"], []);
+            this.button.textContent = (i >= 0 && labels[i]) || `${this.str(["label"], "")} ${cur}`.trim();
+            this.button.dataset.state = String(cur);
+            return;
+        }
+        const on = cur === this.onValue();
         this.button.classList.toggle("on", on);
         this.button.setAttribute("aria-pressed", on ? "true" : "false");
     }

@@ -110,7 +110,8 @@ export default class Grid extends CanvasWidget {
         if (!this.rows) return;
         const { lw, rows, cols, cw, ch } = this.layout();
         const rect = this.canvas.getBoundingClientRect();
-        let c = Math.floor((e.clientX - rect.left - lw) / cw), r = Math.floor((e.clientY - rect.top) / ch);
+        const zoom = rect.width / (this.width || rect.width);      // a view fitted to its pane
+        let c = Math.floor(((e.clientX - rect.left) / zoom - lw) / cw), r = Math.floor((e.clientY - rect.top) / zoom / ch);
         if (this.bool(["flipXCanvas", "flip_x_canvas"])) c = cols - 1 - c;
         if (this.bool(["flipYCanvas", "flip_y_canvas"])) r = rows - 1 - r;
         if (c < 0 || c >= cols || r < 0 || r >= rows) return;

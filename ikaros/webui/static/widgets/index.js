@@ -20,6 +20,19 @@ export const WIDGETS = {
     "grid-world": () => import("./grid-world.js"),
     "planar-arm": () => import("./planar-arm.js"),
     "world-2d": () => import("./world-2d.js"),
+    "event-raster": () => import("./event-raster.js"),
+    "scatter-plot": () => import("./scatter-plot.js"),
+    "histogram": () => import("./histogram.js"),
+    "boxplot": () => import("./boxplot.js"),
+    "polar-plot": () => import("./polar-plot.js"),
+    "vector-field": () => import("./vector-field.js"),
+    "joystick": () => import("./joystick.js"),
+    "color-picker": () => import("./color-picker.js"),
+    "epi-head": () => import("./epi-head.js"),
+    "trace": () => import("./trace.js"),
+    "navigation-hud": () => import("./navigation-hud.js"),
+    "pan-tilt-hud": () => import("./pan-tilt-hud.js"),
+    "surface-plot": () => import("./surface-plot.js"),
 };
 
 // Other spellings met in model files.
@@ -33,6 +46,8 @@ export const ALIASES = {
     "three-d": "canvas3d",
     "label": "text",
     "world2-d": "world-2d", "world2d": "world-2d",
+    "scatter": "scatter-plot", "polar": "polar-plot", "raster": "event-raster",
+    "box-plot": "boxplot", "colour-picker": "color-picker", "epihead": "epi-head",
 };
 
 /** The widget class for a class name, or null. */

@@ -1,5 +1,6 @@
 // path: poly-lines from coordinate rows.
-// Attributes: source; order (col: each row is one line of x,y pairs from column select on;
+// Attributes: source; order (col: each row is one line of x,y pairs from column select on,
+// and when every row holds one pair, as an n x 2 matrix, the rows are the points of one line;
 // row: one line through the rows, each row a point with x, y in columns select, select+1); select|select_x, count|point_count,
 // color|stroke_color and fill|fill_color (cycle per line), lineWidth|line_width,
 // lineCap|line_cap, lineJoin|line_join, close (closes and fills), arrow (an arrow head at the
@@ -18,6 +19,10 @@ export default class Path extends CanvasWidget {
             const sel = this.int(["select", "select_x"], 0);
             // one point per row: the pair at column select
             this.lines = [asRows(item).filter((r) => r.length >= sel + 2).map((r) => ({ x: r[sel], y: r[sel + 1] }))];
+        } else if (pts.length && pts.every((p) => p.series === p.row)) {
+            // one x,y pair per row (an n x 2 matrix such as a chain of joints): the rows
+            // are the points of one line
+            this.lines = [pts];
         } else {
             const lines = new Map();
             for (const p of pts) {

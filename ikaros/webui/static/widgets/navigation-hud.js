@@ -1,0 +1,2 @@
+// navigation-hud: see hud.js.
+export { NavigationHud as default } from "./hud.js";

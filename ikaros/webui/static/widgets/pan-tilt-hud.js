@@ -1,0 +1,2 @@
+// pan-tilt-hud: see hud.js.
+export { PanTiltHud as default } from "./hud.js";

@@ -1,0 +1,177 @@
+"""Every tick seen (issue 16, part 7): the per-tick history of buffers subscribed as
+``history`` or ``events``, its envelope, and the frames that carry it over the WebSocket."""
+from __future__ import annotations
+
+import json
+import time
+import warnings
+
+import numpy as np
+import pytest
+
+warnings.filterwarnings("ignore", message=".*httpx.*")
+
+import ikaros  # noqa: E402
+from ikaros.module import WARNING  # noqa: E402
+from ikaros.webui.encoding import decode_frame  # noqa: E402
+from ikaros.webui.history import Recorder, Ring, encode_events, encode_history, envelope  # noqa: E402
+from ikaros.webui.server import create_app  # noqa: E402
+from starlette.testclient import TestClient  # noqa: E402
+
+pytestmark = pytest.mark.filterwarnings("ignore:.*httpx.*")
+
+MODEL = """<?xml version="1.0"?>
+<group name="T">
+    <module class="FunctionGenerator" name="Ramp" type="ramp" frequency="0.01" />
+    <module class="FunctionGenerator" name="Pulse" type="ticksquare" basetime="7" tickduty="1"
+            size="3" />
+</group>
+"""
+
+
+def test_ring_keeps_the_last_rows_with_their_ticks():
+    src = np.zeros(2, np.float32)
+    ring = Ring(src)
+    for t in range(ring.capacity + 5):
+        src[:] = [t, -t]
+        ring.record(t + 1)
+    ticks, rows = ring.since(ring.capacity + 5 - 3)
+    assert ticks.tolist() == [ring.capacity + 3, ring.capacity + 4, ring.capacity + 5]
+    assert rows[:, 0].tolist() == [ring.capacity + 2, ring.capacity + 3, ring.capacity + 4]
+    ticks, _ = ring.since(-1)
+    assert len(ticks) == ring.capacity and ticks[0] == 6
+
+
+def test_envelope_keeps_every_peak():
+    ticks = np.arange(1, 1001)
+    rows = np.zeros((1000, 1), np.float32)
+    rows[123, 0] = 5.0         # one-tick spike
+    rows[700, 0] = -2.0
+    col_ticks, env = envelope(ticks, rows, 100)
+    assert env.shape == (100, 2, 1)
+    assert col_ticks.tolist() == list(range(1, 1001, 10))
+    assert env[12, 1, 0] == 5.0 and env[12, 0, 0] == 0.0
+    assert env[70, 0, 0] == -2.0
+    assert env[:, 1, 0].sum() == 5.0 and env[:, 0, 0].sum() == -2.0
+
+
+def test_encode_history_samples_then_envelope_and_missed_ticks():
+    ticks = np.array([11, 12, 14])
+    rows = np.array([[1], [2], [4]], np.float32)
+    payload, head = encode_history(ticks, rows, (1,), 10, 512)
+    assert head == {"buffer_shape": [1], "missed": 1, "mode": "samples",
+                    "ticks": [11, 12, 14], "shape": [3, 1]}
+    assert np.frombuffer(payload, "<f4").tolist() == [1, 2, 4]
+    payload, head = encode_history(ticks, rows, (1,), 10, 2)
+    assert head["mode"] == "envelope" and head["shape"] == [2, 2, 1]
+    assert np.frombuffer(payload, "<f4").tolist() == [1, 2, 4, 4]   # ticks 11-12 | 14
+
+
+def test_encode_events_lists_every_event():
+    ticks = np.arange(100, 110)
+    rows = np.zeros((10, 3), np.float32)
+    rows[0, 2] = rows[5, 0] = rows[5, 1] = rows[9, 2] = 1
+    payload, head = encode_events(ticks, rows, (3,), 99)
+    assert head["first_tick"] == 100 and head["last_tick"] == 109 and head["missed"] == 0
+    pairs = np.frombuffer(payload, "<f4").reshape(-1, 2).tolist()
+    assert pairs == [[0, 2], [5, 0], [5, 1], [9, 2]]
+
+
+def test_recorder_stays_within_its_budget():
+    class Net:
+        tick = 1
+    arrays = {f"A{i}": np.zeros(1, np.float32) for i in range(50)}
+    rec = Recorder(Net(), budget=0.0)      # no time at all: one ring per tick
+    rec.set_sources(arrays)
+    rec.hook()
+    assert sum(r.count for r in rec.rings.values()) == 1 and rec.skipped == 49
+    rec.hook()
+    assert sum(r.count for r in rec.rings.values()) == 2    # the next ring's turn
+    rec.set_sources(arrays, events={"A7", "A9"})            # event buffers: every tick
+    rec.hook()
+    assert rec.rings["A7"].count == 1 and rec.rings["A9"].count == 1
+    assert sum(r.count for r in rec.rings.values()) == 2 + 3   # one in its turn, A7, A9
+
+
+@pytest.fixture
+def net(tmp_path):
+    path = tmp_path / "t.ikg"
+    path.write_text(MODEL)
+    n = ikaros.load(str(path))
+    n.log_level = WARNING
+    yield n
+    n.controller.stop()
+    n.controller.join(5)
+    n.close()
+
+
+def _frame(ws):
+    while True:
+        m = ws.receive()
+        if m.get("bytes") is not None:
+            return decode_frame(m["bytes"])
+
+
+def _wait(predicate, timeout=10.0):
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.005)
+    return True
+
+
+def test_frames_carry_every_tick_since_the_last_frame(net):
+    """Played between two frames, 300 ticks of a ramp arrive as 300 samples (points 512),
+    then as a 50-column envelope (points 50); the ticksquare pulses arrive as events,
+    every one of them."""
+    with TestClient(create_app(net)) as c, c.websocket_connect("/api/ws") as ws:
+        ws.send_json({"type": "subscribe", "buffers": [
+            {"path": "Ramp.OUTPUT", "format": "history"},
+            {"path": "Pulse.OUTPUT", "format": "events"}]})
+        ws.send_json({"type": "ready"})
+        header, _ = _frame(ws)
+        assert header["tick"] == 0
+        expected = {}
+        for _ in range(300):
+            c.post("/api/control", json={"state": "step"})
+            assert _wait(lambda: net.controller.state == "pause")
+            expected[net.tick] = float(net.buffer_array("Ramp.OUTPUT")[0])
+        ws.send_json({"type": "ready"})
+        header, data = _frame(ws)
+        assert header["tick"] == 300
+        ramp, pulse = header["buffers"]
+        assert ramp["mode"] == "samples" and ramp["missed"] == 0
+        assert ramp["ticks"] == list(range(1, 301))
+        assert data["Ramp.OUTPUT"][:, 0].tolist() == pytest.approx(
+            [expected[t] for t in range(1, 301)])
+        pairs = data["Pulse.OUTPUT"].reshape(-1, 2)
+        ticks = (pairs[:, 0] + pulse["first_tick"]).astype(int)
+        # ticksquare is 1 on the first tick of every 7 (tick t - 1 = 0, 7, 14, ...), in
+        # all three elements
+        want = [(t, e) for t in range(1, 301) if (t - 1) % 7 == 0 for e in range(3)]
+        assert list(zip(ticks.tolist(), pairs[:, 1].astype(int).tolist())) == want
+
+        ws.send_json({"type": "subscribe", "buffers": [
+            {"path": "Ramp.OUTPUT", "format": "history", "points": 50}]})
+        ws.send_json({"type": "ready"})
+        header, data = _frame(ws)       # a new subscription starts from the ring's start
+        (ramp,) = header["buffers"]
+        assert ramp["mode"] == "envelope" and ramp["shape"] == [50, 2, 1]
+        env = data["Ramp.OUTPUT"][:, :, 0]
+        values = np.array([expected[t] for t in range(1, 301)], np.float32)
+        assert env[:, 0].tolist() == pytest.approx(values.reshape(50, 6).min(1).tolist())
+        assert env[:, 1].tolist() == pytest.approx(values.reshape(50, 6).max(1).tolist())
+
+
+def test_points_are_checked(net):
+    with TestClient(create_app(net)) as c, c.websocket_connect("/api/ws") as ws:
+        for bad in ({"path": "Ramp.OUTPUT", "format": "raw", "points": 5},
+                    {"path": "Ramp.OUTPUT", "format": "history", "points": 0},
+                    {"path": "Ramp.OUTPUT", "format": "history", "points": "5"}):
+            ws.send_json({"type": "subscribe", "buffers": [bad]})
+            while True:
+                msg = json.loads(ws.receive()["text"])
+                if msg["type"] == "error":
+                    break
+            assert '"points"' in msg["error"]
