@@ -103,6 +103,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--max-memory", type=_memory, metavar="SIZE",
                    help="the most memory the model's buffers may take, in bytes or with "
                         "K, M, G (default: half the physical memory)")
+    p.add_argument("--max-body", type=_memory, metavar="SIZE", default=4 << 20,
+                   help="web UI: the largest request body or WebSocket message, in bytes "
+                        "or with K, M, G (default 4M); larger ones are refused with 413")
     p.add_argument("--build-timeout", type=_timeout, metavar="SECONDS", default=30.0,
                    help="web UI: how long a build from the editor may take before it is "
                         "abandoned with an error (default 30)")
@@ -162,7 +165,7 @@ def _serve(net, opts, failure: dict | None = None) -> int:
         net.profiling = opts.profile
         serve(net, host, 8000 if opts.port is None else opts.port, token, state,
               on_ready=ready, models_dir=opts.models, max_memory=opts.max_memory,
-              build_timeout=opts.build_timeout, failure=failure)
+              max_body=opts.max_body, build_timeout=opts.build_timeout, failure=failure)
     except ServeError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
         return EXIT_ERROR

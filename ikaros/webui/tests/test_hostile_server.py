@@ -199,3 +199,14 @@ def test_a_build_that_never_returns_times_out_and_later_applies_go_on(folder, tm
         if s.proc.poll() is None:
             s.proc.kill()
             s.proc.communicate()
+
+
+def test_the_body_limit_is_set_on_the_command_line(folder):
+    server = Server(folder, "--max-body", "2K")
+    try:
+        status, answer = server.post("/api/apply", b"[" + b" " * 3000 + b"]", raw=True)
+        assert status == 413 and "2048 bytes" in answer["error"], answer
+        status, _ = server.post("/api/control", {"state": "pause"})
+        assert status == 200
+    finally:
+        server.stop()
