@@ -193,10 +193,10 @@ class Network:
         self._background = None
 
         def fuser(calls):
-            def make():
+            def make(cancelled=None):
                 return compiled_plan(self.schedule, self.zero_delay_edges, self._buffers,
                                      self.runs, self._shared, block, calls, minimum,
-                                     compiled.executor)
+                                     compiled.executor, cancelled)
             if minimum == compiled.AUTO_MINIMUM:     # auto: made while the network runs
                 self._background = BackgroundPlan(make)
             elif minimum is not None:        # the compiled tick from the first tick
@@ -231,6 +231,12 @@ class Network:
             self.plan.refresh(inst)
         self.compiled_since = self.tick
         self._compiled_gather()
+
+    def _cancel_background(self) -> None:
+        """The run has ended: a compiled plan still being made is not needed."""
+        if self._background is not None:
+            self._background.cancel()
+            self._background = None
 
     def wait_compiled(self, timeout: float | None = None) -> int:
         """Wait until the compiled tick that ``compiled="auto"`` makes in the background is
@@ -289,6 +295,7 @@ class Network:
         except BaseException:
             # Devices opened by the modules initialised so far go to their safe state.
             self._stopped = True
+            self._cancel_background()
             for job in self.async_modules.values():
                 job.finish()
             self.plan.close()
@@ -366,6 +373,7 @@ class Network:
         """End the run after the current tick: call every module's stop once."""
         if not self._stopped:
             self._stopped = True
+            self._cancel_background()
             for job in self.async_modules.values():
                 job.finish()
             self.plan.close()

@@ -36,9 +36,10 @@ def _leave() -> None:
 
 
 class BackgroundPlan:
-    """``make()`` run in a daemon thread. ``ready`` once it has returned (its result in
-    ``result``, None when it gave no plan or failed; ``error`` holds the failure). Modules
-    whose parameters change meanwhile are noted in ``changed`` (the plan read them before)."""
+    """``make(cancelled)`` run in a daemon thread. ``ready`` once it has returned (its result
+    in ``result``, None when it gave no plan or failed; ``error`` holds the failure). Modules
+    whose parameters change meanwhile are noted in ``changed`` (the plan read them before).
+    ``cancel()`` sets the Event ``make`` is given, so that it stops early."""
 
     def __init__(self, make):
         self._make = make
@@ -46,6 +47,7 @@ class BackgroundPlan:
         self.error: BaseException | None = None
         self.changed: set = set()
         self.done = threading.Event()
+        self.cancelled = threading.Event()
         self.thread = threading.Thread(target=self._run, name="ikaros-compiled-plan",
                                        daemon=True)
         _enter()
@@ -53,12 +55,16 @@ class BackgroundPlan:
 
     def _run(self) -> None:
         try:
-            self.result = self._make()
+            self.result = self._make(self.cancelled)
         except Exception as e:            # the NumPy plan goes on; the network reports it
             self.error = e
         finally:
             _leave()
             self.done.set()
+
+    def cancel(self) -> None:
+        """The plan is not needed any more (the network was closed)."""
+        self.cancelled.set()
 
     @property
     def ready(self) -> bool:
