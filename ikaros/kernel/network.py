@@ -73,6 +73,8 @@ class Network:
         self._compile()
         self._init_modules()
         self._check_checksum()
+        if self._background is not None:     # after the build, not competing with it
+            self._background.start()
 
     # --- setup ---------------------------------------------------------------------------
     def _tick_duration(self) -> float:

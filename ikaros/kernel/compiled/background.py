@@ -36,7 +36,7 @@ def _leave() -> None:
 
 
 class BackgroundPlan:
-    """``make(cancelled)`` run in a daemon thread. ``ready`` once it has returned (its result
+    """``make(cancelled)`` run in a daemon thread from ``start()``. ``ready`` once it has returned (its result
     in ``result``, None when it gave no plan or failed; ``error`` holds the failure). Modules
     whose parameters change meanwhile are noted in ``changed`` (the plan read them before).
     ``cancel()`` sets the Event ``make`` is given, so that it stops early."""
@@ -50,6 +50,8 @@ class BackgroundPlan:
         self.cancelled = threading.Event()
         self.thread = threading.Thread(target=self._run, name="ikaros-compiled-plan",
                                        daemon=True)
+
+    def start(self) -> None:
         _enter()
         self.thread.start()
 
