@@ -74,6 +74,7 @@ class Builder:
         self.buffers: dict[ModuleInstance, tuple[dict, dict]] = {}
         self._folders: dict[str, str] = {}     # the folder of each file read
         self._sources: dict[tuple, Buffer] = {}   # (group, address) -> a connection's source
+        self._confined = True          # whether file parameters are checked (set by _build)
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
@@ -301,7 +302,9 @@ class Builder:
             else:
                 return from_python(None, spec), False
             check_parameter(value, spec)
-            check_file_parameter(spec, value, self._folder(inst.node.file or self.filename))
+            if self._confined:
+                check_file_parameter(spec, value, self._folder(inst.node.file or
+                                                               self.filename))
             return value, True
         except AccessRefused as e:
             raise inst.node.error(f"{e}") from None
@@ -661,6 +664,7 @@ class Builder:
 
     def _build(self):
         from .network import Network
+        self._confined = access_now() is not None   # file parameters checked only then
         top = self.build_tree()
         for inst in self.instances:
             self.instantiate(inst)
