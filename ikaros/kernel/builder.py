@@ -31,6 +31,7 @@ _NAME = re.compile(r"[A-Za-z_](?:[\w\- ]*[\w\-])?$")
 
 
 _ONE_TICK = [1]     # the default delay (link delays are never changed after parsing)
+_SHORT_DELAYS = {"0": [0], "1": _ONE_TICK}   # shared, as _ONE_TICK is
 
 
 @contextlib.contextmanager
@@ -354,8 +355,10 @@ class Builder:
             src_path, src_sel = split_selectors(source)
             dst_path, dst_sel = split_selectors(target)
             delay = attrs.get("delay")
-            if delay is None or delay == "1":
+            if delay is None:
                 delays = _ONE_TICK
+            elif delay in _SHORT_DELAYS:
+                delays = _SHORT_DELAYS[delay]
             else:
                 delay = self._connection_attr(node, group, "delay")
                 if delay:
@@ -390,9 +393,7 @@ class Builder:
             _remove(self.model, node)        # so that saving leaves it out
             return
         for dst in targets:
-            link = Link(src, dst, delays, node, order, src_sel, dst_sel)
-            src.outgoing.append(link)
-            dst.incoming.append(link)
+            Buffer.link(Link(src, dst, delays, node, order, src_sel, dst_sel))
 
     def _connection_attr(self, node: Node, group: Group, key: str) -> str | None:
         value = node.attrs.get(key)
