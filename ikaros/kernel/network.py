@@ -73,8 +73,6 @@ class Network:
         self._compile()
         self._init_modules()
         self._check_checksum()
-        if self._background is not None:     # after the build, not competing with it
-            self._background.start()
 
     # --- setup ---------------------------------------------------------------------------
     def _tick_duration(self) -> float:
@@ -220,8 +218,17 @@ class Network:
             self._delayed[0] = compiled_gather(self.arena.block, *self._bulk.indices(),
                                                compiled.executor())
 
+    def _background_plan(self) -> None:
+        """Before a tick: start making the compiled plan in the background with the first
+        tick (so that it competes with ticks, never with a build), and use it once ready."""
+        background = self._background
+        if not background.started:
+            background.start()
+        elif background.ready:
+            self._take_compiled_plan()
+
     def _take_compiled_plan(self) -> None:
-        """Between ticks: use the compiled plan made in the background, once it is ready."""
+        """Between ticks: use the compiled plan made in the background."""
         background, self._background = self._background, None
         if background.error is not None:
             self.notify(WARNING, None, f"the compiled tick could not be made, so the NumPy "
@@ -241,13 +248,16 @@ class Network:
             self._background = None
 
     def wait_compiled(self, timeout: float | None = None) -> int:
-        """Wait until the compiled tick that ``compiled="auto"`` makes in the background is
-        ready (at most ``timeout`` seconds) and use it from the next tick; returns
+        """Wait until the compiled tick that ``compiled="auto"`` makes in the background
+        (from the first tick, or from now) is ready (at most ``timeout`` seconds) and use it from the next tick; returns
         ``compiled_modules``. Call it between ticks (not from another thread while the
         network runs)."""
         background = self._background
-        if background is not None and background.wait(timeout):
-            self._take_compiled_plan()
+        if background is not None:
+            if not background.started:
+                background.start()
+            if background.wait(timeout):
+                self._take_compiled_plan()
         return self.compiled_modules
 
     def _compiled_minimum(self) -> int | None:
@@ -350,8 +360,8 @@ class Network:
         return self._stopped
 
     def _tick(self) -> None:
-        if self._background is not None and self._background.ready:
-            self._take_compiled_plan()
+        if self._background is not None:
+            self._background_plan()
         for copy in self._delayed:
             copy()
         for ring in self._ring_list:

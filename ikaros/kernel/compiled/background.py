@@ -1,8 +1,9 @@
 """The compiled tick made in a background thread (``compiled="auto"``): the network starts
-ticking on the NumPy plan at once, while a thread starts numba, loads the compiled function
-from its cache and makes the compiled plan; the network takes the plan at the start of the
-next tick after it is ready (a tick boundary), so no tick mixes the two and the results stay
-those of either plan, tick by tick.
+ticking on the NumPy plan at once; from its first tick a thread starts numba, loads the
+compiled function from its cache and makes the compiled plan, and the network takes the plan
+at the start of the next tick after it is ready (a tick boundary), so no tick mixes the two
+and the results stay those of either plan, tick by tick. (The thread starts with the first
+tick, not at the load, so that it competes with ticks and never with building a model.)
 
 Starting numba costs about a second of Python imports and library loading. A thread that
 runs Python gives the GIL up only every ``sys.getswitchinterval()`` (5 ms by default), which
@@ -54,6 +55,10 @@ class BackgroundPlan:
     def start(self) -> None:
         _enter()
         self.thread.start()
+
+    @property
+    def started(self) -> bool:
+        return self.thread.ident is not None
 
     def _run(self) -> None:
         try:
