@@ -220,10 +220,14 @@ class Network:
 
     def _background_plan(self) -> None:
         """Before a tick: start making the compiled plan in the background with the first
-        tick (so that it competes with ticks, never with a build), and use it once ready."""
+        tick that is not run in real time (so that it competes with ticks, never with a
+        build, and never holds up a real-time tick: numba's start-up holds the GIL for up
+        to tens of milliseconds at a time), and use it once ready."""
         background = self._background
         if not background.started:
-            background.start()
+            controller = self._controller
+            if controller is None or controller.state != REALTIME:
+                background.start()
         elif background.ready:
             self._take_compiled_plan()
 

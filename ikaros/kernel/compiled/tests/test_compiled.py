@@ -310,6 +310,16 @@ def test_auto_switches_to_the_compiled_plan_at_a_tick_boundary(tmp_path, monkeyp
     assert net.output("M79.OUTPUT").tobytes() == reference.output("M79.OUTPUT").tobytes()
 
 
+def test_auto_does_not_start_numba_during_a_real_time_run(tmp_path, monkeypatch):
+    monkeypatch.delenv("IKAROS_COMPILED", raising=False)
+    net = _load(tmp_path, _mixed_model(70), tick_duration="0.001")
+    net.run(ticks=20, real_time=True)
+    assert not net._background.started and net.compiled_modules == 0
+    net.step()                                      # not in real time: it starts
+    assert net.wait_compiled(timeout=60) == 71
+    assert net.compiled_since == 21                 # between ticks: from tick 21 on
+
+
 def test_auto_without_numba_stays_on_the_numpy_plan(tmp_path, monkeypatch):
     monkeypatch.delenv("IKAROS_COMPILED", raising=False)
     monkeypatch.setattr(compiled, "executor", lambda: None)
