@@ -637,6 +637,10 @@ class Network:
         lines.append("")
         lines.append(f"Memory: {format_number(self.arena.nbytes + self.ring_arena.nbytes)} "
                      f"bytes of buffers")
-        lines.append(f"Compiled tick: {self.compiled_modules} of {len(self.schedule)} modules")
+        pending = (" (compiled=\"auto\": made in the background once the model ticks, not "
+                   "in real time, when at least 64 modules can be compiled)"
+                   if self._background is not None else "")
+        lines.append(f"Compiled tick: {self.compiled_modules} of {len(self.schedule)} modules"
+                     f"{pending}")
         return "\n".join(lines)
 
