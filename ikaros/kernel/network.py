@@ -253,9 +253,9 @@ class Network:
 
     def wait_compiled(self, timeout: float | None = None) -> int:
         """Wait until the compiled tick that ``compiled="auto"`` makes in the background
-        (from the first tick, or from now) is ready (at most ``timeout`` seconds) and use it from the next tick; returns
-        ``compiled_modules``. Call it between ticks (not from another thread while the
-        network runs)."""
+        (from the first tick, or from now) is ready (at most ``timeout`` seconds) and use it
+        from the next tick; returns ``compiled_modules``. Call it between ticks (not from
+        another thread while the network runs)."""
         background = self._background
         if background is not None:
             if not background.started:

@@ -37,9 +37,10 @@ def _leave() -> None:
 
 
 class BackgroundPlan:
-    """``make(cancelled)`` run in a daemon thread from ``start()``. ``ready`` once it has returned (its result
-    in ``result``, None when it gave no plan or failed; ``error`` holds the failure). Modules
-    whose parameters change meanwhile are noted in ``changed`` (the plan read them before).
+    """``make(cancelled)`` run in a daemon thread from ``start()``. ``ready`` once it has
+    returned (its result in ``result``, None when it gave no plan or failed; ``error`` holds
+    the failure). Modules whose parameters change meanwhile are noted in ``changed`` (the
+    plan read them before).
     ``cancel()`` sets the Event ``make`` is given, so that it stops early."""
 
     def __init__(self, make):
