@@ -120,7 +120,8 @@ def check_shape(shape) -> None:
         if d < 0:
             raise LimitError(f"the size {_dims(shape)} has a negative dimension")
         count *= d
-    check_bytes(count * BYTES_PER_ELEMENT, f"a buffer of size {_dims(shape)}")
+    if count * BYTES_PER_ELEMENT > current().max_memory:      # the message only then
+        check_bytes(count * BYTES_PER_ELEMENT, f"a buffer of size {_dims(shape)}")
 
 
 def check_bytes(nbytes: int, what: str) -> None:

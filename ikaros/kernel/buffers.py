@@ -30,10 +30,25 @@ class Buffer:
         self.fixed = fixed                # a fixed shape expression for an input
         self.node = node
         self.shape: tuple | None = None
-        self.incoming: list[Link] = []
-        self.outgoing: list[Link] = []
+        # () until the first link (most buffers have one or none; fewer objects to build
+        # and for the garbage collector to trace): see ``link``
+        self.incoming: list[Link] | tuple = ()
+        self.outgoing: list[Link] | tuple = ()
         self.array: np.ndarray | None = None
         self.offset: int | None = None    # where ``array`` starts in the arena, in elements
+
+    @staticmethod
+    def link(link: "Link") -> None:
+        """Add a link to its source's outgoing and its target's incoming links."""
+        src, dst = link.source, link.target
+        if src.outgoing:
+            src.outgoing.append(link)
+        else:
+            src.outgoing = [link]
+        if dst.incoming:
+            dst.incoming.append(link)
+        else:
+            dst.incoming = [link]
 
     @property
     def path(self) -> str:

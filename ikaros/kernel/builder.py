@@ -32,6 +32,7 @@ _NAME = re.compile(r"[A-Za-z_](?:[\w\- ]*[\w\-])?$")
 
 
 _ONE_TICK = [1]     # the default delay (link delays are never changed after parsing)
+_SHORT_DELAYS = {"0": [0], "1": _ONE_TICK}   # shared, as _ONE_TICK is
 
 
 @contextlib.contextmanager
@@ -76,6 +77,7 @@ class Builder:
         self._folders: dict[str, str] = {}     # the folder of each file read
         self._sources: dict[tuple, Buffer] = {}   # (group, address) -> a connection's source
         self.startup = StartupSteps()           # the time of each build step
+        self._confined = True          # whether file parameters are checked (set by _build)
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
@@ -303,7 +305,9 @@ class Builder:
             else:
                 return from_python(None, spec), False
             check_parameter(value, spec)
-            check_file_parameter(spec, value, self._folder(inst.node.file or self.filename))
+            if self._confined:
+                check_file_parameter(spec, value, self._folder(inst.node.file or
+                                                               self.filename))
             return value, True
         except AccessRefused as e:
             raise inst.node.error(f"{e}") from None
@@ -353,8 +357,10 @@ class Builder:
             src_path, src_sel = split_selectors(source)
             dst_path, dst_sel = split_selectors(target)
             delay = attrs.get("delay")
-            if delay is None or delay == "1":
+            if delay is None:
                 delays = _ONE_TICK
+            elif delay in _SHORT_DELAYS:
+                delays = _SHORT_DELAYS[delay]
             else:
                 delay = self._connection_attr(node, group, "delay")
                 if delay:
@@ -389,9 +395,7 @@ class Builder:
             _remove(self.model, node)        # so that saving leaves it out
             return
         for dst in targets:
-            link = Link(src, dst, delays, node, order, src_sel, dst_sel)
-            src.outgoing.append(link)
-            dst.incoming.append(link)
+            Buffer.link(Link(src, dst, delays, node, order, src_sel, dst_sel))
 
     def _connection_attr(self, node: Node, group: Group, key: str) -> str | None:
         value = node.attrs.get(key)
@@ -664,6 +668,7 @@ class Builder:
 
     def _build(self):
         from .network import Network
+        self._confined = access_now() is not None   # file parameters checked only then
         step = self.startup.step
         with step("groups and modules"):
             top = self.build_tree()

@@ -136,6 +136,10 @@ class Plan:
                 self.pool = ThreadPoolExecutor(len(self.lanes) - 1,
                                                thread_name_prefix="ikaros-lane")
 
+    def adopt(self, sequence: list, owner: dict, fused: dict) -> None:
+        """Use other calls for the tick from now on (the compiled plan made meanwhile)."""
+        self.sequence, self.owner, self.fused = sequence, owner, fused
+
     def run(self) -> tuple | None:
         """Run one tick's calls. Returns (module, exception) for a failure, else None."""
         if self.pool is not None:

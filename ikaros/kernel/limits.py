@@ -13,8 +13,6 @@ def check_memory(arena: Arena, requests: list, deepest: dict) -> None:
     ring_bytes = {src: (depth - 1) * math.prod(src.shape) * BYTES_PER_ELEMENT
                   for src, depth in deepest.items() if depth >= 2}
     total = arena.planned_bytes() + sum(ring_bytes.values())
-    sizes = [(math.prod(buf.shape) * BYTES_PER_ELEMENT, buf, "buffer") for buf, _ in requests]
-    sizes += [(n, src, "delay ring") for src, n in ring_bytes.items()]
     try:
         check_bytes(total, "the model's buffers and delay rings")
         try:
@@ -25,6 +23,9 @@ def check_memory(arena: Arena, requests: list, deepest: dict) -> None:
                              f"{format_bytes(total)}, more memory than this process can "
                              f"get") from None
     except LimitError as e:
+        sizes = [(math.prod(buf.shape) * BYTES_PER_ELEMENT, buf, "buffer")
+                 for buf, _ in requests]
+        sizes += [(n, src, "delay ring") for src, n in ring_bytes.items()]
         nbytes, buf, kind = max(sizes, key=lambda item: item[0])
         raise buf.node.error(f"{e}; the largest is the {kind} of {buf.path} "
                              f"({format_bytes(nbytes)})") from None

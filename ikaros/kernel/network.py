@@ -16,6 +16,7 @@ from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, T
                       WARNING, attribute_name, parameter_attribute)
 from . import compiled
 from .buffers import Run
+from .compiled.background import BackgroundPlan
 from .compiled.plan import CompiledRun, compiled_gather, compiled_plan
 from .control import PLAY, REALTIME, Controller
 from .execution import AsyncModule, Plan, module_tick
@@ -196,20 +197,79 @@ class Network:
                    else self.async_modules[inst] for inst in self.schedule}
         block = self.arena.block
         minimum = self._compiled_minimum()
+        self._background = None
 
         def fuser(calls):
-            if minimum is not None:          # the compiled tick, when it is on and pays
-                result = compiled_plan(self.schedule, self.zero_delay_edges, self._buffers,
-                                       self.runs, self._shared, block, calls, minimum,
-                                       compiled.executor)
+            def make(cancelled=None):
+                return compiled_plan(self.schedule, self.zero_delay_edges, self._buffers,
+                                     self.runs, self._shared, block, calls, minimum,
+                                     compiled.executor, cancelled)
+            if minimum == compiled.AUTO_MINIMUM:     # auto: made while the network runs
+                self._background = BackgroundPlan(make)
+            elif minimum is not None:        # the compiled tick from the first tick
+                result = make()
                 if result is not None:
                     return result
             return fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
                         pre_tick)
         self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
                          self.threads or 1, self._module_cost, fuser)
-        if bulk_copy is not None and self.compiled_modules:
-            self._delayed[0] = compiled_gather(block, *bulk.indices(), compiled.executor())
+        self._bulk = bulk if bulk_copy is not None else None
+        self.compiled_since = 0 if self.compiled_modules else None
+        if self.compiled_since is not None:
+            self._compiled_gather()
+
+    def _compiled_gather(self) -> None:
+        """The delay-1 copies of small buffers as an instruction of the compiled tick."""
+        if self._bulk is not None:
+            self._delayed[0] = compiled_gather(self.arena.block, *self._bulk.indices(),
+                                               compiled.executor())
+
+    def _background_plan(self) -> None:
+        """Before a tick: start making the compiled plan in the background with the first
+        tick that is not run in real time (so that it competes with ticks, never with a
+        build, and never holds up a real-time tick: numba's start-up holds the GIL for up
+        to tens of milliseconds at a time), and use it once ready."""
+        background = self._background
+        if not background.started:
+            controller = self._controller
+            if controller is None or controller.state != REALTIME:
+                background.start()
+        elif background.ready:
+            self._take_compiled_plan()
+
+    def _take_compiled_plan(self) -> None:
+        """Between ticks: use the compiled plan made in the background."""
+        background, self._background = self._background, None
+        if background.error is not None:
+            self.notify(WARNING, None, f"the compiled tick could not be made, so the NumPy "
+                                       f"kernel runs: {fault_text(background.error)}")
+        if background.result is None:
+            return
+        self.plan.adopt(*background.result)
+        for inst in background.changed:
+            self.plan.refresh(inst)
+        self.compiled_since = self.tick
+        self._compiled_gather()
+
+    def _cancel_background(self) -> None:
+        """The run has ended: a compiled plan still being made is not needed."""
+        if self._background is not None:
+            self._background.cancel()
+            self._background = None
+
+    def wait_compiled(self, timeout: float | None = None) -> int:
+        """Wait until the compiled tick that ``compiled="auto"`` makes in the background
+        (from the first tick, or from now) is ready (at most ``timeout`` seconds) and use it
+        from the next tick; returns ``compiled_modules``. Call it between ticks (not from
+        another thread while the network runs)."""
+        background = self._background
+        if background is not None:
+            if not background.started:
+                background.start()
+            if background.wait(timeout):
+                self._take_compiled_plan()
+        return self.compiled_modules
 
     def _compiled_minimum(self) -> int | None:
         """The compiled tick's setting: the compilable modules it needs, or None (off)."""
@@ -258,6 +318,7 @@ class Network:
         except BaseException:
             # Devices opened by the modules initialised so far go to their safe state.
             self._stopped = True
+            self._cancel_background()
             for job in self.async_modules.values():
                 job.finish()
             self.plan.close()
@@ -310,6 +371,8 @@ class Network:
         return self._stopped
 
     def _tick(self) -> None:
+        if self._background is not None:
+            self._background_plan()
         for copy in self._delayed:
             copy()
         for ring in self._ring_list:
@@ -333,6 +396,7 @@ class Network:
         """End the run after the current tick: call every module's stop once."""
         if not self._stopped:
             self._stopped = True
+            self._cancel_background()
             for job in self.async_modules.values():
                 job.finish()
             self.plan.close()
@@ -536,7 +600,7 @@ class Network:
             else:
                 setattr(comp.module, attribute, new)
         self._apply(comp, change)
-        self._apply(comp, lambda: self.plan.refresh(comp))
+        self._refresh(comp)
         comp.values[name] = new
         comp.has_value[name] = True
         comp.node.attrs[name] = value if isinstance(value, str) else value_text(new)
@@ -550,7 +614,14 @@ class Network:
         if not isinstance(comp, ModuleInstance):
             raise KeyError(f'no module "{path}" in {self.top.name}')
         self._apply(comp, lambda: comp.module.command(name, x, y, value))
-        self._apply(comp, lambda: self.plan.refresh(comp))   # a command may set parameters
+        self._refresh(comp)                     # a command may set parameters
+
+    def _refresh(self, inst: ModuleInstance) -> None:
+        """A module's parameters changed: update the plans that hold them."""
+        background = self._background
+        if background is not None:
+            background.changed.add(inst)
+        self._apply(inst, lambda: self.plan.refresh(inst))
 
     def _apply(self, inst: ModuleInstance, change) -> None:
         """Change a module now, or after its running asynchronous job."""
@@ -596,6 +667,10 @@ class Network:
         lines.append("")
         lines.append(f"Memory: {format_number(self.arena.nbytes + self.ring_arena.nbytes)} "
                      f"bytes of buffers")
-        lines.append(f"Compiled tick: {self.compiled_modules} of {len(self.schedule)} modules")
+        pending = (" (compiled=\"auto\": made in the background once the model ticks, not "
+                   "in real time, when at least 64 modules can be compiled)"
+                   if self._background is not None else "")
+        lines.append(f"Compiled tick: {self.compiled_modules} of {len(self.schedule)} modules"
+                     f"{pending}")
         return "\n".join(lines)
 

@@ -230,7 +230,7 @@ def parse_delays(text: str) -> list[int]:
 
 
 def _delay_int(part: str, text: str) -> int:
-    if not re.fullmatch(r"[+-]?\d+", part):
+    if not (part.isascii() and part.isdigit()) and not re.fullmatch(r"[+-]?\d+", part):
         raise ValueError_(f'delay "{text}" is not a whole number or range')
     value, limit = int(part), current_limits().max_delay
     if value > limit:

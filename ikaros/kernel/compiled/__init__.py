@@ -4,10 +4,12 @@ optional extra ``ikaros[fast]``), one call per stretch of compiled modules per t
 
 Whether a model uses it: the top group's ``compiled`` attribute (or ``ikaros.load(path,
 compiled=...)``) is ``auto`` (the default: when numba is installed and at least
-``AUTO_MINIMUM`` modules can be compiled, since the first use in a process costs numba's
-start-up, about half a second), ``yes`` (whenever numba is installed) or ``no``. The
-environment variable ``IKAROS_COMPILED=0`` turns it off for every model; ``IKAROS_COMPILED=1``
-turns it on for every model that does not say ``no``.
+``AUTO_MINIMUM`` modules can be compiled; the network starts on the NumPy plan and takes
+the compiled one at a tick boundary once a background thread has started numba and made it,
+see ``background.py``), ``yes`` (whenever numba is installed, from the first tick: the load
+waits for numba) or ``no``. The environment variable ``IKAROS_COMPILED=0`` turns it off for
+every model; ``IKAROS_COMPILED=1`` turns it on, from the first tick, for every model that does
+not say ``no``.
 """
 from __future__ import annotations
 
@@ -25,7 +27,8 @@ class SettingError(ValueError):
 
 def minimum_modules(attribute: str | None) -> int | None:
     """How many compilable modules a model needs to use the compiled tick (None: never),
-    from the top group's ``compiled`` attribute and the environment."""
+    from the top group's ``compiled`` attribute and the environment. ``AUTO_MINIMUM`` means
+    ``auto``, whose compiled plan is made in the background."""
     text = (attribute or "").strip().lower()
     if text not in _OFF + _ON + ("", "auto"):
         raise SettingError(f'compiled="{attribute}" must be auto, yes or no')

@@ -214,16 +214,20 @@ class CompiledRun:
 
 
 def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared: dict,
-                  block: np.ndarray, calls: dict, minimum: int, executor):
+                  block: np.ndarray, calls: dict, minimum: int, executor,
+                  cancelled=None):
     """The tick's calls with compiled stretches: (sequence, owner, compiled run of each
-    compiled module), or None when fewer than ``minimum`` modules can be compiled or
-    ``executor()`` gives no compiled function."""
+    compiled module), or None when fewer than ``minimum`` modules can be compiled,
+    ``executor()`` gives no compiled function, or ``cancelled`` (an Event: the network was
+    closed meanwhile) is set."""
     copies = collections.defaultdict(list)
     for run in runs:
         if run.delay == 0 and run.target not in shared:
             copies[run.target.owner].append(run)
     made = {}
-    for inst in schedule:
+    for k, inst in enumerate(schedule):
+        if cancelled is not None and not k % 256 and cancelled.is_set():
+            return None
         inputs, outputs = buffers[inst]
         m = fragment(inst, inputs, outputs, copies[inst])
         if m is not None:
@@ -231,7 +235,7 @@ def compiled_plan(schedule: list, edges: dict, buffers: dict, runs: list, shared
     if not made or len(made) < minimum:
         return None
     execute = executor()
-    if execute is None:
+    if execute is None or cancelled is not None and cancelled.is_set():
         return None
     runners = {}
     for kind in dict.fromkeys(m[0] for m in made.values() if m[0] != "standard"):

@@ -4,6 +4,8 @@ import os
 import subprocess
 import sys
 
+import threading
+
 import numpy as np
 import pytest
 
@@ -244,9 +246,87 @@ def test_auto_compiles_a_model_with_enough_compilable_modules(tmp_path, monkeypa
                     f'<connection source="{"C" if i == 0 else f"S{i - 1}"}.OUTPUT" '
                     f'target="S{i}.INPUT" delay="0"/>' for i in range(n))
     net = _load(tmp_path, f'<group><module class="Constant" name="C" data="1"/>{chain}</group>')
-    assert net.compiled_modules == n + 1
+    assert net.wait_compiled(timeout=60) == n + 1       # made in the background
     net.step()
     assert net.output(f"S{n - 1}.OUTPUT")[0] == pytest.approx(1.01 ** n, rel=1e-5)
+
+
+def _mixed_model(n: int) -> str:
+    """n stages of Add, Multiply, Scale and Integrator over 3 elements, with delay-1
+    inputs (Add: feedback from three stages on) (no Tanh, so the two plans agree bit for bit)."""
+    parts = ['<group><module class="Constant" name="C" data="0.5 -1.25 2"/>']
+    for i in range(n):
+        prev = "C" if i == 0 else f"M{i - 1}"
+        kind = ("Add", "Multiply", "Scale", "Integrator")[i % 4]
+        if kind in ("Add", "Multiply"):
+            other = f"M{max(i - 3, 0)}" if kind == "Add" else "C"
+            parts.append(f'<module class="{kind}" name="M{i}"/>'
+                         f'<connection source="{prev}.OUTPUT" target="M{i}.INPUT1" delay="0"/>'
+                         f'<connection source="{other}.OUTPUT" target="M{i}.INPUT2"/>')
+        elif kind == "Scale":
+            parts.append(f'<module class="Scale" name="M{i}" factor="0.9"/>'
+                         f'<connection source="{prev}.OUTPUT" target="M{i}.INPUT" delay="0"/>')
+        else:
+            parts.append(f'<module class="Integrator" name="M{i}" alpha="0.5" beta="0.25"/>'
+                         f'<connection source="{prev}.OUTPUT" target="M{i}.INPUT" delay="0"/>')
+    return "".join(parts) + "</group>"
+
+
+def test_auto_switches_to_the_compiled_plan_at_a_tick_boundary(tmp_path, monkeypatch):
+    """auto: the network ticks on the NumPy plan while the compiled plan is made in the
+    background (held back here until tick 5), takes it at the start of the next tick, and
+    every output agrees bit for bit with the NumPy kernel tick by tick, before and after."""
+    monkeypatch.delenv("IKAROS_COMPILED", raising=False)
+    release = threading.Event()
+    real = compiled.executor
+
+    def slow_executor():
+        release.wait(60)
+        return real()
+    monkeypatch.setattr(compiled, "executor", slow_executor)
+    text = _mixed_model(80)
+    net = _load(tmp_path, text, compiled="auto")
+    reference = _load(tmp_path, text, name="r.ikg", compiled="no")
+    assert net.compiled_modules == 0 and net.compiled_since is None
+    net.set_parameter("M2.factor", 0.75)           # while the plan is being made
+    reference.set_parameter("M2.factor", 0.75)
+    for tick in range(12):
+        if tick == 5:
+            release.set()
+            net._background.wait(60)                # ready now: taken before the next tick
+            assert net.compiled_modules == 0
+        net.step()
+        reference.step()
+        assert net.compiled_modules == (81 if tick >= 5 else 0)
+        for path in net.modules:
+            assert net.output(path + ".OUTPUT").tobytes() == \
+                reference.output(path + ".OUTPUT").tobytes(), (tick, path)
+    assert net.compiled_since == 5
+    assert net.parameter("M2.factor") == 0.75
+    net.set_parameter("M2.factor", 0.5)            # the compiled plan takes it as well
+    reference.set_parameter("M2.factor", 0.5)
+    net.step()
+    reference.step()
+    assert net.output("M79.OUTPUT").tobytes() == reference.output("M79.OUTPUT").tobytes()
+
+
+def test_auto_does_not_start_numba_during_a_real_time_run(tmp_path, monkeypatch):
+    monkeypatch.delenv("IKAROS_COMPILED", raising=False)
+    net = _load(tmp_path, _mixed_model(70), tick_duration="0.001")
+    net.run(ticks=20, real_time=True)
+    assert not net._background.started and net.compiled_modules == 0
+    net.step()                                      # not in real time: it starts
+    assert net.wait_compiled(timeout=60) == 71
+    assert net.compiled_since == 21                 # between ticks: from tick 21 on
+
+
+def test_auto_without_numba_stays_on_the_numpy_plan(tmp_path, monkeypatch):
+    monkeypatch.delenv("IKAROS_COMPILED", raising=False)
+    monkeypatch.setattr(compiled, "executor", lambda: None)
+    net = _load(tmp_path, _mixed_model(70))
+    assert net.wait_compiled(timeout=60) == 0
+    net.step()
+    assert net.compiled_since is None and net._background is None
 
 
 def test_without_numba_the_kernel_runs_as_before(tmp_path, monkeypatch):

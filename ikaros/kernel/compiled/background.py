@@ -1,0 +1,83 @@
+"""The compiled tick made in a background thread (``compiled="auto"``): the network starts
+ticking on the NumPy plan at once; from its first tick a thread starts numba, loads the
+compiled function from its cache and makes the compiled plan, and the network takes the plan
+at the start of the next tick after it is ready (a tick boundary), so no tick mixes the two
+and the results stay those of either plan, tick by tick. (The thread starts with the first
+tick, not at the load, so that it competes with ticks and never with building a model.)
+
+Starting numba costs about a second of Python imports and library loading. A thread that
+runs Python gives the GIL up only every ``sys.getswitchinterval()`` (5 ms by default), which
+would make a real-time tick that wakes up meanwhile wait that long; while the thread works,
+the interval is ``SWITCH_INTERVAL``, so a waking tick waits at most about that long."""
+from __future__ import annotations
+
+import sys
+import threading
+
+SWITCH_INTERVAL = 0.0002      # seconds, while a background plan is being made
+
+_lock = threading.Lock()
+_working = [0]                # background plans being made (they share the interval)
+_saved = [0.005]
+
+
+def _enter() -> None:
+    with _lock:
+        if _working[0] == 0:
+            _saved[0] = sys.getswitchinterval()
+            sys.setswitchinterval(min(_saved[0], SWITCH_INTERVAL))
+        _working[0] += 1
+
+
+def _leave() -> None:
+    with _lock:
+        _working[0] -= 1
+        if _working[0] == 0:
+            sys.setswitchinterval(_saved[0])
+
+
+class BackgroundPlan:
+    """``make(cancelled)`` run in a daemon thread from ``start()``. ``ready`` once it has
+    returned (its result in ``result``, None when it gave no plan or failed; ``error`` holds
+    the failure). Modules whose parameters change meanwhile are noted in ``changed`` (the
+    plan read them before).
+    ``cancel()`` sets the Event ``make`` is given, so that it stops early."""
+
+    def __init__(self, make):
+        self._make = make
+        self.result = None
+        self.error: BaseException | None = None
+        self.changed: set = set()
+        self.done = threading.Event()
+        self.cancelled = threading.Event()
+        self.thread = threading.Thread(target=self._run, name="ikaros-compiled-plan",
+                                       daemon=True)
+
+    def start(self) -> None:
+        _enter()
+        self.thread.start()
+
+    @property
+    def started(self) -> bool:
+        return self.thread.ident is not None
+
+    def _run(self) -> None:
+        try:
+            self.result = self._make(self.cancelled)
+        except Exception as e:            # the NumPy plan goes on; the network reports it
+            self.error = e
+        finally:
+            _leave()
+            self.done.set()
+
+    def cancel(self) -> None:
+        """The plan is not needed any more (the network was closed)."""
+        self.cancelled.set()
+
+    @property
+    def ready(self) -> bool:
+        return self.done.is_set()
+
+    def wait(self, timeout: float | None = None) -> bool:
+        """Wait until the plan is made (or ``timeout`` seconds); whether it is."""
+        return self.done.wait(timeout)
