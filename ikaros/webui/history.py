@@ -36,16 +36,23 @@ class Ring:
         self.src = src
         self.always = always                # recorded even when the budget is spent
         self.size = max(1, int(src.size))
-        self.capacity = int(np.clip(MAX_FLOATS // self.size, MIN_TICKS, MAX_TICKS))
+        # an event buffer (spikes: a few values, rarely read whole) keeps as many ticks as
+        # the value limit allows, so that a fast kernel loses none between two frames
+        most = MAX_FLOATS if always else MAX_TICKS
+        self.capacity = int(np.clip(MAX_FLOATS // self.size, MIN_TICKS, most))
         self.rows = np.zeros((self.capacity, self.size), np.float32)
         self.ticks = np.full(self.capacity, -1, np.int64)
         self.count = 0
 
     def record(self, tick: int) -> None:
-        i = self.count % self.capacity
+        last = (self.count - 1) % self.capacity
+        if self.count and self.ticks[last] == tick:
+            i = last                        # the hooks ran again for the same tick
+        else:
+            i = self.count % self.capacity
+            self.count += 1
         self.rows[i] = self.src.reshape(-1) if self.src.size else 0.0
         self.ticks[i] = tick
-        self.count += 1
 
     def since(self, tick: int) -> tuple[np.ndarray, np.ndarray]:
         """Copies of (ticks, rows) recorded after ``tick``, oldest first."""
@@ -80,28 +87,33 @@ class Recorder:
         self.rings = rings                  # one assignment: the hook sees old or new
 
     def hook(self) -> None:
-        """The tick hook (kernel thread): one row per ring, within the budget."""
+        """The tick hook (kernel thread): one row per ring; event rings always, the others
+        in turns until the budget is spent."""
         rings = list(self.rings.values())
         if not rings:
             return
         perf = time.perf_counter
         start = perf()
         tick = self.net.tick
-        n = len(rings)
-        spent = False
+        for ring in rings:
+            if ring.always:
+                self._record(ring, tick)
+        others = [r for r in rings if not r.always]
+        n = len(others)
         for k in range(n):
             i = (self._start + k) % n
-            ring = rings[i]
-            if spent and not ring.always:
-                self.skipped += 1
-                continue
-            try:
-                ring.record(tick)
-            except Exception:               # a hook must never raise into the kernel
-                pass
-            if not spent and perf() - start > self.budget and k + 1 < n:
-                spent = True
+            self._record(others[i], tick)
+            if perf() - start > self.budget and k + 1 < n:
+                self.skipped += n - k - 1
                 self._start = (i + 1) % n
+                return
+
+    @staticmethod
+    def _record(ring: Ring, tick: int) -> None:
+        try:
+            ring.record(tick)
+        except Exception:                   # a hook must never raise into the kernel
+            pass
 
     def read(self, since: dict[str, int]) -> dict[str, tuple[np.ndarray, np.ndarray, tuple]]:
         """(ticks, rows, shape) of every ring after the tick given for its path (kernel

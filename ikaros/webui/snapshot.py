@@ -221,6 +221,7 @@ class Client:
         self.texts: collections.deque = collections.deque(maxlen=256)
         self.points: dict[str, int] = {}          # history columns per path
         self.seen: dict[str, int] = {}            # last tick sent per history path
+        self.seen_before: dict[str, int] = {}     # the same before the newest frame
         self.wake = asyncio.Event()
         self.frames_sent = 0
 
@@ -293,6 +294,7 @@ class Hub:
         client.subs = subs
         client.points = dict(points or {})
         client.seen = {}
+        client.seen_before = {}
         client.version += 1
         client.last = None
         self._update_plan()
@@ -395,7 +397,9 @@ class Hub:
         for c in list(self.clients):
             for path, fmt in c.subs:
                 if fmt in HISTORY_FORMATS:
-                    seen = c.seen.get(path, -1)
+                    # from before the newest frame: it may be replaced unsent (_send_frame)
+                    seen = min(c.seen.get(path, -1), c.seen_before.get(path, -1)) \
+                        if path in c.seen_before else -1
                     since[path] = min(since.get(path, seen), seen)
         return self.history.read(since) if since else {}
 
@@ -403,6 +407,10 @@ class Hub:
     def _send_frame(c: Client, snap: Snapshot, cache: dict) -> None:
         arrays = snap.plan.arrays
         items = []
+        # a frame not yet sent is replaced by this one: its history must come again
+        if c.frame is not None:
+            c.seen = dict(c.seen_before)
+        c.seen_before = dict(c.seen)
         for path, fmt in c.subs:
             if fmt in HISTORY_FORMATS:
                 items.append(Hub._history_item(c, snap, path, fmt))

@@ -175,3 +175,31 @@ def test_points_are_checked(net):
                 if msg["type"] == "error":
                     break
             assert '"points"' in msg["error"]
+
+
+def test_a_frame_replaced_before_it_was_sent_loses_no_tick():
+    """Two frames built for one client before the first was sent (two "ready"s in
+    flight): the second carries the first one's ticks too."""
+    from ikaros.webui.snapshot import Client, Hub, Plan, Snapshot
+    src = np.zeros(1, np.float32)
+    plan = Plan({"A.OUTPUT": src}, 1)
+    ring = Ring(src)
+    c = Client(ws=None)
+    c.subs = [("A.OUTPUT", "events")]
+
+    def frame_at(tick):
+        src[:] = 1
+        ring.record(tick)
+        snap = Snapshot(plan, tick, 0.0)
+        snap.history = {"A.OUTPUT": (*ring.since(-1), (1,))}
+        Hub._send_frame(c, snap, {})
+
+    frame_at(1)
+    frame_at(2)                                  # the frame of tick 1 was never sent
+    header, data = decode_frame(c.frame)
+    b = header["buffers"][0]
+    assert (data["A.OUTPUT"][:, 0] + b["first_tick"]).tolist() == [1, 2]
+    c.frame = None                               # sent
+    frame_at(3)
+    header, data = decode_frame(c.frame)
+    assert (data["A.OUTPUT"][:, 0] + header["buffers"][0]["first_tick"]).tolist() == [3]

@@ -297,6 +297,7 @@ def test_plots_auto_range_axes_single_sample_and_every_tick(tmp_path):
         server.post("/api/control", {"state": "play"})
         time.sleep(1.0)
         server.post("/api/control", {"state": "pause"})
+        time.sleep(0.2)                      # a tick under way when paused ends first
         tick = server.tick()
         assert tick > 300
         page.wait_for_function("(t) => window.ikaros.lastFrame.tick === t", arg=tick)
@@ -361,6 +362,7 @@ WIDGETS = """<?xml version="1.0"?>
 
 PAINTED = """(title) => {
     const c = document.querySelector(`#view-host .widget[data-title='${title}'] canvas`);
+    if (!c || !c.width) return 0;                // not built yet
     const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
     let n = 0;
     for (let i = 3; i < d.length; i += 4) if (d[i] > 100) n++;
@@ -413,6 +415,7 @@ def test_the_new_widgets(tmp_path):
         server.post("/api/control", {"state": "play"})
         time.sleep(1.0)
         server.post("/api/control", {"state": "pause"})
+        time.sleep(0.2)                      # a tick under way when paused ends first
         tick = server.tick()
         page.wait_for_function("(t) => window.ikaros.lastFrame.tick === t", arg=tick)
         time.sleep(0.2)
