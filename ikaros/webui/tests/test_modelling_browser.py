@@ -264,6 +264,7 @@ PLOT_DATA = """(title) => {
 
 SERIES_PIXELS = """(title) => {
     const c = document.querySelector(`#view-host .widget[data-title='${title}'] canvas`);
+    if (!c) return 0;                   // the plot makes its canvas with its first data
     const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
     let n = 0;
     for (let i = 0; i < d.length; i += 4) if (d[i + 3] > 100 && d[i + 2] > 150 && d[i] < 90) n++;
