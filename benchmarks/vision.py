@@ -234,14 +234,8 @@ def direct(rows: int, cols: int, ticks: int) -> tuple[float, dict]:
 def web_ui_run(path: str, seconds: float) -> dict:
     """Real time at 30 Hz: lag without the server, then with the web UI and a client on two
     images (JPEG); the client's frames per second."""
-    import multiprocessing as mp
-    import threading
-
-    import uvicorn
-
-    from benchmarks.webui import client_process, lag_figures
+    from benchmarks.webui import lag_figures, serve_in_thread, start_client
     from ikaros.module import WARNING
-    from ikaros.webui.server import create_app, listen
 
     net = ikaros.load(path)
     net.log_level = WARNING
@@ -249,22 +243,9 @@ def web_ui_run(path: str, seconds: float) -> dict:
     ctrl.start("realtime")
     time.sleep(1.0)
     alone = lag_figures(net, seconds)
-    sock = listen("127.0.0.1", 0)
-    server = uvicorn.Server(uvicorn.Config(create_app(net), log_level="warning",
-                                           access_log=False, lifespan="off",
-                                           ws_per_message_deflate=False))
-    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
-    thread.start()
-    while not server.started:
-        time.sleep(0.05)
-    spawn = mp.get_context("spawn")
-    go, stop, quit_, connected = (spawn.Event() for _ in range(4))
-    frames = spawn.Value("l", 0)
-    url = f"ws://127.0.0.1:{sock.getsockname()[1]}/api/ws"
-    proc = spawn.Process(target=client_process, daemon=True,
-                         args=(url, ["Camera.OUTPUT", "Overlay.OUTPUT"], go, stop, quit_,
-                               frames, connected, "jpeg"))
-    proc.start()
+    server, thread, port = serve_in_thread(net)
+    proc, go, stop, quit_, frames, connected = start_client(
+        port, ["Camera.OUTPUT", "Overlay.OUTPUT"], "jpeg")
     go.set()
     try:
         if not connected.wait(30):

@@ -69,6 +69,36 @@ def client_process(url: str, paths: list[str], go, stop, quit_, frames, connecte
         connected.clear()
 
 
+def serve_in_thread(net, **options):
+    """Serve ``net``'s web UI on 127.0.0.1 (a free port) from a thread; returns
+    (server, thread, port). Stop it with ``server.should_exit = True; thread.join()``."""
+    import uvicorn
+
+    from ikaros.webui.server import create_app, listen
+    sock = listen("127.0.0.1", 0)
+    server = uvicorn.Server(uvicorn.Config(create_app(net, **options), log_level="warning",
+                                           access_log=False, lifespan="off",
+                                           ws_per_message_deflate=False))
+    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
+    thread.start()
+    while not server.started:
+        time.sleep(0.05)
+    return server, thread, sock.getsockname()[1]
+
+
+def start_client(port: int, paths: list[str], fmt: str = "raw"):
+    """Start ``client_process`` in a spawned process on the server at ``port``; returns
+    (process, go, stop, quit_, frames, connected)."""
+    spawn = mp.get_context("spawn")
+    go, stop, quit_, connected = (spawn.Event() for _ in range(4))
+    frames = spawn.Value("l", 0)
+    proc = spawn.Process(target=client_process, daemon=True,
+                         args=(f"ws://127.0.0.1:{port}/api/ws", paths, go, stop, quit_,
+                               frames, connected, fmt))
+    proc.start()
+    return proc, go, stop, quit_, frames, connected
+
+
 def rate(net, seconds: float) -> float:
     t0, n0 = time.perf_counter(), net.tick
     time.sleep(seconds)
@@ -101,12 +131,9 @@ def main(argv=None) -> int:
                     help="run in real time at 1 kHz and report lag instead of ticks per second")
     args = ap.parse_args(argv)
 
-    import uvicorn
-
     import ikaros
     from benchmarks.models import robot_320
     from ikaros.module import WARNING
-    from ikaros.webui.server import create_app, listen
 
     folder = tempfile.mkdtemp(prefix="ikaros-webui-bench-")
     net = ikaros.load(robot_320(folder), **({"tick_duration": 0.001} if args.real_time else {}))
@@ -121,24 +148,9 @@ def main(argv=None) -> int:
     time.sleep(1.0)                                   # warm up
     alone = measure(net, args.seconds)
 
-    sock = listen("127.0.0.1", 0)
-    port = sock.getsockname()[1]
     options = {} if args.max_rate is None else {"max_rate": args.max_rate}
-    server = uvicorn.Server(uvicorn.Config(create_app(net, **options), log_level="warning",
-                                           access_log=False, lifespan="off",
-                                           ws_per_message_deflate=False))
-    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
-    thread.start()
-    while not server.started:
-        time.sleep(0.05)
-
-    spawn = mp.get_context("spawn")
-    go, stop, quit_, connected = (spawn.Event() for _ in range(4))
-    frames = spawn.Value("l", 0)
-    proc = spawn.Process(target=client_process, daemon=True,
-                         args=(f"ws://127.0.0.1:{port}/api/ws", paths, go, stop, quit_, frames,
-                               connected, args.format))
-    proc.start()
+    server, thread, port = serve_in_thread(net, **options)
+    proc, go, stop, quit_, frames, connected = start_client(port, paths, args.format)
     idle, busy, fps = [], [], []
     for _ in range(args.rounds):
         idle.append(measure(net, args.seconds))
