@@ -43,6 +43,8 @@ class Ring:
         self.rows = np.zeros((self.capacity, self.size), np.float32)
         self.ticks = np.full(self.capacity, -1, np.int64)
         self.count = 0
+        # a flat view made once (a buffer that is not contiguous is flattened each tick)
+        self._flat = src.reshape(-1) if src.flags.c_contiguous else None
 
     def record(self, tick: int) -> None:
         last = (self.count - 1) % self.capacity
@@ -51,7 +53,10 @@ class Ring:
         else:
             i = self.count % self.capacity
             self.count += 1
-        self.rows[i] = self.src.reshape(-1) if self.src.size else 0.0
+        if self.src.size:
+            self.rows[i] = self._flat if self._flat is not None else self.src.reshape(-1)
+        else:
+            self.rows[i] = 0.0
         self.ticks[i] = tick
 
     def since(self, tick: int) -> tuple[np.ndarray, np.ndarray]:
@@ -72,6 +77,7 @@ class Recorder:
         self.net = net
         self.budget = budget
         self.rings: dict[str, Ring] = {}
+        self._split: tuple[tuple[Ring, ...], tuple[Ring, ...]] = ((), ())  # always, others
         self._start = 0                     # where the next tick begins (fair under budget)
         self.skipped = 0                    # rows not recorded for lack of time
 
@@ -84,21 +90,22 @@ class Recorder:
             old = self.rings.get(path)
             keep = old is not None and old.src is src and old.always == (path in events)
             rings[path] = old if keep else Ring(src, path in events)
-        self.rings = rings                  # one assignment: the hook sees old or new
+        self.rings = rings
+        # one assignment: the hook sees the old rings or the new ones, never a mix
+        self._split = (tuple(r for r in rings.values() if r.always),
+                       tuple(r for r in rings.values() if not r.always))
 
     def hook(self) -> None:
         """The tick hook (kernel thread): one row per ring; event rings always, the others
         in turns until the budget is spent."""
-        rings = list(self.rings.values())
-        if not rings:
+        always, others = self._split
+        if not (always or others):
             return
         perf = time.perf_counter
         start = perf()
         tick = self.net.tick
-        for ring in rings:
-            if ring.always:
-                self._record(ring, tick)
-        others = [r for r in rings if not r.always]
+        for ring in always:
+            self._record(ring, tick)
         n = len(others)
         for k in range(n):
             i = (self._start + k) % n
