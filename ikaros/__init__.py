@@ -21,12 +21,13 @@ from .language.diagnostics import Diagnostics, ModelWarning
 from .kernel.classes import classes as _classes
 from .kernel.network import Network
 from .model import Group
-from .module import Input, Module, Output, Parameter
+from .kernel.state import StateError
+from .module import Input, Module, Output, Parameter, State
 
 __version__ = "0.1.0"
 __all__ = ["load", "classes", "Group", "Network", "Module", "Parameter", "Input", "Output",
-           "ModelError", "ModelWarning", "RunError", "ClassDescription", "open_recording",
-           "sweep"]
+           "State", "ModelError", "ModelWarning", "RunError", "StateError", "ClassDescription",
+           "open_recording", "sweep"]
 
 
 def __getattr__(name: str):
@@ -38,7 +39,8 @@ def __getattr__(name: str):
 
 
 def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
-         quiet: bool = False, max_memory: int | str | None = None, **overrides) -> Network:
+         quiet: bool = False, max_memory: int | str | None = None,
+         load_state: str | bool | None = None, **overrides) -> Network:
     """Read, build and initialise a model file (.ikg). Other keyword arguments set
     attributes of the top group and win over the file. Raises ModelError naming the file,
     line and element of what is wrong.
@@ -49,9 +51,19 @@ def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
     drops connections to modules or ports that do not exist, with a warning, as Ikaros 3
     does (they are errors by default). ``max_memory`` limits the memory of all buffers
     (bytes, or text such as ``"512M"``; default half the physical memory).
+    ``load_state`` (a file name, or True for ``model.state`` beside the model) loads a
+    state saved with ``net.save_state`` after init, as ``ikaros -L`` does; a state that does
+    not fit raises StateError (a ValueError) and the network is closed.
     """
-    return build_tree(None, filename, strict=strict, lenient=lenient, quiet=quiet,
-                      max_memory=max_memory, **overrides)
+    net = build_tree(None, filename, strict=strict, lenient=lenient, quiet=quiet,
+                     max_memory=max_memory, **overrides)
+    if load_state:
+        try:
+            net.load_state(None if load_state is True else load_state)
+        except BaseException:
+            net.close()
+            raise
+    return net
 
 
 def build_tree(tree, filename: str, *, strict: bool = False, lenient: bool = False,

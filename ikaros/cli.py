@@ -109,6 +109,12 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--build-timeout", type=_timeout, metavar="SECONDS", default=30.0,
                    help="web UI: how long a build from the editor may take before it is "
                         "abandoned with an error (default 30)")
+    p.add_argument("-L", "--load-state", nargs="?", const=True, metavar="FILE",
+                   help="load the state (outputs, delay lines, declared state, tick) from "
+                        "FILE after init; without FILE, MODEL.state beside the model")
+    p.add_argument("-W", "--save-state", nargs="?", const=True, metavar="FILE",
+                   help="save the state to FILE at the end of the run; without FILE, "
+                        "MODEL.state beside the model")
     p.add_argument("-p", "--profile", action="store_true",
                    help="measure per-module time and print the timing figures at exit")
     p.add_argument("-q", "--quiet", action="store_true",
@@ -128,6 +134,37 @@ def parser() -> argparse.ArgumentParser:
                         "(default docs/modules.md); - prints it")
     experiment_options.add_arguments(p)
     return p
+
+
+def _state_options(opts) -> None:
+    """``-W model.ikg``: a bare -W (or -L) followed by the model, which argparse took for
+    the option's file."""
+    for key in ("load_state", "save_state"):
+        value = getattr(opts, key)
+        if not isinstance(value, str):
+            continue
+        name, eq, _ = value.partition("=")
+        model_given = any("=" not in a for a in opts.args)
+        if (eq and name.isidentifier()) or (value.endswith(".ikg") and not model_given):
+            opts.args.insert(0, value)
+            setattr(opts, key, True)
+
+
+def _state_file(value) -> str | None:
+    """The file of -L/-W: None (the model's .state) for a bare option."""
+    return None if value is True else value
+
+
+def _save_state(net, opts) -> bool:
+    """-W at the end of the run; False (reported) when the state could not be written."""
+    from .kernel.state import StateError
+    try:
+        net.save_state(_state_file(opts.save_state))
+    except (StateError, OSError) as e:
+        print(f"ikaros: error: cannot save the state: {getattr(e, 'strerror', None) or e}",
+              file=sys.stderr)
+        return False
+    return True
 
 
 def _split_args(p, args: list[str]) -> tuple[str | None, dict]:
@@ -156,7 +193,10 @@ def _serve(net, opts, failure: dict | None = None) -> int:
     if opts.stop is not None:
         net.stop_tick = opts.stop
 
+    served = []
+
     def ready(url):
+        served.append(url)
         print(f"ikaros: serving {os.path.basename(net.filename)} at "
               f"{url}{'?token=' + token if token else ''}  (Ctrl-C to quit)", flush=True)
         if token:
@@ -172,11 +212,13 @@ def _serve(net, opts, failure: dict | None = None) -> int:
     except KeyboardInterrupt:
         pass
     finally:
+        saved = not (opts.save_state and served and failure is None) or \
+            _save_state(net, opts)
         net.close()
         if opts.profile:
             print(net.profile_text())
         _leave_stuck_builds()
-    return EXIT_OK
+    return EXIT_OK if saved else EXIT_ERROR
 
 
 def _leave_stuck_builds() -> None:
@@ -208,6 +250,7 @@ def main(argv: list[str] | None = None) -> int:
         return _worker(argv[1:])
     p = parser()
     opts = p.parse_intermixed_args(argv)
+    _state_options(opts)
     experiment_options.check_arguments(p, opts)
     model, overrides = _split_args(p, opts.args)
     folders = [os.path.dirname(os.path.abspath(model))] if model else []
@@ -272,6 +315,14 @@ def main(argv: list[str] | None = None) -> int:
             print(f"ikaros: error: {e}\nikaros: the model opens in the web UI's editor "
                   f"to be fixed", file=sys.stderr)
         net.log_level = FATAL_ERROR if opts.quiet else DEBUG if opts.verbose else PRINT
+        if opts.load_state and failure is None:
+            from .kernel.state import StateError
+            try:
+                net.load_state(_state_file(opts.load_state))
+            except StateError as e:
+                net.close()
+                print(f"ikaros: error: cannot load the state: {e}", file=sys.stderr)
+                return EXIT_ERROR
         if opts.info:
             print(net.info())
         ok = getattr(net, "checksum_ok", True)
@@ -287,6 +338,8 @@ def main(argv: list[str] | None = None) -> int:
             net.profiling = opts.profile
             with experiment_options.batch_session(net, opts, recording):
                 net.run(ticks=opts.stop, real_time=opts.real_time)
+            if opts.save_state and not _save_state(net, opts):
+                return EXIT_ERROR
         finally:
             net.close()
             if opts.profile:

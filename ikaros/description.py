@@ -89,17 +89,44 @@ class OutputSpec:
     description: str = ""
     rule: dict[str, str] = field(default_factory=dict)
     optional: bool = False
+    persistent: bool = False     # Ikaros 3 ``persistent``: every output is kept in state files
+    private: bool = False        # a matrix <state>: sized and kept like an output, not connectable
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "description": self.description}
         d.update(self.rule)
-        if self.optional:
-            d["optional"] = True
+        for key in ("optional", "persistent", "private"):
+            if getattr(self, key):
+                d[key] = True
         return d
 
     def rule_text(self) -> str:
         """A short human-readable form of the size rule."""
         return ", ".join(f"{k}={v}" for k, v in self.rule.items()) or "set by the module"
+
+
+# The types of a <state> item: a matrix, or a scalar of one of these (Ikaros 3 names).
+STATE_TYPES = ("matrix", "float", "double", "int", "bool", "string")
+
+
+@dataclass
+class StateSpec:
+    """One state item a class declares (Ikaros 3 ``<state>``): private, kept by save, load
+    and reset of the state (whether ``persistent`` or not) but not connectable. A matrix is sized by ``rule`` like an
+    output; a scalar is an attribute of the module that starts at ``default``."""
+    name: str
+    type: str = "float"
+    default: Any = None          # a scalar's first value (a Python value of the type)
+    description: str = ""
+    rule: dict[str, str] = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        d = {"name": self.name, "type": self.type, "description": self.description}
+        if self.type == "matrix":
+            d.update(self.rule)
+        else:
+            d["default"] = self.default
+        return d
 
 
 @dataclass
@@ -110,6 +137,7 @@ class ClassDescription:
     parameters: list[ParameterSpec] = field(default_factory=list)
     inputs: list[InputSpec] = field(default_factory=list)
     outputs: list[OutputSpec] = field(default_factory=list)
+    states: list[StateSpec] = field(default_factory=list)
     source: str = ""             # the file the description was read from
     view: Any = None             # a default view (a Node) carried by the class, if any
     internal: bool = False
@@ -130,6 +158,7 @@ class ClassDescription:
             "parameters": [p.to_dict() for p in self.parameters],
             "inputs": [p.to_dict() for p in self.inputs],
             "outputs": [p.to_dict() for p in self.outputs],
+            **({"states": [s.to_dict() for s in self.states]} if self.states else {}),
             "source": self.source,
         }
 
@@ -152,6 +181,12 @@ class ClassDescription:
         lines.append("Outputs:" if self.outputs else "Outputs: none")
         for o in self.outputs:
             lines.append(f"  {o.name} [{o.rule_text()}]: {o.description}")
+        if self.states:
+            lines.append("State:")
+        for st in self.states:
+            what = ", ".join(f"{k}={v}" for k, v in st.rule.items()) \
+                if st.type == "matrix" else f"default {st.default!r}"
+            lines.append(f"  {st.name} ({st.type}, {what}): {st.description}")
         if self.source:
             lines.append(f"Source: {self.source}")
         return "\n".join(lines)

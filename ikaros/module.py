@@ -18,6 +18,7 @@ Attributes whose names start with ``_ik_`` belong to the kernel; other names are
 """
 from __future__ import annotations
 
+import builtins
 import functools
 import re
 from typing import Any, Callable
@@ -25,7 +26,7 @@ from typing import Any, Callable
 import numpy as np
 
 from .description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
-                          SIZE_RULE_KEYS, canonical_type)
+                          SIZE_RULE_KEYS, STATE_TYPES, StateSpec, canonical_type)
 
 # Notification levels (lower is more severe), as in Ikaros.
 EXCEPTION, END_OF_FILE, TERMINATE, FATAL_ERROR, WARNING, PRINT, DEBUG, TRACE = range(1, 9)
@@ -122,20 +123,64 @@ class Output:
     """
 
     def __init__(self, description: str = "", *, shape: str | None = None,
-                 optional: bool = False, name: str | None = None, **size_rule: str):
+                 optional: bool = False, persistent: bool = False, name: str | None = None,
+                 **size_rule: str):
         unknown = set(size_rule) - set(SIZE_RULE_KEYS)
         if unknown:
             raise TypeError(f"unknown output size rule {sorted(unknown)}")
         rule = {k: str(v) for k, v in size_rule.items()}
         if shape is not None:
             rule["shape"] = str(shape)
-        self.spec_ = OutputSpec(name or "", description, rule, optional)
+        self.spec_ = OutputSpec(name or "", description, rule, optional, persistent)
 
     def __set_name__(self, owner, name):
         self.spec_.name = self.spec_.name or name
 
     def spec(self) -> OutputSpec:
         return self.spec_
+
+
+class State:
+    """Declares a private state item (Ikaros 3 ``<state>``), kept by save, load and reset of
+    the state and never connectable. A scalar (``type`` float, double, int, bool or string,
+    following the default unless given) is an attribute that starts at ``default``; a
+    matrix (``shape=`` an output size rule) is an array the kernel sizes and allocates like
+    an output::
+
+        count = State(0, "ticks seen")
+        MEMORY = State(description="the last input", shape="INPUT.shape")
+    """
+
+    def __init__(self, default: Any = None, description: str = "", *,
+                 type: str | None = None, shape: str | None = None, name: str | None = None):
+        if shape is not None:
+            type = type or "matrix"
+        elif type is None:
+            type = {bool: "bool", int: "int", float: "float", str: "string"}.get(
+                builtins.type(default))
+        if type not in STATE_TYPES:
+            raise TypeError(f"state type must be one of {', '.join(STATE_TYPES)}, not {type!r}")
+        if type == "matrix":
+            if shape is None:
+                raise TypeError("a matrix state needs a shape")
+            self.spec_ = StateSpec(name or "", type, None, description, {"shape": str(shape)})
+            return
+        python = {"float": (float, int), "double": (float, int), "int": (int,),
+                  "bool": (bool,), "string": (str,)}[type]
+        if default is None:
+            default = {"string": "", "bool": False}.get(type, 0)
+        if not isinstance(default, python) or (type != "bool" and isinstance(default, bool)):
+            raise TypeError(f"the default {default!r} is not a {type}")
+        if type in ("float", "double"):
+            default = float(default)
+        self.spec_ = StateSpec(name or "", type, default, description)
+
+    def __set_name__(self, owner, name):
+        self.spec_.name = self.spec_.name or name
+
+    def spec(self) -> StateSpec:
+        return self.spec_
+
 
 
 def _infer_type(default: Any, options: list[str]) -> str:
@@ -186,7 +231,7 @@ class Module:
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
-        params, inputs, outputs = {}, {}, {}
+        params, inputs, outputs, states = {}, {}, {}, {}
         for klass in reversed(cls.__mro__):
             for value in vars(klass).values():
                 if isinstance(value, Parameter):
@@ -195,7 +240,10 @@ class Module:
                     inputs[value.spec().name] = value.spec()
                 elif isinstance(value, Output):
                     outputs[value.spec().name] = value.spec()
-        for name in list(params) + [attribute_name(n) for n in list(inputs) + list(outputs)]:
+                elif isinstance(value, State):
+                    states[value.spec().name] = value.spec()
+        for name in list(params) + list(states) + [attribute_name(n) for n in
+                                                   list(inputs) + list(outputs)]:
             if name in RESERVED:
                 raise TypeError(f"{cls.__name__}: '{name}' is a reserved name in the module API")
         state = getattr(cls, "state", ())
@@ -203,9 +251,14 @@ class Module:
                                                    for n in state):
             raise TypeError(f"{cls.__name__}.state must be a tuple of attribute names (the "
                             f"module's state kept by save, load and reset of the state)")
+        twice = sorted((set(state) & set(states)) | {n for n in state if state.count(n) > 1})
+        if twice:
+            raise TypeError(f"{cls.__name__}: the state {', '.join(twice)} is declared twice "
+                            f"(a state item is bound to one variable)")
         doc = " ".join((cls.__doc__ or "").split())
         cls.description = ClassDescription(cls.__name__, doc, list(params.values()),
-                                           list(inputs.values()), list(outputs.values()))
+                                           list(inputs.values()), list(outputs.values()),
+                                           list(states.values()))
         cls.ikc_description = False
 
     # --- set by the kernel before configure() --------------------------------------------
@@ -219,6 +272,12 @@ class Module:
         self._ik_notify: Callable[[int, "Module", str], None] = _print_notification
         self._ik_inputs: dict[str, InputSpec] = {s.name: s for s in self.description.inputs}
         self._ik_outputs: dict[str, OutputSpec] = {s.name: s for s in self.description.outputs}
+        for st in self.description.states:
+            if st.type == "matrix":     # sized, allocated and bound like an output
+                self._ik_outputs[st.name] = OutputSpec(st.name, st.description, dict(st.rule),
+                                                       private=True)
+            else:
+                setattr(self, st.name, st.default)
         self._ik_input_shapes: dict[str, tuple | None] = {}
         self._ik_output_shapes: dict[str, tuple | None] = {}
         self._ik_connected: set[str] = set()

@@ -428,6 +428,7 @@ class Builder:
     def _source(self, group: Group, path: str, node: Node) -> Buffer:
         comp, port = self._split(group, path, node, "source")
         if isinstance(comp, ModuleInstance):
+            _refuse_private_state(comp, port, path, node)
             inputs, outputs = self.buffers[comp]
             if port not in outputs:
                 raise _missing(node, f'connection source "{path}" not found: module '
@@ -451,6 +452,7 @@ class Builder:
     def _targets(self, group: Group, path: str, node: Node) -> list[Buffer]:
         comp, port = self._split(group, path, node, "target")
         if isinstance(comp, ModuleInstance):
+            _refuse_private_state(comp, port, path, node)
             inputs, outputs = self.buffers[comp]
             if port not in inputs:
                 raise _missing(node, f'connection target "{path}" not found: module '
@@ -697,6 +699,13 @@ class Builder:
                         if run.delay == 0:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)
         return schedule(self.instances, edges), runs, edges
+
+
+def _refuse_private_state(inst: ModuleInstance, port: str, path: str, node: Node) -> None:
+    """A connection to or from a module's <state> item is an error (Ikaros 3)."""
+    if any(st.name == port for st in inst.module.description.states):
+        raise node.error(f'connection endpoint "{path}": {inst.path}.{port} is private state '
+                         f'and can not be connected')
 
 
 def _missing(node: Node, message: str) -> ModelError:

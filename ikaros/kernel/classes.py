@@ -95,10 +95,11 @@ def _check_interface(ikc: str, implemented: ClassDescription) -> None:
     root = read_file(ikc)
     has = {"output": {s.name for s in implemented.outputs},
            "input": {s.name for s in implemented.inputs},
-           "parameter": {s.name for s in implemented.parameters}}
+           "parameter": {s.name for s in implemented.parameters},
+           "state": {s.name for s in implemented.states}}
     optional = {s.name for s in declared.inputs if s.optional}
     source = implemented.source or "the standard library"
-    for tag in ("output", "input", "parameter"):
+    for tag in ("output", "input", "parameter", "state"):
         for element in root.elements(tag):
             name = element.get("name")
             if name in has[tag]:
@@ -112,7 +113,7 @@ def _check_interface(ikc: str, implemented: ClassDescription) -> None:
 
 def _declares_anything(cls: type[Module]) -> bool:
     d = cls.description
-    return bool(d.parameters or d.inputs or d.outputs)
+    return bool(d.parameters or d.inputs or d.outputs or d.states)
 
 
 def _import_file(path: str, package: str | None):

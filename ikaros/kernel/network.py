@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import collections
+import os
 import sys
 import time
 from typing import Any
@@ -26,6 +27,7 @@ from .limits import check_memory as _check_memory
 from .ranges import check_parameter
 from .timing import Timing
 from .scope import VariableError, from_python
+from . import state as _state
 from .state import capture_initial
 from .tree import Group, ModuleInstance, find_component
 
@@ -643,6 +645,37 @@ class Network:
     def save(self, filename: str) -> None:
         """Write the model back as .ikg; loading it gives the same network."""
         write_file(self.model, filename)
+
+    # --- state (kernel/state.py) ----------------------------------------------------------
+    def state_file(self) -> str:
+        """The default state file: ``model.state`` beside ``model.ikg``."""
+        stem = os.path.splitext(os.path.abspath(self.filename or "model"))[0]
+        return stem + ".state"
+
+    def save_state(self, filename: str | None = None, scope: str | None = None) -> dict:
+        """Write the state (outputs, delay lines, declared state, tick) of the network, or
+        of the module or group ``scope``, to ``filename`` (default ``state_file()``), as
+        ``ikaros -W`` does at the end of a run. Returns the file's header. Call it between
+        ticks; raises StateError (a ValueError) or OSError."""
+        filename = filename or self.state_file()
+        header = _state.save(self, filename, scope)
+        self.notify(PRINT, None, f"Saved state to {filename} ({header['item_count']} items, "
+                                 f"tick {header['tick']})")
+        return header
+
+    def load_state(self, filename: str | None = None, scope: str | None = None) -> dict:
+        """Read a state file (default ``state_file()``) into the network, or into the
+        module or group ``scope``, as ``ikaros -L`` does after init. Every item is checked
+        before anything changes; raises StateError naming what does not fit."""
+        filename = filename or self.state_file()
+        header = _state.load(self, filename, scope)
+        self.notify(PRINT, None, f"Loaded state from {filename} (tick {self.tick})")
+        return header
+
+    def reset_state(self, scope: str | None = None) -> None:
+        """Put the network (tick 0), or the module or group ``scope``, back to the state
+        right after init."""
+        _state.reset(self, scope)
 
     # --- description ---------------------------------------------------------------------
     def info(self) -> str:

@@ -1,9 +1,12 @@
 """Save, load and reset the state of a running network.
 
-The state of a module is its outputs and the attributes its class names in ``state``::
+The state of a module is its outputs, its ``State`` items (Ikaros 3 ``<state>``: a matrix
+is kept like an output, of kind "state"; a scalar has its declared type float, double, int,
+bool or string) and the attributes its class names in ``state``::
 
     class Counter(Module):
         state = ("count", "history")     # attributes kept by save_state / load_state
+        bias = State(0.0, "a scalar state item", type="float")
         OUTPUT = Output(shape=1)
 
 The state of the network is that of every module, plus its delay lines (the older values of
@@ -40,9 +43,15 @@ class StateError(ValueError):
 
 
 def declared(module) -> tuple[str, ...]:
-    """The attribute names a module's class declares as its state (checked when the class
-    is defined, in ikaros/module.py)."""
-    return tuple(getattr(type(module), "state", ()))
+    """The attribute names a module's class declares as its state: the names in ``state``
+    (checked when the class is defined, in ikaros/module.py) and its scalar ``State``
+    items (Ikaros 3 ``<state>``)."""
+    return tuple(getattr(type(module), "state", ())) + tuple(_scalar_types(module))
+
+
+def _scalar_types(module) -> dict[str, str]:
+    """{name: declared type} of the scalar state items of a module's class."""
+    return {st.name: st.type for st in module.description.states if st.type != "matrix"}
 
 
 def _modules(net, scope: str | None):
@@ -60,18 +69,22 @@ def _ages(ring) -> list[int]:
 
 
 def values(net, scope: str | None = None) -> dict:
-    """{item path: (kind, value)}: copies of the state of the modules in ``scope`` (a
-    module or group path; all modules when empty)."""
+    """{item path: (kind, type, value)}: copies of the state of the modules in ``scope`` (a
+    module or group path; all modules when empty). ``type`` is "matrix", or a scalar's
+    type: the one its ``State`` declares, or that of its value."""
     out = {}
     for inst in _modules(net, scope):
         _, outputs = net._buffers[inst]
+        specs = inst.module._ik_outputs
         for name, buf in outputs.items():
             path = f"{inst.path}.{name}"
-            out[path] = ("output", np.array(buf.array, copy=True))
+            kind = "state" if specs[name].private else "output"
+            out[path] = (kind, "matrix", np.array(buf.array, copy=True))
             ring = net.rings.get(buf)
             if ring is not None:
-                out[path + "@delay"] = ("delay", np.stack([ring.rows[k]
-                                                           for k in _ages(ring)]))
+                out[path + "@delay"] = ("delay", "matrix",
+                                        np.stack([ring.rows[k] for k in _ages(ring)]))
+        types = _scalar_types(inst.module)
         for attr in declared(inst.module):
             if not hasattr(inst.module, attr):
                 raise StateError(f'{inst.path}: the state "{attr}" is not an attribute of '
@@ -81,7 +94,7 @@ def values(net, scope: str | None = None) -> dict:
                 value = value.copy()
             elif isinstance(value, np.generic):
                 value = value.item()
-            out[f"{inst.path}.{attr}"] = ("state", value)
+            out[f"{inst.path}.{attr}"] = ("state", types.get(attr) or _type(value), value)
     return out
 
 
@@ -95,26 +108,33 @@ def _type(value) -> str:
                      f"(arrays, bool, int, float and str can)")
 
 
-def _item(kind: str, value) -> dict:
-    t = _type(value)
-    if t == "matrix":
-        return {"kind": kind, "type": t, "shape": list(value.shape), "value": value.tolist()}
-    if t == "float" and not np.isfinite(value):
-        return {"kind": kind, "type": t, "value": str(value)}
-    return {"kind": kind, "type": t, "value": value}
+def _item(kind: str, stype: str, value) -> dict:
+    if stype == "matrix":
+        return {"kind": kind, "type": stype, "shape": list(value.shape),
+                "value": value.tolist()}
+    if stype in ("float", "double"):
+        value = float(value)
+        if not np.isfinite(value):
+            return {"kind": kind, "type": stype, "value": str(value)}
+    return {"kind": kind, "type": stype, "value": value}
 
 
 def collect(net, scope: str | None = None) -> dict:
     """{item path: item as in the file} of the modules in ``scope``."""
-    return {path: _item(kind, v) for path, (kind, v) in values(net, scope).items()}
+    return {path: _item(kind, t, v) for path, (kind, t, v) in values(net, scope).items()}
 
 
-def _decode(path: str, item, current) -> object:
+REAL = ("float", "double")
+
+
+def _decode(path: str, item, want: str, current, strict: bool) -> object:
+    """A file item's value, checked against the network's item of type ``want``. A
+    declared scalar (``strict``) takes only its own type; a plain Python float takes
+    "float" and "double" alike."""
     if not isinstance(item, dict) or "value" not in item or "type" not in item:
         raise StateError(f'item "{path}" must be an object with "type" and "value"')
-    want = _type(current)
-    if item["type"] != want:
-        raise StateError(f'item "{path}" has type "{item["type"]}" but the network\'s has '
+    if item["type"] != want and not (not strict and want in REAL and item["type"] in REAL):
+        raise StateError(f'item "{path}" has type "{item["type"]}" but target state has '
                          f'type "{want}"')
     value = item["value"]
     if want == "matrix":
@@ -123,23 +143,29 @@ def _decode(path: str, item, current) -> object:
         except (TypeError, ValueError):
             raise StateError(f'item "{path}": the value is not a matrix of numbers') from None
         if arr.shape != current.shape:
-            raise StateError(f'item "{path}" has shape {list(arr.shape)} but the network\'s '
-                             f'has shape {list(current.shape)}')
+            raise StateError(f'item "{path}" has shape {list(arr.shape)} but the target has '
+                             f'shape {list(current.shape)}')
         return arr
-    if want == "float":
+    if want in REAL:
         if isinstance(value, str) and value in ("nan", "inf", "-inf"):
             return float(value)
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise StateError(f'item "{path}": expected a number')
+            raise StateError(f'item "{path}": Expected number value, not {_shown(value)}')
         return float(value)
     python = {v: k for k, v in SCALARS.items()}[want]
     if type(value) is not python:
-        raise StateError(f'item "{path}": expected a {want} value')
+        what = {"bool": "Boolean", "int": "integer"}.get(want, want)
+        raise StateError(f'item "{path}": Expected {what} value, not {_shown(value)}')
     return value
 
 
-def _fit(now: dict, given: dict) -> None:
-    missing = sorted(set(now) - set(given))
+def _shown(value) -> str:
+    text = json.dumps(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _fit(now: dict, given: dict, partial: bool) -> None:
+    missing = [] if partial else sorted(set(now) - set(given))
     unknown = sorted(set(given) - set(now))
     parts = []
     for what, names in (("missing", missing), ("not in the network", unknown)):
@@ -150,17 +176,22 @@ def _fit(now: dict, given: dict) -> None:
 
 
 def _write(net, scope: str | None, new: dict) -> None:
+    """Set the items in ``new`` (all of them, or the ones a partial file holds)."""
     for inst in _modules(net, scope):
         _, outputs = net._buffers[inst]
         for name, buf in outputs.items():
             path = f"{inst.path}.{name}"
-            np.copyto(buf.array, new[path], casting="unsafe")
+            if path in new:
+                np.copyto(buf.array, new[path], casting="unsafe")
             ring = net.rings.get(buf)
-            if ring is not None:
+            if ring is not None and path + "@delay" in new:
                 for row, k in zip(new[path + "@delay"], _ages(ring)):
                     np.copyto(ring.rows[k], row, casting="unsafe")
         for attr in declared(inst.module):
-            value = new[f"{inst.path}.{attr}"]
+            path = f"{inst.path}.{attr}"
+            if path not in new:
+                continue
+            value = new[path]
             old = getattr(inst.module, attr)
             if isinstance(old, np.ndarray) and isinstance(value, np.ndarray) \
                     and old.shape == value.shape:
@@ -170,19 +201,23 @@ def _write(net, scope: str | None, new: dict) -> None:
                         else value)
 
 
-def apply(net, items: dict, scope: str | None = None) -> None:
+def apply(net, items: dict, scope: str | None = None, partial: bool = False) -> None:
     """Set the state of the modules in ``scope`` from file ``items``; every item is
-    checked before anything changes."""
+    checked before anything changes. With ``partial`` (a file of Ikaros 3, which keeps
+    only persistent outputs) items the file lacks are left as they are."""
     now = values(net, scope)
-    _fit(now, items)
-    _write(net, scope, {p: _decode(p, items[p], v) for p, (_, v) in now.items()})
+    _fit(now, items, partial)
+    typed = {f"{inst.path}.{name}" for inst in _modules(net, scope)
+             for name in _scalar_types(inst.module)}
+    _write(net, scope, {p: _decode(p, items[p], t, v, p in typed)
+                        for p, (_, t, v) in now.items() if p in items})
 
 
 def save(net, filename: str, scope: str | None = None) -> dict:
     """Write the state of ``scope`` (all modules when empty) to ``filename``, whole or not
     at all; returns the file's header (everything but the items)."""
     items = collect(net, scope)
-    data = {"format": FORMAT, "tick": net.tick, "time": net.clock.time,
+    data = {"format": FORMAT, "tick": net.tick, "time": net.tick * net.clock.tick_duration,
             "saved_at_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(
                 timespec="seconds"),
             "ikaros_version": _version(),
@@ -199,7 +234,12 @@ def save(net, filename: str, scope: str | None = None) -> dict:
 
 def load(net, filename: str, scope: str | None = None) -> dict:
     """Read a state file written by ``save`` into the modules of ``scope``; with the whole
-    network, the tick and time are restored too. Returns the file's header."""
+    network, the tick and time are restored too. Returns the file's header.
+
+    A file saved from one module or group loads into another of the same make (its items
+    are moved). A file written by Ikaros 3 (``ikaros_version`` 3.x) holds only persistent
+    outputs and state, named from the top group: its items are applied and the rest is
+    left as it is."""
     try:
         with open(filename, encoding="utf-8") as f:
             data = json.load(f)
@@ -213,16 +253,42 @@ def load(net, filename: str, scope: str | None = None) -> dict:
                          f'"{FORMAT}")')
     if not isinstance(data.get("items"), dict):
         raise StateError(f"{os.path.basename(filename)} does not contain an items object")
+    items = data["items"]
+    original = str(data.get("ikaros_version", "")).startswith("3")
+    if original:
+        items = _without_top_name(items, data.get("model_name"), net.top.name)
     saved_scope = data.get("scope") or "network"
-    if (scope or "network") != saved_scope:
-        raise StateError(f'the file holds the state of "{saved_scope}", not of '
-                         f'"{scope or "network"}"')
-    apply(net, data["items"], scope)
+    target = scope or "network"
+    if target != saved_scope:
+        if "network" in (target, saved_scope):
+            raise StateError(f'the file holds the state of "{saved_scope}", not of '
+                             f'"{target}"')
+        items = _remapped(items, saved_scope, target)
+    apply(net, items, scope, partial=original)
     if not scope and isinstance(data.get("tick"), int) and data["tick"] >= 0:
         net.tick = data["tick"]
         net.clock.tick = data["tick"]
         net.clock.time = data["tick"] * net.clock.tick_duration
     return {k: v for k, v in data.items() if k != "items"}
+
+
+def _without_top_name(items: dict, *names) -> dict:
+    """Ikaros 3 names items by their full path, the top group's name first."""
+    for name in filter(None, names):
+        prefix = f"{name}."
+        if items and all(k.startswith(prefix) for k in items):
+            return {k[len(prefix):]: v for k, v in items.items()}
+    return items
+
+
+def _remapped(items: dict, saved: str, target: str) -> dict:
+    """The items of a scoped file moved from the module or group it was saved from onto
+    another (Ikaros 3 does this too)."""
+    def moved(path):
+        if path.startswith(saved + "."):
+            return target + path[len(saved):]
+        raise StateError(f'item "{path}" is not in the saved scope "{saved}"')
+    return {moved(k): v for k, v in items.items()}
 
 
 class _Zeros:
@@ -239,7 +305,7 @@ class _Zeros:
 def capture_initial(net) -> dict:
     """The state right after init, kept for ``reset``."""
     out = {}
-    for path, (_, value) in values(net).items():
+    for path, (_, _, value) in values(net).items():
         zero = isinstance(value, np.ndarray) and not value.any()
         out[path] = _Zeros(value.shape, value.dtype) if zero else value
     return out

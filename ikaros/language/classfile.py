@@ -4,11 +4,11 @@ from __future__ import annotations
 import os
 
 from ..description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
-                           SIZE_RULE_KEYS, canonical_type)
+                           SIZE_RULE_KEYS, STATE_TYPES, StateSpec, canonical_type)
 from .diagnostics import warn_at
 from .node import Node
 from .reader import read_file
-from .values import ValueError_, parse_bool
+from .values import ValueError_, parse_bool, parse_int, parse_number
 
 
 def _flag(node: Node, key: str) -> bool:
@@ -48,6 +48,42 @@ def parameter_spec(node: Node) -> ParameterSpec:
                          options, node.get("control"))
 
 
+def _scalar_default(node: Node, stype: str):
+    """A scalar state's ``default``, read strictly by its type (Ikaros 3 refuses "12garbage"
+    for an int and "maybe" for a bool)."""
+    text = node.get("default")
+    if text is None or text == "":
+        return {"float": 0.0, "double": 0.0, "int": 0, "bool": False, "string": ""}[stype]
+    if stype == "string":
+        return text
+    try:
+        if stype == "int":
+            return parse_int(text)
+        if stype == "bool":
+            return parse_bool(text)
+        return parse_number(text)
+    except ValueError_ as e:
+        raise node.error(f"default {e}") from None
+
+
+def state_spec(node: Node) -> StateSpec:
+    """A <state> element of a class (Ikaros 3): a matrix with a shape, or a scalar."""
+    name = node.get("name")
+    if not name or not name.isidentifier():
+        raise node.error(f'a state needs a name that is an identifier, not "{name or ""}"')
+    stype = (node.get("type") or "matrix").strip().lower()
+    if stype not in STATE_TYPES:
+        raise node.error(f'state "{name}": unknown type "{stype}" (use one of '
+                         f'{", ".join(STATE_TYPES)})')
+    _flag(node, "persistent")       # checked; every state item is kept (docs/language.md)
+    if stype == "matrix":
+        rule = {k: node.get(k) for k in SIZE_RULE_KEYS if node.get(k) not in (None, "")}
+        if not rule:
+            raise node.error(f'state "{name}": a matrix state needs a shape')
+        return StateSpec(name, stype, None, node.get("description", ""), rule)
+    return StateSpec(name, stype, _scalar_default(node, stype), node.get("description", ""))
+
+
 def description_from_node(root: Node, expected_name: str | None = None) -> ClassDescription:
     """The ClassDescription declared by a <class> element."""
     name = root.get("name") or expected_name
@@ -72,7 +108,15 @@ def description_from_node(root: Node, expected_name: str | None = None) -> Class
             raise o.error("an output needs a name")
         rule = {k: o.get(k) for k in SIZE_RULE_KEYS if o.get(k) not in (None, "")}
         desc.outputs.append(OutputSpec(o.get("name"), o.get("description", ""), rule,
-                                       _flag(o, "optional")))
+                                       _flag(o, "optional"), _flag(o, "persistent")))
+    taken = {p.name for p in desc.inputs + desc.outputs}
+    for st in root.elements("state"):
+        spec = state_spec(st)
+        if spec.name in taken:
+            raise st.error("this name is declared twice (as state, input or output); a state "
+                           "item is bound to one variable")
+        taken.add(spec.name)
+        desc.states.append(spec)
     views = list(root.elements("view"))
     if views:
         desc.view = views[0]

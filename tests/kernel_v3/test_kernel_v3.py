@@ -12,7 +12,10 @@ expectations are read from root attributes, as the original harness does (TESTS.
 * ``expected_file_exists`` / ``_not_exists`` / ``expected_file_contains``
   (``path::text``).
 
-``${TEST_DIR}`` is the model's folder and ``${TMP}`` a fresh temporary folder. Where our
+``${TEST_DIR}`` is the model's folder and ``${TMP}`` a fresh temporary folder. A model that
+reads what another writes (a state file) names it in ``requires``: that model runs first,
+with the same ``${TMP}``, and must pass too. ``run_in_tmp="true"`` runs a copy of the model
+placed in ``${TMP}`` (for a model that writes beside itself). Where our
 documented semantics differ from Ikaros 3 (first tick 0, concatenation, ...), the models
 expect our result; docs/language.md lists the differences.
 
@@ -21,6 +24,7 @@ The test-only classes the models use live in ikaros/testsupport; the models reac
 """
 import os
 import shlex
+import shutil
 
 import pytest
 
@@ -48,6 +52,12 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
     """Runs one model through the CLI; returns its unmet expectations (none: it passes)."""
     path = os.path.join(MODELS, name)
     attrs = read_file(path, root_tag="group").attrs
+    for required in _texts(attrs, "requires"):
+        unmet = _run(os.path.join(os.path.dirname(name), required), tmp_path, capsys)
+        if unmet:
+            return [f"the required {required} failed:"] + unmet
+    if attrs.get("run_in_tmp") == "true":
+        path = shutil.copy(path, tmp_path)
 
     def expand(text):
         return text.replace("${TEST_DIR}", os.path.dirname(path)).replace("${TMP}",

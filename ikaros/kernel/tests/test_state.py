@@ -127,11 +127,11 @@ def test_a_state_that_does_not_fit_changes_nothing(model, tmp_path):
         assert net.tick == 3 and net.modules["C"].module.count == 3
 
     refused(lambda d: d["items"]["C.OUTPUT"].update(shape=[3], value=[1, 2, 3]),
-            r'item "C.OUTPUT" has shape \[3\] but the network\'s has shape \[2\]')
+            r'item "C.OUTPUT" has shape \[3\] but the target has shape \[2\]')
     refused(lambda d: d["items"]["C.count"].update(type="float", value=1.0),
-            'item "C.count" has type "float" but the network\'s has type "int"')
+            'item "C.count" has type "float" but target state has type "int"')
     refused(lambda d: d["items"]["C.count"].update(value="six"),
-            'item "C.count": expected a int value')
+            'item "C.count": Expected integer value, not "six"')
     refused(lambda d: d["items"].pop("A.OUTPUT"), r"missing: A\.OUTPUT")
     refused(lambda d: d.update(format="other"), "unsupported format")
     refused(lambda d: d.pop("items"), "does not contain an items object")

@@ -16,7 +16,10 @@ class Delta(Module):
     learned response has inhibited it, as in the cerebellum (Ikaros 2 declared this
     parameter but ignored it). ``beta``, ``gamma``, ``delta`` and ``epsilon`` are unused, as
     in Ikaros 2; they are kept so models that set them load unchanged. The command ``reset``
-    sets the weights to zero."""
+    sets the weights to zero; the weights are state, kept by save, load and reset of the
+    state (as ``weights``)."""
+
+    state = ("weights",)
 
     alpha = Parameter(0.1, "the learning rate")
     beta = Parameter(1.0, "unused (kept for Ikaros 2 models)")

@@ -1,0 +1,6 @@
+"""TwiceBoundState: the implementation of fixture_classes/TwiceBoundState.ikc."""
+from ikaros.module import Module
+
+
+class TwiceBoundState(Module):
+    pass
