@@ -151,3 +151,151 @@ def test_startup_steps_are_timed(model):
     assert steps == ["read the model file", "groups and modules", "classes and ports",
                      "connections", "sizes", "delays and schedule", "memory",
                      "compile the tick", "init of the modules"]
+
+
+TYPED = '''
+import numpy as np
+from ikaros.module import Input, Module, Output, State
+
+
+class Typed(Module):
+    """Test class: declared state of every type."""
+    INPUT = Input("summed into SUM")
+    OUTPUT = Output("SUM times gain", shape="INPUT.shape")
+    SUM = State(description="private matrix state", shape="INPUT.shape")
+    gain = State(2.0, "a float")
+    weight = State(0.5, type="double")
+    steps = State(0)
+    on = State(True)
+    name_ = State("new", name="label")
+
+    def tick(self):
+        self.SUM += self.INPUT
+        self.steps += 1
+        self.OUTPUT[...] = self.SUM * self.gain
+'''
+
+TYPED_MODEL = '''<group name="T">
+  <module class="Constant" name="C" data="1, 2"/>
+  <module class="Typed" name="A"/>
+  <module class="Typed" name="B"/>
+  <connection source="C.OUTPUT" target="A.INPUT"/>
+  <connection source="C.OUTPUT" target="B.INPUT"/>
+</group>'''
+
+
+@pytest.fixture
+def typed(tmp_path):
+    (tmp_path / "Typed.py").write_text(TYPED)
+    path = tmp_path / "t.ikg"
+    path.write_text(TYPED_MODEL)
+    return str(path)
+
+
+def test_declared_state_is_saved_with_its_types_and_is_not_a_port(typed, tmp_path):
+    net = ikaros.load(typed)
+    desc = net.modules["A"].module.description
+    assert [(s.name, s.type, s.default) for s in desc.states] == [
+        ("SUM", "matrix", None), ("gain", "float", 2.0), ("weight", "double", 0.5),
+        ("steps", "int", 0), ("on", "bool", True), ("label", "string", "new")]
+    net.run(3)
+    net.modules["A"].module.label = "three"
+    header = net.save_state(str(tmp_path / "s.state"))
+    net.close()
+    items = json.loads((tmp_path / "s.state").read_text())["items"]
+    assert header["item_count"] == 1 + 2 * 7
+    assert items["A.SUM"] == {"kind": "state", "type": "matrix", "shape": [2],
+                              "value": [3.0, 6.0]}
+    assert items["A.OUTPUT"]["value"] == [6.0, 12.0]
+    assert {k: v["value"] for k, v in items.items() if k.startswith("A.") and
+            v["type"] != "matrix"} == {"A.gain": 2.0, "A.weight": 0.5, "A.steps": 3,
+                                       "A.on": True, "A.label": "three"}
+    assert items["A.weight"]["type"] == "double" and items["A.gain"]["type"] == "float"
+
+
+def test_network_state_methods_and_the_default_file(typed, tmp_path, capsys):
+    net = ikaros.load(typed)
+    assert net.state_file() == str(tmp_path / "t.state")
+    net.run(2)
+    net.save_state()
+    assert f"Saved state to {tmp_path / 't.state'} (15 items, tick 2)" in capsys.readouterr().out
+    net.run(2)
+    net.reset_state("A")
+    assert net.tick == 4 and net.modules["A"].module.steps == 0
+    assert net.modules["B"].module.steps == 4
+    net.close()
+    again = ikaros.load(typed, load_state=True)
+    assert "Loaded state from" in capsys.readouterr().out
+    assert again.tick == 2 and again.modules["B"].module.steps == 2
+    np.testing.assert_array_equal(again.modules["B"].module.SUM, [2, 4])
+    again.close()
+
+
+def test_a_scoped_state_loads_into_another_module_of_the_same_make(typed, tmp_path):
+    net = ikaros.load(typed)
+    net.run(2)
+    net.modules["A"].module.label = "trained"
+    net.save_state(str(tmp_path / "a.state"), "A")
+    net.load_state(str(tmp_path / "a.state"), "B")
+    b = net.modules["B"].module
+    assert b.label == "trained" and b.steps == 2
+    net.modules["A"].module.label = "changed"
+    assert b.label == "trained"
+    net.close()
+
+
+def _original(tmp_path, items):
+    (tmp_path / "v3.state").write_text(json.dumps({
+        "format": "ikaros-state-v1", "tick": 4, "ikaros_version": "3.0",
+        "model_name": "T", "scope": "network", "item_count": len(items), "items": items}))
+    return str(tmp_path / "v3.state")
+
+
+def test_a_state_file_of_ikaros_3_sets_the_items_it_holds(typed, tmp_path):
+    net = ikaros.load(typed)
+    net.run(1)
+    net.load_state(_original(tmp_path, {
+        "T.A.SUM": {"kind": "state", "type": "matrix", "shape": [2], "value": [5, 7]},
+        "T.A.weight": {"kind": "state", "type": "double", "value": 0.25}}))
+    a = net.modules["A"].module
+    np.testing.assert_array_equal(a.SUM, [5, 7])
+    assert (a.weight, a.steps, net.tick) == (0.25, 1, 4)
+    with pytest.raises(ikaros.StateError, match=r"not in the network: A\.nothing"):
+        net.load_state(_original(tmp_path, {"T.A.nothing": {"type": "int", "value": 1}}))
+    with pytest.raises(ikaros.StateError,
+                       match='item "A.weight" has type "float" but target state has type '
+                             '"double"'):
+        net.load_state(_original(tmp_path, {"T.A.weight": {"type": "float", "value": 1.0}}))
+    net.close()
+
+
+def test_bad_state_declarations_are_refused():
+    with pytest.raises(TypeError, match="the default 'x' is not a int"):
+        class BadDefault(ikaros.Module):
+            n = ikaros.State("x", type="int")
+    with pytest.raises(TypeError, match="a matrix state needs a shape"):
+        class NoShape(ikaros.Module):
+            m = ikaros.State(type="matrix")
+    with pytest.raises(TypeError, match="the state n is declared twice"):
+        class Twice(ikaros.Module):
+            state = ("n",)
+            n = ikaros.State(0)
+
+
+def test_delta_weights_are_state(tmp_path):
+    path = tmp_path / "d.ikg"
+    path.write_text('<group name="G"><module class="Constant" name="CS" data="1, 0"/>'
+                    '<module class="Constant" name="US" data="2"/>'
+                    '<module class="Delta" name="D" alpha="0.5"/>'
+                    '<connection source="CS.OUTPUT" target="D.CS"/>'
+                    '<connection source="US.OUTPUT" target="D.US"/></group>')
+    net = ikaros.load(str(path))
+    net.run(1)                                  # error 2: w = 0.5 * 2 * [1, 0]
+    net.save_state()
+    net.run(1)
+    np.testing.assert_array_equal(net.modules["D"].module.weights, [1.5, 0])
+    net.load_state()
+    np.testing.assert_array_equal(net.modules["D"].module.weights, [1, 0])
+    net.reset_state()
+    np.testing.assert_array_equal(net.modules["D"].module.weights, [0, 0])
+    net.close()

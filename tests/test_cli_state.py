@@ -1,0 +1,48 @@
+"""ikaros -W / -L: the state saved at the end of a run and loaded after init."""
+import json
+
+from ikaros import cli
+
+# A counter printed: P prints 0, 1, 2, ... on ticks 0, 1, 2, ... (every connection has the
+# default delay 1)
+MODEL = ('<group name="G" stop="3"><module class="Constant" name="C" data="1"/>'
+         '<module class="Add" name="S"/><module class="Print" name="P"/>'
+         '<connection source="C.OUTPUT" target="S.INPUT1"/>'
+         '<connection source="S.OUTPUT" target="S.INPUT2" delay="1"/>'
+         '<connection source="S.OUTPUT" target="P.INPUT"/></group>')
+
+
+def _model(tmp_path):
+    path = tmp_path / "ramp.ikg"
+    path.write_text(MODEL)
+    return str(path)
+
+
+def test_w_then_l_continues_the_run_where_it_ended(tmp_path, capsys):
+    model = _model(tmp_path)
+    assert cli.main(["-b", "-W", model]) == 0
+    out = capsys.readouterr().out
+    assert out.splitlines()[:3] == ["P: 0", "P: 1", "P: 2"]
+    assert f"Saved state to {tmp_path / 'ramp.state'} (2 items, tick 3)" in out
+    assert json.loads((tmp_path / "ramp.state").read_text())["tick"] == 3
+    assert cli.main(["-b", "-L", "-s", "2", model]) == 0       # ticks 3 and 4
+    out = capsys.readouterr().out
+    assert out.splitlines() == [f"Loaded state from {tmp_path / 'ramp.state'} (tick 3)",
+                                "P: 3", "P: 4"]
+
+
+def test_a_name_value_pair_after_a_bare_w_is_not_its_file(tmp_path, capsys):
+    model = _model(tmp_path)
+    assert cli.main(["-b", "-W", "stop=1", model]) == 0
+    assert "(2 items, tick 1)" in capsys.readouterr().out
+    assert (tmp_path / "ramp.state").exists() and not (tmp_path / "stop=1").exists()
+
+
+def test_state_files_that_cannot_be_read_or_written_exit_1(tmp_path, capsys):
+    model = _model(tmp_path)
+    assert cli.main(["-b", f"-W{tmp_path}/no/such/folder.state", model]) == 1
+    err = capsys.readouterr().err
+    assert "ikaros: error: cannot save the state: No such file or directory" in err
+    assert cli.main(["-b", "--load-state", str(tmp_path / "none.state"), model]) == 1
+    err = capsys.readouterr().err
+    assert "ikaros: error: cannot load the state: cannot read none.state: No such file" in err
