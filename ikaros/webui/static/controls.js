@@ -95,17 +95,45 @@ export class Controls {
         const item = (id, text, title, fn) => {
             const b = button(list, id, text, title, async () => { menu.open = false; await fn(); });
             b.className = "tool small";
+            return b;
         };
-        item("state-save", "Save state…", "save every module's outputs and state to a file", () => this.saveState());
-        item("state-load", "Load state…", "load a saved state", () => this.loadState());
-        item("state-reset", "Reset state", "every module back to its state after init, tick 0", () => this.state({ action: "reset" }));
+        this.stateItems = {
+            save: item("state-save", "Save state…", "", () => this.saveState()),
+            load: item("state-load", "Load state…", "", () => this.loadState()),
+            reset: item("state-reset", "Reset state", "", () => this.state({ action: "reset" })),
+        };
         item("quit", "Quit", "stop the run and end ikaros", () => this.quit());
+        this.labelStateItems();
+        // the items say what they act on: the model, or the module or group selected
+        summary.addEventListener("click", () => this.labelStateItems());
         el.appendChild(menu);
     }
 
+    labelStateItems() {
+        const scope = this.scope();
+        const { save, load, reset } = this.stateItems;
+        if (scope) {
+            save.textContent = `Save state of ${scope}…`;
+            save.title = `save the outputs and state of ${scope} to a file`;
+            load.textContent = `Load state into ${scope}…`;
+            load.title = `load a state saved from ${scope} (or from another module of its class)`;
+            reset.textContent = `Reset state of ${scope}`;
+            reset.title = `${scope} back to its state after init; the tick stays`;
+        } else {
+            save.textContent = "Save state…";
+            save.title = "save every module's outputs and state, and the tick, to a file";
+            load.textContent = "Load state…";
+            load.title = "load a saved state";
+            reset.textContent = "Reset state";
+            reset.title = "every module back to its state after init, tick 0";
+        }
+    }
+
+    /** model.state, or model.A.B.state for the state of the selected A.B. */
     defaultStateFile() {
         const file = document.querySelector("#file-name")?.textContent.replace(/ •$/, "") || "model.ikg";
-        return file.replace(/\.ikg$/, "") + ".state";
+        const scope = this.scope();
+        return file.replace(/\.ikg$/, "") + (scope ? "." + scope : "") + ".state";
     }
 
     async saveState() {
