@@ -689,7 +689,8 @@ class Network:
                     shape = "unconnected" if kind == "input" and not buf.incoming else \
                         "x".join(map(str, buf.shape)) or "scalar"
                     shared = " (shares its source's memory)" if buf in self._shared else ""
-                    lines.append(f"    {kind} {name}: {shape}{shared}")
+                    private = kind == "output" and inst.module._ik_outputs[name].private
+                    lines.append(f"    {'state' if private else kind} {name}: {shape}{shared}")
         lines += ["", "Connections:"]
         for run in self.runs:
             lines.append(f"  {run.source.path} -> {run.target.path} delay {run.delay} "
