@@ -193,10 +193,20 @@ def _serve(net, opts, failure: dict | None = None) -> int:
     if opts.stop is not None:
         net.stop_tick = opts.stop
 
-    served = []
+    saved = [True]
+
+    def end(current):
+        """-W: the state of the network served at the end (the editor may have built
+        another in the model's place; not the stand-in of a model that failed to build)."""
+        if not opts.save_state or (failure is not None and current is net):
+            return
+        if current.stop_reason and current.stop_reason[0] == FATAL_ERROR:
+            print("ikaros: the state is not saved: the run ended with a fatal error",
+                  file=sys.stderr)
+            return
+        saved[0] = _save_state(current, opts)
 
     def ready(url):
-        served.append(url)
         print(f"ikaros: serving {os.path.basename(net.filename)} at "
               f"{url}{'?token=' + token if token else ''}  (Ctrl-C to quit)", flush=True)
         if token:
@@ -205,20 +215,19 @@ def _serve(net, opts, failure: dict | None = None) -> int:
         net.profiling = opts.profile
         serve(net, host, 8000 if opts.port is None else opts.port, token, state,
               on_ready=ready, models_dir=opts.models, max_memory=opts.max_memory,
-              max_body=opts.max_body, build_timeout=opts.build_timeout, failure=failure)
+              max_body=opts.max_body, build_timeout=opts.build_timeout, failure=failure,
+              on_end=end)
     except ServeError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
         return EXIT_ERROR
     except KeyboardInterrupt:
         pass
     finally:
-        saved = not (opts.save_state and served and failure is None) or \
-            _save_state(net, opts)
         net.close()
         if opts.profile:
             print(net.profile_text())
         _leave_stuck_builds()
-    return EXIT_OK if saved else EXIT_ERROR
+    return EXIT_OK if saved[0] else EXIT_ERROR
 
 
 def _leave_stuck_builds() -> None:

@@ -941,12 +941,13 @@ def listen(host: str, port: int) -> socket.socket:
 
 def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = None,
           state: str = "pause", static_dir: str | None = None, sock=None,
-          on_ready=None, **app_options) -> None:
+          on_ready=None, on_end=None, **app_options) -> None:
     """Serve the web UI of ``net`` until Ctrl-C (or SIGTERM), with the kernel running in
     the controller's background thread, starting in ``state``. Serving another machine
     (a host that is not a loopback address) requires a token. ``on_ready(url)`` is called
-    once the socket listens. The kernel loop is stopped on return; the caller closes the
-    network (a network the editor built in its place is closed here)."""
+    once the socket listens; ``on_end(network)`` once the kernel loop has stopped, with the
+    network then served (the editor may have built another), before it is closed. The
+    caller closes ``net`` (a network the editor built in its place is closed here)."""
     import uvicorn
     if token is None and not is_loopback(host):
         raise ServeError(f"serving {host} (not this machine only) requires an access token")
@@ -983,6 +984,8 @@ def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = No
         current = app.state.ui.net          # the editor may have replaced the network
         current.controller.stop()
         current.controller.join(10)
+        if on_end is not None:
+            on_end(current)
         if current is not net:
             current.close()
         sock.close()
