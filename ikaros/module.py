@@ -251,10 +251,12 @@ class Module:
                                                    for n in state):
             raise TypeError(f"{cls.__name__}.state must be a tuple of attribute names (the "
                             f"module's state kept by save, load and reset of the state)")
-        twice = sorted((set(state) & set(states)) | {n for n in state if state.count(n) > 1})
+        twice = sorted((set(state) & set(states)) | {n for n in state if state.count(n) > 1}
+                       | (set(states) & (set(params) | set(inputs) | set(outputs))))
         if twice:
             raise TypeError(f"{cls.__name__}: the state {', '.join(twice)} is declared twice "
-                            f"(a state item is bound to one variable)")
+                            f"(as state, parameter, input or output; a state item is bound "
+                            f"to one variable)")
         doc = " ".join((cls.__doc__ or "").split())
         cls.description = ClassDescription(cls.__name__, doc, list(params.values()),
                                            list(inputs.values()), list(outputs.values()),

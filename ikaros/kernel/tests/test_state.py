@@ -280,6 +280,12 @@ def test_bad_state_declarations_are_refused():
         class Twice(ikaros.Module):
             state = ("n",)
             n = ikaros.State(0)
+    with pytest.raises(TypeError, match="the state OUTPUT is declared twice"):
+        class AlsoAnOutput(ikaros.Module):
+            OUTPUT = ikaros.Output(shape="1")
+
+        class Sub(AlsoAnOutput):
+            OUTPUT = ikaros.State(shape="2")
 
 
 def test_delta_weights_are_state(tmp_path):
