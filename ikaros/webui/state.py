@@ -20,9 +20,8 @@ STATE_FILE_PATTERN = r"^[A-Za-z0-9_][A-Za-z0-9_. -]*\.state$"
 
 
 def default_state_file(net) -> str:
-    """``model.state`` beside ``model.ikg``."""
-    stem = os.path.splitext(os.path.basename(net.filename or "model"))[0]
-    return stem + ".state"
+    """``model.state`` (in the models folder, as ``model.ikg`` is)."""
+    return os.path.basename(net.state_file())
 
 
 def _state_path(ui, name: str) -> str:

@@ -114,7 +114,8 @@ def test_support_classes_are_found_but_internal():
     """The test-only classes are found in their folder but listed nowhere."""
     support = os.path.join(os.path.dirname(ikaros.__file__), "testsupport")
     registry = ClassRegistry([support])
-    names = ["KernelTestModule", "DelaySequenceSource", "TaskLifecycleTestModule"]
+    names = ["KernelTestModule", "DelaySequenceSource", "TaskLifecycleTestModule",
+             "PersistentStateTestModule"]
     for name in names:
         assert registry.find(name).description().internal, name
     listed = ikaros.classes(support)
