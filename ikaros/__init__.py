@@ -21,10 +21,11 @@ from .language.diagnostics import Diagnostics, ModelWarning
 from .kernel.classes import classes as _classes
 from .kernel.network import Network
 from .model import Group
-from .module import Input, Module, Output, Parameter
+from .module import DynamicArray, Input, Module, Output, Parameter
 
 __version__ = "0.1.0"
 __all__ = ["load", "classes", "Group", "Network", "Module", "Parameter", "Input", "Output",
+           "DynamicArray",
            "ModelError", "ModelWarning", "RunError", "ClassDescription", "open_recording",
            "sweep"]
 

@@ -89,17 +89,33 @@ class OutputSpec:
     description: str = ""
     rule: dict[str, str] = field(default_factory=dict)
     optional: bool = False
+    dynamic: bool = False   # Ikaros 3 dynamic="yes": the shape changes at run time; the
+                            # rule is then {"capacity": ...}, the largest shape
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "description": self.description}
         d.update(self.rule)
         if self.optional:
             d["optional"] = True
+        if self.dynamic:
+            d["dynamic"] = True
         return d
 
     def rule_text(self) -> str:
         """A short human-readable form of the size rule."""
         return ", ".join(f"{k}={v}" for k, v in self.rule.items()) or "set by the module"
+
+
+def dynamic_rule(dynamic: bool, capacity: str | None, rule: dict) -> str | None:
+    """Why a dynamic output's declaration is wrong (None when it is right): ``dynamic``
+    needs a ``capacity`` and no other size rule, and ``capacity`` needs ``dynamic``."""
+    if dynamic and not capacity:
+        return "a dynamic output needs a capacity (its largest shape)"
+    if capacity and not dynamic:
+        return 'capacity is for dynamic outputs (dynamic="yes")'
+    if dynamic and rule:
+        return f"a dynamic output is sized by its capacity, not by {', '.join(rule)}"
+    return None
 
 
 @dataclass

@@ -25,6 +25,7 @@ from .ranges import check_parameter
 from .schedule import schedule
 from .startup import StartupSteps
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
+from .dynamic import check_dynamic_connections, unresolved_capacity
 from .sizes import SizeError, WAIT, rule_shape, shape_expression
 from .tree import Component, Group, ModuleInstance, Scope, find_component
 
@@ -330,6 +331,7 @@ class Builder:
         for spec in module._ik_outputs.values():
             buf = Buffer("output", inst, spec.name, optional=spec.optional, node=inst.node)
             buf.shape = module._ik_output_shapes.get(spec.name)
+            buf.dynamic = spec.dynamic
             outputs[spec.name] = buf
         self.buffers[inst] = (inputs, outputs)
 
@@ -613,7 +615,10 @@ class Builder:
                 if shape is not WAIT:
                     check_shape(shape)
             except (SizeError, LimitError) as e:
-                raise inst.node.error(f'size of output "{name}": {e}') from None
+                what = f'capacity of dynamic output "{name}" of {inst.path} ' \
+                       f'("{spec.rule["capacity"]}")' if spec.dynamic else \
+                       f'size of output "{name}"'
+                raise inst.node.error(f"{what}: {e}") from None
             if shape is WAIT:
                 waiting = True
             else:
@@ -645,6 +650,8 @@ class Builder:
                 if buf.shape is None:
                     if buf.optional or not buf.outgoing:
                         buf.shape = (0,) if buf.optional else buf.shape
+                    if buf.shape is None and buf.dynamic:
+                        raise inst.node.error(unresolved_capacity(inst, buf))
                     if buf.shape is None:
                         rule = inst.module._ik_outputs[name].rule_text()
                         raise inst.node.error(f'the size of output "{name}" of {inst.path} '
@@ -679,6 +686,8 @@ class Builder:
         with step("connections"):
             for order, (node, group) in enumerate(self.connections):
                 self.connect(order, node, group)
+            check_dynamic_connections(buf for inst in self.instances
+                                      for buf in self.buffers[inst][1].values())
         with step("sizes"):
             self.resolve_sizes()
         with step("delays and schedule"):

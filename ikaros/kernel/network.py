@@ -11,6 +11,7 @@ import numpy as np
 from ..errors import ModelError, RunError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.values import ValueError_, format_number, value_text
+from ..dynamic import DynamicArray
 from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
                       WARNING, attribute_name, parameter_attribute)
@@ -19,6 +20,7 @@ from .buffers import Run
 from .compiled.background import BackgroundPlan
 from .compiled.plan import CompiledRun, compiled_gather, compiled_plan
 from .control import PLAY, REALTIME, Controller
+from .dynamic import DynamicRing, delayed_copy
 from .execution import AsyncModule, Plan, module_tick
 from .fusion import fuse
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
@@ -121,10 +123,14 @@ class Network:
         for run in self.runs:
             runs_by_target[run.target].append(run)
         self._shared = {}
+        dynamic = []        # dynamic buffers: outside the arena
         for inst in self.schedule:
             inputs, outputs = self._buffers[inst]
             for buf in outputs.values():
-                requests.append((buf, arena.request(buf.shape)))
+                if buf.dynamic:
+                    dynamic.append(buf)
+                else:
+                    requests.append((buf, arena.request(buf.shape)))
         for inst in self.schedule:
             inputs, _ = self._buffers[inst]
             for buf in inputs.values():
@@ -133,6 +139,8 @@ class Network:
                 runs = runs_by_target[buf]
                 if len(runs) == 1 and runs[0].delay == 0 and runs[0].whole:
                     self._shared[buf] = runs[0].source
+                elif buf.dynamic:
+                    dynamic.append(buf)
                 else:
                     requests.append((buf, arena.request(buf.shape)))
         deepest: dict = {}
@@ -143,15 +151,21 @@ class Network:
         views, offsets = arena.views, arena.offsets
         for buf, k in requests:
             buf.array, buf.offset = views[k], offsets[k]
+        for buf in dynamic:
+            buf.dynamic_array = DynamicArray(buf.shape)
+            buf.array = buf.dynamic_array.storage
         for buf, source in self._shared.items():
             buf.array, buf.offset = source.array.reshape(buf.shape), source.offset
+            buf.dynamic_array = source.dynamic_array
         ring_arena = Arena()
         self.rings = {src: Ring(src.array, d - 1, ring_arena) for src, d in deepest.items()
-                      if d >= 2}
+                      if d >= 2 and not src.dynamic}
         ring_arena.allocate()
         for ring in self.rings.values():
             ring.bind()
         self.ring_arena = ring_arena
+        self.dynamic_rings = {src: DynamicRing(src.dynamic_array, d - 1)
+                              for src, d in deepest.items() if d >= 2 and src.dynamic}
         self.async_modules: dict = {}
         for inst in self.schedule:
             inputs, outputs = self._buffers[inst]
@@ -164,7 +178,8 @@ class Network:
             module = inst.module
             for ports in (inputs, outputs):
                 for name, buf in ports.items():
-                    setattr(module, attribute_name(name), buf.array)
+                    setattr(module, attribute_name(name),
+                            buf.array if buf.dynamic_array is None else buf.dynamic_array)
 
     def _compile(self) -> None:
         self._delayed = []
@@ -172,6 +187,12 @@ class Network:
         pre_tick: dict = collections.defaultdict(list)
         for run in self.runs:
             if run.target in self._shared:
+                continue
+            if run.source.dynamic:
+                self._delayed.append(delayed_copy(run.target.dynamic_array,
+                                                  run.source.dynamic_array,
+                                                  run.delay,
+                                                  self.dynamic_rings.get(run.source)))
                 continue
             dst = run.target.array
             if run.delay == 0:
@@ -192,7 +213,7 @@ class Network:
         if bulk_copy is not None:
             self._delayed.insert(0, bulk_copy)
         self._pre_tick = pre_tick
-        self._ring_list = list(self.rings.values())
+        self._ring_list = list(self.rings.values()) + list(self.dynamic_rings.values())
         tick_of = {inst: module_tick(inst, self.clock) if inst not in self.async_modules
                    else self.async_modules[inst] for inst in self.schedule}
         block = self.arena.block
@@ -655,6 +676,8 @@ class Network:
                 for name, buf in bufs.items():
                     shape = "unconnected" if kind == "input" and not buf.incoming else \
                         "x".join(map(str, buf.shape)) or "scalar"
+                    if buf.dynamic:
+                        shape = f"dynamic, capacity {shape}"
                     shared = " (shares its source's memory)" if buf in self._shared else ""
                     lines.append(f"    {kind} {name}: {shape}{shared}")
         lines += ["", "Connections:"]
