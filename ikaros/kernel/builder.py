@@ -26,6 +26,7 @@ from .schedule import schedule
 from .startup import StartupSteps
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
 from .dynamic import check_dynamic_connections, unresolved_capacity
+from .gating import MODULE_START, first_tick, start_steps
 from .sizes import SizeError, WAIT, rule_shape, shape_expression
 from .tree import Component, Group, ModuleInstance, Scope, find_component
 
@@ -255,9 +256,10 @@ class Builder:
             raise inst.node.error(f"configure failed: {fault_text(e)}") from None
 
     def _run_settings(self, inst: ModuleInstance) -> None:
-        """``period``, ``phase`` and ``async`` of a module element."""
+        """``period``, ``phase``, ``async``, ``module_start`` and ``start_tick`` of a
+        module element."""
         attrs = inst.attrs
-        if "period" not in attrs and "phase" not in attrs and "async" not in attrs:
+        if not _RUN_SETTINGS.intersection(attrs):
             return                          # the defaults of ModuleInstance
 
         def setting(key, default, parse):
@@ -276,6 +278,14 @@ class Builder:
         if inst.period < 1 or not 0 <= inst.phase < inst.period:
             raise inst.node.error(f"period must be >= 1 and phase in 0..period-1 (period "
                                   f"{inst.period}, phase {inst.phase})")
+        start = setting("module_start", "at_tick", str).strip()
+        if start not in MODULE_START:
+            raise inst.node.error(f'module_start="{start}" must be at_tick, first_data or '
+                                  f'all_data (or 0, 1, 2)')
+        inst.module_start = MODULE_START[start]
+        inst.start_tick = setting("start_tick", 0, parse_int)
+        if inst.start_tick < 0:
+            raise inst.node.error(f"start_tick must be >= 0 (start_tick {inst.start_tick})")
 
     def _parameter(self, inst: ModuleInstance, spec) -> tuple[object, bool]:
         try:
@@ -692,7 +702,15 @@ class Builder:
             self.resolve_sizes()
         with step("delays and schedule"):
             order, runs, edges = self._schedule()
+            self._start_gating(runs)
         return (self.network_factory or Network)(self, top, order, runs, edges)
+
+    def _start_gating(self, runs) -> None:
+        """Each module's start-up steps, and the first tick of those that wait for them or
+        for ``start_tick``."""
+        for inst, steps in start_steps(self.instances, runs).items():
+            inst.module._ik_start_steps = steps
+            inst.first_tick = first_tick(inst, steps)
 
     def _schedule(self):
         memo: dict = {}
@@ -706,6 +724,10 @@ class Builder:
                         if run.delay == 0:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)
         return schedule(self.instances, edges), runs, edges
+
+
+# the module element's attributes that _run_settings reads
+_RUN_SETTINGS = frozenset(("period", "phase", "async", "module_start", "start_tick"))
 
 
 def _missing(node: Node, message: str) -> ModelError:

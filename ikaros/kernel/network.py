@@ -22,6 +22,7 @@ from .compiled.plan import CompiledRun, compiled_gather, compiled_plan
 from .control import PLAY, REALTIME, Controller
 from .dynamic import DynamicRing, delayed_copy
 from .execution import AsyncModule, Plan, module_tick
+from .gating import gated
 from .fusion import fuse
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .limits import check_memory as _check_memory
@@ -215,7 +216,8 @@ class Network:
         self._pre_tick = pre_tick
         self._ring_list = list(self.rings.values()) + list(self.dynamic_rings.values())
         tick_of = {inst: module_tick(inst, self.clock) if inst not in self.async_modules
-                   else self.async_modules[inst] for inst in self.schedule}
+                   else gated(self.async_modules[inst], inst, self.clock)
+                   for inst in self.schedule}
         block = self.arena.block
         minimum = self._compiled_minimum()
         self._background = None
@@ -569,13 +571,18 @@ class Network:
         return comp, name
 
     def buffer_array(self, path: str) -> np.ndarray:
-        """The live array of a module output or input (not a copy; do not write to it)."""
+        """The live array of a module output or input (not a copy; do not write to it).
+        Of a dynamic buffer, the whole capacity."""
+        buf = self._buffer(path)
+        return buf.array if buf.array is not None else np.zeros((0,), np.float32)
+
+    def _buffer(self, path: str):
         comp, name = self._component(path, "output or input")
         if isinstance(comp, ModuleInstance):
             inputs, outputs = self._buffers[comp]
             buf = outputs.get(name) or inputs.get(name)
             if buf is not None:
-                return buf.array if buf.array is not None else np.zeros((0,), np.float32)
+                return buf
         raise KeyError(f'no output or input "{path}" in {self.top.name}')
 
     def ports(self, module: str) -> tuple[list, list]:
@@ -587,8 +594,12 @@ class Network:
         return list(inst.module._ik_inputs.values()), list(inst.module._ik_outputs.values())
 
     def output(self, path: str) -> np.ndarray:
-        """A copy of a module output (or input) as computed in the last completed tick."""
-        return self.buffer_array(path).copy()
+        """A copy of a module output (or input) as computed in the last completed tick (of
+        a dynamic one, its current shape and values)."""
+        buf = self._buffer(path)
+        if buf.dynamic_array is not None:
+            return buf.dynamic_array.data.copy()
+        return buf.array.copy() if buf.array is not None else np.zeros((0,), np.float32)
 
     def parameter(self, path: str) -> Any:
         """The current value of a module parameter (or a group attribute, as text)."""

@@ -51,7 +51,7 @@ def fragment(inst, inputs: dict, outputs: dict, copies: list):
     """How a module runs compiled: (kind, fragment, loader), where kind is "standard" for
     the instructions of a standard operation (its zero-delay copies, then its tick) and
     (class, argument layout) for a user module's compiled tick; or None (Python)."""
-    if inst.asynchronous or inst.period != 1 or not _in_arena(inputs, outputs):
+    if inst.asynchronous or not inst.every_tick or not _in_arena(inputs, outputs):
         return None
     module = inst.module
     emit = emitter(type(module))
