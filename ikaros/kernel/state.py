@@ -7,7 +7,8 @@ The state of a module is its outputs and the attributes its class names in ``sta
         OUTPUT = Output(shape=1)
 
 The state of the network is that of every module, plus its delay lines (the older values of
-outputs read through delays of 2 or more) and the tick. A state file is JSON::
+outputs read through delays of 2 or more) and the tick. A dynamic output is kept with its
+current shape (not its delay line). A state file is JSON::
 
     {"format": "ikaros-state-v1", "tick": 120, "time": 1.2, "saved_at_utc": "...",
      "ikaros_version": "0.1.0", "model_filename": "demo.ikg", "model_name": "Demo",
@@ -15,6 +16,8 @@ outputs read through delays of 2 or more) and the tick. A state file is JSON::
      "items": {"A.OUTPUT": {"kind": "output", "type": "matrix", "shape": [2],
                             "value": [1, 2]},
                "A.count": {"kind": "state", "type": "int", "value": 4},
+               "A.ROWS": {"kind": "dynamic", "type": "matrix", "shape": [1, 2],
+                          "value": [[5, 6]]},
                "A.OUTPUT@delay": {"kind": "delay", "type": "matrix", "shape": [2, 2],
                                   "value": [[...], [...]]}}}
 
@@ -67,6 +70,9 @@ def values(net, scope: str | None = None) -> dict:
         _, outputs = net._buffers[inst]
         for name, buf in outputs.items():
             path = f"{inst.path}.{name}"
+            if buf.dynamic_array is not None:     # its current shape and values
+                out[path] = ("dynamic", buf.dynamic_array.data.copy())
+                continue
             out[path] = ("output", np.array(buf.array, copy=True))
             ring = net.rings.get(buf)
             if ring is not None:
@@ -109,7 +115,9 @@ def collect(net, scope: str | None = None) -> dict:
     return {path: _item(kind, v) for path, (kind, v) in values(net, scope).items()}
 
 
-def _decode(path: str, item, current) -> object:
+def _decode(path: str, item, current, capacity: tuple | None = None) -> object:
+    """An item's value checked against the network's (``capacity``: of a dynamic output,
+    whose shape may be any that fits it)."""
     if not isinstance(item, dict) or "value" not in item or "type" not in item:
         raise StateError(f'item "{path}" must be an object with "type" and "value"')
     want = _type(current)
@@ -122,7 +130,11 @@ def _decode(path: str, item, current) -> object:
             arr = np.array(value, dtype=np.float64)
         except (TypeError, ValueError):
             raise StateError(f'item "{path}": the value is not a matrix of numbers') from None
-        if arr.shape != current.shape:
+        if capacity is not None:
+            if arr.ndim != len(capacity) or any(s > c for s, c in zip(arr.shape, capacity)):
+                raise StateError(f'item "{path}" has shape {list(arr.shape)}, which does not '
+                                 f'fit the capacity {list(capacity)} of the dynamic output')
+        elif arr.shape != current.shape:
             raise StateError(f'item "{path}" has shape {list(arr.shape)} but the network\'s '
                              f'has shape {list(current.shape)}')
         return arr
@@ -154,6 +166,9 @@ def _write(net, scope: str | None, new: dict) -> None:
         _, outputs = net._buffers[inst]
         for name, buf in outputs.items():
             path = f"{inst.path}.{name}"
+            if buf.dynamic_array is not None:
+                buf.dynamic_array.set(new[path])
+                continue
             np.copyto(buf.array, new[path], casting="unsafe")
             ring = net.rings.get(buf)
             if ring is not None:
@@ -175,7 +190,11 @@ def apply(net, items: dict, scope: str | None = None) -> None:
     checked before anything changes."""
     now = values(net, scope)
     _fit(now, items)
-    _write(net, scope, {p: _decode(p, items[p], v) for p, (_, v) in now.items()})
+    capacity = {f"{inst.path}.{name}": buf.dynamic_array.capacity
+                for inst in _modules(net, scope)
+                for name, buf in net._buffers[inst][1].items() if buf.dynamic_array is not None}
+    _write(net, scope, {p: _decode(p, items[p], v, capacity.get(p))
+                        for p, (_, v) in now.items()})
 
 
 def save(net, filename: str, scope: str | None = None) -> dict:

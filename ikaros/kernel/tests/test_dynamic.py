@@ -6,6 +6,7 @@ import pytest
 import ikaros
 from ikaros.dynamic import DynamicArray
 from ikaros.experiments.signals import select_outputs
+from ikaros.kernel import state
 from ikaros.language.classfile import read_class_file
 from ikaros.module import Output
 
@@ -254,4 +255,24 @@ def test_a_model_without_dynamic_outputs_has_no_dynamic_copies(tmp_path):
     assert net.dynamic_rings == {} and len(net._ring_list) == 1
     assert all(b.dynamic_array is None for inst in net.schedule
                for ports in net._buffers[inst] for b in ports.values())
+    net.close()
+
+
+def test_state_keeps_the_shape_of_a_dynamic_output(tmp_path):
+    net = _model(tmp_path, '<module class="Rows" name="R"/>')
+    assert net.output("R.OUTPUT").shape == (0, 2)
+    net.run(2)
+    state.save(net, str(tmp_path / "s.json"))
+    net.run(1)
+    assert net.output("R.OUTPUT").tolist() == rows(2)
+    state.load(net, str(tmp_path / "s.json"))
+    assert net.output("R.OUTPUT").tolist() == rows(1)
+    state.reset(net)
+    assert net.output("R.OUTPUT").shape == (0, 2)      # as after init: no rows
+    text = (tmp_path / "s.json").read_text().replace("[[1.0, 0.0], [1.0, 1.0]]",
+                                                     "[[1, 0], [1, 1], [1, 2], [1, 3]]")
+    (tmp_path / "t.json").write_text(text)
+    with pytest.raises(state.StateError, match=r'item "R.OUTPUT" has shape \[4, 2\], which '
+                                               r'does not fit the capacity \[3, 2\]'):
+        state.load(net, str(tmp_path / "t.json"))
     net.close()
