@@ -25,9 +25,8 @@ from .module import DynamicArray, Input, Module, Output, Parameter
 
 __version__ = "0.1.0"
 __all__ = ["load", "classes", "Group", "Network", "Module", "Parameter", "Input", "Output",
-           "DynamicArray",
-           "ModelError", "ModelWarning", "RunError", "ClassDescription", "open_recording",
-           "sweep"]
+           "DynamicArray", "ModelError", "ModelWarning", "RunError", "ClassDescription",
+           "open_recording", "sweep"]
 
 
 def __getattr__(name: str):

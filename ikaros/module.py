@@ -26,7 +26,7 @@ import numpy as np
 
 from .description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
                           SIZE_RULE_KEYS, canonical_type, dynamic_rule)
-from .dynamic import DynamicArray
+from .dynamic import DynamicArray  # noqa: F401  (part of the module API)
 
 # Notification levels (lower is more severe), as in Ikaros.
 EXCEPTION, END_OF_FILE, TERMINATE, FATAL_ERROR, WARNING, PRINT, DEBUG, TRACE = range(1, 9)
