@@ -234,7 +234,7 @@ class Module:
         self._ik_input_shapes: dict[str, tuple | None] = {}
         self._ik_output_shapes: dict[str, tuple | None] = {}
         self._ik_connected: set[str] = set()
-        self._ik_start_steps: tuple = (0, 0)
+        self._ik_start_steps = None     # the network's kernel.gating.StartSteps
 
     # --- life cycle: override these ------------------------------------------------------
     def configure(self) -> None:
@@ -303,7 +303,8 @@ class Module:
         module without inputs reaches its first input, and all its inputs; (0, 0) without
         inputs, None where it never does. ``module_start="first_data"`` or ``"all_data"``
         on the element starts the module's ticks there. Known from ``init`` on."""
-        return self._ik_start_steps
+        steps = self._ik_start_steps
+        return (0, 0) if steps is None else steps.of(self)
 
     # --- notifications -------------------------------------------------------------------
     def notify(self, level: int, message: str) -> None:

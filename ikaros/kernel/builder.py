@@ -26,7 +26,7 @@ from .schedule import schedule
 from .startup import StartupSteps
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
 from .dynamic import check_dynamic_connections, unresolved_capacity
-from .gating import MODULE_START, first_tick, start_steps
+from .gating import MODULE_START, StartSteps, first_tick
 from .sizes import SizeError, WAIT, rule_shape, shape_expression
 from .tree import Component, Group, ModuleInstance, Scope, find_component
 
@@ -708,9 +708,11 @@ class Builder:
     def _start_gating(self, runs) -> None:
         """Each module's start-up steps, and the first tick of those that wait for them or
         for ``start_tick``."""
-        for inst, steps in start_steps(self.instances, runs).items():
+        steps = StartSteps(self.instances, runs)
+        for inst in self.instances:
             inst.module._ik_start_steps = steps
-            inst.first_tick = first_tick(inst, steps)
+            if inst.module_start != "at_tick" or inst.start_tick:
+                inst.first_tick = first_tick(inst, steps)
 
     def _schedule(self):
         memo: dict = {}

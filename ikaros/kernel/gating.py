@@ -19,6 +19,23 @@ MODULE_START = {"at_tick": "at_tick", "first_data": "first_data", "all_data": "a
                 "0": "at_tick", "1": "first_data", "2": "all_data"}
 
 
+class StartSteps:
+    """The start-up steps of a network's modules, computed when first asked for (most
+    models never ask)."""
+
+    def __init__(self, modules: list, runs: list):
+        self._modules, self._runs = modules, runs
+        self._steps: dict | None = None
+
+    def of(self, module) -> tuple:
+        """(first, all) of a module instance, or of its Module object."""
+        if self._steps is None:
+            steps = start_steps(self._modules, self._runs)
+            steps.update({inst.module: s for inst, s in steps.items()})
+            self._steps = steps
+        return self._steps[module]
+
+
 def start_steps(modules: list, runs: list) -> dict:
     """{module: (first, all)} for every module, from the runs between module outputs and
     inputs (runs.Run: source, target, delay)."""
@@ -66,12 +83,12 @@ def _longest(modules, feeds, fed) -> dict:
     return {m: s for m, s in step.items() if not waiting[m]}
 
 
-def first_tick(inst, steps: tuple) -> int | None:
+def first_tick(inst, steps: StartSteps) -> int | None:
     """The first tick a module runs: ``start_tick``, or later its start-up step for
     ``first_data`` and ``all_data``; None for never."""
     if inst.module_start == "at_tick":
         return inst.start_tick
-    step = steps[0] if inst.module_start == "first_data" else steps[1]
+    step = steps.of(inst)[0 if inst.module_start == "first_data" else 1]
     return None if step is None else max(step, inst.start_tick)
 
 
