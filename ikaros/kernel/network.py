@@ -8,10 +8,10 @@ from typing import Any
 
 import numpy as np
 
+from ..dynamic import DynamicArray
 from ..errors import ModelError, RunError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.values import ValueError_, format_number, value_text
-from ..dynamic import DynamicArray
 from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
                       WARNING, attribute_name, parameter_attribute)

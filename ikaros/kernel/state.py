@@ -8,7 +8,8 @@ The state of a module is its outputs and the attributes its class names in ``sta
 
 The state of the network is that of every module, plus its delay lines (the older values of
 outputs read through delays of 2 or more) and the tick. A dynamic output is kept with its
-current shape (not its delay line). A state file is JSON::
+current shape; its delay line is not kept, and is emptied (no rows) when the state is loaded
+or reset. A state file is JSON::
 
     {"format": "ikaros-state-v1", "tick": 120, "time": 1.2, "saved_at_utc": "...",
      "ikaros_version": "0.1.0", "model_filename": "demo.ikg", "model_name": "Demo",
@@ -168,6 +169,9 @@ def _write(net, scope: str | None, new: dict) -> None:
             path = f"{inst.path}.{name}"
             if buf.dynamic_array is not None:
                 buf.dynamic_array.set(new[path])
+                ring = net.dynamic_rings.get(buf)
+                for row in ring.rows if ring is not None else ():
+                    row.clear()             # its delay line is not kept: no older rows
                 continue
             np.copyto(buf.array, new[path], casting="unsafe")
             ring = net.rings.get(buf)

@@ -276,3 +276,14 @@ def test_state_keeps_the_shape_of_a_dynamic_output(tmp_path):
                                                r'does not fit the capacity \[3, 2\]'):
         state.load(net, str(tmp_path / "t.json"))
     net.close()
+
+
+def test_a_reset_empties_the_delay_line_of_a_dynamic_output(tmp_path):
+    net = _model(tmp_path, '''<module class="Rows" name="R"/><module class="Seen" name="S"/>
+        <connection source="R.OUTPUT" target="S.INPUT" delay="3"/>''')
+    net.run(5)
+    state.reset(net)
+    net.run(4)
+    # after the reset (tick 0 again) the delay line holds no rows until tick 3
+    assert _seen(net, "S")[5:] == [[], [], [], rows(0)]
+    net.close()
