@@ -30,7 +30,8 @@ ARRAY_LIMIT = 4096   # elements; a module with a larger array gains nothing, Num
 
 def _in_arena(inputs: dict, outputs: dict) -> bool:
     """Whether a module's arrays are all in the arena (every buffer with an offset is:
-    network.py puts them there), none of them large."""
+    network.py puts them there), none of them large. Dynamic buffers are not, so the
+    modules that touch one run as Python."""
     for ports in (inputs, outputs):
         for buf in ports.values():
             if buf.array is not None and (buf.offset is None or

@@ -287,3 +287,23 @@ def test_a_reset_empties_the_delay_line_of_a_dynamic_output(tmp_path):
     # after the reset (tick 0 again) the delay line holds no rows until tick 3
     assert _seen(net, "S")[5:] == [[], [], [], rows(0)]
     net.close()
+
+
+def test_the_compiled_tick_leaves_modules_with_dynamic_buffers_to_python(tmp_path):
+    pytest.importorskip("numba", reason="the compiled tick needs numba (pip install "
+                                        "ikaros[fast])")
+    body = '''<module class="Rows" name="R"/><module class="Sum" name="Total"/>
+        <module class="Constant" name="K" data="1 2 3"/><module class="Sum" name="Fixed"/>
+        <connection source="R.OUTPUT" target="Total.INPUT" delay="0"/>
+        <connection source="K.OUTPUT" target="Fixed.INPUT" delay="0"/>'''
+    for compiled in ("no", "yes"):
+        net = _model(tmp_path, body, compiled=compiled)
+        if compiled == "yes":      # Sum is compiled, except where its input is dynamic
+            assert {inst.path for inst in net.plan.fused} == {"K", "Fixed"}
+        totals = []
+        for _ in range(5):
+            net.step()
+            totals.append(float(net.output("Total.OUTPUT")[0]))
+        net.close()
+        # the current rows only, never what is left in the capacity beyond them
+        assert totals == [float(np.sum(rows(t))) for t in range(5)], compiled

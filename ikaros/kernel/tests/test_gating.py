@@ -116,3 +116,25 @@ def test_start_steps_are_known_in_init(tmp_path):
 def test_bad_start_settings(tmp_path, attributes, message):
     with pytest.raises(ikaros.ModelError, match=rf'm.ikg:1: <module name="C">: {message}'):
         _model(tmp_path, f'<module class="Counter" name="C" {attributes}/>')
+
+
+def test_the_compiled_tick_leaves_gated_modules_to_python(tmp_path):
+    pytest.importorskip("numba", reason="the compiled tick needs numba (pip install "
+                                        "ikaros[fast])")
+    body = '''<module class="Constant" name="K" data="1 2 3"/>
+        <module class="Scale" name="Every" factor="2"/>
+        <module class="Scale" name="Later" factor="3" start_tick="2"/>
+        <connection source="K.OUTPUT" target="Every.INPUT" delay="0"/>
+        <connection source="Every.OUTPUT" target="Later.INPUT" delay="0"/>'''
+    traces = {}
+    for compiled in ("no", "yes"):
+        net = _model(tmp_path, body, compiled=compiled)
+        if compiled == "yes":
+            assert {inst.path for inst in net.plan.fused} == {"K", "Every"}
+        trace = []
+        for _ in range(4):
+            net.step()
+            trace.append(net.output("Later.OUTPUT").tolist())
+        net.close()
+        traces[compiled] = trace
+    assert traces["no"] == traces["yes"] == [[0, 0, 0], [0, 0, 0], [6, 12, 18], [6, 12, 18]]
