@@ -22,11 +22,12 @@ from .kernel.classes import classes as _classes
 from .kernel.network import Network
 from .model import Group
 from .kernel.state import StateError
-from .module import Input, Module, Output, Parameter, State
+from .module import DynamicArray, Input, Module, Output, Parameter, State
 
 __version__ = "0.1.0"
 __all__ = ["load", "classes", "Group", "Network", "Module", "Parameter", "Input", "Output",
-           "State", "ModelError", "ModelWarning", "RunError", "StateError", "ClassDescription",
+           "State", "DynamicArray", "ModelError", "ModelWarning", "RunError", "StateError",
+           "ClassDescription",
            "open_recording", "sweep"]
 
 

@@ -91,11 +91,13 @@ class OutputSpec:
     optional: bool = False
     persistent: bool = False     # Ikaros 3 ``persistent``: every output is kept in state files
     private: bool = False        # a matrix <state>: sized and kept like an output, not connectable
+    dynamic: bool = False   # Ikaros 3 dynamic="yes": the shape changes at run time; the
+                            # rule is then {"capacity": ...}, the largest shape
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "description": self.description}
         d.update(self.rule)
-        for key in ("optional", "persistent", "private"):
+        for key in ("optional", "persistent", "private", "dynamic"):
             if getattr(self, key):
                 d[key] = True
         return d
@@ -127,6 +129,18 @@ class StateSpec:
         else:
             d["default"] = self.default
         return d
+
+
+def dynamic_rule(dynamic: bool, capacity: str | None, rule: dict) -> str | None:
+    """Why a dynamic output's declaration is wrong (None when it is right): ``dynamic``
+    needs a ``capacity`` and no other size rule, and ``capacity`` needs ``dynamic``."""
+    if dynamic and not capacity:
+        return "a dynamic output needs a capacity (its largest shape)"
+    if capacity and not dynamic:
+        return 'capacity is for dynamic outputs (dynamic="yes")'
+    if dynamic and rule:
+        return f"a dynamic output is sized by its capacity, not by {', '.join(rule)}"
+    return None
 
 
 @dataclass

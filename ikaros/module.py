@@ -26,7 +26,9 @@ from typing import Any, Callable
 import numpy as np
 
 from .description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
-                          SIZE_RULE_KEYS, STATE_TYPES, StateSpec, canonical_type)
+                          SIZE_RULE_KEYS, STATE_TYPES, StateSpec, canonical_type,
+                          dynamic_rule)
+from .dynamic import DynamicArray  # noqa: F401  (part of the module API)
 
 # Notification levels (lower is more severe), as in Ikaros.
 EXCEPTION, END_OF_FILE, TERMINATE, FATAL_ERROR, WARNING, PRINT, DEBUG, TRACE = range(1, 9)
@@ -120,18 +122,28 @@ class Output:
     ``"3"``); the Ikaros 2 rules ``size``, ``size_x``, ``size_y``, ``size_param``,
     ``size_param_x``, ``size_param_y``, ``size_set``, ``size_set_x`` and ``size_set_y`` are
     accepted as keywords too. Without a rule the module sets the size in ``set_sizes``.
+
+    ``dynamic=True`` with a ``capacity`` (a shape expression, like ``shape``) declares an
+    Ikaros 3 dynamic output: the module sees a ``DynamicArray`` whose shape it changes at
+    run time, never beyond the capacity.
     """
 
     def __init__(self, description: str = "", *, shape: str | None = None,
                  optional: bool = False, persistent: bool = False, name: str | None = None,
-                 **size_rule: str):
+                 dynamic: bool = False, capacity: str | None = None, **size_rule: str):
         unknown = set(size_rule) - set(SIZE_RULE_KEYS)
         if unknown:
             raise TypeError(f"unknown output size rule {sorted(unknown)}")
         rule = {k: str(v) for k, v in size_rule.items()}
         if shape is not None:
             rule["shape"] = str(shape)
-        self.spec_ = OutputSpec(name or "", description, rule, optional, persistent)
+        wrong = dynamic_rule(dynamic, capacity, rule)
+        if wrong:
+            raise TypeError(wrong)
+        if dynamic:
+            rule["capacity"] = str(capacity)
+        self.spec_ = OutputSpec(name or "", description, rule, optional, persistent,
+                                dynamic=dynamic)
 
     def __set_name__(self, owner, name):
         self.spec_.name = self.spec_.name or name
@@ -214,7 +226,8 @@ class Clock:
 RESERVED = {"name", "path", "clock", "element", "init", "tick", "command", "stop", "configure",
             "set_sizes", "add_input", "add_output", "input_shape", "output_shape",
             "set_output_shape", "connected", "notify", "print", "warning", "error",
-            "fatal_error", "end_of_file", "description", "parameter_names", "state"}
+            "fatal_error", "end_of_file", "description", "parameter_names", "state",
+            "start_steps"}
 
 
 def parameter_attribute(name: str) -> str:
@@ -283,6 +296,7 @@ class Module:
         self._ik_input_shapes: dict[str, tuple | None] = {}
         self._ik_output_shapes: dict[str, tuple | None] = {}
         self._ik_connected: set[str] = set()
+        self._ik_start_steps = None     # the network's kernel.gating.StartSteps
 
     # --- life cycle: override these ------------------------------------------------------
     def configure(self) -> None:
@@ -311,8 +325,18 @@ class Module:
         self._ik_inputs[name] = InputSpec(name, description, optional, flatten, stack)
 
     def add_output(self, name: str, shape: tuple | int | str | None = None,
-                   description: str = "") -> None:
-        """Add an output in ``configure``; a tuple shape fixes its size now."""
+                   description: str = "", *, capacity: tuple | int | str | None = None
+                   ) -> None:
+        """Add an output in ``configure``; a tuple shape fixes its size now. With
+        ``capacity`` (a tuple or a shape expression) and no shape it is a dynamic output."""
+        if capacity is not None:
+            if shape is not None:
+                raise TypeError("a dynamic output is sized by its capacity, not by a shape")
+            text = capacity if isinstance(capacity, str) else ",".join(
+                str(int(c)) for c in np.atleast_1d(capacity))
+            self._ik_outputs[name] = OutputSpec(name, description, {"capacity": text},
+                                                dynamic=True)
+            return
         rule = {"shape": shape} if isinstance(shape, str) else {}
         self._ik_outputs[name] = OutputSpec(name, description, rule)
         if shape is not None and not isinstance(shape, str):
@@ -335,6 +359,14 @@ class Module:
     def connected(self, name: str) -> bool:
         """Whether an input has at least one connection."""
         return name in self._ik_connected
+
+    def start_steps(self) -> tuple[int | None, int | None]:
+        """The module's start-up steps (Ikaros 3): the first tick on which data from a
+        module without inputs reaches its first input, and all its inputs; (0, 0) without
+        inputs, None where it never does. ``module_start="first_data"`` or ``"all_data"``
+        on the element starts the module's ticks there. Known from ``init`` on."""
+        steps = self._ik_start_steps
+        return (0, 0) if steps is None else steps.of(self)
 
     # --- notifications -------------------------------------------------------------------
     def notify(self, level: int, message: str) -> None:

@@ -19,11 +19,12 @@ class Signal:
 def select_outputs(net, only: list[str] | str | None = None) -> tuple[list[Signal], np.ndarray]:
     """The outputs whose addresses match any glob pattern in ``only`` (every output when
     None), in schedule order, and the arena indices of their elements in row order.
+    Dynamic outputs (whose shape changes while the model runs) are not recorded.
 
     Raises ValueError when a pattern matches no output."""
     patterns = [only] if isinstance(only, str) else list(only or [])
     outputs = [buf for inst in net.schedule for buf in net._buffers[inst][1].values()
-               if buf.size > 0]
+               if buf.size > 0 and not buf.dynamic]
     if patterns:
         unmatched = [p for p in patterns
                      if not any(fnmatch.fnmatchcase(b.path, p) for b in outputs)]

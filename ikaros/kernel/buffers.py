@@ -16,7 +16,8 @@ class Buffer:
     """
 
     __slots__ = ("kind", "owner", "name", "optional", "flatten", "stack", "fixed", "node",
-                 "shape", "incoming", "outgoing", "array", "offset")
+                 "shape", "incoming", "outgoing", "array", "offset", "dynamic",
+                 "dynamic_array")
 
     def __init__(self, kind: str, owner, name: str, *, optional: bool = False,
                  flatten: bool = False, stack: bool = False, fixed: str | None = None,
@@ -36,6 +37,11 @@ class Buffer:
         self.outgoing: list[Link] | tuple = ()
         self.array: np.ndarray | None = None
         self.offset: int | None = None    # where ``array`` starts in the arena, in elements
+        # A dynamic output, or an input fed by one: ``shape`` is then the capacity, and in
+        # the network ``dynamic_array`` what the module sees and ``array`` its storage,
+        # outside the arena.
+        self.dynamic = False
+        self.dynamic_array = None
 
     @staticmethod
     def link(link: "Link") -> None:

@@ -25,6 +25,8 @@ from .ranges import check_parameter
 from .schedule import schedule
 from .startup import StartupSteps
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
+from .dynamic import check_dynamic_connections, unresolved_capacity
+from .gating import MODULE_START, StartSteps, first_tick
 from .sizes import SizeError, WAIT, rule_shape, shape_expression
 from .tree import Component, Group, ModuleInstance, Scope, find_component
 
@@ -254,9 +256,10 @@ class Builder:
             raise inst.node.error(f"configure failed: {fault_text(e)}") from None
 
     def _run_settings(self, inst: ModuleInstance) -> None:
-        """``period``, ``phase`` and ``async`` of a module element."""
+        """``period``, ``phase``, ``async``, ``module_start`` and ``start_tick`` of a
+        module element."""
         attrs = inst.attrs
-        if "period" not in attrs and "phase" not in attrs and "async" not in attrs:
+        if not _RUN_SETTINGS.intersection(attrs):
             return                          # the defaults of ModuleInstance
 
         def setting(key, default, parse):
@@ -275,6 +278,14 @@ class Builder:
         if inst.period < 1 or not 0 <= inst.phase < inst.period:
             raise inst.node.error(f"period must be >= 1 and phase in 0..period-1 (period "
                                   f"{inst.period}, phase {inst.phase})")
+        start = setting("module_start", "at_tick", str).strip()
+        if start not in MODULE_START:
+            raise inst.node.error(f'module_start="{start}" must be at_tick, first_data or '
+                                  f'all_data (or 0, 1, 2)')
+        inst.module_start = MODULE_START[start]
+        inst.start_tick = setting("start_tick", 0, parse_int)
+        if inst.start_tick < 0:
+            raise inst.node.error(f"start_tick must be >= 0 (start_tick {inst.start_tick})")
 
     def _parameter(self, inst: ModuleInstance, spec) -> tuple[object, bool]:
         try:
@@ -330,6 +341,7 @@ class Builder:
         for spec in module._ik_outputs.values():
             buf = Buffer("output", inst, spec.name, optional=spec.optional, node=inst.node)
             buf.shape = module._ik_output_shapes.get(spec.name)
+            buf.dynamic = spec.dynamic
             outputs[spec.name] = buf
         self.buffers[inst] = (inputs, outputs)
 
@@ -615,7 +627,10 @@ class Builder:
                 if shape is not WAIT:
                     check_shape(shape)
             except (SizeError, LimitError) as e:
-                raise inst.node.error(f'size of output "{name}": {e}') from None
+                what = f'capacity of dynamic output "{name}" of {inst.path} ' \
+                       f'("{spec.rule["capacity"]}")' if spec.dynamic else \
+                       f'size of output "{name}"'
+                raise inst.node.error(f"{what}: {e}") from None
             if shape is WAIT:
                 waiting = True
             else:
@@ -647,6 +662,8 @@ class Builder:
                 if buf.shape is None:
                     if buf.optional or not buf.outgoing:
                         buf.shape = (0,) if buf.optional else buf.shape
+                    if buf.shape is None and buf.dynamic:
+                        raise inst.node.error(unresolved_capacity(inst, buf))
                     if buf.shape is None:
                         rule = inst.module._ik_outputs[name].rule_text()
                         raise inst.node.error(f'the size of output "{name}" of {inst.path} '
@@ -681,11 +698,23 @@ class Builder:
         with step("connections"):
             for order, (node, group) in enumerate(self.connections):
                 self.connect(order, node, group)
+            check_dynamic_connections(buf for inst in self.instances
+                                      for buf in self.buffers[inst][1].values())
         with step("sizes"):
             self.resolve_sizes()
         with step("delays and schedule"):
             order, runs, edges = self._schedule()
+            self._start_gating(runs)
         return (self.network_factory or Network)(self, top, order, runs, edges)
+
+    def _start_gating(self, runs) -> None:
+        """Each module's start-up steps, and the first tick of those that wait for them or
+        for ``start_tick``."""
+        steps = StartSteps(self.instances, runs)
+        for inst in self.instances:
+            inst.module._ik_start_steps = steps
+            if inst.module_start != "at_tick" or inst.start_tick:
+                inst.first_tick = first_tick(inst, steps)
 
     def _schedule(self):
         memo: dict = {}
@@ -706,6 +735,10 @@ def _refuse_private_state(inst: ModuleInstance, port: str, path: str, node: Node
     if any(st.name == port for st in inst.module.description.states):
         raise node.error(f'connection endpoint "{path}": {inst.path}.{port} is private state '
                          f'and can not be connected')
+
+
+# the module element's attributes that _run_settings reads
+_RUN_SETTINGS = frozenset(("period", "phase", "async", "module_start", "start_tick"))
 
 
 def _missing(node: Node, message: str) -> ModelError:

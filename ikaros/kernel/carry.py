@@ -72,7 +72,9 @@ def carry_state(old, new) -> list[str]:
         old_outputs, new_outputs = old._buffers[before][1], new._buffers[inst][1]
         for name, buf in new_outputs.items():
             source = old_outputs[name]
-            if buf.array is not None and source.array is not None:
+            if buf.dynamic_array is not None and source.dynamic_array is not None:
+                buf.dynamic_array.assign(source.dynamic_array)
+            elif buf.array is not None and source.array is not None:
                 np.copyto(buf.array, source.array)
                 _carry_history(old.rings.get(source), new.rings.get(buf))
         for key, value in _private_state(before).items():

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..interrupt import is_interrupt
 from ..module import Clock
+from .gating import gated
 from .schedule import thread_groups
 
 
@@ -208,7 +209,8 @@ class Plan:
 
 
 def module_tick(inst, clock: Clock):
-    """A module's tick as the plan calls it: with period/phase when they are set."""
+    """A module's tick as the plan calls it: with period/phase and its first tick
+    (module_start, start_tick) when they are set."""
     period, phase = inst.period, inst.phase
     tick = inst.module.tick
-    return tick if period == 1 else _every(tick, period, phase, clock)
+    return gated(tick if period == 1 else _every(tick, period, phase, clock), inst, clock)

@@ -40,7 +40,7 @@ def _operands(form: tuple) -> tuple[frozenset, tuple]:
 def fused_form(inst, inputs: dict, outputs: dict, block: np.ndarray) -> tuple | None:
     """The element-wise form an instance can be fused with, or None."""
     forms = getattr(type(inst.module), "elementwise", None)
-    if forms is None or inst.asynchronous or inst.period != 1 or len(outputs) != 1:
+    if forms is None or inst.asynchronous or not inst.every_tick or len(outputs) != 1:
         return None
     out = next(iter(outputs.values())).array
     if not _in_block(block, out) or out.size > FUSE_LIMIT:

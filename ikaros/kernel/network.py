@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from ..dynamic import DynamicArray
 from ..errors import ModelError, RunError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.values import ValueError_, format_number, value_text
@@ -20,7 +21,9 @@ from .buffers import Run
 from .compiled.background import BackgroundPlan
 from .compiled.plan import CompiledRun, compiled_gather, compiled_plan
 from .control import PLAY, REALTIME, Controller
+from .dynamic import DynamicRing, delayed_copy
 from .execution import AsyncModule, Plan, module_tick
+from .gating import gated
 from .fusion import fuse
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .limits import check_memory as _check_memory
@@ -123,10 +126,14 @@ class Network:
         for run in self.runs:
             runs_by_target[run.target].append(run)
         self._shared = {}
+        dynamic = []        # dynamic buffers: outside the arena
         for inst in self.schedule:
             inputs, outputs = self._buffers[inst]
             for buf in outputs.values():
-                requests.append((buf, arena.request(buf.shape)))
+                if buf.dynamic:
+                    dynamic.append(buf)
+                else:
+                    requests.append((buf, arena.request(buf.shape)))
         for inst in self.schedule:
             inputs, _ = self._buffers[inst]
             for buf in inputs.values():
@@ -135,6 +142,8 @@ class Network:
                 runs = runs_by_target[buf]
                 if len(runs) == 1 and runs[0].delay == 0 and runs[0].whole:
                     self._shared[buf] = runs[0].source
+                elif buf.dynamic:
+                    dynamic.append(buf)
                 else:
                     requests.append((buf, arena.request(buf.shape)))
         deepest: dict = {}
@@ -145,15 +154,21 @@ class Network:
         views, offsets = arena.views, arena.offsets
         for buf, k in requests:
             buf.array, buf.offset = views[k], offsets[k]
+        for buf in dynamic:
+            buf.dynamic_array = DynamicArray(buf.shape)
+            buf.array = buf.dynamic_array.storage
         for buf, source in self._shared.items():
             buf.array, buf.offset = source.array.reshape(buf.shape), source.offset
+            buf.dynamic_array = source.dynamic_array
         ring_arena = Arena()
         self.rings = {src: Ring(src.array, d - 1, ring_arena) for src, d in deepest.items()
-                      if d >= 2}
+                      if d >= 2 and not src.dynamic}
         ring_arena.allocate()
         for ring in self.rings.values():
             ring.bind()
         self.ring_arena = ring_arena
+        self.dynamic_rings = {src: DynamicRing(src.dynamic_array, d - 1)
+                              for src, d in deepest.items() if d >= 2 and src.dynamic}
         self.async_modules: dict = {}
         for inst in self.schedule:
             inputs, outputs = self._buffers[inst]
@@ -166,7 +181,8 @@ class Network:
             module = inst.module
             for ports in (inputs, outputs):
                 for name, buf in ports.items():
-                    setattr(module, attribute_name(name), buf.array)
+                    setattr(module, attribute_name(name),
+                            buf.array if buf.dynamic_array is None else buf.dynamic_array)
 
     def _compile(self) -> None:
         self._delayed = []
@@ -174,6 +190,12 @@ class Network:
         pre_tick: dict = collections.defaultdict(list)
         for run in self.runs:
             if run.target in self._shared:
+                continue
+            if run.source.dynamic:
+                self._delayed.append(delayed_copy(run.target.dynamic_array,
+                                                  run.source.dynamic_array,
+                                                  run.delay,
+                                                  self.dynamic_rings.get(run.source)))
                 continue
             dst = run.target.array
             if run.delay == 0:
@@ -194,9 +216,10 @@ class Network:
         if bulk_copy is not None:
             self._delayed.insert(0, bulk_copy)
         self._pre_tick = pre_tick
-        self._ring_list = list(self.rings.values())
+        self._ring_list = list(self.rings.values()) + list(self.dynamic_rings.values())
         tick_of = {inst: module_tick(inst, self.clock) if inst not in self.async_modules
-                   else self.async_modules[inst] for inst in self.schedule}
+                   else gated(self.async_modules[inst], inst, self.clock)
+                   for inst in self.schedule}
         block = self.arena.block
         minimum = self._compiled_minimum()
         self._background = None
@@ -550,13 +573,18 @@ class Network:
         return comp, name
 
     def buffer_array(self, path: str) -> np.ndarray:
-        """The live array of a module output or input (not a copy; do not write to it)."""
+        """The live array of a module output or input (not a copy; do not write to it).
+        Of a dynamic buffer, the whole capacity."""
+        buf = self._buffer(path)
+        return buf.array if buf.array is not None else np.zeros((0,), np.float32)
+
+    def _buffer(self, path: str):
         comp, name = self._component(path, "output or input")
         if isinstance(comp, ModuleInstance):
             inputs, outputs = self._buffers[comp]
             buf = outputs.get(name) or inputs.get(name)
             if buf is not None:
-                return buf.array if buf.array is not None else np.zeros((0,), np.float32)
+                return buf
         raise KeyError(f'no output or input "{path}" in {self.top.name}')
 
     def ports(self, module: str) -> tuple[list, list]:
@@ -568,8 +596,12 @@ class Network:
         return list(inst.module._ik_inputs.values()), list(inst.module._ik_outputs.values())
 
     def output(self, path: str) -> np.ndarray:
-        """A copy of a module output (or input) as computed in the last completed tick."""
-        return self.buffer_array(path).copy()
+        """A copy of a module output (or input) as computed in the last completed tick (of
+        a dynamic one, its current shape and values)."""
+        buf = self._buffer(path)
+        if buf.dynamic_array is not None:
+            return buf.dynamic_array.data.copy()
+        return buf.array.copy() if buf.array is not None else np.zeros((0,), np.float32)
 
     def parameter(self, path: str) -> Any:
         """The current value of a module parameter (or a group attribute, as text)."""
@@ -688,6 +720,8 @@ class Network:
                 for name, buf in bufs.items():
                     shape = "unconnected" if kind == "input" and not buf.incoming else \
                         "x".join(map(str, buf.shape)) or "scalar"
+                    if buf.dynamic:
+                        shape = f"dynamic, capacity {shape}"
                     shared = " (shares its source's memory)" if buf in self._shared else ""
                     private = kind == "output" and inst.module._ik_outputs[name].private
                     lines.append(f"    {'state' if private else kind} {name}: {shape}{shared}")

@@ -103,6 +103,8 @@ def rule_shape(inst: ModuleInstance, spec: OutputSpec, input_shapes: dict,
         return _axes(inst, rule, input_shapes)
     if "shape" in rule:
         return shape_expression(inst, rule["shape"], input_shapes)
+    if "capacity" in rule:                      # a dynamic output: its largest shape
+        return shape_expression(inst, rule["capacity"], input_shapes)
     return WAIT
 
 

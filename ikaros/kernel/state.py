@@ -10,7 +10,9 @@ bool or string) and the attributes its class names in ``state``::
         OUTPUT = Output(shape=1)
 
 The state of the network is that of every module, plus its delay lines (the older values of
-outputs read through delays of 2 or more) and the tick. A state file is JSON::
+outputs read through delays of 2 or more) and the tick. A dynamic output is kept with its
+current shape; its delay line is not kept, and is emptied (no rows) when the state is loaded
+or reset. A state file is JSON::
 
     {"format": "ikaros-state-v1", "tick": 120, "time": 1.2, "saved_at_utc": "...",
      "ikaros_version": "0.1.0", "model_filename": "demo.ikg", "model_name": "Demo",
@@ -18,6 +20,8 @@ outputs read through delays of 2 or more) and the tick. A state file is JSON::
      "items": {"A.OUTPUT": {"kind": "output", "type": "matrix", "shape": [2],
                             "value": [1, 2]},
                "A.count": {"kind": "state", "type": "int", "value": 4},
+               "A.ROWS": {"kind": "dynamic", "type": "matrix", "shape": [1, 2],
+                          "value": [[5, 6]]},
                "A.OUTPUT@delay": {"kind": "delay", "type": "matrix", "shape": [2, 2],
                                   "value": [[...], [...]]}}}
 
@@ -78,6 +82,9 @@ def values(net, scope: str | None = None) -> dict:
         specs = inst.module._ik_outputs
         for name, buf in outputs.items():
             path = f"{inst.path}.{name}"
+            if buf.dynamic_array is not None:     # its current shape and values
+                out[path] = ("dynamic", "matrix", buf.dynamic_array.data.copy())
+                continue
             kind = "state" if specs[name].private else "output"
             out[path] = (kind, "matrix", np.array(buf.array, copy=True))
             ring = net.rings.get(buf)
@@ -127,10 +134,12 @@ def collect(net, scope: str | None = None) -> dict:
 REAL = ("float", "double")
 
 
-def _decode(path: str, item, want: str, current, strict: bool) -> object:
+def _decode(path: str, item, want: str, current, strict: bool,
+            capacity: tuple | None = None) -> object:
     """A file item's value, checked against the network's item of type ``want``. A
     declared scalar (``strict``) takes only its own type; a plain Python float takes
-    "float" and "double" alike."""
+    "float" and "double" alike. ``capacity``: of a dynamic output, whose shape may be any
+    that fits it."""
     if not isinstance(item, dict) or "value" not in item or "type" not in item:
         raise StateError(f'item "{path}" must be an object with "type" and "value"')
     if item["type"] != want and not (not strict and want in REAL and item["type"] in REAL):
@@ -142,7 +151,11 @@ def _decode(path: str, item, want: str, current, strict: bool) -> object:
             arr = np.array(value, dtype=np.float64)
         except (TypeError, ValueError):
             raise StateError(f'item "{path}": the value is not a matrix of numbers') from None
-        if arr.shape != current.shape:
+        if capacity is not None:
+            if arr.ndim != len(capacity) or any(s > c for s, c in zip(arr.shape, capacity)):
+                raise StateError(f'item "{path}" has shape {list(arr.shape)}, which does not '
+                                 f'fit the capacity {list(capacity)} of the dynamic output')
+        elif arr.shape != current.shape:
             raise StateError(f'item "{path}" has shape {list(arr.shape)} but the target has '
                              f'shape {list(current.shape)}')
         return arr
@@ -181,8 +194,15 @@ def _write(net, scope: str | None, new: dict) -> None:
         _, outputs = net._buffers[inst]
         for name, buf in outputs.items():
             path = f"{inst.path}.{name}"
-            if path in new:
-                np.copyto(buf.array, new[path], casting="unsafe")
+            if path not in new:
+                continue
+            if buf.dynamic_array is not None:
+                buf.dynamic_array.set(new[path])
+                ring = net.dynamic_rings.get(buf)
+                for row in ring.rows if ring is not None else ():
+                    row.clear()             # its delay line is not kept: no older rows
+                continue
+            np.copyto(buf.array, new[path], casting="unsafe")
             ring = net.rings.get(buf)
             if ring is not None and path + "@delay" in new:
                 for row, k in zip(new[path + "@delay"], _ages(ring)):
@@ -209,7 +229,10 @@ def apply(net, items: dict, scope: str | None = None, partial: bool = False) -> 
     _fit(now, items, partial)
     typed = {f"{inst.path}.{name}" for inst in _modules(net, scope)
              for name in _scalar_types(inst.module)}
-    _write(net, scope, {p: _decode(p, items[p], t, v, p in typed)
+    capacity = {f"{inst.path}.{name}": buf.dynamic_array.capacity
+                for inst in _modules(net, scope)
+                for name, buf in net._buffers[inst][1].items() if buf.dynamic_array is not None}
+    _write(net, scope, {p: _decode(p, items[p], t, v, p in typed, capacity.get(p))
                         for p, (_, t, v) in now.items() if p in items})
 
 

@@ -69,7 +69,15 @@ class ModuleInstance(Component):
         self.period = 1                    # ticks only when tick % period == phase
         self.phase = 0
         self.asynchronous = False          # tick runs in the background
+        self.module_start = "at_tick"      # Ikaros 3 start gating (kernel/gating.py)
+        self.start_tick = 0
+        self.first_tick: int | None = 0    # the first tick it runs (None: never)
         self.shape_attribute = None        # Ikaros 3 size="..."/shape="..." on the element
+
+    @property
+    def every_tick(self) -> bool:
+        """Whether it runs on every tick from the first (no period, phase or start)."""
+        return self.period == 1 and self.first_tick == 0
 
 
 class Scope:

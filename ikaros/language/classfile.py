@@ -4,7 +4,8 @@ from __future__ import annotations
 import os
 
 from ..description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
-                           SIZE_RULE_KEYS, STATE_TYPES, StateSpec, canonical_type)
+                           SIZE_RULE_KEYS, STATE_TYPES, StateSpec, canonical_type,
+                           dynamic_rule)
 from .diagnostics import warn_at
 from .node import Node
 from .reader import read_file
@@ -107,8 +108,15 @@ def description_from_node(root: Node, expected_name: str | None = None) -> Class
         if not o.get("name"):
             raise o.error("an output needs a name")
         rule = {k: o.get(k) for k in SIZE_RULE_KEYS if o.get(k) not in (None, "")}
+        dynamic, capacity = _flag(o, "dynamic"), o.get("capacity")
+        wrong = dynamic_rule(dynamic, capacity, rule)
+        if wrong:
+            raise o.error(f'output "{o.get("name")}": {wrong}')
+        if dynamic:
+            rule["capacity"] = capacity
         desc.outputs.append(OutputSpec(o.get("name"), o.get("description", ""), rule,
-                                       _flag(o, "optional"), _flag(o, "persistent")))
+                                       _flag(o, "optional"), _flag(o, "persistent"),
+                                       dynamic=dynamic))
     taken = {p.name for p in desc.inputs + desc.outputs}
     for st in root.elements("state"):
         spec = state_spec(st)

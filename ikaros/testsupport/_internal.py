@@ -64,3 +64,19 @@ class WindowCheck(InternalModule):
     def stop(self):
         if self._ticks and not self._failed:
             self.print("WINDOW OK")
+
+
+def grown(tick: int, max_rows: int, columns: int):
+    """What DynamicMatrixSource output on ``tick``: ``tick % max_rows + 1`` rows of
+    ``columns``, element [r, c] = 100 tick + 10 r + c; no rows before tick 0."""
+    import numpy as np
+    if tick < 0:
+        return np.zeros((0, columns), dtype=np.float32)
+    rows = tick % max_rows + 1
+    r, c = np.mgrid[0:rows, 0:columns]
+    return (100 * tick + 10 * r + c).astype(np.float32)
+
+
+def shape_text(shape) -> str:
+    """A shape as the test models expect it printed: ``3x2``."""
+    return "x".join(str(s) for s in shape)

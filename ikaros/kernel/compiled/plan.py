@@ -30,7 +30,8 @@ ARRAY_LIMIT = 4096   # elements; a module with a larger array gains nothing, Num
 
 def _in_arena(inputs: dict, outputs: dict) -> bool:
     """Whether a module's arrays are all in the arena (every buffer with an offset is:
-    network.py puts them there), none of them large."""
+    network.py puts them there), none of them large. Dynamic buffers are not, so the
+    modules that touch one run as Python."""
     for ports in (inputs, outputs):
         for buf in ports.values():
             if buf.array is not None and (buf.offset is None or
@@ -51,7 +52,7 @@ def fragment(inst, inputs: dict, outputs: dict, copies: list):
     """How a module runs compiled: (kind, fragment, loader), where kind is "standard" for
     the instructions of a standard operation (its zero-delay copies, then its tick) and
     (class, argument layout) for a user module's compiled tick; or None (Python)."""
-    if inst.asynchronous or inst.period != 1 or not _in_arena(inputs, outputs):
+    if inst.asynchronous or not inst.every_tick or not _in_arena(inputs, outputs):
         return None
     module = inst.module
     emit = emitter(type(module))
