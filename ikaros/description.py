@@ -40,6 +40,7 @@ class ParameterSpec:
     range: tuple | None = None   # (lowest, highest) a number may be; None for no bound
     finite: bool = True          # whether nan and inf are refused
     file: bool = False           # whether the value names a file or folder
+    shape: str | None = None     # a matrix's fixed shape expression (Ikaros 3 ``shape``)
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "type": self.type, "default": _plain(self.default),
@@ -54,6 +55,8 @@ class ParameterSpec:
             d["finite"] = False
         if self.file:
             d["file"] = True
+        if self.shape:
+            d["shape"] = self.shape
         return d
 
 

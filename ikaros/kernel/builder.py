@@ -21,7 +21,7 @@ from ..module import Clock, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
 from .layout import layout, runs_into
-from .ranges import check_parameter
+from .ranges import check_parameter, fit_shape
 from .schedule import schedule
 from .startup import StartupSteps
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
@@ -229,6 +229,9 @@ class Builder:
         desc = cls.description
         for spec in desc.parameters:
             inst.values[spec.name], inst.has_value[spec.name] = self._parameter(inst, spec)
+        for spec in desc.parameters:
+            if spec.shape:
+                self._fixed_parameter_shape(inst, spec)
         for key in ("shape", "size"):
             if key in inst.attrs and key not in inst.values:
                 inst.shape_attribute = inst.attrs[key]
@@ -275,6 +278,15 @@ class Builder:
         if inst.period < 1 or not 0 <= inst.phase < inst.period:
             raise inst.node.error(f"period must be >= 1 and phase in 0..period-1 (period "
                                   f"{inst.period}, phase {inst.phase})")
+
+    def _fixed_parameter_shape(self, inst: ModuleInstance, spec) -> None:
+        """A matrix parameter whose class declares its ``shape`` (after every parameter has
+        its value, so the shape may name them): zero-filled, or an error when too long."""
+        try:
+            shape = shape_expression(inst, spec.shape, {})
+            inst.values[spec.name] = fit_shape(inst.values[spec.name], shape)
+        except (SizeError, ValueError_) as e:
+            raise inst.node.error(f'parameter "{spec.name}" of {inst.path}: {e}') from None
 
     def _parameter(self, inst: ModuleInstance, spec) -> tuple[object, bool]:
         try:

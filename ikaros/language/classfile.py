@@ -8,7 +8,7 @@ from ..description import (ClassDescription, InputSpec, OutputSpec, ParameterSpe
 from .diagnostics import warn_at
 from .node import Node
 from .reader import read_file
-from .values import ValueError_, parse_bool
+from .values import ValueError_, parse_bool, parse_number
 
 
 def _flag(node: Node, key: str) -> bool:
@@ -44,8 +44,24 @@ def parameter_spec(node: Node) -> ParameterSpec:
         ptype = "list" if options else "number"
     if options and ptype == "int":
         ptype = "list"
+    bounds = (_bound(node, "min"), _bound(node, "max"))
+    shape = node.get("shape") or node.get("size") or None
+    if shape is not None and ptype not in ("matrix", "array"):
+        raise node.error(f'shape="{shape}" is for matrix parameters, not type "{ptype}"')
     return ParameterSpec(name, ptype, node.get("default"), node.get("description", ""),
-                         options, node.get("control"))
+                         options, node.get("control"),
+                         bounds if bounds != (None, None) else None, shape=shape)
+
+
+def _bound(node: Node, key: str) -> float | None:
+    """The ``min`` or ``max`` of a parameter element (Ikaros 3), or None."""
+    text = node.get(key)
+    if text is None or not text.strip():
+        return None
+    try:
+        return parse_number(text)
+    except ValueError_ as e:
+        raise node.error(f"{key}: {e}") from None
 
 
 def description_from_node(root: Node, expected_name: str | None = None) -> ClassDescription:
