@@ -69,10 +69,11 @@ class InputSpec:
     flatten: bool = False
     stack: bool = False
     size: str | None = None      # a fixed shape expression (Ikaros 3 ``size``)
+    use_label: bool = False      # the input takes the label of its one labelled connection
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "description": self.description, "optional": self.optional}
-        for key in ("flatten", "stack"):
+        for key in ("flatten", "stack", "use_label"):
             if getattr(self, key):
                 d[key] = True
         if self.size:
@@ -149,7 +150,7 @@ class ClassDescription:
                          f"{p.description}")
         lines.append("Inputs:" if self.inputs else "Inputs: none")
         for i in self.inputs:
-            flags = [f for f in ("optional", "flatten", "stack") if getattr(i, f)]
+            flags = [f for f in ("optional", "flatten", "stack", "use_label") if getattr(i, f)]
             lines.append(f"  {i.name}{' (' + ', '.join(flags) + ')' if flags else ''}: "
                          f"{i.description}")
         lines.append("Outputs:" if self.outputs else "Outputs: none")

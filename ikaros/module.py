@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import functools
 import re
+from dataclasses import dataclass
 from typing import Any, Callable
 
 import numpy as np
@@ -99,11 +100,15 @@ class Parameter:
 
 
 class Input:
-    """Declares an input. ``optional`` inputs may stay unconnected (then they are None)."""
+    """Declares an input. ``optional`` inputs may stay unconnected (then they are None).
+    With ``use_label`` the input takes the ``label`` of its one labelled connection
+    (``input_label``); a model may also set it with ``INPUT.use_label="yes"``."""
 
     def __init__(self, description: str = "", *, optional: bool = False, flatten: bool = False,
-                 stack: bool = False, size: str | None = None, name: str | None = None):
-        self.spec_ = InputSpec(name or "", description, optional, flatten, stack, size)
+                 stack: bool = False, size: str | None = None, name: str | None = None,
+                 use_label: bool = False):
+        self.spec_ = InputSpec(name or "", description, optional, flatten, stack, size,
+                               use_label)
 
     def __set_name__(self, owner, name):
         self.spec_.name = self.spec_.name or name
@@ -154,6 +159,27 @@ def _infer_type(default: Any, options: list[str]) -> str:
     return "string"
 
 
+@dataclass(frozen=True)
+class InputPart:
+    """What one connection contributes to an input: its ``label`` (the connection's
+    ``label`` attribute, None without one), its ``source`` (the path of the output or group
+    port it reads, as ``"C.OUTPUT"``), the ``shape`` of its values (a delay window adds a
+    leading axis, one row per delay, in the order listed) and ``index``, the flat positions
+    in the input that hold them. ``name`` is the label, or the source without one."""
+    label: str | None
+    source: str
+    shape: tuple
+    index: Any
+
+    @property
+    def name(self) -> str:
+        return self.label if self.label is not None else self.source
+
+    def values(self, data: np.ndarray) -> np.ndarray:
+        """This part's values in ``data`` (the input's array), in its own shape (a copy)."""
+        return np.asarray(data).reshape(-1)[self.index].reshape(self.shape)
+
+
 class Clock:
     """The kernel's clock as modules see it: read ``tick`` and ``time`` inside ``tick()``."""
     __slots__ = ("tick", "tick_duration", "time", "real_time")
@@ -168,8 +194,9 @@ class Clock:
 # Names a parameter or port may not take, because the module API uses them.
 RESERVED = {"name", "path", "clock", "element", "init", "tick", "command", "stop", "configure",
             "set_sizes", "add_input", "add_output", "input_shape", "output_shape",
-            "set_output_shape", "connected", "notify", "print", "warning", "error",
-            "fatal_error", "end_of_file", "description", "parameter_names", "state"}
+            "set_output_shape", "connected", "input_parts", "input_label", "notify", "print",
+            "warning", "error", "fatal_error", "end_of_file", "description", "parameter_names",
+            "state"}
 
 
 def parameter_attribute(name: str) -> str:
@@ -222,6 +249,8 @@ class Module:
         self._ik_input_shapes: dict[str, tuple | None] = {}
         self._ik_output_shapes: dict[str, tuple | None] = {}
         self._ik_connected: set[str] = set()
+        self._ik_input_parts: dict[str, list[InputPart]] = {}
+        self._ik_input_labels: dict[str, str] = {}
 
     # --- life cycle: override these ------------------------------------------------------
     def configure(self) -> None:
@@ -245,9 +274,10 @@ class Module:
 
     # --- build-time API ------------------------------------------------------------------
     def add_input(self, name: str, *, optional: bool = False, flatten: bool = False,
-                  stack: bool = False, description: str = "") -> None:
+                  stack: bool = False, description: str = "", use_label: bool = False) -> None:
         """Add an input in ``configure`` (for inputs that depend on parameters)."""
-        self._ik_inputs[name] = InputSpec(name, description, optional, flatten, stack)
+        self._ik_inputs[name] = InputSpec(name, description, optional, flatten, stack,
+                                          use_label=use_label)
 
     def add_output(self, name: str, shape: tuple | int | str | None = None,
                    description: str = "") -> None:
@@ -274,6 +304,18 @@ class Module:
     def connected(self, name: str) -> bool:
         """Whether an input has at least one connection."""
         return name in self._ik_connected
+
+    def input_parts(self, name: str) -> list[InputPart]:
+        """What each connection into an input contributes (from ``init`` on), in the order
+        the connections are declared: label, source, shape and place in the input. Empty for
+        an unconnected input."""
+        return list(self._ik_input_parts.get(name, ()))
+
+    def input_label(self, name: str) -> str | None:
+        """The label an input takes when it ``use_label``s (the class declares it, or the
+        model says ``INPUT.use_label="yes"``) and exactly one of its connections has a
+        ``label`` (from ``init`` on); None otherwise."""
+        return self._ik_input_labels.get(name)
 
     # --- notifications -------------------------------------------------------------------
     def notify(self, level: int, message: str) -> None:

@@ -77,6 +77,7 @@ class Link:
     order: int
     src_sel: tuple | None = None
     dst_sel: tuple | None = None
+    label: str | None = None        # the connection's ``label`` (Ikaros 3)
     # Set by the layout: flat source indices of one lane, and flat target indices of all
     # lanes (lane-major).
     piece_shape: tuple = ()

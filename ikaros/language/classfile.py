@@ -82,7 +82,8 @@ def description_from_node(root: Node, expected_name: str | None = None) -> Class
             raise i.error("an input needs a name")
         desc.inputs.append(InputSpec(i.get("name"), i.get("description", ""),
                                      _flag(i, "optional"), _flag(i, "flatten"),
-                                     _flag(i, "stack"), i.get("size")))
+                                     _flag(i, "stack"), i.get("size"),
+                                     _flag(i, "use_label")))
     for o in root.elements("output"):
         if not o.get("name"):
             raise o.error("an output needs a name")
