@@ -146,6 +146,8 @@ class ClassDescription:
             if p.range:
                 low, high = ("" if v is None else f"{v:g}" for v in p.range)
                 opts += f", range {low}..{high}"
+            if p.shape:
+                opts += f", shape {p.shape}"
             lines.append(f"  {p.name} ({p.type}, default {_plain(p.default)!r}{opts}): "
                          f"{p.description}")
         lines.append("Inputs:" if self.inputs else "Inputs: none")

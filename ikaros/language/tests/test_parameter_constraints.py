@@ -1,7 +1,11 @@
 """Ikaros 3 parameter constraints in class files: ``min``/``max`` and a matrix's
 ``shape``/``size``."""
+from pathlib import Path
+
 import numpy as np
 import pytest
+
+import ikaros
 
 from ikaros.description import ParameterSpec
 from ikaros.errors import ModelError
@@ -54,3 +58,36 @@ def test_fit_shape_zero_fills_in_row_major_order_and_refuses_too_many():
     with pytest.raises(ValueError_, match="^Matrix parameter value has 4 elements but shape "
                                           "3 only allows 3$"):
         fit_shape(np.array([1, 2, 3, 4]), (3,))
+
+
+SUPPORT = Path(__file__).resolve().parents[2] / "testsupport"
+
+
+def _support_model(tmp_path, attrs=""):
+    (tmp_path / "m.ikg").write_text(
+        f'<group name="T" support="{SUPPORT}"><module class="ShapedParameterTestModule" '
+        f'name="M" path="@support" {attrs}/></group>')
+    return ikaros.load(str(tmp_path / "m.ikg"))
+
+
+def test_a_shaped_parameter_keeps_its_shape_when_set_while_running(tmp_path):
+    net = _support_model(tmp_path, 'max_sequences="2"')
+    try:
+        assert net.parameter("M.sequences").shape == (2, 3)
+        net.set_parameter("M.sequences", "1 2 3 4")
+        assert net.parameter("M.sequences").tolist() == [[1, 2, 3], [4, 0, 0]]
+        with pytest.raises(ValueError, match="has 7 elements but shape 2,3 only allows 6"):
+            net.set_parameter("M.sequences", "1 2 3 4 5 6 7")
+        with pytest.raises(ValueError, match="1.5 is above maximum 1"):
+            net.set_parameter("M.gain", 1.5)
+        assert net.parameter("M.gain") == 0.5
+    finally:
+        net.close()
+
+
+def test_the_class_text_shows_bounds_and_shape():
+    from ikaros.kernel.classes import ClassRegistry
+    text = ClassRegistry([str(SUPPORT)]).find("ShapedParameterTestModule").description() \
+        .to_text()
+    assert "max_sequences (number, default '4', range 1..10)" in text
+    assert "sequences (matrix, default None, shape @max_sequences,3)" in text

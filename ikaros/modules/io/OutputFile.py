@@ -351,6 +351,8 @@ class OutputFile(ColumnWriter):
             why = self._open(self._path(number))
         if why is None:
             self._number = number
+        elif self._file is None:        # the same file again, and it could not be rewritten
+            self.fatal_error(f"cannot write output file {why}")
         else:
             self.warning(f"cannot start a new file: {why}; continuing with "
                          f'"{self._path_open}"')
