@@ -55,11 +55,18 @@ def require(module_name: str, package: str, extra: str | None = None):
                                 f"(or pip install {package})") from None
 
 
-@functools.lru_cache(maxsize=None)
-def attribute_name(port_name: str) -> str:
-    """The Python attribute that holds a port: ``T-INPUT`` is ``self.T_INPUT``."""
+def _python_name(port_name: str) -> str:
     name = re.sub(r"\W", "_", port_name)
     return "_" + name if name[:1].isdigit() else name
+
+
+@functools.lru_cache(maxsize=None)
+def attribute_name(port_name: str) -> str:
+    """The Python attribute that holds a port: ``T-INPUT`` is ``self.T_INPUT``. A port
+    added at build time with a name the module API uses (an InputFile column ``tick``) gets
+    a trailing underscore: ``self.tick_``."""
+    name = _python_name(port_name)
+    return name + "_" if name in RESERVED else name
 
 
 class Parameter:
@@ -222,7 +229,7 @@ class Module:
                     inputs[value.spec().name] = value.spec()
                 elif isinstance(value, Output):
                     outputs[value.spec().name] = value.spec()
-        for name in list(params) + [attribute_name(n) for n in list(inputs) + list(outputs)]:
+        for name in list(params) + [_python_name(n) for n in list(inputs) + list(outputs)]:
             if name in RESERVED:
                 raise TypeError(f"{cls.__name__}: '{name}' is a reserved name in the module API")
         state = getattr(cls, "state", ())

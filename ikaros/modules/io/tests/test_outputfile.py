@@ -413,3 +413,21 @@ def test_v3_a_failed_rollover_keeps_the_current_file(tmp_path):
 def test_v3_start_index_must_fit_the_counter(tmp_path):
     with pytest.raises(ModelError, match='start_index 100 does not fit in "r_##.csv"'):
         _rollover(tmp_path, "r_##.csv", 'start_index="100"')
+
+
+def test_v3_jsonl_with_labels_is_read_back_by_inputfile(tmp_path):
+    run_v3(tmp_path, 'filename="out.jsonl"', [("M.OUTPUT", "weights"), ("W.OUTPUT", "w")])
+    (tmp_path / "back").mkdir()
+    model = tmp_path / "back" / "model.ikg"
+    model.write_text('<group name="Back"><module class="InputFile" name="F" '
+                     'filename="../out.jsonl"/></group>')
+    net = ikaros.load(str(model))
+    try:
+        net.step()
+        assert net.output("F.weights").tolist() == [[1, 2], [3, 4]]
+        assert net.output("F.w").tolist() == [1]
+        assert net.output("F.tick").tolist() == [0]     # held in F's attribute tick_
+        net.step()
+        assert net.output("F.w").tolist() == [2]
+    finally:
+        net.close()
