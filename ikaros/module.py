@@ -246,6 +246,9 @@ class Module:
     name: str = ""
     path: str = ""
     element: Any = None             # the model-file element of this module (a language Node)
+    # The kernel's input buffers (set when they are made), which give input_parts and
+    # input_label.
+    _ik_input_buffers: dict = {}
     clock: Clock
 
     def __init__(self):
@@ -256,8 +259,6 @@ class Module:
         self._ik_input_shapes: dict[str, tuple | None] = {}
         self._ik_output_shapes: dict[str, tuple | None] = {}
         self._ik_connected: set[str] = set()
-        self._ik_input_parts: dict[str, list[InputPart]] = {}
-        self._ik_input_labels: dict[str, str] = {}
 
     # --- life cycle: override these ------------------------------------------------------
     def configure(self) -> None:
@@ -316,13 +317,15 @@ class Module:
         """What each connection into an input contributes (from ``init`` on), in the order
         the connections are declared: label, source, shape and place in the input. Empty for
         an unconnected input."""
-        return list(self._ik_input_parts.get(name, ()))
+        buffer = self._ik_input_buffers.get(name)
+        return buffer.parts() if buffer is not None else []
 
     def input_label(self, name: str) -> str | None:
         """The label an input takes when it ``use_label``s (the class declares it, or the
         model says ``INPUT.use_label="yes"``) and exactly one of its connections has a
         ``label`` (from ``init`` on); None otherwise."""
-        return self._ik_input_labels.get(name)
+        buffer = self._ik_input_buffers.get(name)
+        return buffer.label() if buffer is not None else None
 
     # --- notifications -------------------------------------------------------------------
     def notify(self, level: int, message: str) -> None:

@@ -17,7 +17,7 @@ from ..limits import LimitError, Limits, applied, check_shape, current as curren
 from ..language.reader import read_file
 from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
                                split_selectors, value_text)
-from ..module import Clock, InputPart, Module, parameter_attribute
+from ..module import Clock, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
 from .layout import layout, runs_into
@@ -332,18 +332,20 @@ class Builder:
         inputs, outputs = {}, {}
         dotted = "." in "".join(inst.attrs)     # INPUT.flatten="yes" and the like
         for spec in module._ik_inputs.values():
-            flatten, stack = spec.flatten, spec.stack
+            flatten, stack, use_label = spec.flatten, spec.stack, spec.use_label
             if dotted:
                 flatten = self._input_flag(inst, spec.name, "flatten", flatten)
                 stack = self._input_flag(inst, spec.name, "stack", stack)
+                use_label = self._input_flag(inst, spec.name, "use_label", use_label)
             inputs[spec.name] = Buffer("input", inst, spec.name, optional=spec.optional,
                                        flatten=flatten, stack=stack, fixed=spec.size,
-                                       node=inst.node)
+                                       node=inst.node, use_label=use_label)
         for spec in module._ik_outputs.values():
             buf = Buffer("output", inst, spec.name, optional=spec.optional, node=inst.node)
             buf.shape = module._ik_output_shapes.get(spec.name)
             outputs[spec.name] = buf
         self.buffers[inst] = (inputs, outputs)
+        module._ik_input_buffers = inputs       # for input_parts and input_label
 
     def _input_flag(self, inst: ModuleInstance, name: str, key: str, default: bool) -> bool:
         """An input's flag as the module element sets it (``INPUT.flatten="yes"``)."""
@@ -585,23 +587,6 @@ class Builder:
                     layout(buf, None)
         return self._size_outputs(item)
 
-    def _describe_inputs(self, inst: ModuleInstance) -> None:
-        """Tell the module what each connection gives its inputs (labels, shapes, places),
-        and the label of each input that ``use_label``s."""
-        module = inst.module
-        parts, labels = {}, {}
-        for name, buf in self.buffers[inst][0].items():
-            if not buf.incoming:
-                continue
-            links = sorted(buf.incoming, key=lambda lk: lk.order)
-            parts[name] = [InputPart(_label(lk), lk.source.path, tuple(lk.piece_shape),
-                                     lk.dst_index) for lk in links]
-            named = [p.label for p in parts[name] if p.label is not None]
-            if len(named) == 1 and self._input_flag(inst, name, "use_label",
-                                                    module._ik_inputs[name].use_label):
-                labels[name] = named[0]
-        module._ik_input_parts, module._ik_input_labels = parts, labels
-
     def _drop_links_from_unconnected_ports(self) -> None:
         changed = True
         while changed:
@@ -711,8 +696,6 @@ class Builder:
                 self.connect(order, node, group)
         with step("sizes"):
             self.resolve_sizes()
-            for inst in self.instances:
-                self._describe_inputs(inst)
         with step("delays and schedule"):
             order, runs, edges = self._schedule()
         return (self.network_factory or Network)(self, top, order, runs, edges)
@@ -729,17 +712,6 @@ class Builder:
                         if run.delay == 0:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)
         return schedule(self.instances, edges), runs, edges
-
-
-def _label(link: Link) -> str | None:
-    """A connection's label; one without a label that reads a group port takes the label of
-    the one connection into that port."""
-    seen = set()
-    while link.label is None and link.source.kind == "port" and \
-            len(link.source.incoming) == 1 and link.source not in seen:
-        seen.add(link.source)
-        link = link.source.incoming[0]
-    return link.label
 
 
 def _missing(node: Node, message: str) -> ModelError:
