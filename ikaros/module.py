@@ -198,7 +198,8 @@ class Clock:
         self.real_time = 0.0            # seconds since the run started
 
 
-# Names a parameter or port may not take, because the module API uses them.
+# Names the module API uses: a Python class may not give them to a parameter or port; one
+# from an .ikc file or added at build time is held in an attribute with a trailing "_".
 RESERVED = {"name", "path", "clock", "element", "init", "tick", "command", "stop", "configure",
             "set_sizes", "add_input", "add_output", "input_shape", "output_shape",
             "set_output_shape", "connected", "input_parts", "input_label", "notify", "print",
