@@ -40,6 +40,7 @@ class ParameterSpec:
     range: tuple | None = None   # (lowest, highest) a number may be; None for no bound
     finite: bool = True          # whether nan and inf are refused
     file: bool = False           # whether the value names a file or folder
+    shape: str | None = None     # a matrix's fixed shape expression (Ikaros 3 ``shape``)
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "type": self.type, "default": _plain(self.default),
@@ -54,6 +55,8 @@ class ParameterSpec:
             d["finite"] = False
         if self.file:
             d["file"] = True
+        if self.shape:
+            d["shape"] = self.shape
         return d
 
 
@@ -66,10 +69,11 @@ class InputSpec:
     flatten: bool = False
     stack: bool = False
     size: str | None = None      # a fixed shape expression (Ikaros 3 ``size``)
+    use_label: bool = False      # the input takes the label of its one labelled connection
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "description": self.description, "optional": self.optional}
-        for key in ("flatten", "stack"):
+        for key in ("flatten", "stack", "use_label"):
             if getattr(self, key):
                 d[key] = True
         if self.size:
@@ -185,11 +189,13 @@ class ClassDescription:
             if p.range:
                 low, high = ("" if v is None else f"{v:g}" for v in p.range)
                 opts += f", range {low}..{high}"
+            if p.shape:
+                opts += f", shape {p.shape}"
             lines.append(f"  {p.name} ({p.type}, default {_plain(p.default)!r}{opts}): "
                          f"{p.description}")
         lines.append("Inputs:" if self.inputs else "Inputs: none")
         for i in self.inputs:
-            flags = [f for f in ("optional", "flatten", "stack") if getattr(i, f)]
+            flags = [f for f in ("optional", "flatten", "stack", "use_label") if getattr(i, f)]
             lines.append(f"  {i.name}{' (' + ', '.join(flags) + ')' if flags else ''}: "
                          f"{i.description}")
         lines.append("Outputs:" if self.outputs else "Outputs: none")

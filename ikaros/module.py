@@ -21,6 +21,7 @@ from __future__ import annotations
 import builtins
 import functools
 import re
+from dataclasses import dataclass
 from typing import Any, Callable
 
 import numpy as np
@@ -57,11 +58,18 @@ def require(module_name: str, package: str, extra: str | None = None):
                                 f"(or pip install {package})") from None
 
 
-@functools.lru_cache(maxsize=None)
-def attribute_name(port_name: str) -> str:
-    """The Python attribute that holds a port: ``T-INPUT`` is ``self.T_INPUT``."""
+def _python_name(port_name: str) -> str:
     name = re.sub(r"\W", "_", port_name)
     return "_" + name if name[:1].isdigit() else name
+
+
+@functools.lru_cache(maxsize=None)
+def attribute_name(port_name: str) -> str:
+    """The Python attribute that holds a port: ``T-INPUT`` is ``self.T_INPUT``. A port
+    added at build time with a name the module API uses (an InputFile column ``tick``) gets
+    a trailing underscore: ``self.tick_``."""
+    name = _python_name(port_name)
+    return name + "_" if name in RESERVED else name
 
 
 class Parameter:
@@ -102,11 +110,15 @@ class Parameter:
 
 
 class Input:
-    """Declares an input. ``optional`` inputs may stay unconnected (then they are None)."""
+    """Declares an input. ``optional`` inputs may stay unconnected (then they are None).
+    With ``use_label`` the input takes the ``label`` of its one labelled connection
+    (``input_label``); a model may also set it with ``INPUT.use_label="yes"``."""
 
     def __init__(self, description: str = "", *, optional: bool = False, flatten: bool = False,
-                 stack: bool = False, size: str | None = None, name: str | None = None):
-        self.spec_ = InputSpec(name or "", description, optional, flatten, stack, size)
+                 stack: bool = False, size: str | None = None, name: str | None = None,
+                 use_label: bool = False):
+        self.spec_ = InputSpec(name or "", description, optional, flatten, stack, size,
+                               use_label)
 
     def __set_name__(self, owner, name):
         self.spec_.name = self.spec_.name or name
@@ -211,6 +223,27 @@ def _infer_type(default: Any, options: list[str]) -> str:
     return "string"
 
 
+@dataclass(frozen=True)
+class InputPart:
+    """What one connection contributes to an input: its ``label`` (the connection's
+    ``label`` attribute, None without one), its ``source`` (the path of the output or group
+    port it reads, as ``"C.OUTPUT"``), the ``shape`` of its values (a delay window adds a
+    leading axis, one row per delay, in the order listed) and ``index``, the flat positions
+    in the input that hold them. ``name`` is the label, or the source without one."""
+    label: str | None
+    source: str
+    shape: tuple
+    index: Any
+
+    @property
+    def name(self) -> str:
+        return self.label if self.label is not None else self.source
+
+    def values(self, data: np.ndarray) -> np.ndarray:
+        """This part's values in ``data`` (the input's array), in its own shape (a copy)."""
+        return np.asarray(data).reshape(-1)[self.index].reshape(self.shape)
+
+
 class Clock:
     """The kernel's clock as modules see it: read ``tick`` and ``time`` inside ``tick()``."""
     __slots__ = ("tick", "tick_duration", "time", "real_time")
@@ -222,12 +255,13 @@ class Clock:
         self.real_time = 0.0            # seconds since the run started
 
 
-# Names a parameter or port may not take, because the module API uses them.
+# Names the module API uses: a Python class may not give them to a parameter or port; one
+# from an .ikc file or added at build time is held in an attribute with a trailing "_".
 RESERVED = {"name", "path", "clock", "element", "init", "tick", "command", "stop", "configure",
             "set_sizes", "add_input", "add_output", "input_shape", "output_shape",
-            "set_output_shape", "connected", "notify", "print", "warning", "error",
-            "fatal_error", "end_of_file", "description", "parameter_names", "state",
-            "start_steps"}
+            "set_output_shape", "connected", "input_parts", "input_label", "notify", "print",
+            "warning", "error", "fatal_error", "end_of_file", "description", "parameter_names",
+            "state", "start_steps"}
 
 
 def parameter_attribute(name: str) -> str:
@@ -255,7 +289,7 @@ class Module:
                     outputs[value.spec().name] = value.spec()
                 elif isinstance(value, State):
                     states[value.spec().name] = value.spec()
-        for name in list(params) + list(states) + [attribute_name(n) for n in
+        for name in list(params) + list(states) + [_python_name(n) for n in
                                                    list(inputs) + list(outputs)]:
             if name in RESERVED:
                 raise TypeError(f"{cls.__name__}: '{name}' is a reserved name in the module API")
@@ -280,6 +314,9 @@ class Module:
     name: str = ""
     path: str = ""
     element: Any = None             # the model-file element of this module (a language Node)
+    # The kernel's input buffers (set when they are made), which give input_parts and
+    # input_label.
+    _ik_input_buffers: dict = {}
     clock: Clock
 
     def __init__(self):
@@ -320,9 +357,10 @@ class Module:
 
     # --- build-time API ------------------------------------------------------------------
     def add_input(self, name: str, *, optional: bool = False, flatten: bool = False,
-                  stack: bool = False, description: str = "") -> None:
+                  stack: bool = False, description: str = "", use_label: bool = False) -> None:
         """Add an input in ``configure`` (for inputs that depend on parameters)."""
-        self._ik_inputs[name] = InputSpec(name, description, optional, flatten, stack)
+        self._ik_inputs[name] = InputSpec(name, description, optional, flatten, stack,
+                                          use_label=use_label)
 
     def add_output(self, name: str, shape: tuple | int | str | None = None,
                    description: str = "", *, capacity: tuple | int | str | None = None
@@ -367,6 +405,20 @@ class Module:
         on the element starts the module's ticks there. Known from ``init`` on."""
         steps = self._ik_start_steps
         return (0, 0) if steps is None else steps.of(self)
+
+    def input_parts(self, name: str) -> list[InputPart]:
+        """What each connection into an input contributes (from ``init`` on), in the order
+        the connections are declared: label, source, shape and place in the input. Empty for
+        an unconnected input."""
+        buffer = self._ik_input_buffers.get(name)
+        return buffer.parts() if buffer is not None else []
+
+    def input_label(self, name: str) -> str | None:
+        """The label an input takes when it ``use_label``s (the class declares it, or the
+        model says ``INPUT.use_label="yes"``) and exactly one of its connections has a
+        ``label`` (from ``init`` on); None otherwise."""
+        buffer = self._ik_input_buffers.get(name)
+        return buffer.label() if buffer is not None else None
 
     # --- notifications -------------------------------------------------------------------
     def notify(self, level: int, message: str) -> None:

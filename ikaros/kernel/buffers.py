@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..language.node import Node
+from ..module import InputPart
 
 
 class Buffer:
@@ -17,11 +18,11 @@ class Buffer:
 
     __slots__ = ("kind", "owner", "name", "optional", "flatten", "stack", "fixed", "node",
                  "shape", "incoming", "outgoing", "array", "offset", "dynamic",
-                 "dynamic_array")
+                 "dynamic_array", "use_label")
 
     def __init__(self, kind: str, owner, name: str, *, optional: bool = False,
                  flatten: bool = False, stack: bool = False, fixed: str | None = None,
-                 node: Node | None = None):
+                 node: Node | None = None, use_label: bool = False):
         self.kind = kind                  # "output", "input" or "port"
         self.owner = owner                # a ModuleInstance or a Group
         self.name = name
@@ -29,6 +30,7 @@ class Buffer:
         self.flatten = flatten
         self.stack = stack
         self.fixed = fixed                # a fixed shape expression for an input
+        self.use_label = use_label        # an input that takes its connection's label
         self.node = node
         self.shape: tuple | None = None
         # () until the first link (most buffers have one or none; fewer objects to build
@@ -65,6 +67,21 @@ class Buffer:
     def size(self) -> int:
         return math.prod(self.shape) if self.shape is not None else 0
 
+    def parts(self) -> list[InputPart]:
+        """What each connection into this laid-out input brings, in declaration order
+        (``Module.input_parts``)."""
+        links = sorted(self.incoming, key=lambda lk: lk.order)
+        return [InputPart(_label(lk), lk.source.path, tuple(lk.piece_shape), lk.dst_index)
+                for lk in links]
+
+    def label(self) -> str | None:
+        """The label of an input that uses labels: that of its one labelled connection
+        (``Module.input_label``)."""
+        if not self.use_label:
+            return None
+        named = [label for label in map(_label, self.incoming) if label is not None]
+        return named[0] if len(named) == 1 else None
+
     def __repr__(self):
         return f"<{self.kind} {self.path} {self.shape}>"
 
@@ -83,6 +100,7 @@ class Link:
     order: int
     src_sel: tuple | None = None
     dst_sel: tuple | None = None
+    label: str | None = None        # the connection's ``label`` (Ikaros 3)
     # Set by the layout: flat source indices of one lane, and flat target indices of all
     # lanes (lane-major).
     piece_shape: tuple = ()
@@ -117,6 +135,17 @@ class Run:
         n = self.source.size
         return (n == self.target.size and _identity(self.src_index, n)
                 and _identity(self.dst_index, n))
+
+
+def _label(link: Link) -> str | None:
+    """A connection's label; one without a label that reads a group port takes the label of
+    the one connection into that port."""
+    seen = set()
+    while link.label is None and link.source.kind == "port" and \
+            len(link.source.incoming) == 1 and link.source not in seen:
+        seen.add(link.source)
+        link = link.source.incoming[0]
+    return link.label
 
 
 def _identity(index, n: int) -> bool:

@@ -21,7 +21,7 @@ from ..module import Clock, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
 from .layout import layout, runs_into
-from .ranges import check_parameter
+from .ranges import check_parameter, fit_shape
 from .schedule import schedule
 from .startup import StartupSteps
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
@@ -231,6 +231,9 @@ class Builder:
         desc = cls.description
         for spec in desc.parameters:
             inst.values[spec.name], inst.has_value[spec.name] = self._parameter(inst, spec)
+        for spec in desc.parameters:
+            if spec.shape:
+                self._fixed_parameter_shape(inst, spec)
         for key in ("shape", "size"):
             if key in inst.attrs and key not in inst.values:
                 inst.shape_attribute = inst.attrs[key]
@@ -287,6 +290,15 @@ class Builder:
         if inst.start_tick < 0:
             raise inst.node.error(f"start_tick must be >= 0 (start_tick {inst.start_tick})")
 
+    def _fixed_parameter_shape(self, inst: ModuleInstance, spec) -> None:
+        """A matrix parameter whose class declares its ``shape`` (after every parameter has
+        its value, so the shape may name them): zero-filled, or an error when too long."""
+        try:
+            shape = shape_expression(inst, spec.shape, {})
+            inst.values[spec.name] = fit_shape(inst.values[spec.name], shape)
+        except (SizeError, ValueError_) as e:
+            raise inst.node.error(f'parameter "{spec.name}" of {inst.path}: {e}') from None
+
     def _parameter(self, inst: ModuleInstance, spec) -> tuple[object, bool]:
         try:
             found = lookup_parameter(inst, spec.name)
@@ -331,19 +343,21 @@ class Builder:
         inputs, outputs = {}, {}
         dotted = "." in "".join(inst.attrs)     # INPUT.flatten="yes" and the like
         for spec in module._ik_inputs.values():
-            flatten, stack = spec.flatten, spec.stack
+            flatten, stack, use_label = spec.flatten, spec.stack, spec.use_label
             if dotted:
                 flatten = self._input_flag(inst, spec.name, "flatten", flatten)
                 stack = self._input_flag(inst, spec.name, "stack", stack)
+                use_label = self._input_flag(inst, spec.name, "use_label", use_label)
             inputs[spec.name] = Buffer("input", inst, spec.name, optional=spec.optional,
                                        flatten=flatten, stack=stack, fixed=spec.size,
-                                       node=inst.node)
+                                       node=inst.node, use_label=use_label)
         for spec in module._ik_outputs.values():
             buf = Buffer("output", inst, spec.name, optional=spec.optional, node=inst.node)
             buf.shape = module._ik_output_shapes.get(spec.name)
             buf.dynamic = spec.dynamic
             outputs[spec.name] = buf
         self.buffers[inst] = (inputs, outputs)
+        module._ik_input_buffers = inputs       # for input_parts and input_label
 
     def _input_flag(self, inst: ModuleInstance, name: str, key: str, default: bool) -> bool:
         """An input's flag as the module element sets it (``INPUT.flatten="yes"``)."""
@@ -406,8 +420,9 @@ class Builder:
                                   node.file, node.line, node.label())
             _remove(self.model, node)        # so that saving leaves it out
             return
+        label = self._connection_attr(node, group, "label") if "label" in attrs else None
         for dst in targets:
-            Buffer.link(Link(src, dst, delays, node, order, src_sel, dst_sel))
+            Buffer.link(Link(src, dst, delays, node, order, src_sel, dst_sel, label or None))
 
     def _connection_attr(self, node: Node, group: Group, key: str) -> str | None:
         value = node.attrs.get(key)

@@ -27,7 +27,7 @@ from .gating import gated
 from .fusion import fuse
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .limits import check_memory as _check_memory
-from .ranges import check_parameter
+from .ranges import check_parameter, fit_shape
 from .timing import Timing
 from .scope import VariableError, from_python
 from . import state as _state
@@ -622,6 +622,8 @@ class Network:
         spec = comp.module.description.parameter(name)
         try:
             new = from_python(value, spec)
+            if spec.shape:              # a fixed shape: the one the model gave it
+                new = fit_shape(new, comp.values[name].shape)
             check_parameter(new, spec)
         except (ValueError_, VariableError, ValueError, TypeError) as e:
             raise ValueError(f'bad value for parameter "{path}": {e}') from None

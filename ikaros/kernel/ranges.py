@@ -29,9 +29,10 @@ def check_parameter(value, spec: ParameterSpec) -> None:
         low = high = number
     if spec.range:
         lowest, highest = spec.range
-        if lowest is not None and low < lowest or highest is not None and high > highest:
-            raise ValueError_(f"{_text(low if lowest is not None and low < lowest else high)} "
-                              f"is outside the range {_range_text(spec.range)}")
+        if lowest is not None and low < lowest:
+            raise ValueError_(f"{_text(low)} is below minimum {format_number(lowest)}")
+        if highest is not None and high > highest:
+            raise ValueError_(f"{_text(high)} is above maximum {format_number(highest)}")
 
 
 def _bad_element(value: np.ndarray) -> str:
@@ -42,7 +43,17 @@ def _text(number: float) -> str:
     return str(number) if not math.isfinite(number) else format_number(number)
 
 
-def _range_text(bounds: tuple) -> str:
-    lowest, highest = bounds
-    return (f"{'-inf' if lowest is None else format_number(lowest)} to "
-            f"{'inf' if highest is None else format_number(highest)}")
+
+
+def fit_shape(value: np.ndarray, shape: tuple) -> np.ndarray:
+    """A matrix parameter's value given the fixed shape its class declares (Ikaros 3
+    ``shape``): its elements in row-major order, the missing ones zero. More elements than
+    the shape holds raise ValueError_."""
+    flat = np.asarray(value, dtype=np.float32).reshape(-1)
+    room = int(np.prod(shape)) if shape else 1
+    if flat.size > room:
+        raise ValueError_(f"Matrix parameter value has {flat.size} elements but shape "
+                          f"{','.join(map(str, shape))} only allows {room}")
+    fitted = np.zeros(room, dtype=np.float32)
+    fitted[:flat.size] = flat
+    return fitted.reshape(shape)

@@ -45,8 +45,24 @@ def parameter_spec(node: Node) -> ParameterSpec:
         ptype = "list" if options else "number"
     if options and ptype == "int":
         ptype = "list"
+    bounds = (_bound(node, "min"), _bound(node, "max"))
+    shape = node.get("shape") or node.get("size") or None
+    if shape is not None and ptype not in ("matrix", "array"):
+        raise node.error(f'shape="{shape}" is for matrix parameters, not type "{ptype}"')
     return ParameterSpec(name, ptype, node.get("default"), node.get("description", ""),
-                         options, node.get("control"))
+                         options, node.get("control"),
+                         bounds if bounds != (None, None) else None, shape=shape)
+
+
+def _bound(node: Node, key: str) -> float | None:
+    """The ``min`` or ``max`` of a parameter element (Ikaros 3), or None."""
+    text = node.get(key)
+    if text is None or not text.strip():
+        return None
+    try:
+        return parse_number(text)
+    except ValueError_ as e:
+        raise node.error(f"{key}: {e}") from None
 
 
 def _scalar_default(node: Node, stype: str):
@@ -103,7 +119,8 @@ def description_from_node(root: Node, expected_name: str | None = None) -> Class
             raise i.error("an input needs a name")
         desc.inputs.append(InputSpec(i.get("name"), i.get("description", ""),
                                      _flag(i, "optional"), _flag(i, "flatten"),
-                                     _flag(i, "stack"), i.get("size")))
+                                     _flag(i, "stack"), i.get("size"),
+                                     _flag(i, "use_label")))
     for o in root.elements("output"):
         if not o.get("name"):
             raise o.error("an output needs a name")

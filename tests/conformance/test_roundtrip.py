@@ -40,4 +40,10 @@ def test_save_round_trip(name, tmp_path):
             assert np.array_equal(original.output(path), again.output(path)), path
         original.step()
         again.step()
-    assert original.info().split("Connections:")[1] == again.info().split("Connections:")[1]
+    assert _listing(original) == _listing(again)
+
+
+def _listing(net) -> str:
+    """The connections, schedule and memory of ``net.info()``; not its last line, which says
+    whether the compiled tick, made in the background, is there yet."""
+    return net.info().split("Connections:")[1].rsplit("\nCompiled tick:", 1)[0]

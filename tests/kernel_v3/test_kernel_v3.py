@@ -10,7 +10,8 @@ expectations are read from root attributes, as the original harness does (TESTS.
 * ``expected_output_contains`` / ``_not_contains`` / ``_once`` / ``_twice``: ``||``-separated
   texts matched against stdout plus stderr;
 * ``expected_file_exists`` / ``_not_exists`` / ``expected_file_contains``
-  (``path::text``).
+  (``path::text``);
+* ``initial_file`` is written with ``initial_file_contents`` before the run.
 
 ``${TEST_DIR}`` is the model's folder and ``${TMP}`` a fresh temporary folder. A model that
 reads what another writes (a state file) names it in ``requires``: that model runs first,
@@ -63,6 +64,9 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
         return text.replace("${TEST_DIR}", os.path.dirname(path)).replace("${TMP}",
                                                                          str(tmp_path))
 
+    if attrs.get("initial_file"):
+        with open(expand(attrs["initial_file"]), "w", encoding="utf-8") as f:
+            f.write(expand(attrs.get("initial_file_contents", "")))
     argv = ["-b"] + [expand(a) for a in shlex.split(attrs.get("cli_args", ""))]
     if "stop" not in attrs:
         argv += ["-s", "0"]

@@ -37,10 +37,10 @@ def _load(folder, attrs="", **kw):
 
 
 @pytest.mark.parametrize("attrs, reason", [
-    ('p="1.5"', 'parameter "p" of G: 1.5 is outside the range 0 to 1'),
-    ('p="-0.25"', 'parameter "p" of G: -0.25 is outside the range 0 to 1'),
-    ('n="0"', 'parameter "n" of G: 0 is outside the range 1 to inf'),
-    ('w="0.5 2"', 'parameter "w" of G: 2 is outside the range -1 to 1'),
+    ('p="1.5"', 'parameter "p" of G: 1.5 is above maximum 1'),
+    ('p="-0.25"', 'parameter "p" of G: -0.25 is below minimum 0'),
+    ('n="0"', 'parameter "n" of G: 0 is below minimum 1'),
+    ('w="0.5 2"', 'parameter "w" of G: 2 is above maximum 1'),
     ('w="0.5 nan"', 'parameter "w" of G: nan is not a finite number'),
     ('p="nan"', 'parameter "p" of G: nan is not a finite number'),
     ('p="1e400"', 'parameter "p" of G: inf is not a finite number'),
@@ -65,10 +65,10 @@ def test_the_ends_of_a_range_and_declared_non_finite_values_are_taken(folder):
 def test_values_set_while_running_are_checked_and_change_nothing(folder):
     net = _load(folder)
     try:
-        for path, value, reason in [("G.p", 2, "2 is outside the range 0 to 1"),
+        for path, value, reason in [("G.p", 2, "2 is above maximum 1"),
                                     ("G.p", "nan", "nan is not a finite number"),
-                                    ("G.n", 0, "0 is outside the range 1 to inf"),
-                                    ("G.w", [0, -3], "-3 is outside the range -1 to 1")]:
+                                    ("G.n", 0, "0 is below minimum 1"),
+                                    ("G.w", [0, -3], "-3 is below minimum -1")]:
             with pytest.raises(ValueError) as e:
                 net.set_parameter(path, value)
             assert str(e.value) == f'bad value for parameter "{path}": {reason}'

@@ -7,11 +7,11 @@ import os
 import numpy as np
 
 from ikaros.errors import ModelError
-from ikaros.module import Input, Parameter
+from ikaros.module import Input, Parameter, attribute_name
 
 from ._columns import ColumnWriter
 from ._csvnames import column_names
-from ._files import numbered
+from ._files import counter_capacity, numbered
 _EXTENSIONS = {".csv": "csv", ".tsv": "tsv", ".json": "json", ".jsonl": "jsonl",
                ".ndjson": "jsonl"}
 _STAMPS = {"yes": "tick", "true": "tick", "on": "tick", "1": "tick",
@@ -24,10 +24,14 @@ class OutputFile(ColumnWriter):
     """Writes its inputs to a file, one record per tick. The values come from the
     ``<column name="X" decimals="2"/>`` child elements, each of which becomes an input X
     (the Ikaros 2 interface), and from INPUT (the Ikaros 3 interface: connect what is to be
-    written to INPUT); columns come first, then INPUT. A relative ``filename`` is relative to
-    the model file's folder; a ``%d`` in it (or ``%03d`` and so on, Ikaros 2) or a run of
-    ``#`` (Ikaros 3: ``##`` is two digits, zero-padded) is replaced by the file number,
-    which starts at 0.
+    written to INPUT, naming each connection with its ``label``); columns come first, then
+    INPUT. When none of INPUT's connections has a label, INPUT is one value named INPUT (its
+    connections laid end to end); otherwise each connection is a value of its own, named by
+    its label (one without a label by its source, as ``C.OUTPUT``), with its own shape (a
+    delay window adds an outer axis, one entry per delay in the order listed). A relative
+    ``filename`` is relative to the model file's folder; a ``%d`` in it (or ``%03d`` and so
+    on, Ikaros 2) or a run of ``#`` (Ikaros 3: ``##`` is two digits, zero-padded) is
+    replaced by the file number, which starts at ``start_index`` (0).
 
     ``format`` ``auto`` (the default) writes the Ikaros 2 text table when there are
     ``<column>`` elements (whatever the file is called, as Ikaros 2 did), and otherwise goes
@@ -35,13 +39,17 @@ class OutputFile(ColumnWriter):
     ``.ndjson`` jsonl, anything else the text table (``text``):
 
     * text: tab-separated, the header ``T/1`` (the stamp) followed by ``X/n`` for each
-      column (n elements of X, written flattened), as InputFile reads it;
+      value (n elements of X, written flattened), as InputFile reads it;
     * csv, tsv: values separated by ``delimiter`` (csv: "," unless set, tsv: a tab), a
       header row (unless ``header`` is no) naming the stamp column after the stamp kind and
-      the elements ``X``, ``X[0]``, ``X[1][2]`` ..., as InputCSV and InputFile read them;
-    * jsonl: one object per line, ``{"tick": 3, "X": [[1, 2], [3, 4]]}``, each value with
+      the elements ``X``, ``X[0]``, ``X[1][2]`` ..., as InputCSV and InputFile read them (a
+      name with the delimiter or a quote in it is quoted, quotes doubled);
+    * jsonl: one object per line, ``{"tick":3,"weights":[[1,2],[3,4]]}``, each value with
       its shape (a one-element value as a number); json: the same objects in one array,
-      kept valid after every record. Values that are not finite are written as null.
+      kept valid after every record. Values that are not finite are written as null. In
+      these formats every connection into INPUT needs a label, the labels must differ (from
+      the column names too) and may not be ``tick`` or the stamp's name: else the run stops
+      at its start with an error.
 
     Numbers are written with ``decimals`` decimals (a column may set its own), or with
     ``number_format`` full, as many digits as needed to read the float back exactly.
@@ -49,15 +57,21 @@ class OutputFile(ColumnWriter):
     1, 2 ... per file), ``time`` (the nominal time, tick × tick_duration), ``real_time``
     (seconds since the run started) or ``none``; Ikaros 2's yes and no are tick and none.
 
+    An existing file is replaced, unless ``append`` is set: then the records go after those
+    it has; its header must be the one this module writes (else the run stops with an
+    error), and a JSON file must hold an array, which stays one valid array.
+
     When WRITE is connected a record is written only on ticks when its first element is
     above 0 (with ``single_trig``, or its Ikaros 3 name ``single_trigger``, only on ticks
     when it rises from 0 or below to above 0).
     When NEWFILE is connected, a rise of its first element from 0 or below to above 0
-    closes the file, adds 1 to the file number and opens the next file (the same file again,
-    rewritten, when the name has no %d); that tick's record goes into the new file. When
-    ``directory`` is set, the files go into a new folder named after it with a number added
-    (``name_0``, ``name_1``, ...: the first that does not exist), created at the start of
-    each run."""
+    closes the file (a JSON array is closed), adds 1 to the file number and opens the next
+    file (the same file again, rewritten, when the name has no counter); that tick's record
+    goes into the new file. When the next file cannot be opened, or its number does not fit
+    in the run of ``#``, a warning says so and the records go on into the current file.
+    When ``directory`` is set, the files go into a new folder named after it with a number
+    added (``name_0``, ``name_1``, ...: the first that does not exist), created at the start
+    of each run."""
 
     filename = Parameter("output.txt", "the file to write; may contain %d or ## for the file "
                          "number; relative to the model file's folder")
@@ -77,11 +91,14 @@ class OutputFile(ColumnWriter):
     single_trig = Parameter(False, "write only when WRITE rises from 0 to above 0, not on "
                             "every tick it is above 0")
     single_trigger = Parameter(False, "Ikaros 3 name of single_trig")
+    append = Parameter(False, "add to an existing file instead of replacing it (its header "
+                       "must be the same; a JSON file must hold an array)")
+    start_index = Parameter(0, "the number of the first file (for %d or ## in filename)",
+                            type="int", range=(0, None))
     use_old_format = Parameter(False, "accepted for compatibility and has no effect: the "
                                "text header is always written in the NAME/n form that "
                                "InputFile reads")
-    INPUT = Input("Ikaros 3: the values to write (one connection keeps its shape; several "
-                  "are laid end to end)",
+    INPUT = Input("Ikaros 3: the values to write, each connection named by its label",
                   optional=True)
     NEWFILE = Input("a rise of the first element to above 0 starts a new file", optional=True)
     WRITE = Input("when connected, a record is written only when the first element is above "
@@ -101,6 +118,10 @@ class OutputFile(ColumnWriter):
         if self._stamp is None:
             raise self._build_error(None, f'timestamp "{self.timestamp}" must be tick, line, '
                                     f'time, real_time or none')
+        capacity = counter_capacity(self.filename)
+        if capacity is not None and self.start_index >= capacity:
+            raise self._build_error(None, f'start_index {self.start_index} does not fit in '
+                                    f'"{self.filename}"')
         self._delimiter = "\t"
         if kind in ("csv", "tsv"):
             text = self.delimiter or ("," if kind == "csv" else "tab")
@@ -119,31 +140,74 @@ class OutputFile(ColumnWriter):
     # --- run time -------------------------------------------------------------------------
     def init(self):
         self._file = None
-        self._number = 0
-        self._line = 0
+        self._path_open = None
+        self._number = self.start_index
+        self._line = 0                  # records written to the current file in this run
+        self._records = 0               # records in the current file (appended ones too)
         self._last_newfile = False
         self._last_write = False
-        if self.INPUT is not None:
-            self._columns.append(("INPUT", None))
-        self._inputs, self._value_formats = self._lay_out()
+        fields = self._fields()
+        if fields is None:
+            return
+        self._names = [name for name, _, _ in fields]
+        self._decimals = [self.decimals if d is None else d for _, d, _ in fields]
+        self._values = [values for _, _, values in fields]
+        self._shapes = [v().shape for v in self._values]
+        self._value_formats = [f"%.{max(0, d)}f" for d, shape in
+                               zip(self._decimals, self._shapes) for _ in range(_size(shape))]
         self._full = self.number_format == "full"
-        self._names = [name for name, _ in self._columns]
-        self._decimals = [self.decimals if d is None else d for _, d in self._columns]
         self._folder = self._make_folder()
         if self._folder is not None:
-            self._open()
+            why = self._open(self._path())
+            if why is not None:
+                self.fatal_error(f"cannot write output file {why}")
+
+    def _fields(self):
+        """(name, decimals, values) of every value written, in order: the ``<column>``
+        inputs, then INPUT: one field named INPUT when none of its connections has a label,
+        else one per connection, named by its label (or its source). ``values()`` gives the
+        value's current array. None after a fatal error (bad labels)."""
+        fields = [(name, d, _reader(getattr(self, attribute_name(name))))
+                  for name, d in self._columns]
+        if self.INPUT is None:
+            return fields
+        parts = self.input_parts("INPUT")
+        if self._kind in ("json", "jsonl"):
+            error = self._label_error(parts, {name for name, _ in self._columns})
+            if error:
+                self.fatal_error(error)
+                return None
+        if all(p.label is None for p in parts):
+            return fields + [("INPUT", None, _reader(self.INPUT))]
+        return fields + [(p.name, None, _part_reader(self.INPUT, p)) for p in parts]
+
+    def _label_error(self, parts, taken: set) -> str | None:
+        """Why INPUT's connections cannot name JSON fields, or None: each needs a label,
+        labels must differ (from the columns too) and may not be the stamp's name."""
+        kind = self._kind.upper()
+        reserved = {"tick"} | ({self._stamp} if self._stamp != "none" else set())
+        for p in parts:
+            if p.label is None:
+                return (f"{kind} needs a label on every connection into INPUT; the one from "
+                        f"{p.source} has none")
+            if p.label in reserved:
+                return f'{kind}: the label "{p.label}" is reserved for the time stamp'
+            if p.label in taken:
+                return f'{kind}: the label "{p.label}" is used twice'
+            taken.add(p.label)
+        return None
 
     def _header(self):
         stamp = [] if self._stamp == "none" else [self._stamp]
         if self._kind == "text":
             items = ["T/1"] if stamp else []
-            items += [f"{name}/{x.size}" for name, x in zip(self._names, self._inputs)]
+            items += [f"{name}/{_size(shape)}" for name, shape in zip(self._names, self._shapes)]
             return "\t".join(items) + "\n"
         if self._kind in ("csv", "tsv"):
             if not self.header:
                 return ""
-            cells = stamp + [c for name, x in zip(self._names, self._inputs)
-                             for c in column_names(name, x.shape)]
+            cells = stamp + [c for name, shape in zip(self._names, self._shapes)
+                             for c in column_names(name, shape)]
             return self._delimiter.join(_quoted(c, self._delimiter) for c in cells) + "\n"
         return "[\n" if self._kind == "json" else ""
 
@@ -158,16 +222,15 @@ class OutputFile(ColumnWriter):
         return self.clock.real_time
 
     def _record(self):
-        for x, a, b in self._slices:
-            self._buffer[a:b] = x.reshape(-1)
-        values = self._buffer.tolist()
+        arrays = [values() for values in self._values]
         if self._kind in ("json", "jsonl"):
             record = {} if self._stamp == "none" else {self._stamp: self._stamp_value()}
-            for name, x, d in zip(self._names, self._inputs, self._decimals):
+            for name, x, d in zip(self._names, arrays, self._decimals):
                 record[name] = _json_value(x, None if self._full else d)
-            text = json.dumps(record, allow_nan=False)
-            return (",\n" if self._line else "") + text if self._kind == "json" else \
+            text = json.dumps(record, allow_nan=False, separators=(",", ":"))
+            return (",\n" if self._records else "") + text if self._kind == "json" else \
                 text + "\n"
+        values = [v for x in arrays for v in x.reshape(-1).tolist()]
         if self._full:
             cells = [_shortest(v) for v in values]
         else:
@@ -198,22 +261,56 @@ class OutputFile(ColumnWriter):
         self.fatal_error(f'no free directory name for "{self.directory}"')
         return None
 
-    def _path(self):
-        name = numbered(self.filename, self._number)
+    def _path(self, number: int | None = None):
+        name = numbered(self.filename, self._number if number is None else number)
         return name if os.path.isabs(name) else os.path.join(self._folder, name)
 
-    def _open(self):
-        self._close()
-        path = self._path()
-        self._line = 0
+    def _open(self, path: str) -> str | None:
+        """Make ``path`` the file written to (closing the current one), with its header or,
+        when appending to a file that has records, after them. Returns why it could not,
+        or None; then the current file stays open."""
+        if path == self._path_open:
+            self._close()
         try:
             os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
-            self._file = open(path, "w", encoding="utf-8")
-            self._file.write(self._header())
-            self._end_json()
-        except OSError as e:
-            self._file = None
-            self.fatal_error(f'cannot write output file "{path}": {e.strerror}')
+            existing = self.append and os.path.exists(path) and os.path.getsize(path) > 0
+            if existing:
+                file, records = self._reopen(path)
+            else:
+                file, records = open(path, "w", encoding="utf-8"), 0
+                file.write(self._header())
+        except (OSError, ValueError) as e:
+            return f'"{path}": {getattr(e, "strerror", None) or e}'
+        self._close()
+        self._file, self._path_open = file, path
+        self._line, self._records = 0, records
+        self._end_json()
+        return None
+
+    def _reopen(self, path: str):
+        """An existing file opened for appending, and the number of records it has (only
+        JSON needs it). Its header must be this run's; raises ValueError when not."""
+        if self._kind == "json":
+            with open(path, encoding="utf-8") as f:
+                text = f.read()
+            try:
+                records = json.loads(text)
+            except json.JSONDecodeError:
+                records = None
+            if not isinstance(records, list):
+                raise ValueError("cannot append: it is not a JSON array")
+            body = text[:text.rindex("]")].rstrip() + ("" if records else "\n")
+            file = open(path, "w", encoding="utf-8")
+            file.write(body)
+            return file, len(records)
+        header = self._header()
+        if header:
+            with open(path, encoding="utf-8") as f:
+                first = f.readline()
+            if first != header:
+                raise ValueError(f"cannot append: its header {first.strip()!r} differs from "
+                                 f"this one, {header.strip()!r}")
+        return open(path, "a", encoding="utf-8"), 0
 
     def _end_json(self):
         """Keeps a JSON file a valid array: the closing bracket is written after every
@@ -226,9 +323,8 @@ class OutputFile(ColumnWriter):
     def tick(self):
         if self.NEWFILE is not None:
             rise = bool(self.NEWFILE.flat[0] > 0)
-            if rise and not self._last_newfile and self._folder is not None:
-                self._number += 1
-                self._open()
+            if rise and not self._last_newfile and self._file is not None:
+                self._next_file()
             self._last_newfile = rise
         if self.WRITE is not None:
             on = bool(self.WRITE.flat[0] > 0)
@@ -241,14 +337,51 @@ class OutputFile(ColumnWriter):
             return
         self._file.write(self._record())
         self._line += 1
+        self._records += 1
         self._end_json()
+
+    def _next_file(self):
+        """NEWFILE rose: go on in the file with the next number; when that cannot be, warn
+        and go on in the current file."""
+        number = self._number + 1
+        capacity = counter_capacity(self.filename)
+        if capacity is not None and number >= capacity:
+            why = f'file number {number} does not fit in "{self.filename}"'
+        else:
+            why = self._open(self._path(number))
+        if why is None:
+            self._number = number
+        elif self._file is None:        # the same file again, and it could not be rewritten
+            self.fatal_error(f"cannot write output file {why}")
+        else:
+            self.warning(f"cannot start a new file: {why}; continuing with "
+                         f'"{self._path_open}"')
 
     def stop(self):
         self._close()
 
+    def _close(self):
+        super()._close()
+        self._path_open = None
+
+
+def _size(shape: tuple) -> int:
+    return int(np.prod(shape)) if shape else 1
+
+
+def _reader(array: np.ndarray):
+    return lambda: array
+
+
+def _part_reader(array: np.ndarray, part):
+    return lambda: part.values(array)
+
 
 def _quoted(cell: str, delimiter: str) -> str:
-    return f'"{cell}"' if delimiter in cell or '"' in cell else cell
+    """A header cell, quoted (with quotes doubled) when it holds the delimiter or a quote."""
+    if delimiter in cell or '"' in cell or "\n" in cell:
+        return '"' + cell.replace('"', '""') + '"'
+    return cell
 
 
 def _shortest(v: float) -> str:

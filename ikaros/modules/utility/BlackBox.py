@@ -29,7 +29,7 @@ class BlackBox(Module):
         seen = set()
         for name in self._ins + self._outs:
             attr = attribute_name(name)
-            if attr in taken or attr.startswith("_"):
+            if name in RESERVED or attr in taken or attr.startswith("_"):
                 raise ValueError(f'BlackBox: "{name}" cannot be used as a port name')
             if name in seen:
                 raise ValueError(f'BlackBox: the port name "{name}" is given twice')

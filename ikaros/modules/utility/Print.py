@@ -11,12 +11,18 @@ class Print(Module):
     rows by ``;``; higher ranks are printed as their flattened rows.
 
     INPUT is optional, as in Ikaros 3 (in Ikaros 2 it had to be connected): a Print whose
-    INPUT is not connected prints nothing."""
+    INPUT is not connected prints nothing. INPUT uses labels (Ikaros 3 ``use_label``): when
+    exactly one of its connections has a ``label``, the values are printed after it, as
+    ``signal = 7``."""
 
     format = Parameter("%.4g", "printf-style format of each value")
     interval = Parameter(1, "ticks between printouts", type="int")
     INPUT = Input("the values to print (optional: unconnected, nothing is printed)",
-                  optional=True)
+                  optional=True, use_label=True)
+
+    def init(self):
+        label = self.input_label("INPUT")
+        self._prefix = f"{label} = " if label is not None else ""
 
     def tick(self):
         if self.INPUT is None or self.clock.tick % max(1, self.interval) != 0:
@@ -27,4 +33,4 @@ class Print(Module):
             text = np.char.mod(self.format, rows)
         except (TypeError, ValueError):
             text = np.char.mod("%.4g", rows)
-        self.print("; ".join(" ".join(row) for row in text.tolist()))
+        self.print(self._prefix + "; ".join(" ".join(row) for row in text.tolist()))

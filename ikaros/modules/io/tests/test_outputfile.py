@@ -1,6 +1,7 @@
 """Tests of the OutputFile module."""
 import json
 import shutil
+from xml.sax.saxutils import quoteattr
 from pathlib import Path
 
 import numpy as np
@@ -8,6 +9,7 @@ import pytest
 
 import ikaros
 from ikaros.errors import ModelError
+from ikaros.module import WARNING
 
 EXAMPLE = Path(__file__).resolve().parents[4] / "examples" / "modules" / "OutputFile_example.ikg"
 
@@ -145,13 +147,19 @@ def run_v3(tmp_path, attributes, connections, ticks=2, **overrides):
     path = tmp_path / "model.ikg"
     path.write_text(f'<group name="Test">\n{V3}'
                     f'<module class="OutputFile" name="O" {attributes}/>\n'
-                    + "".join(f'<connection source="{s}" target="O.INPUT" delay="0"/>\n'
-                              for s in connections) + '</group>\n')
+                    + "".join(_connection(c) for c in connections) + '</group>\n')
     net = ikaros.load(str(path), **overrides)
     try:
         net.run(ticks=ticks)
     finally:
         net.close()
+
+
+def _connection(source):
+    """A connection into O.INPUT from ``source``, or from ``(source, label)``."""
+    source, label = source if isinstance(source, tuple) else (source, None)
+    label = f" label={quoteattr(label)}" if label is not None else ""
+    return f'<connection source="{source}" target="O.INPUT" delay="0"{label}/>\n'
 
 
 def test_v3_csv_with_tick_stamps(tmp_path):
@@ -206,26 +214,25 @@ def test_v3_full_precision(tmp_path):
 
 
 def test_v3_jsonl_keeps_shapes_and_writes_null(tmp_path):
-    run_v3(tmp_path, 'filename="out.jsonl"', ["M.OUTPUT"])
+    run_v3(tmp_path, 'filename="out.jsonl"', [("M.OUTPUT", "m")])
     lines = (tmp_path / "out.jsonl").read_text().splitlines()
-    assert lines == ['{"tick": 0, "INPUT": [[1, 2], [3, 4]]}',
-                     '{"tick": 1, "INPUT": [[1, 2], [3, 4]]}']
+    assert lines == ['{"tick":0,"m":[[1,2],[3,4]]}', '{"tick":1,"m":[[1,2],[3,4]]}']
     path = tmp_path / "nan.ikg"
     path.write_text('<group name="Test"><module class="Constant" name="K" '
                     'data="nan inf -inf"/>'
                     '<module class="OutputFile" name="O" filename="nan.jsonl"/>'
-                    '<connection source="K.OUTPUT" target="O.INPUT" delay="0"/></group>')
+                    '<connection source="K.OUTPUT" target="O.INPUT" delay="0" label="k"/>'
+                    '</group>')
     net = ikaros.load(str(path))
     net.run(ticks=1)
     net.close()
-    assert json.loads((tmp_path / "nan.jsonl").read_text()) == {"tick": 0, "INPUT":
-                                                                 [None, None, None]}
+    assert (tmp_path / "nan.jsonl").read_text() == '{"tick":0,"k":[null,null,null]}\n'
 
 
 def test_v3_json_array_is_valid_while_written_and_after(tmp_path):
-    run_v3(tmp_path, 'filename="out.json" timestamp="line"', ["W.OUTPUT"], ticks=3)
+    run_v3(tmp_path, 'filename="out.json" timestamp="line"', [("W.OUTPUT", "w")], ticks=3)
     assert json.loads((tmp_path / "out.json").read_text()) == [
-        {"line": 0, "INPUT": 1}, {"line": 1, "INPUT": 2}, {"line": 2, "INPUT": 3}]
+        {"line": 0, "w": 1}, {"line": 1, "w": 2}, {"line": 2, "w": 3}]
 
 
 def test_v3_empty_json_recording_is_an_empty_array(tmp_path):
@@ -234,7 +241,7 @@ def test_v3_empty_json_recording_is_an_empty_array(tmp_path):
     path.write_text('<group name="Test"><module class="InputFile" name="G" filename="g.txt"/>'
                     '<module class="Constant" name="C" data="1"/>'
                     '<module class="OutputFile" name="O" filename="out.json"/>'
-                    '<connection source="C.OUTPUT" target="O.INPUT" delay="0"/>'
+                    '<connection source="C.OUTPUT" target="O.INPUT" delay="0" label="c"/>'
                     '<connection source="G.G" target="O.WRITE" delay="0"/></group>')
     net = ikaros.load(str(path))
     net.run(ticks=2)
@@ -288,3 +295,139 @@ def test_v3_hash_numbering_and_single_trigger(tmp_path):
     net.close()
     assert (tmp_path / "out_00.csv").read_text() == "tick,INPUT\n1,7\n"
     assert (tmp_path / "out_01.csv").read_text() == "tick,INPUT\n4,7\n"
+
+
+# --- the Ikaros 3 interface: connections named by their labels -----------------------------------
+def test_v3_csv_columns_are_named_by_the_labels_and_quoted_when_needed(tmp_path):
+    run_v3(tmp_path, 'filename="out.csv" decimals="1"',
+           [("C.OUTPUT", 'a,b'), ("W.OUTPUT", 'say "w"'), "M.OUTPUT"], ticks=1)
+    assert (tmp_path / "out.csv").read_text() == (
+        'tick,"a,b[0]","a,b[1]","say ""w""",M.OUTPUT[0][0],M.OUTPUT[0][1],M.OUTPUT[1][0],'
+        'M.OUTPUT[1][1]\n'
+        '0,1.5,-2.2,1.0,1.0,2.0,3.0,4.0\n')
+
+
+def test_v3_jsonl_keeps_each_connection_with_its_shape_and_escapes_labels(tmp_path):
+    run_v3(tmp_path, 'filename="out.jsonl" decimals="2"',
+           [("M.OUTPUT", "weights"), ("C.OUTPUT", 'b"1'), ("W.OUTPUT", "w")], ticks=1)
+    text = (tmp_path / "out.jsonl").read_text()
+    assert text == '{"tick":0,"weights":[[1,2],[3,4]],"b\\"1":[1.5,-2.25],"w":1}\n'
+    assert json.loads(text) == {"tick": 0, "weights": [[1, 2], [3, 4]], 'b"1': [1.5, -2.25],
+                                "w": 1}
+
+
+def test_v3_jsonl_writes_a_delay_window_as_an_outer_array(tmp_path):
+    path = tmp_path / "model.ikg"
+    path.write_text('<group name="Test">' + V3 +
+                    '<module class="OutputFile" name="O" filename="out.jsonl" '
+                    'timestamp="none"/>'
+                    '<connection source="W.OUTPUT" target="O.INPUT" delay="0:2" '
+                    'label="history"/></group>')
+    net = ikaros.load(str(path))
+    net.run(ticks=3)
+    net.close()
+    assert (tmp_path / "out.jsonl").read_text().splitlines() == [
+        '{"history":[[1],[0],[0]]}', '{"history":[[2],[1],[0]]}',
+        '{"history":[[3],[2],[1]]}']
+
+
+@pytest.mark.parametrize("fmt, connections, message", [
+    ("jsonl", ["C.OUTPUT"], "JSONL needs a label on every connection into INPUT; the one "
+                            "from C.OUTPUT has none"),
+    ("json", [("C.OUTPUT", "x"), "W.OUTPUT"], "JSON needs a label on every connection into "
+                                              "INPUT; the one from W.OUTPUT has none"),
+    ("jsonl", [("C.OUTPUT", "x"), ("W.OUTPUT", "x")], 'the label "x" is used twice'),
+    ("json", [("C.OUTPUT", "tick")], 'the label "tick" is reserved for the time stamp'),
+])
+def test_v3_json_labels_must_be_there_differ_and_not_be_the_stamp(tmp_path, fmt, connections,
+                                                                   message):
+    with pytest.raises(ModelError, match=f"While initializing module O: .*{message}"):
+        run_v3(tmp_path, f'filename="out.{fmt}"', connections)
+
+
+def test_v3_timestamp_none_frees_nothing_but_tick(tmp_path):
+    run_v3(tmp_path, 'filename="out.jsonl" timestamp="line"', [("C.OUTPUT", "time")], ticks=1)
+    assert (tmp_path / "out.jsonl").read_text() == '{"line":0,"time":[1.5,-2.25]}\n'
+    with pytest.raises(ModelError, match='the label "line" is reserved'):
+        run_v3(tmp_path, 'filename="out.jsonl" timestamp="line"', [("C.OUTPUT", "line")])
+
+
+# --- append, rollover --------------------------------------------------------------------------
+def test_v3_append_keeps_the_records_and_does_not_repeat_the_header(tmp_path):
+    (tmp_path / "out.csv").write_text("tick,c\n7,1\n")
+    run_v3(tmp_path, 'filename="out.csv" append="yes" decimals="0"', [("W.OUTPUT", "c")])
+    assert (tmp_path / "out.csv").read_text() == "tick,c\n7,1\n0,1\n1,2\n"
+
+
+def test_v3_append_to_a_file_with_another_header_is_an_error(tmp_path):
+    (tmp_path / "out.csv").write_text("tick,other\n7,1\n")
+    with pytest.raises(ModelError, match="cannot append: its header 'tick,other' differs "
+                                         "from this one, 'tick,c'"):
+        run_v3(tmp_path, 'filename="out.csv" append="yes"', [("W.OUTPUT", "c")])
+    assert (tmp_path / "out.csv").read_text() == "tick,other\n7,1\n"
+
+
+def test_v3_append_to_a_json_array_keeps_it_one_valid_array(tmp_path):
+    (tmp_path / "out.json").write_text('[\n{"tick":7,"c":9}\n]\n')
+    run_v3(tmp_path, 'filename="out.json" append="yes"', [("W.OUTPUT", "c")], ticks=1)
+    assert (tmp_path / "out.json").read_text() == '[\n{"tick":7,"c":9},\n{"tick":0,"c":1}\n]\n'
+    (tmp_path / "empty.json").write_text('[]')
+    run_v3(tmp_path, 'filename="empty.json" append="yes"', [("W.OUTPUT", "c")], ticks=1)
+    assert json.loads((tmp_path / "empty.json").read_text()) == [{"tick": 0, "c": 1}]
+    (tmp_path / "bad.json").write_text('{"tick": 1}')
+    with pytest.raises(ModelError, match="cannot append: it is not a JSON array"):
+        run_v3(tmp_path, 'filename="bad.json" append="yes"', [("W.OUTPUT", "c")])
+
+
+def _rollover(tmp_path, filename, attributes="", ticks=3):
+    # N: 0, 1, 0, 1 ... rises on ticks 1 and 3
+    (tmp_path / "n.txt").write_text("N/1\n0\n1\n0\n1\n0\n")
+    path = tmp_path / "model.ikg"
+    path.write_text('<group name="Test"><module class="InputFile" name="F" filename="n.txt"/>'
+                    '<module class="Sweep" name="W" min="0" max="100" step="1"/>'
+                    f'<module class="OutputFile" name="O" filename="{filename}" {attributes}/>'
+                    '<connection source="W.OUTPUT" target="O.INPUT" delay="0" label="w"/>'
+                    '<connection source="F.N" target="O.NEWFILE" delay="0"/></group>')
+    net = ikaros.load(str(path))
+    try:
+        net.run(ticks=ticks)
+        return [e[3] for e in net.log if e[1] == WARNING]
+    finally:
+        net.close()
+
+
+def test_v3_newfile_closes_each_json_array(tmp_path):
+    assert _rollover(tmp_path, "r_#.json", 'start_index="3"') == []
+    assert (tmp_path / "r_3.json").read_text() == '[\n{"tick":0,"w":1}\n]\n'
+    assert (tmp_path / "r_4.json").read_text() == '[\n{"tick":1,"w":2},\n{"tick":2,"w":3}\n]\n'
+
+
+def test_v3_a_failed_rollover_keeps_the_current_file(tmp_path):
+    warnings = _rollover(tmp_path, "r_#.csv", 'start_index="8" decimals="0"', ticks=5)
+    assert (tmp_path / "r_8.csv").read_text() == "tick,w\n0,1\n"
+    assert (tmp_path / "r_9.csv").read_text() == "tick,w\n1,2\n2,3\n3,4\n4,5\n"
+    assert warnings == [f'cannot start a new file: file number 10 does not fit in "r_#.csv"; '
+                        f'continuing with "{tmp_path}/r_9.csv"']
+
+
+def test_v3_start_index_must_fit_the_counter(tmp_path):
+    with pytest.raises(ModelError, match='start_index 100 does not fit in "r_##.csv"'):
+        _rollover(tmp_path, "r_##.csv", 'start_index="100"')
+
+
+def test_v3_jsonl_with_labels_is_read_back_by_inputfile(tmp_path):
+    run_v3(tmp_path, 'filename="out.jsonl"', [("M.OUTPUT", "weights"), ("W.OUTPUT", "w")])
+    (tmp_path / "back").mkdir()
+    model = tmp_path / "back" / "model.ikg"
+    model.write_text('<group name="Back"><module class="InputFile" name="F" '
+                     'filename="../out.jsonl"/></group>')
+    net = ikaros.load(str(model))
+    try:
+        net.step()
+        assert net.output("F.weights").tolist() == [[1, 2], [3, 4]]
+        assert net.output("F.w").tolist() == [1]
+        assert net.output("F.tick").tolist() == [0]     # held in F's attribute tick_
+        net.step()
+        assert net.output("F.w").tolist() == [2]
+    finally:
+        net.close()

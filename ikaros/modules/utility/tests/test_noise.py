@@ -1,6 +1,9 @@
 """Tests of the Noise module."""
 
 import numpy as np
+import pytest
+
+import ikaros
 
 from ikaros.testing import load_body as load
 
@@ -52,5 +55,58 @@ def test_statistics(tmp_path):
         net.step()
         out = net.output("N.OUTPUT")
         assert abs(out.mean() - 3) < 0.2 and abs(out.std() - 2) < 0.2
+    finally:
+        net.close()
+
+
+# --- Ikaros 3: uniform noise, type by name or index ---------------------------------------------
+def _uniform(seed, low, high, shape=(2, 3)):
+    rng = np.random.default_rng(seed)
+    data = np.array([[1, 2, 3], [4, 5, 6]], np.float32)
+    while True:
+        draw = rng.random(shape, dtype=np.float32)
+        yield (low + draw.astype(np.float64) * (high - low)).astype(np.float32) + data
+
+
+@pytest.mark.parametrize("attrs", ['type="uniform" min="-0.5" max="2"',
+                                   'type="1" min="2" max="-0.5"'])
+def test_uniform_noise_between_the_bounds_in_either_order(tmp_path, attrs):
+    outs = run(tmp_path, f'{attrs} seed="7"', 3)
+    for out, expected in zip(outs, _uniform(7, -0.5, 2.0)):
+        assert np.allclose(out, expected, atol=1e-6)
+    noise = outs - np.array([[1, 2, 3], [4, 5, 6]], np.float32)
+    assert noise.min() >= -0.5 and noise.max() < 2
+
+
+def test_gaussian_by_name_or_index_is_the_same(tmp_path):
+    assert np.array_equal(run(tmp_path, 'type="gaussian" seed="3"', 2),
+                          run(tmp_path, 'type="0" seed="3"', 2))
+
+
+@pytest.mark.parametrize("attrs, message", [
+    ('type="uniform" min="nan"', 'parameter "min" of N: nan is not a finite number'),
+    ('max="inf"', 'parameter "max" of N: inf is not a finite number'),
+    ('sigma="-1"', 'parameter "sigma" of N: -1 is below minimum 0'),
+    ('type="pink"', '"pink" is not one of gaussian/uniform'),
+])
+def test_bad_settings_are_errors_at_load(tmp_path, attrs, message):
+    with pytest.raises(ikaros.ModelError, match=message):
+        run(tmp_path, attrs, 1)
+
+
+def test_bad_bounds_while_running_are_refused_and_the_last_valid_ones_stay(tmp_path):
+    net = load(tmp_path, '<module class="Constant" name="C" outputsize="500" data="0"/>'
+                         '<module class="Noise" name="N" type="uniform" min="0" max="1"/>'
+                         '<connection source="C.OUTPUT" target="N.INPUT" delay="0"/>')
+    try:
+        net.set_parameter("N.max", 3)
+        net.step()
+        with pytest.raises(ValueError, match='bad value for parameter "N.min": nan is not a '
+                                             'finite number'):
+            net.set_parameter("N.min", "nan")
+        net.step()
+        out = net.output("N.OUTPUT")
+        assert net.parameter("N.min") == 0 and net.parameter("N.max") == 3
+        assert out.min() >= 0 and out.max() < 3 and out.max() > 1
     finally:
         net.close()
