@@ -32,7 +32,8 @@ export function boxEdges(v, format) {
 
 /** The boxes of a buffer: [{edges, score (or null), index}]. */
 export function boxesFrom(widget, item) {
-    const format = BOX_FORMATS[widget.str(["box_format"], "xywh")] ? widget.str(["box_format"], "xywh") : "xywh";
+    let format = widget.str(["box_format"], "xywh");
+    if (!BOX_FORMATS[format]) format = "xywh";
     const size = BOX_FORMATS[format];
     const first = widget.int(["select", "select_x"], 0);
     let rows = asRows(item).map((r) => Array.from(r).slice(first));
