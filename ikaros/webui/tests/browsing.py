@@ -21,6 +21,13 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
 ARTIFACTS = os.path.join(ROOT, "test-artifacts")
 TIMEOUT = 15_000   # ms, for waits in the page
 
+# the axe-core accessibility audit (vendored): add AXE to a page with add_script_tag, then
+# page.evaluate(SERIOUS) lists the serious and critical violations of the whole page
+AXE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vendor", "axe-core", "axe.min.js")
+SERIOUS = """async () => (await axe.run(document, {resultTypes: ['violations']})).violations
+    .filter((v) => v.impact === 'serious' || v.impact === 'critical')
+    .map((v) => `${v.id}: ${v.nodes.slice(0, 3).map((n) => n.target.join(' ')).join(', ')}`)"""
+
 if not os.path.exists(CHROMIUM):
     raise RuntimeError(f"the browser tests need Debian's Chromium at {CHROMIUM}: "
                        f"`bash scripts/test.sh` installs it (apt-get install chromium)")

@@ -9,7 +9,7 @@ import time
 
 import numpy as np
 
-from browsing import ROOT, in_own_browser
+from browsing import AXE, ROOT, SERIOUS, in_own_browser
 
 EXAMPLES = os.path.join(ROOT, "examples")
 DEMO = os.path.join(EXAMPLES, "demo.ikg")
@@ -463,13 +463,14 @@ VIEW_REPORT = """() => window.ikaros.mainView.widgets.map((w) => {
 })"""
 
 EXAMPLE_MODELS = ["demo.ikg", "hello.ikg", "conditioning.ikg", "planar_arm_reaching.ikg",
-                  "qlearning_maze.ikg", os.path.join("modules", "World2D_example.ikg")]
+                  "qlearning_maze.ikg", "epuck_obstacles.ikg", os.path.join("modules", "World2D_example.ikg"),
+                  os.path.join("vision", "depth_objects.ikg")]
 
 
 def test_every_example_view_draws_its_data():
     """Each view of the examples, after a few ticks: no widget fails to build, every
-    widget fed by data draws (a canvas with pixels, a plot with samples). Screenshots of
-    every view are kept."""
+    widget fed by data draws (a canvas with pixels, a plot with samples), and axe-core finds
+    no serious or critical violation on the page. Screenshots of every view are kept."""
     failures = []
     for name in EXAMPLE_MODELS:
         def check(server, page, name=name):
@@ -477,6 +478,7 @@ def test_every_example_view_draws_its_data():
             links = page.eval_on_selector_all(
                 "#navigator a[data-view]", "(ls) => ls.map((l) => [l.dataset.group, Number(l.dataset.view)])")
             assert links, name
+            page.add_script_tag(path=AXE)
             for group, view in links:
                 page.evaluate("([g, v]) => window.ikaros.showView(g, v)", [group, view])
                 page.wait_for_function(
@@ -494,6 +496,7 @@ def test_every_example_view_draws_its_data():
                         failures.append(where + " has no samples")
                     elif w["subs"] and w["painted"] is not None and w["painted"] == 0:
                         failures.append(where + " drew nothing")
+                failures.extend(f"{name} {group or 'top'} view {view}: {v}" for v in page.evaluate(SERIOUS))
             assert not page.errors, page.errors
 
         in_own_browser(os.path.join(EXAMPLES, name), lambda s, p: None, check)

@@ -9,7 +9,7 @@ import re
 import shutil
 import time
 
-from browsing import ROOT, in_own_browser
+from browsing import AXE, ROOT, SERIOUS, in_own_browser
 
 ADD_EXAMPLE = os.path.join(ROOT, "examples", "modules", "Add_example.ikg")
 
@@ -179,17 +179,6 @@ def test_run_controls_state_profiling_startup_and_quit(tmp_path):
     in_own_browser(str(model), lambda s, p: None, no_errors(check))
 
 
-AXE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vendor", "axe-core", "axe.min.js")
-# the sliders and the drop-down menu of the demo's views belong to the widgets' part of the
-# work and are audited there
-NOT_AUDITED = [".widget-slider-horizontal .widget-body", ".widget-slider-vertical .widget-body",
-               ".widget-drop-down-menu .widget-body"]
-SERIOUS = """async (exclude) => (await axe.run({exclude: exclude.map((s) => [s])},
-    {resultTypes: ['violations']})).violations
-    .filter((v) => v.impact === 'serious' || v.impact === 'critical')
-    .map((v) => `${v.id}: ${v.nodes.slice(0, 3).map((n) => n.target.join(' ')).join(', ')}`)"""
-
-
 def test_layout_at_1000_by_700_panes_and_accessibility(tmp_path):
     """Part 12: at 1000 x 700 everything fits; panes resize (drag and keys) and collapse;
     the run state is text; a clear focus ring; axe-core finds no serious violation in the
@@ -210,7 +199,7 @@ def test_layout_at_1000_by_700_panes_and_accessibility(tmp_path):
         f = fits(page)
         assert f["out"] == [] and f["scroll"] <= 1000 and f["bottom"] <= 700, f
         page.add_script_tag(path=AXE)
-        assert page.evaluate(SERIOUS, NOT_AUDITED) == []
+        assert page.evaluate(SERIOUS) == []
 
         # the run state in words, and the pressed button says so too
         page.click("#run-play")
@@ -264,12 +253,12 @@ def test_layout_at_1000_by_700_panes_and_accessibility(tmp_path):
         f = fits(page)
         assert f["out"] == [] and f["scroll"] <= 1000, f
         page.screenshot(path=str(tmp_path / "layout-1000x700.png"))
-        assert page.evaluate(SERIOUS, NOT_AUDITED) == []
+        assert page.evaluate(SERIOUS) == []
         page.click("#startup-window button")
         page.click("#profiling-window button")
         page.click("#ed-add-module")                 # the class picker
         page.fill(".class-search", "scale")
-        assert page.evaluate(SERIOUS, NOT_AUDITED) == []
+        assert page.evaluate(SERIOUS) == []
 
     in_own_browser(demo, lambda s, p: None, no_errors(check))
 

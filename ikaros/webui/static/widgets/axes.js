@@ -1,5 +1,5 @@
-// Axes for the canvas widgets that are not time plots (scatter, histogram, boxplot, event
-// raster): round tick values, the plotting box inside the labels, and the drawing.
+// Axes for the canvas widgets that are not time plots (bar graph, scatter, histogram,
+// boxplot, event raster): round tick values, the plotting box inside the labels, and the drawing.
 
 /** About n round values covering lo..hi (1, 2 or 5 times a power of ten apart). */
 export function niceTicks(lo, hi, n = 5) {
@@ -29,15 +29,25 @@ function label(v) {
     return String(Math.round(v * 1e6) / 1e6);
 }
 
+/** The mapping of data ranges xr, yr onto a plotting box {left, top, right, bottom}
+ *  (y upwards): {x(v), y(v), box}. */
+export function mapping(box, xr, yr) {
+    const { left, top, right, bottom } = box;
+    return {
+        x: (v) => left + ((v - xr[0]) / (xr[1] - xr[0] || 1)) * (right - left),
+        y: (v) => bottom - ((v - yr[0]) / (yr[1] - yr[0] || 1)) * (bottom - top),
+        box,
+    };
+}
+
 /**
  * Draw axes with tick labels around a plotting box in a w x h canvas. xr and yr are
- * [lo, hi] (xr null: no x axis values, e.g. categories). Returns the mapping
- * {x(v), y(v), box: {left, top, right, bottom}}.
+ * [lo, hi]; xTicks and yTicks, lists of [value, text], replace the round values of an axis
+ * (categories; [] for none). Returns the mapping {x(v), y(v), box: {left, top, right, bottom}}.
  */
-export function drawAxes(g, w, h, xr, yr, { color = "#333", grid = "#ddd", xLabel = "", yLabel = "", xTicks = null } = {}) {
+export function drawAxes(g, w, h, xr, yr, { color = "#333", grid = "#ddd", xLabel = "", yLabel = "", xTicks = null, yTicks = null } = {}) {
     const left = 44, bottom = h - (xLabel ? 28 : 18), top = 6, right = w - 8;
-    const x = (v) => left + ((v - xr[0]) / (xr[1] - xr[0] || 1)) * (right - left);
-    const y = (v) => bottom - ((v - yr[0]) / (yr[1] - yr[0] || 1)) * (bottom - top);
+    const { x, y, box } = mapping({ left, top, right, bottom }, xr, yr);
     g.save();
     g.font = "10px sans-serif";
     g.lineWidth = 0.5;
@@ -45,13 +55,14 @@ export function drawAxes(g, w, h, xr, yr, { color = "#333", grid = "#ddd", xLabe
     g.fillStyle = color;
     g.textAlign = "right";
     g.textBaseline = "middle";
-    for (const v of niceTicks(yr[0], yr[1], Math.max(2, Math.floor((bottom - top) / 30)))) {
+    const ys = yTicks || niceTicks(yr[0], yr[1], Math.max(2, Math.floor((bottom - top) / 30))).map((v) => [v, label(v)]);
+    for (const [v, text] of ys) {
         g.beginPath(); g.moveTo(left, y(v)); g.lineTo(right, y(v)); g.stroke();
-        g.fillText(label(v), left - 4, y(v));
+        g.fillText(text, left - 4, y(v));
     }
     g.textAlign = "center";
     g.textBaseline = "top";
-    const xs = xTicks || (xr ? niceTicks(xr[0], xr[1], Math.max(2, Math.floor((right - left) / 60))).map((v) => [v, label(v)]) : []);
+    const xs = xTicks || niceTicks(xr[0], xr[1], Math.max(2, Math.floor((right - left) / 60))).map((v) => [v, label(v)]);
     for (const [v, text] of xs) {
         g.beginPath(); g.moveTo(x(v), top); g.lineTo(x(v), bottom); g.stroke();
         g.fillText(text, x(v), bottom + 3);
@@ -64,5 +75,5 @@ export function drawAxes(g, w, h, xr, yr, { color = "#333", grid = "#ddd", xLabe
         g.textBaseline = "middle"; g.fillText(yLabel, 0, 0);
     }
     g.restore();
-    return { x, y, box: { left, top, right, bottom } };
+    return { x, y, box };
 }

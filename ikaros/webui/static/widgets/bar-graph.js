@@ -1,10 +1,12 @@
-// bar-graph: one bar per element, one group of bars per row.
-// Attributes: source, direction|orientation (vertical/horizontal), transpose, labels,
-// color|stroke_color, fill|fill_color (comma lists cycle per bar), lineWidth|line_width,
-// min|y_min, max|y_max, auto|auto_range, include_zero, decimals, show_values.
+// bar-graph: one bar per element, one group of bars per row, on a value axis with tick
+// labels (drawn by axes.js, as the scatter plot, histogram and boxplot are).
+// Attributes: source, direction|orientation (vertical/horizontal), transpose, labels (on
+// the category axis), color|stroke_color, fill|fill_color (comma lists cycle per bar),
+// lineWidth|line_width, min|y_min, max|y_max (without both, the range follows the data,
+// with 0), auto|auto_range (widen a given range to the data), include_zero, unit (the value
+// axis's label), show_axis (yes; no: the bars fill the widget), decimals, show_values.
 import { CanvasWidget, asRows, formatNumber } from "./widget.js";
-import { dataRange } from "./axes.js";
-
+import { dataRange, drawAxes, mapping } from "./axes.js";
 export default class BarGraph extends CanvasWidget {
     constructor(attrs, ctx) {
         super(attrs, ctx);
@@ -38,48 +40,59 @@ export default class BarGraph extends CanvasWidget {
         const strokes = this.list(["color", "stroke_color"], []);
         const labels = this.list(["labels"], []);
         const decimals = this.int(["decimals"], -1);
-        const showValues = this.bool(["show_values"], false);
-        const labelSpace = labels.length ? 14 : 0;
-        const n = all.length || 1;
-        const groups = this.rows.length;
-        const slots = n + (groups - 1) * 0.5;
-        const span = (horizontal ? h : w - 0) ;
-        const slot = span / slots;
-        const scale = (v) => (Math.min(Math.max(v, min), max) - min) / (max - min || 1);
-        const zero = scale(Math.min(Math.max(0, min), max));
-        this.lineStyle(g);
-        let k = 0, pos = 0;
-        g.font = "10px sans-serif";
-        g.textAlign = "center";
-        for (let r = 0; r < groups; r++) {
-            for (let c = 0; c < this.rows[r].length; c++, k++) {
-                const v = this.rows[r][c];
-                const a = scale(v);
-                g.fillStyle = fills[k % fills.length];
-                const x0 = pos * slot + slot * 0.1, bw = slot * 0.8;
-                if (horizontal) {
-                    const left = Math.min(a, zero) * w, right = Math.max(a, zero) * w;
-                    g.fillRect(left, x0, right - left, bw);
-                    if (strokes.length) { g.strokeStyle = strokes[k % strokes.length]; g.strokeRect(left, x0, right - left, bw); }
-                } else {
-                    const hh = h - labelSpace;
-                    const top = hh - Math.max(a, zero) * hh, bottom = hh - Math.min(a, zero) * hh;
-                    g.fillRect(x0, top, bw, bottom - top);
-                    if (strokes.length) { g.strokeStyle = strokes[k % strokes.length]; g.strokeRect(x0, top, bw, bottom - top); }
-                    g.fillStyle = this.cssVar("--text-color", "#333");
-                    if (labels.length) g.fillText(labels[k % labels.length], x0 + bw / 2, h - 3);
-                    if (showValues) g.fillText(formatNumber(v, decimals < 0 ? 2 : decimals), x0 + bw / 2, Math.max(10, top - 2));
-                }
-                pos += 1;
-            }
-            pos += 0.5;
+        const textColor = this.cssVar("--text-color", "#333");
+        // bar k of row r sits in slot pos .. pos + 1 of the category axis (half a slot between rows)
+        const bars = [];
+        let pos = 0;
+        this.rows.forEach((row, r) => {
+            row.forEach((v) => { bars.push({ v, pos }); pos += 1; });
+            if (r < this.rows.length - 1) pos += 0.5;
+        });
+        const slots = Math.max(pos, 1);
+        const categories = labels.length ? bars.map((b, k) => [b.pos + 0.5, labels[k % labels.length]]) : [];
+        const values = [min, max];
+        // categories run left to right, or top to bottom when horizontal
+        const cat = (p) => (horizontal ? slots - p : p);
+        let ax;
+        if (this.bool(["show_axis"], true)) {
+            const unit = this.str(["unit"]);
+            const flip = categories.map(([p, t]) => [cat(p), t]);
+            ax = horizontal
+                ? drawAxes(g, w, h, values, [0, slots], { color: textColor, grid: this.cssVar("--grid-color", "#ddd"), xLabel: unit, yTicks: flip })
+                : drawAxes(g, w, h, [0, slots], values, { color: textColor, grid: this.cssVar("--grid-color", "#ddd"), yLabel: unit, xTicks: flip });
+        } else {
+            ax = horizontal ? mapping({ left: 0, top: 0, right: w, bottom: h }, values, [0, slots])
+                : mapping({ left: 0, top: 0, right: w, bottom: h }, [0, slots], values);
         }
+        const clamp = (v) => Math.min(Math.max(v, min), max);
+        const zero = clamp(0);
+        this.lineStyle(g);
+        g.font = "10px sans-serif";
+        bars.forEach(({ v, pos: p }, k) => {
+            // the bar's rectangle: value edges a, b and category edges c, d, in pixels
+            const a = horizontal ? ax.x(clamp(v)) : ax.y(clamp(v));
+            const b = horizontal ? ax.x(zero) : ax.y(zero);
+            const c = horizontal ? ax.y(cat(p + 0.1)) : ax.x(cat(p + 0.1));
+            const d = horizontal ? ax.y(cat(p + 0.9)) : ax.x(cat(p + 0.9));
+            const rect = horizontal ? [Math.min(a, b), Math.min(c, d), Math.abs(a - b), Math.abs(c - d)]
+                : [Math.min(c, d), Math.min(a, b), Math.abs(c - d), Math.abs(a - b)];
+            g.fillStyle = fills[k % fills.length];
+            g.fillRect(...rect);
+            if (strokes.length) { g.strokeStyle = strokes[k % strokes.length]; g.strokeRect(...rect); }
+            if (this.bool(["show_values"], false)) {
+                const text = formatNumber(v, decimals < 0 ? 2 : decimals);
+                g.fillStyle = textColor;
+                if (horizontal) { g.textAlign = "left"; g.textBaseline = "middle"; g.fillText(text, Math.max(a, b) + 2, (c + d) / 2); }
+                else { g.textAlign = "center"; g.textBaseline = "alphabetic"; g.fillText(text, (c + d) / 2, Math.max(10, Math.min(a, b) - 2)); }
+            }
+        });
         // the zero line (the bars' base), drawn even when every bar is 0
         g.strokeStyle = this.cssVar("--muted-color", "#888");
         g.lineWidth = 1;
         g.beginPath();
-        if (horizontal) { g.moveTo(zero * w, 0); g.lineTo(zero * w, h); }
-        else { const y = (h - labelSpace) * (1 - zero); g.moveTo(0, y); g.lineTo(w, y); }
+        const { left, top, right, bottom } = ax.box;
+        if (horizontal) { g.moveTo(ax.x(zero), top); g.lineTo(ax.x(zero), bottom); }
+        else { g.moveTo(left, ax.y(zero)); g.lineTo(right, ax.y(zero)); }
         g.stroke();
     }
 }

@@ -2,7 +2,8 @@
 // Attributes: parameter, list|options (comma list, "X,Y,Z"), value_type (number: sends the
 // option's index; string: sends its text; by default string for string parameters),
 // index|select_x (element), label, labelWidth|label_width, enabled_source. Disabled until
-// the parameter's value has arrived.
+// the parameter's value has arrived. The menu is named by its label, else the title, else
+// the parameter.
 import { Widget } from "./widget.js";
 
 export default class DropDownMenu extends Widget {
@@ -18,6 +19,7 @@ export default class DropDownMenu extends Widget {
             this.body.appendChild(l);
         }
         this.select = document.createElement("select");
+        this.select.setAttribute("aria-label", this.controlName(label));
         this.options = this.list(["list", "options"], ["X", "Y", "Z"]);
         this.options.forEach((o, i) => { const opt = new Option(o, String(i)); this.select.add(opt); });
         this.body.appendChild(this.select);

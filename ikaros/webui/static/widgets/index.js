@@ -33,6 +33,7 @@ export const WIDGETS = {
     "navigation-hud": () => import("./navigation-hud.js"),
     "pan-tilt-hud": () => import("./pan-tilt-hud.js"),
     "surface-plot": () => import("./surface-plot.js"),
+    "target-boxes": () => import("./target-boxes.js"),
 };
 
 // Other spellings met in model files.

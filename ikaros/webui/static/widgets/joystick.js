@@ -1,7 +1,8 @@
 // joystick: drag the knob to set two parameters at once (x_parameter, y_parameter; one
 // element of each, select_x / select_y, when they are arrays). range bipolar: -1..1, unipolar:
 // 0..1; return_to_center (yes) sends the centre when the knob is let go. Keys: arrows
-// move the knob by a tenth.
+// move the knob by a tenth. For assistive technology it is a slider named by the title (or
+// label) whose value is x, and whose value text gives x and y.
 import { Widget } from "./widget.js";
 
 export default class Joystick extends Widget {
@@ -12,6 +13,7 @@ export default class Joystick extends Widget {
         pad.tabIndex = 0;
         pad.setAttribute("role", "slider");
         pad.setAttribute("aria-label", this.str(["title", "label"], "joystick"));
+        pad.setAttribute("aria-roledescription", "joystick");
         const knob = document.createElement("div");
         knob.className = "joystick-knob";
         pad.appendChild(knob);
@@ -20,6 +22,8 @@ export default class Joystick extends Widget {
         Object.assign(knob.style, { position: "absolute", width: "24px", height: "24px", margin: "-12px 0 0 -12px", borderRadius: "50%", background: "var(--accent)" });
         this.pad = pad; this.knob = knob;
         this.unipolar = this.str(["range"], "bipolar") === "unipolar";
+        pad.setAttribute("aria-valuemin", this.value(-1));
+        pad.setAttribute("aria-valuemax", this.value(1));
         this.pos = [0, 0];                      // -1..1 each, y up
         this.place();
         pad.addEventListener("pointerdown", (e) => { pad.setPointerCapture(e.pointerId); this.dragging = true; this.move(e); });
@@ -53,6 +57,9 @@ export default class Joystick extends Widget {
     place() {
         this.knob.style.left = ((this.pos[0] + 1) / 2) * 100 + "%";
         this.knob.style.top = ((1 - this.pos[1]) / 2) * 100 + "%";
+        const [x, y] = this.pos.map((p) => this.value(p));
+        this.pad.setAttribute("aria-valuenow", x);
+        this.pad.setAttribute("aria-valuetext", `x ${x.toFixed(2)}, y ${y.toFixed(2)}`);
     }
 
     /** The value sent for a knob position -1..1. */

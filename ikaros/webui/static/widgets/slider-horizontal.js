@@ -3,7 +3,9 @@
 // Attributes: parameter, command (v3: also sends the command with the value), select|
 // select_x (the first element), count|control_count (sliders for elements select+i),
 // select_y (row), labels, min (0), max (1), step (0.01), show_values, enabled_source.
-// A slider bound to a parameter is disabled until the parameter's value has arrived.
+// A slider bound to a parameter is disabled until the parameter's value has arrived. Each
+// is a range input (the slider role, its value, minimum and maximum) named by its label,
+// else the title, else the parameter (with the element's index when there are several).
 import { Widget, formatNumber } from "./widget.js";
 
 export default class SliderHorizontal extends Widget {
@@ -33,7 +35,8 @@ export default class SliderHorizontal extends Widget {
             input.type = "range";
             input.min = min; input.max = max; input.step = step;
             input.value = min;
-            if (vertical) input.setAttribute("orient", "vertical");
+            if (vertical) { input.setAttribute("orient", "vertical"); input.setAttribute("aria-orientation", "vertical"); }
+            input.setAttribute("aria-label", this.controlName(labels[i], this.count > 1 ? this.first + i : null));
             const out = document.createElement("span");
             out.className = "slider-value";
             out.hidden = !this.showValues;

@@ -1,7 +1,8 @@
 // switch: check boxes bound to parameter elements.
 // Attributes: parameter, label|labels, value (the "on" value, 1), xindex|select_x,
 // yindex|select_y, control_count (several switches on consecutive x), enableSource|
-// enabled_source. Disabled until the parameter's value has arrived.
+// enabled_source. Disabled until the parameter's value has arrived. A box without a label
+// is named by the title, else the parameter (with the element's index when there are several).
 import { Widget } from "./widget.js";
 
 export default class Switch extends Widget {
@@ -18,6 +19,7 @@ export default class Switch extends Widget {
             lab.className = "switch";
             const box = document.createElement("input");
             box.type = "checkbox";
+            if (!labels[i]) box.setAttribute("aria-label", this.controlName("", n > 1 ? this.x + i : null));
             box.addEventListener("change", () => this.changed(i, box.checked));
             const span = document.createElement("span");
             span.textContent = labels[i] ?? "";

@@ -11,7 +11,7 @@ const COLOR_MAPS = ["gray", "fire", "spectrum", "red", "green", "blue", "custom"
 const CAMERA = { camera_pos: "text", camera_target: "text", camera_distance: "number", show_axis: "bool", show_ground_grid: "bool", scene_background: "color" };
 
 export const TEMPLATES = {
-    "bar-graph": { source: "source", direction: ["vertical", "horizontal"], transpose: "bool", labels: "text", fill_color: "color", ...LINES, ...RANGE, show_values: "bool", decimals: "int" },
+    "bar-graph": { source: "source", direction: ["vertical", "horizontal"], transpose: "bool", labels: "text", fill_color: "color", ...LINES, ...RANGE, unit: "text", show_axis: "bool", show_values: "bool", decimals: "int" },
     "plot": { source: "source", select: "text", buffer_size: "int", ...RANGE, unit: "text", x_label: "text", show_x_axis: "bool", show_y_axis: "bool", stroke_color: "color", line_width: "number", decimals: "int" },
     "table": { source: "source", label_x: "text", label_y: "text", transpose: "bool", decimals: "int", colorize: "bool", scrollable: "bool" },
     "grid": { source: "source", color_map: COLOR_MAPS, color_map_colors: "text", min: "number", max: "number", labels: "text", label_width: "int", shape: ["rectangle", "square", "circle"], size: "number", command: "text", parameter: "parameter", on_value: "number", off_value: "number", flip_x_canvas: "bool", flip_y_canvas: "bool" },
@@ -38,6 +38,7 @@ export const TEMPLATES = {
     "epi-head": { eye_direction_source: "source", pupil_size_source: "source", gaze_in_degrees: "bool", eye_color: "color", mouth_color: "color", head_color: "color", vergence: "number" },
     "navigation-hud": { heading_source: "source", target_source: "source", unit: ["degrees", "radians"], stroke_color: "color" },
     "pan-tilt-hud": { source: "source", target_source: "source", unit: ["degrees", "radians"], pan_range: "text", tilt_range: "text", stroke_color: "color" },
+    "target-boxes": { source: "source", box_format: ["xywh", "center", "xyxy", "corners"], select_x: "int", box_count: "int", box_color: "color", fill_color: "color", fill_opacity: "number", line_width: "number", labels: "text", show_score: "bool", score_decimals: "int", min_score: "number", label_color: "color", font: "text", ...COORDS },
     "grid-world": { module: "text" },
     "planar-arm": { module: "text", trail: "int", ...COORDS },
     "world-2d": { module: "text", show_rays: "bool", ...COORDS },
@@ -50,7 +51,7 @@ export const SPELLINGS = {
     stroke_color: ["color"], fill_color: ["fill"], line_width: ["lineWidth"], line_cap: ["lineCap"], line_join: ["lineJoin"],
     min: ["y_min", "value_min"], max: ["y_max", "value_max"], auto_range: ["auto"], select_x: ["select", "xindex"], select_y: ["yindex"],
     point_count: ["count"], marker_type: ["markerType"], label_type: ["labelType"], label_decimals: ["labelDecimals"],
-    release_command: ["commandUp"], release_value: ["valueUp"], enabled_source: ["enableSource"], control_count: ["count"],
+    release_command: ["commandUp"], release_value: ["valueUp"], enabled_source: ["enableSource"], control_count: ["count"], box_count: ["count"], box_color: ["color", "stroke_color"],
     x_min: ["min_x"], x_max: ["max_x"], flip_x_canvas: ["flipXCanvas"], flip_y_canvas: ["flipYCanvas"], color_map: ["fill"],
     color_map_colors: ["colorTable"], direction: ["orientation"], options: ["list"], eye_direction_source: ["gazeSource"],
 };

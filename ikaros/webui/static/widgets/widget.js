@@ -265,6 +265,15 @@ export class Widget {
         return value.map((e, j) => (j === x ? v : e));
     }
 
+    /** The accessible name of a control: its own label, else the widget's title, else the
+     *  first of the attributes (a parameter or command as written) that is given, else the
+     *  class; with the element's index when the widget has several controls. */
+    controlName(label, index = null, attrs = ["parameter", "command"]) {
+        if (label) return label;
+        const base = this.el.dataset.title || this.str(attrs) || this.attrs.class || "control";
+        return index === null ? base : `${base} ${index}`;
+    }
+
     /** Disable form controls while the enabled source says so (``enabled``, set from
      *  ``enabledFrom`` each frame) and, for a widget bound to a parameter, until the
      *  parameter's value has arrived: used before, a control would act on a value it does
