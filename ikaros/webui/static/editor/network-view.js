@@ -1,5 +1,5 @@
 // The network view of one group: SVG boxes with input ports on the left and output ports on
-// the right, connections as curves labelled with their delay, the group's inputs and outputs
+// the right, connections (routed by the owner, else curves) labelled with their delay, the group's inputs and outputs
 // as pins at the edges. Zoom (wheel), pan (drag the background), select (click, shift-click,
 // or a rubber band: shift- or alt-drag on the background),
 // move (drag boxes), connect (drag from an output port to an input port), open a group
