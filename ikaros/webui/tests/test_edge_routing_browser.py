@@ -1,7 +1,8 @@
 """Connections stay routed around the boxes when boxes are moved in the network editor
 (issue 16, part 10), in a real headless Chromium against the real server: orthogonal
 segments only, none through a box, attached to their ports, delay badges on their own
-connection and clear of each other and of the boxes.
+connection and clear of each other and of the boxes, no two connections of different
+ports on top of each other.
 
 Screenshots are kept in test-artifacts/."""
 from __future__ import annotations
@@ -75,15 +76,24 @@ def crosses(p, q, box):
     return min(p[0], q[0]) < x1 and max(p[0], q[0]) > x0 and min(p[1], q[1]) < y1 and max(p[1], q[1]) > y0
 
 
+def on_top(p, q, u, v):
+    """Whether two segments run along the same line with overlapping spans."""
+    for axis in (0, 1):
+        other = 1 - axis
+        if p[axis] == q[axis] == u[axis] == v[axis]:
+            return min(max(p[other], q[other]), max(u[other], v[other])) > max(min(p[other], q[other]), min(u[other], v[other]))
+    return False
+
+
 def overlap(a, b):
     return min(a[2], b[2]) > max(a[0], b[0]) and min(a[3], b[3]) > max(a[1], b[1])
 
 
-def check_drawing(page):
+def check_drawing(page, edges=7, badges=("1", "1", "1", "2", "3", "4")):
     """Every connection routed: axis-parallel segments from its output port to its input
     port through no box but its ends'; its badge on it, clear of boxes and badges."""
     r = page.evaluate(DRAWING)
-    assert len(r["edges"]) == 7, r["edges"]
+    assert len(r["edges"]) == edges, r["edges"]
     for e in r["edges"]:
         assert e["routed"] and not re.search("[CcQqAa]", e["d"]), e
         pts = e["points"]
@@ -94,8 +104,16 @@ def check_drawing(page):
             for key, box in r["boxes"].items():
                 if key not in (e["from"], e["to"]):
                     assert not crosses(p, q, box), (e["name"], p, q, key, box)
+    # connections of different ports never run on top of each other
+    for i, e in enumerate(r["edges"]):
+        for f in r["edges"][i + 1:]:
+            if e["start"] == f["start"] or e["end"] == f["end"]:
+                continue                                    # a fan-out or fan-in may share
+            for p, q in zip(e["points"], e["points"][1:]):
+                for u, v in zip(f["points"], f["points"][1:]):
+                    assert not on_top(p, q, u, v), (e["name"], f["name"], p, q, u, v)
     labels = r["labels"]
-    assert sorted(x["text"] for x in labels) == ["1", "1", "1", "2", "3", "4"], labels
+    assert sorted(x["text"] for x in labels) == list(badges), labels
     for i, x in enumerate(labels):
         assert x["off"] < 1.0, x
         assert not any(overlap(x["box"], b) for b in r["boxes"].values()), (x, r["boxes"])
@@ -164,6 +182,37 @@ def test_connections_stay_routed_around_boxes_when_boxes_move(tmp_path):
         page.evaluate("() => window.ikaros.editor.openGroup('', -1)")
         page.wait_for_function("() => document.querySelectorAll('#editor-host g.edge.routed').length === 7")
         check_drawing(page)
+        assert not page.errors, page.errors
+
+    in_own_browser(str(model), lambda s, p: None, check)
+
+
+CROSSED = """<?xml version="1.0"?>
+<group name="X">
+    <module class="Constant" name="P" data="1" _x="0" _y="0" />
+    <module class="Constant" name="Q" data="2" _x="0" _y="180" />
+    <module class="Scale" name="R" _x="400" _y="0" />
+    <module class="Scale" name="S" _x="400" _y="150" />
+    <connection source="P.OUTPUT" target="S.INPUT" />
+    <connection source="Q.OUTPUT" target="R.INPUT" delay="2" />
+</group>
+"""
+
+
+def test_stored_positions_are_routed_with_crossing_connections_side_by_side(tmp_path):
+    """A file with positions opens routed; two connections that cross in one channel between
+    the boxes run side by side there, not on top of each other."""
+    model = tmp_path / "crossed.ikg"
+    model.write_text(CROSSED)
+
+    def check(server, page):
+        page.click("#toggle-editor")
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        page.wait_for_function("() => document.querySelectorAll('#editor-host g.edge.routed').length === 2")
+        r = check_drawing(page, edges=2, badges=("1", "2"))
+        verticals = sorted(p[0] for e in r["edges"] for p, q in zip(e["points"], e["points"][1:]) if p[0] == q[0])
+        assert len(verticals) == 2 and verticals[1] - verticals[0] >= 6, r["edges"]
+        page.screenshot(path=os.path.join(ARTIFACTS, "routing-crossed.png"))
         assert not page.errors, page.errors
 
     in_own_browser(str(model), lambda s, p: None, check)

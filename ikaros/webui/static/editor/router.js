@@ -4,13 +4,15 @@
 // from the left, and in between runs along horizontal and vertical lines that keep a
 // clearance from every box: the shortest such path with the fewest bends (A* over the lines
 // through the boxes' sides and the middles between them, with a cost per bend), its inner
-// segments then centred in their channels.
+// segments then centred in their channels, beside (not on) other connections' segments.
 
 const CLEARANCE = 10;      // drawing units kept free around boxes
 const STUB = 20;           // straight run out of a port and into one
 const BEND = 40;           // the cost of a bend, in drawing units of length
 const PADS = [150, 600, Infinity];   // search areas around the ends, tried in turn
 const MAX_NODES = 120000;  // a bigger search grid is not searched (the route is a plain one)
+const SEPARATION = 6;      // between parallel segments of different connections in a channel
+const PLACES = 12;         // places tried on either side of a channel's middle
 
 const strictlyInside = (p, o) => p[0] > o[0] && p[0] < o[2] && p[1] > o[1] && p[1] < o[3];
 
@@ -23,15 +25,16 @@ export function crosses(p, q, r, inset = 1) {
 /**
  * The route of a connection from output port ``a`` to input port ``b`` ({x, y}) around the
  * boxes ``rects`` ([x0, y0, x1, y1], the connection's own boxes among them): a list of
- * [x, y] points with axis-parallel segments.
+ * [x, y] points with axis-parallel segments. ``others``: the segments ([p, q]) of other
+ * connections, which its middle segments keep SEPARATION from where there is room.
  */
-export function orthogonalRoute(a, b, rects) {
+export function orthogonalRoute(a, b, rects, others = []) {
     const s = [a.x + STUB, a.y], t = [b.x - STUB, b.y];
     for (const clearance of [CLEARANCE, 2]) {
         for (const pad of PADS) {
             const path = search(s, t, rects, clearance, pad);
             if (path === undefined) break;               // too big to search
-            if (path) return simplify([[a.x, a.y], ...centred(path, rects, clearance), [b.x, b.y]]);
+            if (path) return simplify(centred([[a.x, a.y], ...path, [b.x, b.y]], rects, clearance, others));
         }
     }
     const mx = s[0] <= t[0] ? (s[0] + t[0]) / 2 : s[0];
@@ -138,12 +141,23 @@ function search(s, t, rects, c, pad) {
     return null;
 }
 
+/** Whether segment p-q runs along one of ``others`` (parallel, closer than SEPARATION, with
+ *  overlapping spans). */
+function alongside(p, q, others) {
+    const axis = p[0] === q[0] ? 0 : 1, other = 1 - axis;
+    const lo = Math.min(p[other], q[other]), hi = Math.max(p[other], q[other]);
+    return others.some(([u, v]) => u[axis] === v[axis] && Math.abs(u[axis] - p[axis]) < SEPARATION &&
+        Math.min(u[other], v[other]) < hi && Math.max(u[other], v[other]) > lo);
+}
+
 /** The path with each inner segment between two bends that turn the same way (a Z) moved
- *  to the middle of its free channel, where that leaves every segment clear of the boxes. */
-function centred(path, rects, c) {
+ *  to the middle of its free channel, or the nearest place to it beside other connections'
+ *  segments, where that leaves every segment clear of the boxes. */
+function centred(path, rects, c, others) {
     const pts = simplify(path.map((p) => [...p]));
     const inflated = rects.map((r) => [r[0] - c, r[1] - c, r[2] + c, r[3] + c]);
-    const clear = (p, q) => !inflated.some((o) => crosses(p, q, o, 0));
+    // a segment from a port keeps clear of the boxes' insides only (it starts at a side)
+    const clear = (p, q) => p === pts[0] || q === pts.at(-1) ? !rects.some((r) => crosses(p, q, r)) : !inflated.some((o) => crosses(p, q, o, 0));
     for (let k = 1; k + 2 < pts.length; k++) {
         const p = pts[k], q = pts[k + 1], before = pts[k - 1], after = pts[k + 2];
         const axis = p[0] === q[0] ? 0 : 1;               // 0: a vertical segment, moved along x
@@ -158,10 +172,18 @@ function centred(path, rects, c) {
             if (r[axis + 2] <= p[axis]) left = Math.max(left, r[axis + 2]);
             if (r[axis] >= p[axis]) right = Math.min(right, r[axis]);
         }
-        const v = (left + right) / 2;
-        const np = [...p], nq = [...q];
-        np[axis] = v; nq[axis] = v;
-        if (clear(before, np) && clear(np, nq) && clear(nq, after)) { pts[k] = np; pts[k + 1] = nq; }
+        const mid = (left + right) / 2;
+        let fallback = null;
+        for (let step = 0; Math.abs(step) <= PLACES && Math.abs(step) * SEPARATION <= (right - left) / 2; step = step > 0 ? -step : 1 - step) {
+            const np = [...p], nq = [...q];
+            np[axis] = nq[axis] = mid + step * SEPARATION;
+            if (!(clear(before, np) && clear(np, nq) && clear(nq, after))) continue;
+            if (!alongside(np, nq, others) && !alongside(before, np, others) && !alongside(nq, after, others)) {
+                fallback = null; pts[k] = np; pts[k + 1] = nq; break;
+            }
+            if (!alongside(np, nq, others)) fallback ??= [np, nq];
+        }
+        if (fallback) [pts[k], pts[k + 1]] = fallback;
     }
     return pts;
 }

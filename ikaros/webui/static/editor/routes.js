@@ -48,19 +48,24 @@ export class RouteKeeper {
         for (const [k, r] of this.rects) if (!rects.has(k)) changed.push(r);
         this.rects = rects;
         const all = [...rects.values()];
+        const todo = [];
         for (const e of graph.edges) {
             if (!e.from.box || !e.to.box) continue;
             const ends = RouteKeeper.ends(e, positions);
             if (!ends) continue;
             const [a, b] = ends, key = edgeKey(e);
-            let r = this.routes.get(key);
+            const r = this.routes.get(key);
             const kept = r && r.a.x === a.x && r.a.y === a.y && r.b.x === b.x && r.b.y === b.y &&
                 !changed.some((c) => near(r.pts, c)) && !r.pts.some((p, i) => i > 0 && all.some((q) => crosses(r.pts[i - 1], p, q)));
-            if (!kept) {
-                r = { a, b, pts: orthogonalRoute(a, b, all) };
-                this.routes.set(key, r);
-            }
-            out.set(key, r.pts);
+            if (kept) out.set(key, r.pts); else todo.push([key, a, b]);
+        }
+        // the new routes keep beside the others' segments
+        const segments = [...out.values()].flatMap((pts) => pts.slice(1).map((p, i) => [pts[i], p]));
+        for (const [key, a, b] of todo) {
+            const pts = orthogonalRoute(a, b, all, segments);
+            this.routes.set(key, { a, b, pts });
+            out.set(key, pts);
+            segments.push(...pts.slice(1).map((p, i) => [pts[i], p]));
         }
         return out;
     }
