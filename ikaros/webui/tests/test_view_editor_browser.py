@@ -78,7 +78,9 @@ def test_a_wide_view_fits_the_pane_and_drags_map_through_the_scale(tmp_path):
         frames = page.evaluate(FRAMES)
         scale = page.evaluate("() => window.ikaros.editor.viewEditor.scale")
         x, y, w, h = frames["far"]
-        drag(page, x + w - 3, y + h - 3, -40, 20)
+        handle = page.locator("#editor-host .widget-frame[data-title='far'] .resize-handle").bounding_box()
+        assert abs(handle["width"] - 12) < 0.01, handle       # the same size on screen at any scale
+        drag(page, x + w - 6, y + h - 6, -40, 20)
         attrs = page.evaluate(ATTRS, "far")
         assert (int(attrs["width"]), int(attrs["height"])) == (snapped(400 - 40 / scale, grid), snapped(200 + 20 / scale, grid)), (attrs, scale)
 

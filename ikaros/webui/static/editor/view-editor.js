@@ -91,6 +91,7 @@ export class ViewEditor {
         const s = this.scale;
         const width = Math.max(w, Math.floor(roomW / s)), height = Math.max(h, Math.floor(roomH / s));
         Object.assign(this.el.style, { width: width + "px", height: height + "px", transform: s < 1 ? `scale(${s})` : "" });
+        this.el.style.setProperty("--screen-px", `${1 / s}px`);     // handles keep their size on screen
         Object.assign(this.stage.style, { width: Math.floor(width * s) + "px", height: Math.floor(height * s) + "px" });
         this.fitButton.setAttribute("aria-pressed", String(this.fitting));
         this.fitButton.setAttribute("aria-label", this.fitting ? "show the view at 100 %" : "scale the view to fit the pane");
