@@ -83,7 +83,7 @@ export class ViewEditor {
     /** Size and scale the canvas: the widgets' extent at the largest scale up to 1 that
      *  shows them whole in the pane (1 when not fitting), the canvas filling the pane. */
     fit() {
-        if (!this.extent) return;
+        if (!this.extent || !this.host.clientWidth) return;      // hidden: fitted when shown
         const roomW = Math.max(1, this.host.clientWidth - 1);
         const roomH = Math.max(1, this.host.clientHeight - this.gridBar.offsetHeight - 1);
         const [w, h] = this.extent;
