@@ -435,8 +435,8 @@ ROUTES = """() => {
 
 
 def test_connections_are_routed_around_boxes(tmp_path):
-    """Part 10: with elkjs's layout, connections are orthogonal polylines that pass no box;
-    moving a box turns them back into curves until Auto layout routes them again."""
+    """Part 10: with elkjs's layout, connections are orthogonal polylines that pass no box,
+    and stay so when a box is moved (the editor routes them again) and after Auto layout."""
     model = tmp_path / "routed.ikg"
     model.write_text(ROUTED_MODEL)
 
@@ -460,11 +460,13 @@ def test_connections_are_routed_around_boxes(tmp_path):
         check_routed(page)
         page.screenshot(path=str(tmp_path / "routed.png"))
         b = page.locator("#editor-host g.box-group[data-name='B'] rect.box").bounding_box()
+        before = page.get_attribute("#editor-host g.box-group[data-name='B']", "transform")
         page.mouse.move(b["x"] + 20, b["y"] + 10)
         page.mouse.down()
         page.mouse.move(b["x"] + 20, b["y"] + 150, steps=4)
         page.mouse.up()
-        page.wait_for_function("() => !document.querySelector('#editor-host g.edge.routed')")
+        page.wait_for_function("() => document.querySelector('#editor-host g.box-group[data-name=\\'B\\']').getAttribute('transform') !== " + repr(before))
+        check_routed(page)                      # still routed around the boxes
         page.click("#ed-auto-layout")
         page.wait_for_function("() => document.querySelectorAll('#editor-host g.edge.routed').length === 3")
         check_routed(page)

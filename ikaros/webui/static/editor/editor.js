@@ -6,9 +6,10 @@ import { WIDGETS } from "../widgets/index.js";
 import { pickClass } from "./class-list.js";
 import { ask, files, pickFile } from "./files.js";
 import { EditorInspector } from "./inspector.js";
-import { edgeKey, graphOf, layout, loadElk, storedPosition } from "./layout.js";
+import { graphOf, layout, loadElk, storedPosition } from "./layout.js";
 import { EditorModel, GROUP_WIDGETS, clone, elements, kids, node, setWidgetBox, treeAsNetwork, viewsOf, widgetBox } from "./model.js";
 import { NetworkView } from "./network-view.js";
+import { RouteKeeper } from "./routes.js";
 import { ViewEditor } from "./view-editor.js";
 
 function h(tag, cls, text) {
@@ -325,7 +326,7 @@ export class Editor {
     async autoLayout() {
         if (!this.graph) return;
         const { positions, routes } = await layout(this.graph, { force: true });
-        this.keepRoutes(routes, positions);
+        this.keepRoutes(this.graph, routes, positions);
         this.edit("auto layout", () => {
             for (const b of this.graph.boxes) {
                 const p = positions.get(b.key);
@@ -425,26 +426,19 @@ export class Editor {
         if (this.clipboard) this.deleteSelection();
     }
 
-    /** Keep the routes of an automatic layout with the positions they were made for. */
-    keepRoutes(routes, positions) {
-        if (routes) this.routing = { group: this.groupPath, routes, at: new Map([...positions].map(([k, p]) => [k, { ...p }])) };
+    /** Keep the routes of an automatic layout of the open group. */
+    keepRoutes(graph, routes, positions) {
+        if (routes) this.routesOfGroup().keepLayout(graph, routes, positions);
     }
 
-    /** The routes still true to the drawing: none once a box was moved, added or removed
-     *  (connections are then curves until the next Auto layout); a pin placed anew drops
-     *  only its own connections' routes. */
-    validRoutes() {
-        const r = this.routing, out = new Map();
-        if (!r || r.group !== this.groupPath || !this.graph) return out;
-        const same = (k) => { const a = r.at.get(k), b = this.positions.get(k); return a && b && a.x === b.x && a.y === b.y; };
-        const comps = this.graph.boxes.filter((b) => isComponent(b.node));
-        if (!comps.every((b) => same(b.key)) || comps.length !== [...r.at.keys()].filter((k) => k.startsWith("c:")).length) return out;
-        for (const e of this.graph.edges) {
-            const key = edgeKey(e);
-            if (e.from.box && e.to.box && same(e.from.box.key) && same(e.to.box.key) && r.routes.has(key)) out.set(key, r.routes.get(key));
-        }
-        return out;
+    /** What keeps the routes of the open group's connections (routes.js). */
+    routesOfGroup() {
+        if (this.routing?.group !== this.groupPath) this.routing = new RouteKeeper(this.groupPath);
+        return this.routing;
     }
+
+    /** The routes of the open group's connections as drawn now. */
+    currentRoutes() { return this.graph ? this.routesOfGroup().routesFor(this.graph, this.positions) : new Map(); }
 
     /** The keys of the subgroups of a group whose unused ports are shown. */
     expandedPorts(groupPath) {
@@ -613,7 +607,7 @@ export class Editor {
     redraw() {
         if (!this.active) return;
         if (this.mode === "network" && this.netView && this.graph) {
-            this.netView.show(this.graph, this.positions, { errors: this.visibleErrors(), selection: this.selection, groupError: this.groupError, routes: this.validRoutes() });
+            this.netView.show(this.graph, this.positions, { errors: this.visibleErrors(), selection: this.selection, groupError: this.groupError, routes: this.currentRoutes() });
         } else if (this.viewEditor && this.currentView()) {
             this.viewEditor.show(this.currentView(), this.selection, this.errors);
         }
@@ -696,13 +690,14 @@ export class Editor {
                     onConnect: (from, to) => this.onConnect(from, to),
                     onBand: (keys, additive) => this.band(keys, additive),
                     onTogglePorts: (key) => this.togglePorts(key),
+                    routes: () => this.currentRoutes(),
                 });
                 this.netView.shownGroup = null;
             }
             const graph = graphOf(g, this.classes, this.expandedPorts(this.groupPath));
             const { positions, automatic, routes } = await layout(graph);
             if (seq !== this.renderSeq) return;
-            this.keepRoutes(routes, positions);
+            this.keepRoutes(graph, routes, positions);
             this.graph = graph;
             this.positions = positions;
             this.automatic = automatic;

@@ -178,8 +178,8 @@ async function elkLayout(graph) {
     const pid = (b, side, port) => `${b.key}|${side}|${port}`;
     const children = graph.boxes.map((b) => {
         const ports = [
-            ...b.inputs.map((p) => ({ id: pid(b, "in", p), ...portOffset(b, "in", p), width: 1, height: 1, layoutOptions: { "org.eclipse.elk.port.side": "WEST" } })),
-            ...b.outputs.map((p) => ({ id: pid(b, "out", p), ...portOffset(b, "out", p), width: 1, height: 1, layoutOptions: { "org.eclipse.elk.port.side": "EAST" } })),
+            ...b.inputs.map((p) => ({ id: pid(b, "in", p), ...portOffset(b, "in", p), width: 0, height: 0, layoutOptions: { "org.eclipse.elk.port.side": "WEST" } })),
+            ...b.outputs.map((p) => ({ id: pid(b, "out", p), ...portOffset(b, "out", p), width: 0, height: 0, layoutOptions: { "org.eclipse.elk.port.side": "EAST" } })),
         ];
         const opts = { "org.eclipse.elk.portConstraints": "FIXED_POS" };
         if (b.kind === "input" || b.kind === "external-in") opts["org.eclipse.elk.layered.layering.layerConstraint"] = "FIRST_SEPARATE";

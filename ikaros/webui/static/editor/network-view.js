@@ -1,5 +1,5 @@
 // The network view of one group: SVG boxes with input ports on the left and output ports on
-// the right, connections as curves labelled with their delay, the group's inputs and outputs
+// the right, connections (routed by the owner, else curves) labelled with their delay, the group's inputs and outputs
 // as pins at the edges. Zoom (wheel), pan (drag the background), select (click, shift-click,
 // or a rubber band: shift- or alt-drag on the background),
 // move (drag boxes), connect (drag from an output port to an input port), open a group
@@ -86,7 +86,7 @@ export class NetworkView {
     /**
      * handlers: onSelect(nodes, additive), onOpenGroup(name), onMove(Map key -> {x, y}),
      * onConnect(from {box, port}, to {box, port}), onBand(box keys, additive),
-     * onTogglePorts(box key)
+     * onTogglePorts(box key), routes() (the connections' routes while boxes are dragged)
      */
     constructor(host, handlers) {
         this.host = host;
@@ -293,7 +293,7 @@ export class NetworkView {
         const error = this.errors.get(e.node);
         const g = el("g", { class: `edge${selected ? " selected" : ""}${error ? " has-error" : ""}${e.outputSource ? " output-source" : ""}`,
             "data-edge": String(i), "data-source": e.node.attrs.source || "", "data-target": e.node.attrs.target || e.node.attrs.name || "" }, layer);
-        // routed around the boxes (elkjs, orthogonal) while the layout is elkjs's own
+        // routed around the boxes (orthogonal: elkjs's routes, or the editor's once a box moved)
         const route = this.routes.get(edgeKey(e));
         const d = route ? "M" + route.map((p) => p.join(",")).join(" L") : curve(a.x, a.y, b.x, b.y);
         if (route) g.classList.add("routed");
@@ -408,7 +408,7 @@ export class NetworkView {
                 const p = { x: Math.round((p0.x + dx) / 10) * 10, y: Math.round((p0.y + dy) / 10) * 10 };
                 this.pos.set(b.key, p);
             }
-            this.show(this.graph, this.pos, { errors: this.errors, selection: this.selection });
+            this.show(this.graph, this.pos, { errors: this.errors, selection: this.selection, routes: this.h.routes?.() });
         } else if (d.kind === "band") {
             const p = this.local(e);
             d.box = [Math.min(p.x, d.p0.x), Math.min(p.y, d.p0.y), Math.max(p.x, d.p0.x), Math.max(p.y, d.p0.y)];

@@ -1,20 +1,32 @@
 // The view editor: the widgets of one view as frames that can be selected, moved (drag) and
 // resized (the corner handle), snapped to a grid of 5 to 160 px (grid − and + halve and
 // double it; 10 px at first). Each frame shows its widget live, with data, as the view
-// does. Adding, deleting and restyling go through the editor's toolbar and inspector.
+// does, and the widget's own controls (sliders, buttons, menus, check boxes, a joystick's
+// pad) act as in the view; the rest of the frame selects and drags. The canvas is scaled
+// to fit the pane ("fit", the default) or shown at 100 % (the pane scrolls); positions stay
+// in view units, and a drag of N screen pixels moves a widget by N / scale units.
+// Adding, deleting and restyling go through the editor's toolbar and inspector.
 import { kids, widgetBox, widgetClassOf } from "./model.js";
 import { widgetClass } from "../widgets/index.js";
 
 const GRIDS = [5, 10, 20, 40, 80, 160];     // grid spacings, px (- halves, + doubles)
+const MARGIN = 20;                           // view units right of and below the widgets
+/** What in a live widget is its own control: used, it acts and the frame stays put. */
+const CONTROLS = "input, button, select, textarea, label, [data-control]";
 
 export class ViewEditor {
     /** handlers: onSelect(nodes, additive), onGeometry(node, box) */
     constructor(host, handlers) {
         this.host = host;
         this.h = handlers;
+        this.stage = document.createElement("div");      // the canvas's size on screen
+        this.stage.className = "view-editor-stage";
         this.el = document.createElement("div");
         this.el.className = "view view-editor";
-        host.appendChild(this.el);
+        this.stage.appendChild(this.el);
+        host.appendChild(this.stage);
+        this.scale = 1;
+        this.fitting = localStorage.getItem("ikaros-view-fit") !== "no";
         this.drag = null;
         this.live = [];                      // the frames' widgets, with data
         this.liveToken = {};
@@ -31,9 +43,19 @@ export class ViewEditor {
             return b;
         };
         this.gridLabel = document.createElement("span");
-        this.gridBar.append(step(-1), this.gridLabel, step(1));
-        host.insertBefore(this.gridBar, this.el);
+        this.fitButton = document.createElement("button");
+        this.fitButton.className = "tool small";
+        this.fitButton.dataset.zoom = "fit";
+        this.fitButton.textContent = "fit";
+        this.fitButton.title = "scale the view to fit the pane, or show it at 100 %";
+        this.fitButton.addEventListener("click", () => this.setFitting(!this.fitting));
+        this.zoomLabel = document.createElement("span");
+        this.zoomLabel.className = "view-zoom";
+        this.gridBar.append(step(-1), this.gridLabel, step(1), this.fitButton, this.zoomLabel);
+        host.insertBefore(this.gridBar, this.stage);
         this.setGrid(this.grid);
+        this.fitter = new ResizeObserver(() => this.fit());
+        this.fitter.observe(host);
         this.el.addEventListener("pointerdown", (e) => this.onDown(e));
         this.move = (e) => this.onMove(e);
         this.up = (e) => this.onUp(e);
@@ -51,10 +73,36 @@ export class ViewEditor {
 
     snap(v) { return Math.round(v / this.grid) * this.grid; }
 
+    /** Scale the canvas to fit the pane (on), or show it at 100 % (off), remembered. */
+    setFitting(on) {
+        this.fitting = on;
+        localStorage.setItem("ikaros-view-fit", on ? "yes" : "no");
+        this.fit();
+    }
+
+    /** Size and scale the canvas: the widgets' extent at the largest scale up to 1 that
+     *  shows them whole in the pane (1 when not fitting), the canvas filling the pane. */
+    fit() {
+        if (!this.extent || !this.host.clientWidth) return;      // hidden: fitted when shown
+        const roomW = Math.max(1, this.host.clientWidth - 1);
+        const roomH = Math.max(1, this.host.clientHeight - this.gridBar.offsetHeight - 1);
+        const [w, h] = this.extent;
+        this.scale = this.fitting ? Math.min(1, roomW / w, roomH / h) : 1;
+        const s = this.scale;
+        const width = Math.max(w, Math.floor(roomW / s)), height = Math.max(h, Math.floor(roomH / s));
+        Object.assign(this.el.style, { width: width + "px", height: height + "px", transform: s < 1 ? `scale(${s})` : "" });
+        this.el.style.setProperty("--screen-px", `${1 / s}px`);     // handles keep their size on screen
+        Object.assign(this.stage.style, { width: Math.floor(width * s) + "px", height: Math.floor(height * s) + "px" });
+        this.fitButton.setAttribute("aria-pressed", String(this.fitting));
+        this.fitButton.setAttribute("aria-label", this.fitting ? "show the view at 100 %" : "scale the view to fit the pane");
+        this.zoomLabel.textContent = ` ${Math.round(s * 100)} % `;
+        this.el.dataset.scale = String(s);
+    }
+
     // --- live widgets: each frame shows its widget with data while the view is edited ------
 
-    /** Build the real widget inside a frame (it takes no pointer events: the frame is
-     *  dragged); the frame's text stays for a class that fails to build. */
+    /** Build the real widget inside a frame (its controls act, see CONTROLS); the frame's
+     *  text stays for a class that fails to build. */
     async makeLive(frame, body, node, cls) {
         const live = this.h.live?.();
         if (!live) return;
@@ -64,7 +112,7 @@ export class ViewEditor {
         let widget;
         try { widget = new Cls({ ...node.attrs, class: cls, show_title: "no" }, live.ctx); } catch { return; }
         widget.el.classList.add("live-widget");
-        Object.assign(widget.el.style, { position: "absolute", inset: "0", pointerEvents: "none" });
+        Object.assign(widget.el.style, { position: "absolute", inset: "0" });
         body.textContent = "";
         body.style.position = "relative";
         body.appendChild(widget.el);
@@ -88,10 +136,11 @@ export class ViewEditor {
     destroy() {
         this.dropLive();
         this.h.live?.().changed();
+        this.fitter.disconnect();
         this.gridBar.remove();
         window.removeEventListener("pointermove", this.move);
         window.removeEventListener("pointerup", this.up);
-        this.el.remove();
+        this.stage.remove();
     }
 
     show(view, selection, errors = new Map()) {
@@ -99,11 +148,11 @@ export class ViewEditor {
         this.dropLive();
         this.el.textContent = "";
         this.frames = new Map();
-        let right = 600, bottom = 400;
+        let right = 1, bottom = 1;
         for (const w of kids(view)) {
             const box = widgetBox(w);
-            right = Math.max(right, box.x + box.width + 40);
-            bottom = Math.max(bottom, box.y + box.height + 40);
+            right = Math.max(right, box.x + box.width + MARGIN);
+            bottom = Math.max(bottom, box.y + box.height + MARGIN);
             const f = document.createElement("div");
             f.className = "widget widget-frame" + (selection.has(w) ? " selected" : "");
             const cls = widgetClassOf(w);
@@ -131,14 +180,15 @@ export class ViewEditor {
             this.frames.set(f, w);
             this.makeLive(f, b, w, cls);
         }
-        this.el.style.width = right + "px";
-        this.el.style.height = bottom + "px";
+        this.extent = [right, bottom];
+        this.fit();
     }
 
     onDown(e) {
         if (e.button !== 0) return;
         const f = e.target.closest(".widget-frame");
         if (!f) { this.h.onSelect([], false); return; }
+        if (e.target.closest(".live-widget") && e.target.closest(CONTROLS)) return;
         const w = this.frames.get(f);
         this.h.onSelect([w], e.shiftKey);
         const frame = [...this.frames].find(([, x]) => x === w)?.[0] || f;
@@ -149,8 +199,8 @@ export class ViewEditor {
     onMove(e) {
         const d = this.drag;
         if (!d) return;
-        const dx = e.clientX - d.cx, dy = e.clientY - d.cy;
-        if (Math.abs(dx) + Math.abs(dy) > 2) d.moved = true;
+        const dx = (e.clientX - d.cx) / this.scale, dy = (e.clientY - d.cy) / this.scale;
+        if (Math.abs(e.clientX - d.cx) + Math.abs(e.clientY - d.cy) > 2) d.moved = true;
         if (!d.moved) return;
         const b = { ...d.box };
         if (d.resize) { b.width = Math.max(40, this.snap(b.width + dx)); b.height = Math.max(30, this.snap(b.height + dy)); }

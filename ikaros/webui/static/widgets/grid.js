@@ -16,7 +16,10 @@ export default class Grid extends CanvasWidget {
         this.rows = null;
         this.paramValue = null;
         this.canvas.addEventListener("click", (e) => this.click(e));
-        if (this.commandTarget("command") || this.path("parameter")) this.canvas.style.cursor = "pointer";
+        if (this.commandTarget("command") || this.path("parameter")) {
+            this.canvas.style.cursor = "pointer";
+            this.canvas.dataset.control = "";    // a click sets a cell, also in the view editor
+        }
     }
 
     mapName() { return this.str(["fill", "color_map"], this.attrs.class === "heat-map" ? "fire" : "gray"); }

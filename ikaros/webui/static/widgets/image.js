@@ -19,6 +19,7 @@ export default class Image_ extends CanvasWidget {
         const o = this.num(["opacity"], 1);
         this.canvas.style.opacity = o;
         this.canvas.addEventListener("click", (e) => this.click(e));
+        if (this.commandTarget("command")) this.canvas.dataset.control = "";   // also in the view editor
         if (this.files.length) this.showFile(0);
     }
 

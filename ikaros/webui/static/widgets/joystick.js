@@ -20,6 +20,7 @@ export default class Joystick extends Widget {
         this.body.appendChild(pad);
         Object.assign(pad.style, { position: "absolute", inset: "6px", borderRadius: "50%", border: "1px solid var(--frame-color)", touchAction: "none" });
         Object.assign(knob.style, { position: "absolute", width: "24px", height: "24px", margin: "-12px 0 0 -12px", borderRadius: "50%", background: "var(--accent)" });
+        pad.dataset.control = "";               // its own control, also in the view editor
         this.pad = pad; this.knob = knob;
         this.unipolar = this.str(["range"], "bipolar") === "unipolar";
         pad.setAttribute("aria-valuemin", this.value(-1));

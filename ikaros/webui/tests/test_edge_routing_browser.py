@@ -1,0 +1,218 @@
+"""Connections stay routed around the boxes when boxes are moved in the network editor
+(issue 16, part 10), in a real headless Chromium against the real server: orthogonal
+segments only, none through a box, attached to their ports, delay badges on their own
+connection and clear of each other and of the boxes, no two connections of different
+ports on top of each other.
+
+Screenshots are kept in test-artifacts/."""
+from __future__ import annotations
+
+import os
+import re
+
+from browsing import ARTIFACTS, in_own_browser
+
+LOOP = """<?xml version="1.0"?>
+<group name="R">
+    <module class="Constant" name="A" data="1" />
+    <module class="Scale" name="B" />
+    <module class="Add" name="C" />
+    <module class="Scale" name="D" />
+    <module class="Scale" name="E" />
+    <module class="Scale" name="F" />
+    <connection source="A.OUTPUT" target="B.INPUT" delay="1" />
+    <connection source="B.OUTPUT" target="C.INPUT1" delay="2" />
+    <connection source="C.OUTPUT" target="D.INPUT" delay="1" />
+    <connection source="D.OUTPUT" target="E.INPUT" delay="1" />
+    <connection source="E.OUTPUT" target="C.INPUT2" delay="3" />
+    <connection source="A.OUTPUT" target="F.INPUT" delay="4" />
+    <output name="OUT" source="E.OUTPUT" />
+    <view name="V">
+        <plot source="E.OUTPUT" title="e" x="20" y="20" width="200" height="100" />
+    </view>
+</group>
+"""
+
+# every box's rectangle, every connection's points and port ends, every badge, in drawing units
+DRAWING = """() => {
+    const svg = document.querySelector('#editor-host svg');
+    const at = (g) => { const m = /translate\\(([-\\d.]+),([-\\d.]+)\\)/.exec(g.getAttribute('transform')); return [+m[1], +m[2]]; };
+    const boxes = {};
+    for (const g of svg.querySelectorAll('g.box-group')) {
+        const [x, y] = at(g), r = g.querySelector('rect.box');
+        boxes[g.dataset.key] = [x, y, x + +r.getAttribute('width'), y + +r.getAttribute('height')];
+    }
+    const port = (key, side, name) => {
+        const g = svg.querySelector(`g.box-group[data-key='${key}']`);
+        const c = [...g.querySelectorAll(`g.port-${side} circle`)].find((c) => c.parentNode.dataset.port === name);
+        const [x, y] = at(g);
+        return [x + +c.getAttribute('cx'), y + +c.getAttribute('cy')];
+    };
+    const editor = window.ikaros.editor;
+    const edges = editor.graph.edges.map((e, i) => {
+        const g = svg.querySelector(`g.edge[data-edge='${i}']`);
+        const d = g.querySelector('path.edge-line').getAttribute('d');
+        return {name: (e.node.attrs.source || '') + '>' + (e.node.attrs.target || e.node.attrs.name), d,
+            routed: g.classList.contains('routed'), from: e.from.box.key, to: e.to.box.key,
+            points: (d.match(/-?[\\d.]+,-?[\\d.]+/g) || []).map((p) => p.split(',').map(Number)),
+            start: port(e.from.box.key, 'out', e.from.port), end: port(e.to.box.key, 'in', e.to.port)};
+    });
+    const labels = [...svg.querySelectorAll('g.edge-label')].map((g) => {
+        const r = g.querySelector('rect');
+        const box = [+r.getAttribute('x'), +r.getAttribute('y'), +r.getAttribute('x') + +r.getAttribute('width'), +r.getAttribute('y') + +r.getAttribute('height')];
+        const path = svg.querySelector(`g.edge[data-edge='${g.dataset.edge}'] path.edge-line`);
+        const cx = (box[0] + box[2]) / 2, cy = (box[1] + box[3]) / 2;
+        let off = Infinity;
+        for (let s = 0, n = path.getTotalLength(); s <= n; s += 0.5) { const p = path.getPointAtLength(s); off = Math.min(off, Math.hypot(p.x - cx, p.y - cy)); }
+        return {text: g.querySelector('text').textContent, box, off};
+    });
+    return {boxes, edges, labels};
+}"""
+
+
+def crosses(p, q, box):
+    """Whether segment p-q passes through the interior of the box (1 unit in from its sides)."""
+    x0, y0, x1, y1 = box[0] + 1, box[1] + 1, box[2] - 1, box[3] - 1
+    return min(p[0], q[0]) < x1 and max(p[0], q[0]) > x0 and min(p[1], q[1]) < y1 and max(p[1], q[1]) > y0
+
+
+def on_top(p, q, u, v):
+    """Whether two segments run along the same line with overlapping spans."""
+    for axis in (0, 1):
+        other = 1 - axis
+        if p[axis] == q[axis] == u[axis] == v[axis]:
+            return min(max(p[other], q[other]), max(u[other], v[other])) > max(min(p[other], q[other]), min(u[other], v[other]))
+    return False
+
+
+def overlap(a, b):
+    return min(a[2], b[2]) > max(a[0], b[0]) and min(a[3], b[3]) > max(a[1], b[1])
+
+
+def check_drawing(page, edges=7, badges=("1", "1", "1", "2", "3", "4")):
+    """Every connection routed: axis-parallel segments from its output port to its input
+    port through no box but its ends'; its badge on it, clear of boxes and badges."""
+    r = page.evaluate(DRAWING)
+    assert len(r["edges"]) == edges, r["edges"]
+    for e in r["edges"]:
+        assert e["routed"] and not re.search("[CcQqAa]", e["d"]), e
+        pts = e["points"]
+        assert max(abs(a - b) for a, b in zip(pts[0], e["start"])) < 0.6, e
+        assert max(abs(a - b) for a, b in zip(pts[-1], e["end"])) < 0.6, e
+        for p, q in zip(pts, pts[1:]):
+            assert p[0] == q[0] or p[1] == q[1], (e["name"], p, q)
+            for key, box in r["boxes"].items():
+                if key not in (e["from"], e["to"]):
+                    assert not crosses(p, q, box), (e["name"], p, q, key, box)
+    # connections of different ports never run on top of each other
+    for i, e in enumerate(r["edges"]):
+        for f in r["edges"][i + 1:]:
+            if e["start"] == f["start"] or e["end"] == f["end"]:
+                continue                                    # a fan-out or fan-in may share
+            for p, q in zip(e["points"], e["points"][1:]):
+                for u, v in zip(f["points"], f["points"][1:]):
+                    assert not on_top(p, q, u, v), (e["name"], f["name"], p, q, u, v)
+    labels = r["labels"]
+    assert sorted(x["text"] for x in labels) == list(badges), labels
+    for i, x in enumerate(labels):
+        assert x["off"] < 1.0, x
+        assert not any(overlap(x["box"], b) for b in r["boxes"].values()), (x, r["boxes"])
+        assert not any(overlap(x["box"], y["box"]) for y in labels[i + 1:]), labels
+    return r
+
+
+def drag_box(page, name, dx, dy, release=True):
+    b = page.locator(f"#editor-host g.box-group[data-name='{name}'] rect.box").bounding_box()
+    page.mouse.move(b["x"] + 30, b["y"] + 10)
+    page.mouse.down()
+    page.mouse.move(b["x"] + 30 + dx, b["y"] + 10 + dy, steps=5)
+    if release:
+        page.mouse.up()
+
+
+def test_connections_stay_routed_around_boxes_when_boxes_move(tmp_path):
+    model = tmp_path / "loop.ikg"
+    model.write_text(LOOP)
+    os.makedirs(ARTIFACTS, exist_ok=True)
+
+    def check(server, page):
+        page.click("#toggle-editor")
+        page.wait_for_selector("#editor-host[data-ready]")
+        page.evaluate("() => window.ikaros.editor.openGroup('', -1)")
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        page.wait_for_function("() => document.querySelectorAll('#editor-host g.edge.routed').length === 7")
+        first = check_drawing(page)
+        page.screenshot(path=os.path.join(ARTIFACTS, "routing-0-layout.png"))
+        scale = page.evaluate("() => window.ikaros.editor.netView.t.k")
+
+        # D down by 200 drawing units: while dragged and after, every connection routed
+        drag_box(page, "D", 0, 200 * scale, release=False)
+        check_drawing(page)
+        page.mouse.up()
+        moved = check_drawing(page)
+        assert moved["boxes"]["c:D"][1] - first["boxes"]["c:D"][1] == 200
+        # the connections away from D keep elkjs's routes; D's own are new
+        before = {e["name"]: e["points"] for e in first["edges"]}
+        after = {e["name"]: e["points"] for e in moved["edges"]}
+        assert after["A.OUTPUT>B.INPUT"] == before["A.OUTPUT>B.INPUT"]
+        assert after["C.OUTPUT>D.INPUT"] != before["C.OUTPUT>D.INPUT"]
+        page.screenshot(path=os.path.join(ARTIFACTS, "routing-1-moved.png"))
+
+        # F dropped right onto the middle of the longest run of the route of E -> C: that
+        # route now goes around F
+        ec = next(e for e in moved["edges"] if e["name"] == "E.OUTPUT>C.INPUT2")
+        longest = max(zip(ec["points"], ec["points"][1:]), key=lambda s: abs(s[0][0] - s[1][0]) + abs(s[0][1] - s[1][1]))
+        mx, my = (longest[0][0] + longest[1][0]) / 2, (longest[0][1] + longest[1][1]) / 2
+        fb = moved["boxes"]["c:F"]
+        drag_box(page, "F", (mx - (fb[0] + fb[2]) / 2) * scale, (my - (fb[1] + fb[3]) / 2) * scale)
+        dropped = check_drawing(page)
+        f = dropped["boxes"]["c:F"]
+        assert any(crosses(p, q, f) for p, q in zip(ec["points"], ec["points"][1:])), "F was not dropped on the route"
+        page.screenshot(path=os.path.join(ARTIFACTS, "routing-2-dropped-on-a-route.png"))
+
+        # E moved below A, left of its source D: the connection from D turns back around
+        # the boxes
+        drag_box(page, "E", -1040 * scale, 360 * scale)
+        check_drawing(page)
+        page.screenshot(path=os.path.join(ARTIFACTS, "routing-3-backwards.png"))
+
+        # the group left and opened again (positions now stored in the file): still routed
+        page.evaluate("() => window.ikaros.editor.openGroup('', 0)")
+        page.wait_for_selector("#editor-host .view-editor")
+        page.evaluate("() => window.ikaros.editor.openGroup('', -1)")
+        page.wait_for_function("() => document.querySelectorAll('#editor-host g.edge.routed').length === 7")
+        check_drawing(page)
+        assert not page.errors, page.errors
+
+    in_own_browser(str(model), lambda s, p: None, check)
+
+
+CROSSED = """<?xml version="1.0"?>
+<group name="X">
+    <module class="Constant" name="P" data="1" _x="0" _y="0" />
+    <module class="Constant" name="Q" data="2" _x="0" _y="180" />
+    <module class="Scale" name="R" _x="400" _y="0" />
+    <module class="Scale" name="S" _x="400" _y="150" />
+    <connection source="P.OUTPUT" target="S.INPUT" />
+    <connection source="Q.OUTPUT" target="R.INPUT" delay="2" />
+</group>
+"""
+
+
+def test_stored_positions_are_routed_with_crossing_connections_side_by_side(tmp_path):
+    """A file with positions opens routed; two connections that cross in one channel between
+    the boxes run side by side there, not on top of each other."""
+    model = tmp_path / "crossed.ikg"
+    model.write_text(CROSSED)
+
+    def check(server, page):
+        page.click("#toggle-editor")
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        page.wait_for_function("() => document.querySelectorAll('#editor-host g.edge.routed').length === 2")
+        r = check_drawing(page, edges=2, badges=("1", "2"))
+        verticals = sorted(p[0] for e in r["edges"] for p, q in zip(e["points"], e["points"][1:]) if p[0] == q[0])
+        assert len(verticals) == 2 and verticals[1] - verticals[0] >= 6, r["edges"]
+        page.screenshot(path=os.path.join(ARTIFACTS, "routing-crossed.png"))
+        assert not page.errors, page.errors
+
+    in_own_browser(str(model), lambda s, p: None, check)
