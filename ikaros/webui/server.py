@@ -43,8 +43,8 @@ from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
 from .history import MAX_POINTS
 from .rates import RUNNING, TickRate
-from .guards import (DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, json_depth,
-                     quiet_refused_websockets)
+from .guards import (DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, Framing,
+                     json_depth, quiet_refused_websockets)
 from .openapi import openapi
 from .snapshot import (DEFAULT_BUDGET, DEFAULT_MAX_RATE, STATUS_INTERVAL, Client, Hub,
                        LogBook, between_ticks, kernel_thread_alive, plain)
@@ -898,6 +898,8 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
     app.add_middleware(BodyLimit, limit=max_body,
                        too_large=_error(413, str(BodyTooLarge(max_body))))
     app.add_middleware(AccessMiddleware, token=token, hosts=hosts)
+    app.add_middleware(Framing, answer=lambda status, message: _error(
+        status, message, {"Connection": "close"}))
     return app
 
 

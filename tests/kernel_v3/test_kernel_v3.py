@@ -16,12 +16,16 @@ expectations are read from root attributes, as the original harness does (TESTS.
 documented semantics differ from Ikaros 3 (first tick 0, concatenation, ...), the models
 expect our result; docs/language.md lists the differences.
 
+A model with an ``http_requests`` script is run as an ``ikaros`` process serving the web UI
+instead (http_harness.py), with the same pass criteria.
+
 The test-only classes the models use live in ikaros/testsupport; the models reach them with
 ``path="@support"`` on the module and ``support`` on the top group.
 """
 import os
 import shlex
 
+import http_harness
 import pytest
 
 import ikaros
@@ -44,6 +48,19 @@ def _texts(attrs, key):
     return [t.strip() for t in value.split("||")] if value else []
 
 
+def _run_batch(path: str, attrs, cli_args: list[str], capsys) -> tuple[int, str]:
+    """Runs the model in batch mode in this process: (exit status, output)."""
+    argv = ["-b"] + cli_args
+    if "stop" not in attrs:
+        argv += ["-s", "0"]
+    try:
+        code = cli.main(argv + [path])
+    except SystemExit as e:             # a usage error (exit status 2)
+        code = e.code
+    out = capsys.readouterr()
+    return code, out.out + out.err
+
+
 def _run(name: str, tmp_path, capsys) -> list[str]:
     """Runs one model through the CLI; returns its unmet expectations (none: it passes)."""
     path = os.path.join(MODELS, name)
@@ -53,16 +70,13 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
         return text.replace("${TEST_DIR}", os.path.dirname(path)).replace("${TMP}",
                                                                          str(tmp_path))
 
-    argv = ["-b"] + [expand(a) for a in shlex.split(attrs.get("cli_args", ""))]
-    if "stop" not in attrs:
-        argv += ["-s", "0"]
-    try:
-        code = cli.main(argv + [path])
-    except SystemExit as e:             # a usage error (exit status 2)
-        code = e.code
-    out = capsys.readouterr()
-    output = out.out + out.err
-    unmet = []
+    cli_args = shlex.split(attrs.get("cli_args", ""))
+    if "http_requests" in attrs or "http_occupy_port" in attrs:
+        code, output, unmet = http_harness.run(path, dict(attrs, cli_args_list=cli_args),
+                                               expand, tmp_path)
+    else:
+        unmet = []
+        code, output = _run_batch(path, attrs, [expand(a) for a in cli_args], capsys)
     if code != int(attrs.get("expected_exit", "0")):
         unmet.append(f"exit status {code}")
     for text in _texts(attrs, "expected_output_contains"):
