@@ -318,6 +318,9 @@ class WebUI:
         self._classes = None
         self._changing = threading.Lock()       # one apply / open / new at a time
         self._ended_by_stop = None              # the network whose run the stop button ended
+        # The network built from the command line's file (and its rebuilds after a stop):
+        # rebuilt as the command line built it, not confined as a model from the editor.
+        self._command_line_net = None if failure else net
         # What the command line set beside the file, kept while the model is rebuilt
         # (dropped when another model is opened or a new one made).
         self._overrides = _overrides_of(net)
@@ -424,11 +427,15 @@ class WebUI:
             filename = self.net.filename
             model = await self._call(self._model_json)
             tree = self._tree({"tree": model["tree"]}, filename)
+            command_line = self.net is self._command_line_net
             try:
-                new = await self._build(filename, tree, self._overrides)
+                new = await self._build(filename, tree, self._overrides,
+                                        confined=not command_line)
             except (ModelError, BuildTimeout) as e:
                 return Json({"error": str(e), "node": None, "path": None}, status_code=422)
             await self._swap(new, state)
+            if command_line:
+                self._command_line_net = new
         return Json(self.status())
 
     async def parameter(self, request: Request):
@@ -652,15 +659,17 @@ class WebUI:
         finally:
             self._changing.release()
 
-    async def _build(self, filename: str, tree, overrides: dict | None):
-        """Build a network in a thread of its own, confined to the editor's folders, within
-        the build time limit (BuildTimeout)."""
+    async def _build(self, filename: str, tree, overrides: dict | None,
+                     confined: bool = True):
+        """Build a network in a thread of its own, confined to the editor's folders (unless
+        it is the command line's model built again), within the build time limit
+        (BuildTimeout)."""
         from ..kernel.builder import Builder
         log_level = self.net.log_level
         diagnostics = self.net.diagnostics.fresh()
 
         def build():
-            with access.applied(self.confinement):
+            with access.applied(self.confinement if confined else None):
                 new = Builder(filename, overrides, model=tree, diagnostics=diagnostics,
                               limits=self.build_limits).build()
             new.log_level = log_level

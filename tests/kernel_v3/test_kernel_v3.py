@@ -8,7 +8,8 @@ expectations are read from root attributes, as the original harness does (TESTS.
 * ``cli_args`` are put before the file (whitespace-separated);
 * ``expected_exit`` (default 0);
 * ``expected_output_contains`` / ``_not_contains`` / ``_once`` / ``_twice``: ``||``-separated
-  texts matched against stdout plus stderr;
+  texts matched against stdout plus stderr; ``expected_output_in_order``: texts that
+  appear in this order (ours);
 * ``expected_file_exists`` / ``_not_exists`` / ``expected_file_contains``
   (``path::text``).
 
@@ -90,6 +91,12 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
         for text in _texts(attrs, key):
             if output.count(expand(text)) != count:
                 unmet.append(f"{text!r} not {count} times in the output")
+    at = 0
+    for text in _texts(attrs, "expected_output_in_order"):
+        at = output.find(expand(text), at)
+        if at < 0:
+            unmet.append(f"{text!r} not in the output after the texts before it")
+            break
     for file in _texts(attrs, "expected_file_exists"):
         if not os.path.exists(expand(file)):
             unmet.append(f"no file {file}")
