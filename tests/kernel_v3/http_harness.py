@@ -62,6 +62,7 @@ class Process:
                                      stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                                      stderr=subprocess.STDOUT, text=True, errors="replace")
         self._chunks: list[str] = []
+        self._terminated = False
         self._lock = threading.Lock()
         self._reader = threading.Thread(target=self._read, daemon=True)
         self._reader.start()
@@ -91,10 +92,16 @@ class Process:
             time.sleep(0.02)
         raise ScriptFailure(f"timed out after {timeout:g} s waiting for {what}")
 
+    def terminate(self):
+        """SIGTERM, once (a second one would end the process at once)."""
+        if not self._terminated and self.proc.poll() is None:
+            self._terminated = True
+            self.proc.send_signal(signal.SIGTERM)
+
     def stop(self) -> int:
         """SIGTERM, then a kill if it has not ended; returns the exit status."""
         if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGTERM)
+            self.terminate()
             try:
                 self.proc.wait(STOP_TIMEOUT)
             except subprocess.TimeoutExpired:
@@ -248,8 +255,11 @@ def _script(process: Process, attrs: dict, expand):
     script = Script(process, base, expand)
     ready = attrs.get("http_ready_path", "/api/network")
     script._poll(lambda: script.get(ready).status_code == 200, f"{ready} to answer")
-    for action in attrs["http_requests"].split("||"):
-        if action.strip():
-            script.run(expand(action.strip()))
+    try:
+        for action in attrs["http_requests"].split("||"):
+            if action.strip():
+                script.run(expand(action.strip()))
+    finally:
+        script.client.close()       # an open keep-alive connection delays the shutdown
     if attrs.get("http_terminate_after_requests") == "true":
-        process.proc.send_signal(signal.SIGTERM)
+        process.terminate()
