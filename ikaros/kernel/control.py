@@ -126,7 +126,8 @@ class Controller:
 
     def start(self, state: str = PAUSE) -> None:
         """Run the loop in a background thread."""
-        self.end_tick = self.net.stop_tick if (self.net.stop_tick or -1) >= 0 else None
+        stop = self.net.stop_tick
+        self.end_tick = stop if stop is not None and stop >= 0 else None
         self.set_state(state)
         self._thread = threading.Thread(target=self._loop, name="ikaros-run", daemon=True)
         self._thread.start()

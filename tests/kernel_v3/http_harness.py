@@ -23,7 +23,9 @@ Actions (``${TEST_DIR}`` and ``${TMP}`` are expanded in each):
 * ``assert_snapshot_tick:BUFFER``: ``/api/data`` of a buffer that counts the ticks
   completed gives a value equal to the answer's tick, five times while the model runs;
 * ``assert_min_duration:S:/path:JSON``: a POST that takes at least S seconds;
-* ``probe:NAME``: an HTTP-framing probe on raw sockets (http_probes.py).
+* ``probe:NAME``: an HTTP-framing probe on raw sockets (http_probes.py);
+* ``ws_first_frame``, ``ws_coherent``, ``ws_open``, ``ws_log_count``: WebSocket clients
+  (http_websocket.py).
 
 With ``http_occupy_port="true"`` the runner holds a listening socket on a free port and
 passes that port with ``-w``; no actions run (the server must fail to start).
@@ -44,6 +46,7 @@ import time
 
 import httpx
 
+import http_websocket
 from http_probes import PROBES, ScriptFailure
 
 READY_TIMEOUT = 15.0       # seconds for the server to start and answer
@@ -123,6 +126,11 @@ class Script:
     def __init__(self, process: Process, base: str, expand):
         self.process, self.base, self.expand = process, base, expand
         self.client = httpx.Client(base_url=base, timeout=10.0)
+        self.log_clients = http_websocket.LogClients()
+
+    def close(self):
+        self.client.close()
+        self.log_clients.close()
 
     def get(self, path: str) -> httpx.Response:
         return self.client.get(path)
@@ -181,6 +189,15 @@ class Script:
             took = time.monotonic() - start
             if took < float(seconds):
                 raise ScriptFailure(f"{action}: took only {took:.3f} s")
+        elif kind == "ws_first_frame":
+            http_websocket.first_frame(self.base, *rest.split(":"))
+        elif kind == "ws_coherent":
+            http_websocket.coherent(self.base, *rest.split(":"))
+        elif kind == "ws_open":
+            self.log_clients.open(self.base, int(rest))
+        elif kind == "ws_log_count":
+            text, _, count = rest.rpartition(":")
+            self.log_clients.count(text, int(count))
         elif kind == "probe":
             if rest not in PROBES:
                 raise ScriptFailure(f"no probe named {rest!r}")
@@ -239,7 +256,8 @@ def run(path: str, attrs: dict, expand, tmp_path) -> tuple[int, str, list[str]]:
             process.proc.wait(READY_TIMEOUT)
         else:
             _script(process, attrs, expand)
-    except (ScriptFailure, httpx.HTTPError, OSError, subprocess.TimeoutExpired) as e:
+    except (ScriptFailure, httpx.HTTPError, OSError, subprocess.TimeoutExpired,
+            http_websocket.WebSocketException, TimeoutError) as e:
         failures.append(f"HTTP script: {type(e).__name__}: {e}")
     finally:
         code = process.stop()
@@ -260,6 +278,6 @@ def _script(process: Process, attrs: dict, expand):
             if action.strip():
                 script.run(expand(action.strip()))
     finally:
-        script.client.close()       # an open keep-alive connection delays the shutdown
+        script.close()              # an open connection delays the server's shutdown
     if attrs.get("http_terminate_after_requests") == "true":
         process.terminate()
