@@ -18,8 +18,10 @@ Actions (``${TEST_DIR}`` and ``${TMP}`` are expanded in each):
 * ``post_json_expect:/path:CODE:JSON``: a POST that must answer CODE;
 * ``assert_contains:/path:text`` / ``assert_not_contains:/path:text``;
 * ``assert_status:/path:CODE``: a GET that must answer CODE;
-* ``assert_json_field:/path:field:JSON``: the field (dotted; list items by index) of the
-  JSON answer equals the JSON value;
+* ``assert_json_field:/path:field:JSON``: the field (dotted, list items by index, or a JSON
+  pointer ``/data/A.OUTPUT``) of the JSON answer equals the JSON value;
+* ``assert_posted_field:field:JSON``: the same for the answer to the last POST;
+* ``assert_unchanged:/path:field:S``: the field is the same S seconds later;
 * ``assert_snapshot_tick:BUFFER``: ``/api/data`` of a buffer that counts the ticks
   completed gives a value equal to the answer's tick, five times while the model runs;
 * ``assert_min_duration:S:/path:JSON``: a POST that takes at least S seconds;
@@ -115,7 +117,10 @@ class Process:
 
 
 def _json_at(value, field: str):
-    for key in field.split(".") if field else []:
+    """The field of a JSON value: dotted (``top.modules.0``), or a JSON pointer
+    (``/data/A.OUTPUT``) for keys that hold dots."""
+    keys = field[1:].split("/") if field.startswith("/") else field.split(".") if field else []
+    for key in keys:
         value = value[int(key)] if isinstance(value, list) else value[key]
     return value
 
@@ -127,6 +132,7 @@ class Script:
         self.process, self.base, self.expand = process, base, expand
         self.client = httpx.Client(base_url=base, timeout=10.0)
         self.log_clients = http_websocket.LogClients()
+        self.last: httpx.Response | None = None       # the answer to the last POST
 
     def close(self):
         self.client.close()
@@ -136,7 +142,14 @@ class Script:
         return self.client.get(path)
 
     def post(self, path: str, body) -> httpx.Response:
-        return self.client.post(path, json=body)
+        self.last = self.client.post(path, json=body)
+        return self.last
+
+    def field(self, answer: httpx.Response, field: str, action: str):
+        try:
+            return _json_at(answer.json(), field)
+        except (ValueError, KeyError, IndexError, TypeError):
+            raise ScriptFailure(f"{action}: no field {field} in {answer.text[:400]}")
 
     def run(self, action: str):
         kind, _, rest = action.partition(":")
@@ -171,15 +184,24 @@ class Script:
         elif kind == "assert_status":
             path, _, code = rest.rpartition(":")
             self._expect(self.get(path), int(code), action)
-        elif kind == "assert_json_field":
-            path, field, expected = rest.split(":", 2)
-            answer = self.get(path)
-            try:
-                found = _json_at(answer.json(), field)
-            except (ValueError, KeyError, IndexError, TypeError):
-                raise ScriptFailure(f"{action}: no field {field} in {answer.text[:400]}")
+        elif kind in ("assert_json_field", "assert_posted_field"):
+            if kind == "assert_json_field":
+                path, field, expected = rest.split(":", 2)
+                answer = self.get(path)
+            else:
+                (field, expected), answer = rest.split(":", 1), self.last
+                if answer is None:
+                    raise ScriptFailure(f"{action}: no POST before it")
+            found = self.field(answer, field, action)
             if found != json.loads(expected):
                 raise ScriptFailure(f"{action}: {field} is {found!r}")
+        elif kind == "assert_unchanged":
+            path, field, seconds = rest.split(":", 2)
+            before = self.field(self.get(path), field, action)
+            time.sleep(float(seconds))
+            after = self.field(self.get(path), field, action)
+            if after != before:
+                raise ScriptFailure(f"{action}: {field} went from {before!r} to {after!r}")
         elif kind == "assert_snapshot_tick":
             self._snapshot_tick(rest)
         elif kind == "assert_min_duration":
