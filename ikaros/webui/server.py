@@ -36,7 +36,7 @@ from ..kernel.control import PAUSE, STATES, STEP, STOP
 from ..kernel.carry import take_over
 from ..language.writer import write_file
 from ..module import Module
-from . import editing
+from . import compat, editing
 from . import state as run_tools
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
@@ -869,6 +869,8 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
         Route("/api/profiling", partial(run_tools.profiling, ui), methods=["GET", "POST"]),
         Route("/api/startup", partial(run_tools.startup, ui), methods=["GET"]),
         Route("/api/quit", partial(run_tools.quit_, ui), methods=["POST"]),
+        Route("/json/{path:path}", partial(compat.json_value, ui), methods=["GET"]),
+        Route("/csv/{path:path}", partial(compat.csv_value, ui), methods=["GET"]),
         WebSocketRoute("/api/ws", ui.websocket),
         Mount("/static", app=StaticFiles(directory=ui.static_dir, check_dir=False),
               name="static"),
