@@ -22,6 +22,7 @@ Actions (``${TEST_DIR}`` and ``${TMP}`` are expanded in each):
   pointer ``/data/A.OUTPUT``) of the JSON answer equals the JSON value;
 * ``assert_posted_field:field:JSON``: the same for the answer to the last POST;
 * ``assert_unchanged:/path:field:S``: the field is the same S seconds later;
+* ``assert_same_bytes:/path:file``: a GET answers the file's bytes;
 * ``assert_snapshot_tick:BUFFER``: ``/api/data`` of a buffer that counts the ticks
   completed gives a value equal to the answer's tick, five times while the model runs;
 * ``assert_min_duration:S:/path:JSON``: a POST that takes at least S seconds;
@@ -202,6 +203,15 @@ class Script:
             after = self.field(self.get(path), field, action)
             if after != before:
                 raise ScriptFailure(f"{action}: {field} went from {before!r} to {after!r}")
+        elif kind == "assert_same_bytes":
+            path, _, file = rest.partition(":")
+            with open(file, "rb") as f:
+                expected = f.read()
+            answer = self.get(path)
+            self._expect(answer, 200, action)
+            if answer.content != expected:
+                raise ScriptFailure(f"{action}: {len(answer.content)} bytes differ from the "
+                                    f"file's {len(expected)}")
         elif kind == "assert_snapshot_tick":
             self._snapshot_tick(rest)
         elif kind == "assert_min_duration":
