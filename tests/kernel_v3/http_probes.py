@@ -112,17 +112,18 @@ def framing(base: str):
 
 def error_responses(base: str):
     """Malformed or unsupported requests get an explicit 4xx or 5xx, each on its own."""
+    close = "Connection: close\r\n"       # answered at once, not after the keep-alive
     cases = [
         (b"GARBAGE\r\n\r\n", 400),                                       # no request line
         (b"GET /api/status HTTP/1.1\r\n\r\n", 400),                      # no Host
         (b"GET /api/status HTTP/1.1\r\nHost 127.0.0.1\r\n\r\n", 400),    # a header without :
         (b"GET /api/status HTTP/1.7\r\nHost: 127.0.0.1\r\n\r\n", 505),   # unknown version
-        (_request("/api/status", "BREW"), 405),                          # unknown method
-        (_request("/api/control", "GET"), 405),                          # wrong method
-        (_request("/api/nothing"), 404),                                 # no such path
-        (_request("/api/control", "POST", "Content-Type: application/json\r\n"
+        (_request("/api/status", "BREW", close), 405),                   # unknown method
+        (_request("/api/control", "GET", close), 405),                   # wrong method
+        (_request("/api/nothing", extra=close), 404),                    # no such path
+        (_request("/api/control", "POST", close + "Content-Type: application/json\r\n"
                   "Content-Length: 7\r\n") + b'{"st": ', 400),            # invalid JSON
-        (_request("/api/control", "POST", "Content-Type: text/plain\r\n"
+        (_request("/api/control", "POST", close + "Content-Type: text/plain\r\n"
                   "Content-Length: 2\r\n") + b"{}", 415),                # not JSON
     ]
     for request, status in cases:
