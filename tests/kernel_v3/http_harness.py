@@ -114,6 +114,7 @@ class Process:
                 self.proc.kill()
                 self.proc.wait()
         self._reader.join(5)
+        self.proc.stdout.close()
         return self.proc.returncode
 
 
@@ -129,8 +130,8 @@ def _json_at(value, field: str):
 class Script:
     """Performs the actions against the server at base (``http://127.0.0.1:PORT``)."""
 
-    def __init__(self, process: Process, base: str, expand):
-        self.process, self.base, self.expand = process, base, expand
+    def __init__(self, process: Process, base: str):
+        self.process, self.base = process, base
         self.client = httpx.Client(base_url=base, timeout=10.0)
         self.log_clients = http_websocket.LogClients()
         self.last: httpx.Response | None = None       # the answer to the last POST
@@ -160,7 +161,7 @@ class Script:
             time.sleep(float(rest))
         elif kind == "wait_contains":
             path, _, text = rest.partition(":")
-            self._poll(lambda: text in self.get(path).text, f"{text!r} in {path}")
+            self.poll(lambda: text in self.get(path).text, f"{text!r} in {path}")
         elif kind == "wait_output":
             self.process.wait_for(lambda out: rest in out, WAIT_TIMEOUT, repr(rest))
         elif kind == "wait_output_count":
@@ -244,7 +245,8 @@ class Script:
             raise ScriptFailure(f"{action}: status {answer.status_code}: {answer.text[:400]}")
 
     @staticmethod
-    def _poll(found, what: str):
+    def poll(found, what: str):
+        """Waits until found() is true (a refused connection counts as false)."""
         deadline = time.monotonic() + WAIT_TIMEOUT
         while time.monotonic() < deadline:
             try:
@@ -269,8 +271,10 @@ class Script:
             raise ScriptFailure(f"the model did not run: tick {ticks}")
 
 
-def run(path: str, attrs: dict, expand, tmp_path) -> tuple[int, str, list[str]]:
-    """Runs the model at path with its HTTP script; (exit status, output, failures)."""
+def run(path: str, attrs: dict, cli_args: list[str], expand,
+        tmp_path) -> tuple[int, str, list[str]]:
+    """Runs the model at path (root attributes ``attrs``) with its HTTP script, cli_args
+    before the file; (exit status, output, failures)."""
     argv = ["-w", "0"]
     if attrs.get("http_real_time", "true") != "false":
         argv.append("-r")
@@ -280,7 +284,7 @@ def run(path: str, attrs: dict, expand, tmp_path) -> tuple[int, str, list[str]]:
         occupied.bind(("127.0.0.1", 0))
         occupied.listen(1)
         argv = ["-w", str(occupied.getsockname()[1])]
-    argv += [expand(a) for a in attrs.get("cli_args_list", [])] + [path]
+    argv += [expand(a) for a in cli_args] + [path]
     failures = []
     process = Process(argv, str(tmp_path))
     try:
@@ -302,9 +306,9 @@ def _script(process: Process, attrs: dict, expand):
     process.wait_for(lambda out: re.search(r"serving .* at http://127\.0\.0\.1:\d+/", out),
                      READY_TIMEOUT, "the server to start")
     base = re.search(r"at (http://127\.0\.0\.1:\d+)/", process.output).group(1)
-    script = Script(process, base, expand)
+    script = Script(process, base)
     ready = attrs.get("http_ready_path", "/api/network")
-    script._poll(lambda: script.get(ready).status_code == 200, f"{ready} to answer")
+    script.poll(lambda: script.get(ready).status_code == 200, f"{ready} to answer")
     try:
         for action in attrs["http_requests"].split("||"):
             if action.strip():

@@ -73,8 +73,7 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
 
     cli_args = shlex.split(attrs.get("cli_args", ""))
     if "http_requests" in attrs or "http_occupy_port" in attrs:
-        code, output, unmet = http_harness.run(path, dict(attrs, cli_args_list=cli_args),
-                                               expand, tmp_path)
+        code, output, unmet = http_harness.run(path, attrs, cli_args, expand, tmp_path)
     else:
         unmet = []
         code, output = _run_batch(path, attrs, [expand(a) for a in cli_args], capsys)
