@@ -27,7 +27,8 @@ Actions (``${TEST_DIR}`` and ``${TMP}`` are expanded in each):
   completed gives a value equal to the answer's tick, five times while the model runs;
 * ``assert_min_duration:S:/path:JSON``: a POST that takes at least S seconds;
 * ``probe:NAME``: an HTTP-framing probe on raw sockets (http_probes.py);
-* ``ws_first_frame``, ``ws_coherent``, ``ws_open``, ``ws_log_count``: WebSocket clients
+* ``ws_first_frame``, ``ws_coherent``, ``ws_max_frames``, ``ws_open``, ``ws_log_count``:
+  WebSocket clients
   (http_websocket.py).
 
 With ``http_occupy_port="true"`` the runner holds a listening socket on a free port and
@@ -226,6 +227,8 @@ class Script:
             http_websocket.first_frame(self.base, *rest.split(":"))
         elif kind == "ws_coherent":
             http_websocket.coherent(self.base, *rest.split(":"))
+        elif kind == "ws_max_frames":
+            http_websocket.max_frames(self.base, *rest.split(":"))
         elif kind == "ws_open":
             self.log_clients.open(self.base, int(rest))
         elif kind == "ws_log_count":

@@ -5,6 +5,8 @@ on ``/api/ws`` where Ikaros 3 answers polls of ``/update``; docs/webui-protocol.
   holds VALUE, taken at tick VALUE (a buffer counting the ticks run);
 * ``ws_coherent:A:B``: a client subscribed to A, then to A and B: every frame has A and B
   equal to its tick (buffers counting the ticks run);
+* ``ws_max_frames:BUFFER:S:MAX``: a client that says ``ready`` at once after every frame
+  gets between 2 and MAX frames, of distinct ticks, in S seconds;
 * ``ws_open:N``: N clients connect and collect the log messages they are sent;
 * ``ws_log_count:TEXT:N``: each open client has been sent TEXT in exactly N messages.
 """
@@ -22,7 +24,7 @@ from websockets.sync.client import connect
 
 from http_probes import ScriptFailure
 
-__all__ = ["WebSocketException", "LogClients", "coherent", "first_frame"]
+__all__ = ["WebSocketException", "LogClients", "coherent", "first_frame", "max_frames"]
 
 FRAME_TIMEOUT = 5.0        # seconds to wait for a data frame
 LOG_SETTLE = 0.6           # seconds for log messages to reach the clients (sent ~5 a second)
@@ -79,6 +81,25 @@ def coherent(base: str, first: str, second: str):
         found = [values[first].tolist(), values[second].tolist()]
         if found != [[header["tick"]]] * 2:
             raise ScriptFailure(f"{first}, {second} = {found} at tick {header['tick']}")
+
+
+def max_frames(base: str, buffer: str, seconds: str, most: str):
+    ticks = []
+    with connect(_ws_url(base), open_timeout=5) as ws:
+        _subscribe(ws, [buffer])
+        deadline = time.monotonic() + float(seconds)
+        while time.monotonic() < deadline:
+            try:
+                message = ws.recv(timeout=max(0.01, deadline - time.monotonic()))
+            except TimeoutError:
+                break
+            if isinstance(message, bytes):
+                (length,) = struct.unpack_from("<I", message)
+                ticks.append(json.loads(message[4:4 + length])["tick"])
+                ws.send(json.dumps({"type": "ready"}))
+    if not 2 <= len(ticks) <= int(most) or len(set(ticks)) != len(ticks):
+        raise ScriptFailure(f"{len(ticks)} frames in {seconds} s (ticks {ticks}), "
+                            f"expected 2 to {most} of distinct ticks")
 
 
 class LogClients:
