@@ -183,7 +183,7 @@ def _serve(net, opts, failure: dict | None = None, sock=None) -> int:
         print(f"ikaros: error: {e}", file=sys.stderr)
         return EXIT_ERROR
     except KeyboardInterrupt:           # Ctrl-C or SIGTERM; net.close() stops the modules
-        print("ikaros: interrupted", file=sys.stderr)
+        print("ikaros: interrupted", flush=True)       # on stdout, as "serving ..." is
     finally:
         if sock is not None:
             sock.close()
