@@ -27,7 +27,7 @@ from http_probes import ScriptFailure
 __all__ = ["WebSocketException", "LogClients", "coherent", "first_frame", "max_frames"]
 
 FRAME_TIMEOUT = 5.0        # seconds to wait for a data frame
-LOG_SETTLE = 0.6           # seconds for log messages to reach the clients (sent ~5 a second)
+LOG_SETTLE = 0.5           # seconds for more log messages to come (they are sent 5 a second)
 
 
 def _frame(ws) -> tuple[dict, dict]:
@@ -133,10 +133,15 @@ class LogClients:
     def count(self, text: str, times: int):
         if not self.sockets:
             raise ScriptFailure("ws_log_count: no client is open (ws_open:N first)")
-        time.sleep(LOG_SETTLE)
-        counts = [sum(text in m for m in list(received)) for received in self.messages]
-        if counts != [times] * len(counts):
-            raise ScriptFailure(f"clients were sent {text!r} {counts} times, expected {times}")
+        def counts():
+            return [sum(text in m for m in list(received)) for received in self.messages]
+        deadline = time.monotonic() + FRAME_TIMEOUT
+        while min(counts()) < times and time.monotonic() < deadline:
+            time.sleep(0.05)
+        time.sleep(LOG_SETTLE)          # time for a message sent twice to come again
+        found = counts()
+        if found != [times] * len(found):
+            raise ScriptFailure(f"clients were sent {text!r} {found} times, expected {times}")
 
     def close(self):
         self._stack.close()
