@@ -170,7 +170,8 @@ def _serve(net, opts, failure: dict | None = None, sock=None) -> int:
 
     def ready(url):
         print(f"ikaros: serving {os.path.basename(net.filename)} at "
-              f"{url}{'?token=' + token if token else ''}  (Ctrl-C to quit)", flush=True)
+              f"{url}{'?token=' + token if token else ''}  (Ctrl-C to quit)\n", end="",
+              flush=True)           # one write: the kernel's thread may be printing
         if token:
             print(f"ikaros: access token: {token}", flush=True)
     try:
