@@ -180,9 +180,21 @@ def _split_args(p, args: list[str]) -> tuple[str | None, dict]:
     return model, overrides
 
 
-def _serve(net, opts, failure: dict | None = None) -> int:
+def _listen(opts):
+    """The web UI's listening socket, opened before the model is built so that a port in
+    use ends the command before any module's ``init`` runs; None (reported) if it fails."""
+    from .webui.server import ServeError, listen
+    try:
+        return listen(opts.bind, 8000 if opts.port is None else opts.port)
+    except ServeError as e:
+        print(f"ikaros: error: {e}", file=sys.stderr)
+        return None
+
+
+def _serve(net, opts, failure: dict | None = None, sock=None) -> int:
     """Serve the model in the web UI until Ctrl-C; the kernel runs in a background thread.
-    ``failure``: the model failed to build and ``net`` stands in for it (webui/broken.py)."""
+    ``failure``: the model failed to build and ``net`` stands in for it (webui/broken.py);
+    ``sock``: the socket from ``_listen`` (else one is opened here)."""
     from .kernel.control import PAUSE, PLAY, REALTIME
     from .webui.server import ServeError, is_loopback, new_token, serve
     host = opts.bind
@@ -208,7 +220,8 @@ def _serve(net, opts, failure: dict | None = None) -> int:
 
     def ready(url):
         print(f"ikaros: serving {os.path.basename(net.filename)} at "
-              f"{url}{'?token=' + token if token else ''}  (Ctrl-C to quit)", flush=True)
+              f"{url}{'?token=' + token if token else ''}  (Ctrl-C to quit)\n", end="",
+              flush=True)           # one write: the kernel's thread may be printing
         if token:
             print(f"ikaros: access token: {token}", flush=True)
     try:
@@ -216,13 +229,15 @@ def _serve(net, opts, failure: dict | None = None) -> int:
         serve(net, host, 8000 if opts.port is None else opts.port, token, state,
               on_ready=ready, models_dir=opts.models, max_memory=opts.max_memory,
               max_body=opts.max_body, build_timeout=opts.build_timeout, failure=failure,
-              on_end=end)
+              on_end=end, sock=sock)
     except ServeError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
         return EXIT_ERROR
-    except KeyboardInterrupt:
-        pass
+    except KeyboardInterrupt:           # Ctrl-C or SIGTERM; net.close() stops the modules
+        print("ikaros: interrupted", flush=True)       # on stdout, as "serving ..." is
     finally:
+        if sock is not None:
+            sock.close()
         net.close()
         if opts.profile:
             print(net.profile_text())
@@ -312,12 +327,17 @@ def main(argv: list[str] | None = None) -> int:
                 return EXIT_ERROR
         if opts.strict and opts.lenient:
             p.error("--strict and --lenient can not be used together")
+        sock = None if opts.batch else _listen(opts)
+        if not opts.batch and sock is None:
+            return EXIT_ERROR
         failure = None
         try:
             net = load(model, strict=opts.strict, lenient=opts.lenient, quiet=opts.quiet,
                        max_memory=opts.max_memory, **overrides)
-        except ModelError as e:
-            if opts.batch:
+        except BaseException as e:
+            if not isinstance(e, ModelError) or opts.batch:
+                if sock is not None:
+                    sock.close()
                 raise
             from .webui.broken import open_broken     # fixed in the browser's editor
             net, failure = open_broken(model, overrides, e, max_memory=opts.max_memory)
@@ -339,10 +359,12 @@ def main(argv: list[str] | None = None) -> int:
             recording = experiment_options.start_recording(net, opts, argv)
         except (ValueError, ImportError, OSError) as e:
             net.close()
+            if sock is not None:
+                sock.close()
             print(f"ikaros: error: --record: {e}", file=sys.stderr)
             return EXIT_ERROR
         if not opts.batch:
-            return _serve(net, opts, failure)
+            return _serve(net, opts, failure, sock)
         try:
             net.profiling = opts.profile
             with experiment_options.batch_session(net, opts, recording):

@@ -16,6 +16,7 @@ FASTFORWARD = "fastforward"
 STATES = (STOP, PAUSE, STEP, PLAY, FASTFORWARD, REALTIME)
 # Fast-forward is play with the tick hooks (the web UI's copies) run at most this often.
 FASTFORWARD_HOOK_INTERVAL = 0.1     # seconds
+COARSE_WAIT_MARGIN = 0.05           # seconds before a real-time tick left to the precise wait
 DEFAULT_RESYNC_LAG = 0.1   # seconds late before real time resynchronises instead of catching up
 
 
@@ -125,7 +126,8 @@ class Controller:
 
     def start(self, state: str = PAUSE) -> None:
         """Run the loop in a background thread."""
-        self.end_tick = self.net.stop_tick if (self.net.stop_tick or -1) >= 0 else None
+        stop = self.net.stop_tick
+        self.end_tick = stop if stop is not None and stop >= 0 else None
         self.set_state(state)
         self._thread = threading.Thread(target=self._loop, name="ikaros-run", daemon=True)
         self._thread.start()
@@ -184,6 +186,14 @@ class Controller:
                     self._base = (now, net.tick)
                 t0, n0 = self._base
                 deadline = t0 + (net.tick - n0) * dt
+                if deadline - now > COARSE_WAIT_MARGIN:
+                    # A long wait is woken by a change of state or a request, so a stop
+                    # (SIGTERM, the stop button) runs no further tick and waits for none.
+                    waited = perf()
+                    self._wake.wait(deadline - now - COARSE_WAIT_MARGIN)
+                    self._wake.clear()
+                    timing.idle += perf() - waited
+                    continue
                 if now < deadline:
                     timing.idle += self._waiter.wait_until(deadline)
                     now = perf()

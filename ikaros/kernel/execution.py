@@ -80,13 +80,15 @@ class AsyncModule:
             change()
 
     def finish(self) -> None:
-        """Wait for the running job and publish it (before stop)."""
+        """Wait for the running job and publish it, with the changes queued behind it
+        (before stop). A job or change that fails now is reported as the module's error."""
         if self.future is not None:
             try:
                 self.future.result()
                 self._publish()
-            except Exception:
+            except Exception as e:
                 self.future = None
+                self.module.error(f"{type(e).__name__}: {e}")
         self.executor.shutdown(wait=True)
 
 

@@ -383,11 +383,12 @@ class Network:
             self._stop_where = where
         if level <= self.log_level:
             text = f"{where}: {message}" if where else message
+            # one write per line, so that lines printed by other threads are not mixed in
             if level == PRINT:
-                print(text, flush=True)
+                print(text + "\n", end="", flush=True)
             else:
-                print(f"{LEVEL_NAMES[level].replace('_', ' ')}: {text}", file=sys.stderr,
-                      flush=True)
+                print(f"{LEVEL_NAMES[level].replace('_', ' ')}: {text}\n", end="",
+                      file=sys.stderr, flush=True)
 
     # --- running -------------------------------------------------------------------------
     @property

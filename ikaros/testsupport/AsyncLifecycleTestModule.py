@@ -14,7 +14,9 @@ class AsyncLifecycleTestModule(InternalModule):
     on; the tick checks that what it sees does not change meanwhile: its clock and its INPUT
     (optional) are the same at the end of the tick as at the start, or it reports
     ``ASYNC_RUNTIME_SNAPSHOT_CHANGED`` as a fatal error. When the run ends it prints
-    ``ASYNC completed=n`` and, if n > 0 and nothing changed, ``ASYNC_RUNTIME_SNAPSHOT_STABLE``."""
+    ``ASYNC completed=n`` and, if n > 0 and nothing changed, ``ASYNC_RUNTIME_SNAPSHOT_STABLE``.
+    Commands: ``mark`` prints ``COMMAND mark after completed=n``; ``fail`` raises
+    ``COMMAND_FATAL <name>``."""
 
     duration = Parameter(0.01, "seconds each tick takes")
     INPUT = Input("anything; it must not change during a tick", optional=True)
@@ -33,6 +35,11 @@ class AsyncLifecycleTestModule(InternalModule):
             self.fatal_error(f"ASYNC_RUNTIME_SNAPSHOT_CHANGED during tick {tick}")
         self._completed += 1
         self.OUTPUT[0] = self._completed
+
+    def command(self, name, x=0, y=0, value=None):
+        if name == "fail":
+            raise RuntimeError(f"COMMAND_FATAL {self.name}")
+        self.print(f"COMMAND {name} after completed={self._completed}")
 
     def stop(self):
         self.print(f"ASYNC completed={self._completed}")

@@ -1,8 +1,10 @@
 """A model that fails to build, opened in the editor instead of ending the command.
 
-``ikaros broken.ikg`` (with the web UI) reads the file's tree, builds it once more the way
-the editor's Apply does so that the error names the element at fault (its id and path in
-the tree as JSON), and serves an empty network of the same name in its place. The web UI
+``ikaros broken.ikg`` (with the web UI) reads the file's tree, finds the element at fault
+in it (its id and path in the tree as JSON) by the error's file and line, or else by
+building the tree once more the way the editor's Apply does, and serves an empty network of
+the same name in its place. (An error with a line is never rebuilt: a module's ``init``
+that failed, or one before it, must not run twice.) The web UI
 then opens the editor on the file's tree with the error shown on that element; an Apply
 that builds replaces the empty network. Batch mode (``-b``) still exits with the error.
 """
@@ -32,15 +34,37 @@ def open_broken(filename: str, overrides: dict, error: ModelError,
     folder = os.path.dirname(os.path.abspath(filename))
     tree = editing.tree_json(model, folder)
     failure = {"error": str(error), "node": None, "path": None}
-    try:
-        Builder(filename, overrides, model=editing.tree_from_json(tree, filename),
-                diagnostics=Diagnostics(quiet=True), **load_options).build().close()
-    except ModelError as located:                # the same error, now with its element
-        failure = editing.error_json(located)
-    except Exception:
-        pass
+    found = _node_at(tree, error, folder)
+    if found is not None:
+        failure.update(node=found[0], path=found[1])
+    else:
+        try:
+            Builder(filename, overrides, model=editing.tree_from_json(tree, filename),
+                    diagnostics=Diagnostics(quiet=True), **load_options).build().close()
+        except ModelError as located:            # the same error, now with its element
+            failure = editing.error_json(located)
+        except Exception:
+            pass
     empty = Node("group", {"name": model.attrs.get("name") or "Main"},
                  file=os.path.abspath(filename), line=1)
     net = Builder(filename, overrides, model=empty, diagnostics=Diagnostics(quiet=True),
                   **load_options).build()
     return net, {"file": os.path.basename(filename), "tree": tree, **failure}
+
+
+def _node_at(tree: dict, error: ModelError, folder: str):
+    """(id, path) of the element of the tree on the error's file and line (the one whose
+    tag the error names, if several), or None."""
+    if not error.filename or not error.line:
+        return None
+    file = os.path.relpath(os.path.abspath(error.filename), folder).replace(os.sep, "/")
+    tag = (error.element or "").lstrip("<").split(" ")[0].rstrip(">")
+    found = []
+
+    def walk(node: dict, path: list[int]):
+        if node.get("file") == file and node.get("line") == error.line:
+            found.append((node["tag"] != tag, node["id"], path))
+        for i, child in enumerate(node.get("children", ())):
+            walk(child, path + [i])
+    walk(tree, [])
+    return min(found)[1:] if found else None

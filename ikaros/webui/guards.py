@@ -69,6 +69,32 @@ class BodyLimit:
         return await self.app(scope, counted, send)
 
 
+class Framing:
+    """ASGI middleware refusing requests whose framing is ambiguous or unsupported, before
+    anything reads them: both ``Content-Length`` and ``Transfer-Encoding`` (a request
+    smuggling form, RFC 9112 §6.3) is 400, an HTTP version other than 1.0 and 1.1 is 505.
+    Both answers close the connection. (uvicorn itself refuses malformed request lines,
+    headers and lengths with 400.)"""
+
+    def __init__(self, app, answer):
+        self.app = app
+        self.answer = answer            # answer(status, message) -> an ASGI app
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] == "http":
+            names = {key.lower() for key, _ in scope.get("headers", [])}
+            if scope.get("http_version") not in ("1.0", "1.1"):
+                refusal = (505, f'HTTP version {scope.get("http_version")} is not supported')
+            elif b"content-length" in names and b"transfer-encoding" in names:
+                refusal = (400, "a request must not have both Content-Length and "
+                                "Transfer-Encoding")
+            else:
+                refusal = None
+            if refusal:
+                return await self.answer(*refusal)(scope, receive, send)
+        return await self.app(scope, receive, send)
+
+
 class _RefusedWebSocket(logging.Filter):
     """uvicorn logs an error when a WebSocket is answered with an HTTP response (as
     AccessMiddleware refuses one); that is no error of the server."""

@@ -60,6 +60,15 @@ def _editor_post(summary: str, body: dict, answer: dict) -> dict:
     return op
 
 
+def _compat(summary: str, answer: dict, **more: dict) -> dict:
+    """A read-only route of Ikaros 3's API (webui/compat.py)."""
+    return {"get": {"summary": summary, "responses": {"200": answer, **_ERRORS, **more},
+                    "parameters": [{"name": "path", "in": "path", "required": True,
+                                    "description": "a dotted path; it may start with . or "
+                                                   "the top group's name",
+                                    "schema": {"type": "string"}}]}}
+
+
 def _q(name: str, description: str, schema: dict, required: bool = False) -> dict:
     return {"name": name, "in": "query", "required": required, "description": description,
             "schema": schema}
@@ -267,6 +276,16 @@ def openapi() -> dict:
                            {"type": "object", "properties": {"ok": {"type": "boolean"}}},
                            **{"409": "the server was not started by ikaros (an app made "
                                      "with create_app only)"}),
+        "/json/{path}": _compat("Ikaros 3's read of an output, input or parameter",
+                                _json({"type": "object", "properties": {
+                                    "path": {"type": "string"},
+                                    "shape": {"type": "array", "items": {"type": "integer"}},
+                                    "value": {}}})),
+        "/csv/{path}": _compat("Ikaros 3's read of an output, input or number parameter as "
+                               "CSV (rank 1 or 2)",
+                               {"description": "one line per row",
+                                "content": {"text/csv": {"schema": {"type": "string"}}}},
+                               **{"422": _json(_ERROR, "not numeric, or rank above 2")}),
     }
     num_or_none = {"type": ["number", "null"]}
     schemas = {

@@ -36,15 +36,15 @@ from ..kernel.control import PAUSE, STATES, STEP, STOP
 from ..kernel.carry import take_over
 from ..language.writer import write_file
 from ..module import Module
-from . import editing
+from . import compat, editing
 from . import state as run_tools
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
 from .history import MAX_POINTS
 from .rates import RUNNING, TickRate
-from .guards import (DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, json_depth,
-                     quiet_refused_websockets)
+from .guards import (DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, Framing,
+                     json_depth, quiet_refused_websockets)
 from .openapi import openapi
 from .snapshot import (DEFAULT_BUDGET, DEFAULT_MAX_RATE, STATUS_INTERVAL, Client, Hub,
                        LogBook, between_ticks, kernel_thread_alive, plain)
@@ -318,6 +318,9 @@ class WebUI:
         self._classes = None
         self._changing = threading.Lock()       # one apply / open / new at a time
         self._ended_by_stop = None              # the network whose run the stop button ended
+        # The network built from the command line's file (and its rebuilds after a stop):
+        # rebuilt as the command line built it, not confined as a model from the editor.
+        self._command_line_net = None if failure else net
         # What the command line set beside the file, kept while the model is rebuilt
         # (dropped when another model is opened or a new one made).
         self._overrides = _overrides_of(net)
@@ -424,11 +427,15 @@ class WebUI:
             filename = self.net.filename
             model = await self._call(self._model_json)
             tree = self._tree({"tree": model["tree"]}, filename)
+            command_line = self.net is self._command_line_net
             try:
-                new = await self._build(filename, tree, self._overrides)
+                new = await self._build(filename, tree, self._overrides,
+                                        confined=not command_line)
             except (ModelError, BuildTimeout) as e:
                 return Json({"error": str(e), "node": None, "path": None}, status_code=422)
             await self._swap(new, state)
+            if command_line:
+                self._command_line_net = new
         return Json(self.status())
 
     async def parameter(self, request: Request):
@@ -652,15 +659,17 @@ class WebUI:
         finally:
             self._changing.release()
 
-    async def _build(self, filename: str, tree, overrides: dict | None):
-        """Build a network in a thread of its own, confined to the editor's folders, within
-        the build time limit (BuildTimeout)."""
+    async def _build(self, filename: str, tree, overrides: dict | None,
+                     confined: bool = True):
+        """Build a network in a thread of its own, confined to the editor's folders (unless
+        it is the command line's model built again), within the build time limit
+        (BuildTimeout)."""
         from ..kernel.builder import Builder
         log_level = self.net.log_level
         diagnostics = self.net.diagnostics.fresh()
 
         def build():
-            with access.applied(self.confinement):
+            with access.applied(self.confinement if confined else None):
                 new = Builder(filename, overrides, model=tree, diagnostics=diagnostics,
                               limits=self.build_limits).build()
             new.log_level = log_level
@@ -860,6 +869,8 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
         Route("/api/profiling", partial(run_tools.profiling, ui), methods=["GET", "POST"]),
         Route("/api/startup", partial(run_tools.startup, ui), methods=["GET"]),
         Route("/api/quit", partial(run_tools.quit_, ui), methods=["POST"]),
+        Route("/json/{path:path}", partial(compat.json_value, ui), methods=["GET"]),
+        Route("/csv/{path:path}", partial(compat.csv_value, ui), methods=["GET"]),
         WebSocketRoute("/api/ws", ui.websocket),
         Mount("/static", app=StaticFiles(directory=ui.static_dir, check_dir=False),
               name="static"),
@@ -898,6 +909,8 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
     app.add_middleware(BodyLimit, limit=max_body,
                        too_large=_error(413, str(BodyTooLarge(max_body))))
     app.add_middleware(AccessMiddleware, token=token, hosts=hosts)
+    app.add_middleware(Framing, answer=lambda status, message: _error(
+        status, message, {"Connection": "close"}))
     return app
 
 

@@ -8,7 +8,8 @@ expectations are read from root attributes, as the original harness does (TESTS.
 * ``cli_args`` are put before the file (whitespace-separated);
 * ``expected_exit`` (default 0);
 * ``expected_output_contains`` / ``_not_contains`` / ``_once`` / ``_twice``: ``||``-separated
-  texts matched against stdout plus stderr;
+  texts matched against stdout plus stderr; ``expected_output_in_order``: texts that
+  appear in this order (ours);
 * ``expected_file_exists`` / ``_not_exists`` / ``expected_file_contains``
   (``path::text``);
 * ``initial_file`` is written with ``initial_file_contents`` before the run.
@@ -20,6 +21,9 @@ placed in ``${TMP}`` (for a model that writes beside itself). Where our
 documented semantics differ from Ikaros 3 (first tick 0, concatenation, ...), the models
 expect our result; docs/language.md lists the differences.
 
+A model with an ``http_requests`` script is run as an ``ikaros`` process serving the web UI
+instead (http_harness.py), with the same pass criteria.
+
 The test-only classes the models use live in ikaros/testsupport; the models reach them with
 ``path="@support"`` on the module and ``support`` on the top group.
 """
@@ -27,6 +31,7 @@ import os
 import shlex
 import shutil
 
+import http_harness
 import pytest
 
 import ikaros
@@ -49,6 +54,19 @@ def _texts(attrs, key):
     return [t.strip() for t in value.split("||")] if value else []
 
 
+def _run_batch(path: str, attrs, cli_args: list[str], capsys) -> tuple[int, str]:
+    """Runs the model in batch mode in this process: (exit status, output)."""
+    argv = ["-b"] + cli_args
+    if "stop" not in attrs:
+        argv += ["-s", "0"]
+    try:
+        code = cli.main(argv + [path])
+    except SystemExit as e:             # a usage error (exit status 2)
+        code = e.code
+    out = capsys.readouterr()
+    return code, out.out + out.err
+
+
 def _run(name: str, tmp_path, capsys) -> list[str]:
     """Runs one model through the CLI; returns its unmet expectations (none: it passes)."""
     path = os.path.join(MODELS, name)
@@ -67,16 +85,12 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
     if attrs.get("initial_file"):
         with open(expand(attrs["initial_file"]), "w", encoding="utf-8") as f:
             f.write(expand(attrs.get("initial_file_contents", "")))
-    argv = ["-b"] + [expand(a) for a in shlex.split(attrs.get("cli_args", ""))]
-    if "stop" not in attrs:
-        argv += ["-s", "0"]
-    try:
-        code = cli.main(argv + [path])
-    except SystemExit as e:             # a usage error (exit status 2)
-        code = e.code
-    out = capsys.readouterr()
-    output = out.out + out.err
-    unmet = []
+    cli_args = shlex.split(attrs.get("cli_args", ""))
+    if "http_requests" in attrs or "http_occupy_port" in attrs:
+        code, output, unmet = http_harness.run(path, attrs, cli_args, expand, tmp_path)
+    else:
+        unmet = []
+        code, output = _run_batch(path, attrs, [expand(a) for a in cli_args], capsys)
     if code != int(attrs.get("expected_exit", "0")):
         unmet.append(f"exit status {code}")
     for text in _texts(attrs, "expected_output_contains"):
@@ -90,6 +104,12 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
         for text in _texts(attrs, key):
             if output.count(expand(text)) != count:
                 unmet.append(f"{text!r} not {count} times in the output")
+    at = 0
+    for text in _texts(attrs, "expected_output_in_order"):
+        at = output.find(expand(text), at)
+        if at < 0:
+            unmet.append(f"{text!r} not in the output after the texts before it")
+            break
     for file in _texts(attrs, "expected_file_exists"):
         if not os.path.exists(expand(file)):
             unmet.append(f"no file {file}")
