@@ -314,6 +314,7 @@ class Module:
     name: str = ""
     path: str = ""
     element: Any = None             # the model-file element of this module (a language Node)
+    user_data: str | None = None    # where files with relative names are written (-u DIR)
     # The kernel's input buffers (set when they are made), which give input_parts and
     # input_label.
     _ik_input_buffers: dict = {}

@@ -58,8 +58,10 @@ class Builder:
     def __init__(self, filename: str, overrides: dict | None = None, text: str | None = None,
                  notify=None, registry: ClassRegistry | None = None,
                  model: Node | None = None, diagnostics: Diagnostics | None = None,
-                 limits: Limits | None = None, network_factory=None):
+                 limits: Limits | None = None, network_factory=None,
+                 user_data: str | None = None):
         self.limits = limits
+        self.user_data = user_data      # where modules write relative files (-u DIR)
         self.filename = os.path.abspath(filename)
         if model is not None and model.tag != "group":
             raise model.error(f"the root element is <{model.tag}> but must be <group>")
@@ -84,6 +86,10 @@ class Builder:
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
         attrs = dict(self.model.attrs)
+        if "user_data" in attrs:
+            warn_at(self.model, "user_data in a model file is ignored (a model may not "
+                                "choose where files are written); use ikaros -u DIR")
+            del attrs["user_data"]
         attrs.update(self.overrides)
         name = attrs.get("name") or "Main"
         return self._group(self.model, None, name, attrs, (self.filename,))
@@ -246,6 +252,7 @@ class Builder:
             raise inst.node.error(f"creating the module failed: {fault_text(e)}") \
                 from None
         module.name, module.path, module.element = inst.name, inst.path, inst.node
+        module.user_data = self.user_data
         module.clock = self.clock
         for name, value in inst.values.items():
             setattr(module, parameter_attribute(name), value)

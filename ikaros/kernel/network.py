@@ -76,6 +76,7 @@ class Network:
         self.clock.tick_duration = self._tick_duration()
         self.stop_tick = self._whole_number("stop", minimum=-1)
         self.threads = self._whole_number("threads", minimum=1)
+        self.webui_port = self._whole_number("webui_port", minimum=1, maximum=65535)
         self.startup = builder.startup
         with self.startup.step("memory"):
             self._allocate()
@@ -107,15 +108,17 @@ class Network:
             return ModelError(f"{message} (given on the command line)")
         return self.model.error(message)
 
-    def _whole_number(self, key: str, minimum: int) -> int | None:
-        """A top-group setting that must be a whole number >= minimum (None when unset)."""
+    def _whole_number(self, key: str, minimum: int, maximum: int | None = None) -> int | None:
+        """A top-group setting that must be a whole number >= minimum (and <= maximum; None
+        when unset)."""
         text = self.top.attrs.get(key)
         if text in (None, ""):
             return None
         stripped = text.strip().lstrip("+")
-        if not (stripped.lstrip("-").isdigit() and int(stripped) >= minimum):
-            raise self._setting_error(key, f'{key}="{text}" must be a whole number >= '
-                                           f'{minimum}')
+        if not (stripped.lstrip("-").isdigit() and minimum <= int(stripped)
+                and (maximum is None or int(stripped) <= maximum)):
+            bounds = f">= {minimum}" if maximum is None else f"from {minimum} to {maximum}"
+            raise self._setting_error(key, f'{key}="{text}" must be a whole number {bounds}')
         return int(stripped)
 
     def _allocate(self) -> None:

@@ -11,7 +11,7 @@ from ikaros.module import Input, Parameter, attribute_name
 
 from ._columns import ColumnWriter
 from ._csvnames import column_names
-from ._files import counter_capacity, numbered
+from ._files import counter_capacity, model_folder, numbered
 _EXTENSIONS = {".csv": "csv", ".tsv": "tsv", ".json": "json", ".jsonl": "jsonl",
                ".ndjson": "jsonl"}
 _STAMPS = {"yes": "tick", "true": "tick", "on": "tick", "1": "tick",
@@ -241,8 +241,8 @@ class OutputFile(ColumnWriter):
         return self._delimiter.join(cells) + "\n"
 
     def _base(self):
-        model_file = getattr(self.element, "file", None)
-        return os.path.dirname(model_file) if model_file else os.getcwd()
+        """Where relative names go: the user-data folder (-u DIR), else the model's."""
+        return self.user_data or model_folder(self)
 
     def _make_folder(self):
         if not self.directory:

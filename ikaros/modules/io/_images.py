@@ -257,9 +257,9 @@ class ImageFileWriter(ImageInputs):
         if self.scale != 1.0:
             image = image * np.float32(self.scale)
         self.check_range(image)
-        path = resolve(self, name)
+        path = name
         try:
-            resolve(self, name, write=True)
+            path = resolve(self, name, write=True)
             to_pillow(self._Image, image).save(path, format=self.pillow_format,
                                                **self.save_options())
         except (OSError, ValueError) as e:
