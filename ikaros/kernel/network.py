@@ -336,13 +336,13 @@ class Network:
                     if is_interrupt(e):
                         raise
                     error = inst.node.error(f"init failed: {fault_text(e)}")
-                else:
-                    started.append(inst)        # (an init that raises cleans up after itself)
                 if error is None and self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
                     error = inst.node.error(f"While initializing module {inst.path}: "
                                             f"{self.stop_reason[1]}")
                 if error is not None:
                     raise error from None
+                # (an init that fails, by raising or by a fatal error, cleans up after itself)
+                started.append(inst)
         except BaseException:
             # Devices opened by the modules initialised so far go to their safe state.
             self._stopped = True
