@@ -19,7 +19,9 @@ class AsyncModule:
 
     The module works on private copies of its inputs (taken when a job starts) and outputs
     (published when the job has finished); while a job runs, the outputs keep their last
-    finished values, and parameter changes and commands wait in a queue.
+    finished values, and parameter changes and commands wait in a queue. The histories of
+    its outputs (``rings``) advance only when a job is published, so a delay window holds
+    the last finished values, each once.
     """
 
     def __init__(self, inst, inputs: dict, outputs: dict, clock: Clock):
@@ -38,6 +40,7 @@ class AsyncModule:
         self.future = None
         self.pending: collections.deque = collections.deque()
         self.completed = 0
+        self.rings: list = []       # the histories of the outputs, pushed on publication
 
     @property
     def running(self) -> bool:
@@ -48,6 +51,8 @@ class AsyncModule:
         error = future.exception()
         if error is not None:
             raise error
+        for ring in self.rings:         # the value being replaced goes into the history
+            ring.push()
         for public, private in self.outputs:
             np.copyto(public, private)
         self.completed += 1

@@ -219,7 +219,16 @@ class Network:
         if bulk_copy is not None:
             self._delayed.insert(0, bulk_copy)
         self._pre_tick = pre_tick
-        self._ring_list = list(self.rings.values()) + list(self.dynamic_rings.values())
+        # the histories of outputs of asynchronous modules advance when a job is published
+        async_rings = set()
+        for inst, job in self.async_modules.items():
+            for buf in self._buffers[inst][1].values():
+                ring = self.rings.get(buf) or self.dynamic_rings.get(buf)
+                if ring is not None:
+                    job.rings.append(ring)
+                    async_rings.add(id(ring))
+        self._ring_list = [ring for ring in list(self.rings.values()) +
+                           list(self.dynamic_rings.values()) if id(ring) not in async_rings]
         tick_of = {inst: module_tick(inst, self.clock) if inst not in self.async_modules
                    else gated(self.async_modules[inst], inst, self.clock)
                    for inst in self.schedule}
