@@ -50,6 +50,7 @@ class Network:
         self.diagnostics = builder.diagnostics        # the load's settings and warnings
         self.warnings = builder.diagnostics.warnings   # load-time warnings (ModelWarning)
         self._overrides = builder.overrides
+        self.user_data = builder.user_data      # kept when the model is built again
         self.limits = builder.limits
         self.top = top
         self.clock = builder.clock

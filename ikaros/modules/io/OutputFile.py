@@ -29,7 +29,8 @@ class OutputFile(ColumnWriter):
     connections laid end to end); otherwise each connection is a value of its own, named by
     its label (one without a label by its source, as ``C.OUTPUT``), with its own shape (a
     delay window adds an outer axis, one entry per delay in the order listed). A relative
-    ``filename`` is relative to the model file's folder; a ``%d`` in it (or ``%03d`` and so
+    ``filename`` is relative to the model file's folder (or to the user-data folder given
+    with ``ikaros -u``); a ``%d`` in it (or ``%03d`` and so
     on, Ikaros 2) or a run of ``#`` (Ikaros 3: ``##`` is two digits, zero-padded) is
     replaced by the file number, which starts at ``start_index`` (0).
 
@@ -74,7 +75,8 @@ class OutputFile(ColumnWriter):
     of each run."""
 
     filename = Parameter("output.txt", "the file to write; may contain %d or ## for the file "
-                         "number; relative to the model file's folder")
+                         "number; relative to the model file's folder or the user-data "
+                         "folder (ikaros -u)")
     format = Parameter("auto", "the file format (auto: by the file's extension)",
                        options="auto/text/csv/tsv/json/jsonl")
     decimals = Parameter(4, "number of decimals of the columns that do not set their own",
