@@ -17,6 +17,7 @@ from ..limits import LimitError, Limits, applied, check_shape, current as curren
 from ..language.reader import read_file
 from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
                                split_selectors, value_text)
+from ..description import parse_alias
 from ..module import Clock, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
@@ -644,6 +645,8 @@ class Builder:
             if buf.shape is not None:
                 continue
             spec = module._ik_outputs[name]
+            if "alias" in spec.rule:
+                continue                # sized below, from the output it views
             try:
                 shape = rule_shape(inst, spec, shapes, partial) if spec.rule else WAIT
                 if shape is not WAIT:
@@ -675,6 +678,37 @@ class Builder:
                         raise inst.node.error(f'size of output "{name}": {e}') from None
                     buf.shape = shape
                     sized.append(buf)
+        return sized + self._size_aliases(inst, outputs)
+
+    def _size_aliases(self, inst: ModuleInstance, outputs: dict) -> list[Buffer]:
+        """Outputs that are aliases (Ikaros 3 ``alias="OUTPUT[1]"``) take the shape of the
+        part of the output they view, once that output is sized."""
+        module = inst.module
+        sized, progress = [], True
+        while progress:
+            progress = False
+            for name, buf in outputs.items():
+                rule = module._ik_outputs[name].rule
+                if buf.shape is not None or "alias" not in rule:
+                    continue
+                target_name, index = parse_alias(rule["alias"])
+                target = outputs.get(target_name)
+                where = f'output "{name}" of {inst.path}: alias "{rule["alias"]}"'
+                if target is None or target is buf:
+                    raise inst.node.error(f"{where} names no other output of the module")
+                if target.dynamic:
+                    raise inst.node.error(f"{where} views a dynamic output")
+                if target.shape is None:
+                    continue
+                if len(index) > len(target.shape) or \
+                        any(i >= n for i, n in zip(index, target.shape)):
+                    raise inst.node.error(f"{where} is outside the shape "
+                                          f"{list(target.shape)} of {target_name}")
+                buf.shape = tuple(target.shape[len(index):]) or (1,)
+                buf.alias = (target, index)
+                module._ik_output_shapes[name] = buf.shape
+                sized.append(buf)
+                progress = True
         return sized
 
     def _check_sizes(self, pending: list[Buffer]) -> None:

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..interrupt import is_interrupt
 from ..module import Clock
+from .buffers import alias_view
 from .gating import gated
 from .schedule import thread_groups
 
@@ -32,15 +33,26 @@ class AsyncModule:
         # the module's own copies of its connected inputs and of its outputs, by port name
         self.private = {name: buf.array.copy()
                         for name, buf in list(inputs.items()) + list(outputs.items())
-                        if buf.array is not None}
+                        if buf.array is not None and buf.alias is None}
+        for name, buf in outputs.items():       # an alias views its output's copy
+            if buf.alias is not None:
+                self.private[name] = self._private_alias(buf)
         self.inputs = [(buf.array, self.private[n]) for n, buf in inputs.items()
                        if buf.array is not None]
-        self.outputs = [(buf.array, self.private[n]) for n, buf in outputs.items()]
+        self.outputs = [(buf.array, self.private[n]) for n, buf in outputs.items()
+                        if buf.alias is None]
         self.executor = ThreadPoolExecutor(1, thread_name_prefix=f"ikaros-async-{inst.path}")
         self.future = None
         self.pending: collections.deque = collections.deque()
         self.completed = 0
         self.rings: list = []       # the histories of the outputs, pushed on publication
+
+    def _private_alias(self, buf):
+        target, index = buf.alias
+        base = self.private.get(target.name)
+        if base is None:                        # an alias of an alias
+            base = self.private[target.name] = self._private_alias(target)
+        return alias_view(base, index, buf.shape)[0]
 
     @property
     def running(self) -> bool:

@@ -17,7 +17,7 @@ from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
                       WARNING, attribute_name, parameter_attribute)
 from . import compiled
-from .buffers import Run
+from .buffers import Run, alias_view
 from .compiled.background import BackgroundPlan
 from .compiled.plan import CompiledRun, compiled_gather, compiled_plan
 from .control import PLAY, REALTIME, Controller
@@ -35,6 +35,16 @@ from .state import capture_initial
 from .tree import Group, ModuleInstance, find_component
 
 DEFAULT_TICK_DURATION = 0.01   # seconds, when a model sets none
+
+
+def _bind_alias(buf) -> None:
+    """An alias output's array: its view of the output it aliases (bound first)."""
+    if buf.alias is None or buf.array is not None:
+        return
+    target, index = buf.alias
+    _bind_alias(target)
+    buf.array, start = alias_view(target.array, index, buf.shape)
+    buf.offset = target.offset + start
 
 
 class Network:
@@ -136,7 +146,7 @@ class Network:
             for buf in outputs.values():
                 if buf.dynamic:
                     dynamic.append(buf)
-                else:
+                elif buf.alias is None:
                     requests.append((buf, arena.request(buf.shape)))
         for inst in self.schedule:
             inputs, _ = self._buffers[inst]
@@ -158,6 +168,9 @@ class Network:
         views, offsets = arena.views, arena.offsets
         for buf, k in requests:
             buf.array, buf.offset = views[k], offsets[k]
+        for inst in self.schedule:
+            for buf in self._buffers[inst][1].values():
+                _bind_alias(buf)
         for buf in dynamic:
             buf.dynamic_array = DynamicArray(buf.shape)
             buf.array = buf.dynamic_array.storage
