@@ -41,7 +41,8 @@ def __getattr__(name: str):
 
 def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
          quiet: bool = False, max_memory: int | str | None = None,
-         load_state: str | bool | None = None, **overrides) -> Network:
+         load_state: str | bool | None = None, user_data: str | None = None,
+         **overrides) -> Network:
     """Read, build and initialise a model file (.ikg). Other keyword arguments set
     attributes of the top group and win over the file. Raises ModelError naming the file,
     line and element of what is wrong.
@@ -55,9 +56,12 @@ def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
     ``load_state`` (a file name, or True for ``model.state`` beside the model) loads a
     state saved with ``net.save_state`` after init, as ``ikaros -L`` does; a state that does
     not fit raises StateError (a ValueError) and the network is closed.
+    ``user_data`` (``ikaros -u DIR``) is the folder where modules write files with
+    relative names (default: the model file's folder); a ``user_data`` attribute in the
+    file is ignored, with a warning.
     """
     net = build_tree(None, filename, strict=strict, lenient=lenient, quiet=quiet,
-                     max_memory=max_memory, **overrides)
+                     max_memory=max_memory, user_data=user_data, **overrides)
     if load_state:
         try:
             net.load_state(None if load_state is True else load_state)
@@ -69,7 +73,8 @@ def load(filename: str, /, *, strict: bool = False, lenient: bool = False,
 
 def build_tree(tree, filename: str, *, strict: bool = False, lenient: bool = False,
                quiet: bool = False, max_memory: int | str | None = None,
-               classes: dict | None = None, **overrides) -> Network:
+               classes: dict | None = None, user_data: str | None = None,
+               **overrides) -> Network:
     """Build a model tree (``tree``, or the file ``filename`` read when it is None) as
     ``load`` does. ``classes`` are Module subclasses given in code, by class name."""
     from .kernel.builder import Builder
@@ -85,7 +90,8 @@ def build_tree(tree, filename: str, *, strict: bool = False, lenient: bool = Fal
         from .kernel.codeclasses import CodeClassRegistry
         registry = CodeClassRegistry([os.path.dirname(os.path.abspath(filename))], classes)
     return Builder(filename, overrides, model=tree, diagnostics=diagnostics, limits=limits,
-                   registry=registry, network_factory=_network).build()
+                   registry=registry, network_factory=_network,
+                   user_data=user_data).build()
 
 
 def _network(*built) -> Network:

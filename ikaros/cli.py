@@ -40,6 +40,26 @@ def _token(text: str) -> str:
     return text
 
 
+def _folder(text: str) -> str:
+    if not text.strip():
+        raise argparse.ArgumentTypeError("the folder must not be empty")
+    return os.path.abspath(text)
+
+
+def _literal_values(argv: list[str]) -> list[str]:
+    """``-a VALUE`` and ``--token VALUE`` take VALUE as it stands, even ``-banana``
+    (argparse would take it for an option)."""
+    out, i = [], 0
+    while i < len(argv):
+        if argv[i] in ("-a", "--token") and i + 1 < len(argv):
+            out.append("--token=" + argv[i + 1])
+            i += 2
+        else:
+            out.append(argv[i])
+            i += 1
+    return out
+
+
 def _memory(text: str) -> int:
     from .limits import LimitError, parse_bytes
     try:
@@ -94,9 +114,15 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--bind", metavar="ADDRESS", default="127.0.0.1",
                    help="address the web UI listens on (default 127.0.0.1, this machine "
                         "only); any other address requires an access token")
-    p.add_argument("--token", metavar="TOKEN", type=_token,
-                   help="the web UI's access token (one is made up when --bind serves "
-                        "other machines)")
+    p.add_argument("--token", "-a", metavar="TOKEN", type=_token,
+                   help="the web UI's access token, or password (one is made up when "
+                        "--bind serves other machines); -a PASSWORD as in Ikaros 3, "
+                        "taken literally even when it starts with -")
+    p.add_argument("-u", "--user-data", type=_folder, metavar="DIR",
+                   help="the folder where modules write files with relative names "
+                        "(made if missing; default: the model's folder); files are read "
+                        "relative to the model's folder. Also user_data=DIR; a "
+                        "user_data attribute in the model file is ignored")
     p.add_argument("--models", metavar="DIR",
                    help="web UI editor: the folder to save, list, open and create models "
                         "in (default: the model's folder)")
@@ -226,7 +252,9 @@ def _serve(net, opts, failure: dict | None = None, sock=None) -> int:
             print(f"ikaros: access token: {token}", flush=True)
     try:
         net.profiling = opts.profile
-        serve(net, host, 8000 if opts.port is None else opts.port, token, state,
+        port = opts.port if opts.port is not None else \
+            getattr(net, "webui_port", None) or 8000
+        serve(net, host, port, token, state,
               on_ready=ready, models_dir=opts.models, max_memory=opts.max_memory,
               max_body=opts.max_body, build_timeout=opts.build_timeout, failure=failure,
               on_end=end, sock=sock)
@@ -273,10 +301,15 @@ def main(argv: list[str] | None = None) -> int:
     if argv[:1] == ["worker"]:
         return _worker(argv[1:])
     p = parser()
-    opts = p.parse_intermixed_args(argv)
+    opts = p.parse_intermixed_args(_literal_values(argv))
     _state_options(opts)
     experiment_options.check_arguments(p, opts)
     model, overrides = _split_args(p, opts.args)
+    if "user_data" in overrides:        # user_data=DIR: the command line's -u DIR
+        try:
+            opts.user_data = _folder(overrides.pop("user_data"))
+        except argparse.ArgumentTypeError as e:
+            p.error(f"user_data: {e}")
     folders = [os.path.dirname(os.path.abspath(model))] if model else []
     try:
         if opts.modules_doc is not None:
@@ -333,7 +366,7 @@ def main(argv: list[str] | None = None) -> int:
         failure = None
         try:
             net = load(model, strict=opts.strict, lenient=opts.lenient, quiet=opts.quiet,
-                       max_memory=opts.max_memory, **overrides)
+                       max_memory=opts.max_memory, user_data=opts.user_data, **overrides)
         except BaseException as e:
             if not isinstance(e, ModelError) or opts.batch:
                 if sock is not None:

@@ -5,6 +5,7 @@ give the same structure, which the kernel, the command line, the editor and the 
 """
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -144,6 +145,32 @@ def dynamic_rule(dynamic: bool, capacity: str | None, rule: dict) -> str | None:
         return 'capacity is for dynamic outputs (dynamic="yes")'
     if dynamic and rule:
         return f"a dynamic output is sized by its capacity, not by {', '.join(rule)}"
+    return None
+
+
+_ALIAS = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[\d+\])*)")
+
+
+def parse_alias(text: str) -> tuple[str, tuple[int, ...]] | None:
+    """An output alias (Ikaros 3 ``alias="OUTPUT[0]"``) as (output name, indices), or None
+    when it is not one: an output name with zero or more single whole-number indices."""
+    m = _ALIAS.fullmatch(text.replace(" ", ""))
+    if m is None:
+        return None
+    return m.group(1), tuple(int(i) for i in re.findall(r"\d+", m.group(2)))
+
+
+def alias_rule(alias: str | None, dynamic: bool, rule: dict) -> str | None:
+    """Why an alias output's declaration is wrong (None when it is right or not an alias):
+    an alias is an output name with single indices, and has no size rule of its own."""
+    if alias is None:
+        return None
+    if parse_alias(alias) is None:
+        return (f'alias "{alias}" must name another output of the module, with single '
+                f'indices only (OUTPUT or OUTPUT[0])')
+    if rule or dynamic:
+        return "an alias takes its shape from the output it views: it can not also have a " \
+               "shape, size or capacity"
     return None
 
 

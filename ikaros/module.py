@@ -28,7 +28,7 @@ import numpy as np
 
 from .description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
                           SIZE_RULE_KEYS, STATE_TYPES, StateSpec, canonical_type,
-                          dynamic_rule)
+                          alias_rule, dynamic_rule)
 from .dynamic import DynamicArray  # noqa: F401  (part of the module API)
 
 # Notification levels (lower is more severe), as in Ikaros.
@@ -138,22 +138,30 @@ class Output:
     ``dynamic=True`` with a ``capacity`` (a shape expression, like ``shape``) declares an
     Ikaros 3 dynamic output: the module sees a ``DynamicArray`` whose shape it changes at
     run time, never beyond the capacity.
+
+    ``alias="OUTPUT"`` or ``alias="OUTPUT[1]"`` (Ikaros 3) declares a view of another
+    output of the module: the same memory, the whole output or the part at those indices
+    (``OUTPUT[1]`` of a 3x4 output is its second row, 4 elements; indexing every axis gives
+    one element). It has no size rule of its own.
     """
 
     def __init__(self, description: str = "", *, shape: str | None = None,
                  optional: bool = False, persistent: bool = False, name: str | None = None,
-                 dynamic: bool = False, capacity: str | None = None, **size_rule: str):
+                 dynamic: bool = False, capacity: str | None = None,
+                 alias: str | None = None, **size_rule: str):
         unknown = set(size_rule) - set(SIZE_RULE_KEYS)
         if unknown:
             raise TypeError(f"unknown output size rule {sorted(unknown)}")
         rule = {k: str(v) for k, v in size_rule.items()}
         if shape is not None:
             rule["shape"] = str(shape)
-        wrong = dynamic_rule(dynamic, capacity, rule)
+        wrong = dynamic_rule(dynamic, capacity, rule) or alias_rule(alias, dynamic, rule)
         if wrong:
             raise TypeError(wrong)
         if dynamic:
             rule["capacity"] = str(capacity)
+        if alias is not None:
+            rule["alias"] = alias
         self.spec_ = OutputSpec(name or "", description, rule, optional, persistent,
                                 dynamic=dynamic)
 
@@ -314,6 +322,7 @@ class Module:
     name: str = ""
     path: str = ""
     element: Any = None             # the model-file element of this module (a language Node)
+    user_data: str | None = None    # where files with relative names are written (-u DIR)
     # The kernel's input buffers (set when they are made), which give input_parts and
     # input_label.
     _ik_input_buffers: dict = {}

@@ -110,3 +110,28 @@ def test_compatibility_warnings_quiet_strict_and_lenient():
         f'ikaros: error: {path}:2: <module name="C">: no space before attribute "description" '
         f'(an error with --strict)']
     assert ikaros("-b", "--strict", "--lenient", path).returncode == 2
+
+
+def test_a_password_is_the_access_token_taken_literally():
+    from ikaros import cli
+    for argv, token in ((["-a", "-banana"], "-banana"), (["-atrue"], "true"),
+                        (["--token", "-x"], "-x"), (["-a", "pw"], "pw")):
+        opts = cli.parser().parse_intermixed_args(cli._literal_values(argv + ["m.ikg"]))
+        assert (opts.token, opts.args) == (token, ["m.ikg"])
+
+
+def test_user_data_folder_takes_written_files_and_the_model_cannot_choose_it(tmp_path):
+    import ikaros
+    model = tmp_path / "m.ikg"
+    model.write_text('<group user_data="elsewhere"><module class="Constant" name="C" data="5"/>'
+                     '<module class="OutputFile" name="O" filename="o.csv" decimals="1"/>'
+                     '<connection source="C.OUTPUT" target="O.INPUT" delay="0" label="v"/>'
+                     '</group>')
+    net = ikaros.load(str(model), user_data=str(tmp_path / "data"), quiet=True)
+    net.run(ticks=1)
+    net.close()
+    assert (tmp_path / "data" / "o.csv").read_text() == "tick,v\n0,5.0\n"
+    assert not (tmp_path / "o.csv").exists() and not (tmp_path / "elsewhere").exists()
+    assert [w.message for w in net.warnings][:1] == [
+        "user_data in a model file is ignored (a model may not choose where files are "
+        "written); use ikaros -u DIR"]

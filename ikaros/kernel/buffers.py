@@ -18,7 +18,7 @@ class Buffer:
 
     __slots__ = ("kind", "owner", "name", "optional", "flatten", "stack", "fixed", "node",
                  "shape", "incoming", "outgoing", "array", "offset", "dynamic",
-                 "dynamic_array", "use_label")
+                 "dynamic_array", "use_label", "alias")
 
     def __init__(self, kind: str, owner, name: str, *, optional: bool = False,
                  flatten: bool = False, stack: bool = False, fixed: str | None = None,
@@ -44,6 +44,9 @@ class Buffer:
         # outside the arena.
         self.dynamic = False
         self.dynamic_array = None
+        # an output that is a view of another output of its module (Ikaros 3 alias):
+        # (that output's buffer, the indices), set when it is sized
+        self.alias: tuple | None = None
 
     @staticmethod
     def link(link: "Link") -> None:
@@ -153,3 +156,12 @@ def _identity(index, n: int) -> bool:
     if isinstance(index, range):
         return index == range(n)
     return len(index) == n and bool(np.array_equal(index, np.arange(n)))
+
+
+def alias_view(array: np.ndarray, index: tuple, shape: tuple) -> tuple[np.ndarray, int]:
+    """The part of a (C-contiguous) output array that an alias with these indices views,
+    shaped ``shape``, and where it starts in the array, in elements."""
+    start = int(np.ravel_multi_index(index + (0,) * (array.ndim - len(index)),
+                                     array.shape)) if index else 0
+    count = int(np.prod(shape))
+    return array.reshape(-1)[start:start + count].reshape(shape), start

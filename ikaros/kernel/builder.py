@@ -17,6 +17,7 @@ from ..limits import LimitError, Limits, applied, check_shape, current as curren
 from ..language.reader import read_file
 from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
                                split_selectors, value_text)
+from ..description import parse_alias
 from ..module import Clock, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
@@ -58,8 +59,10 @@ class Builder:
     def __init__(self, filename: str, overrides: dict | None = None, text: str | None = None,
                  notify=None, registry: ClassRegistry | None = None,
                  model: Node | None = None, diagnostics: Diagnostics | None = None,
-                 limits: Limits | None = None, network_factory=None):
+                 limits: Limits | None = None, network_factory=None,
+                 user_data: str | None = None):
         self.limits = limits
+        self.user_data = user_data      # where modules write relative files (-u DIR)
         self.filename = os.path.abspath(filename)
         if model is not None and model.tag != "group":
             raise model.error(f"the root element is <{model.tag}> but must be <group>")
@@ -84,6 +87,10 @@ class Builder:
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
         attrs = dict(self.model.attrs)
+        if "user_data" in attrs:
+            warn_at(self.model, "user_data in a model file is ignored (a model may not "
+                                "choose where files are written); use ikaros -u DIR")
+            del attrs["user_data"]
         attrs.update(self.overrides)
         name = attrs.get("name") or "Main"
         return self._group(self.model, None, name, attrs, (self.filename,))
@@ -246,6 +253,7 @@ class Builder:
             raise inst.node.error(f"creating the module failed: {fault_text(e)}") \
                 from None
         module.name, module.path, module.element = inst.name, inst.path, inst.node
+        module.user_data = self.user_data
         module.clock = self.clock
         for name, value in inst.values.items():
             setattr(module, parameter_attribute(name), value)
@@ -637,6 +645,8 @@ class Builder:
             if buf.shape is not None:
                 continue
             spec = module._ik_outputs[name]
+            if "alias" in spec.rule:
+                continue                # sized below, from the output it views
             try:
                 shape = rule_shape(inst, spec, shapes, partial) if spec.rule else WAIT
                 if shape is not WAIT:
@@ -668,6 +678,37 @@ class Builder:
                         raise inst.node.error(f'size of output "{name}": {e}') from None
                     buf.shape = shape
                     sized.append(buf)
+        return sized + self._size_aliases(inst, outputs)
+
+    def _size_aliases(self, inst: ModuleInstance, outputs: dict) -> list[Buffer]:
+        """Outputs that are aliases (Ikaros 3 ``alias="OUTPUT[1]"``) take the shape of the
+        part of the output they view, once that output is sized."""
+        module = inst.module
+        sized, progress = [], True
+        while progress:
+            progress = False
+            for name, buf in outputs.items():
+                rule = module._ik_outputs[name].rule
+                if buf.shape is not None or "alias" not in rule:
+                    continue
+                target_name, index = parse_alias(rule["alias"])
+                target = outputs.get(target_name)
+                where = f'output "{name}" of {inst.path}: alias "{rule["alias"]}"'
+                if target is None or target is buf:
+                    raise inst.node.error(f"{where} names no other output of the module")
+                if target.dynamic:
+                    raise inst.node.error(f"{where} views a dynamic output")
+                if target.shape is None:
+                    continue
+                if len(index) > len(target.shape) or \
+                        any(i >= n for i, n in zip(index, target.shape)):
+                    raise inst.node.error(f"{where} is outside the shape "
+                                          f"{list(target.shape)} of {target_name}")
+                buf.shape = tuple(target.shape[len(index):]) or (1,)
+                buf.alias = (target, index)
+                module._ik_output_shapes[name] = buf.shape
+                sized.append(buf)
+                progress = True
         return sized
 
     def _check_sizes(self, pending: list[Buffer]) -> None:

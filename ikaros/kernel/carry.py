@@ -118,7 +118,8 @@ def rebuild(old, tree, classes: dict | None = None):
         from .codeclasses import CodeClassRegistry
         registry = CodeClassRegistry([os.path.dirname(old.filename)], classes)
     new = Builder(old.filename, old._overrides, model=tree, registry=registry,
-                  diagnostics=old.diagnostics.fresh(), limits=old.limits).build()
+                  diagnostics=old.diagnostics.fresh(), limits=old.limits,
+                  user_data=getattr(old, "user_data", None)).build()
     old.controller.stop()
     old.controller.join(30)
     take_over(old, new)

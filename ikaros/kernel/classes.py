@@ -249,6 +249,10 @@ class ClassRegistry:
                 continue
             if entry.python and not _defines_class(entry):
                 entry.python = None         # a script beside the model, not a module
+            if entry.group and (entry.python or entry.ikc):
+                raise ModelError(f'class "{name}" is declared by two class files in one '
+                                 f'folder: {entry.python or entry.ikc} and {entry.group}; '
+                                 f'keep one', entry.group)
             if entry.ikc and entry.python is None:
                 return self._implemented(entry)
             if entry.python or entry.group:

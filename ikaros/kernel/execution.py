@@ -10,6 +10,7 @@ import numpy as np
 
 from ..interrupt import is_interrupt
 from ..module import Clock
+from .buffers import alias_view
 from .gating import gated
 from .schedule import thread_groups
 
@@ -19,7 +20,9 @@ class AsyncModule:
 
     The module works on private copies of its inputs (taken when a job starts) and outputs
     (published when the job has finished); while a job runs, the outputs keep their last
-    finished values, and parameter changes and commands wait in a queue.
+    finished values, and parameter changes and commands wait in a queue. The histories of
+    its outputs (``rings``) advance only when a job is published, so a delay window holds
+    the last finished values, each once.
     """
 
     def __init__(self, inst, inputs: dict, outputs: dict, clock: Clock):
@@ -30,14 +33,26 @@ class AsyncModule:
         # the module's own copies of its connected inputs and of its outputs, by port name
         self.private = {name: buf.array.copy()
                         for name, buf in list(inputs.items()) + list(outputs.items())
-                        if buf.array is not None}
+                        if buf.array is not None and buf.alias is None}
+        for name, buf in outputs.items():       # an alias views its output's copy
+            if buf.alias is not None:
+                self.private[name] = self._private_alias(buf)
         self.inputs = [(buf.array, self.private[n]) for n, buf in inputs.items()
                        if buf.array is not None]
-        self.outputs = [(buf.array, self.private[n]) for n, buf in outputs.items()]
+        self.outputs = [(buf.array, self.private[n]) for n, buf in outputs.items()
+                        if buf.alias is None]
         self.executor = ThreadPoolExecutor(1, thread_name_prefix=f"ikaros-async-{inst.path}")
         self.future = None
         self.pending: collections.deque = collections.deque()
         self.completed = 0
+        self.rings: list = []       # the histories of the outputs, pushed on publication
+
+    def _private_alias(self, buf):
+        target, index = buf.alias
+        base = self.private.get(target.name)
+        if base is None:                        # an alias of an alias
+            base = self.private[target.name] = self._private_alias(target)
+        return alias_view(base, index, buf.shape)[0]
 
     @property
     def running(self) -> bool:
@@ -48,6 +63,8 @@ class AsyncModule:
         error = future.exception()
         if error is not None:
             raise error
+        for ring in self.rings:         # the value being replaced goes into the history
+            ring.push()
         for public, private in self.outputs:
             np.copyto(public, private)
         self.completed += 1

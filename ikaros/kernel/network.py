@@ -17,7 +17,7 @@ from ..language.writer import write_file
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
                       WARNING, attribute_name, parameter_attribute)
 from . import compiled
-from .buffers import Run
+from .buffers import Run, alias_view
 from .compiled.background import BackgroundPlan
 from .compiled.plan import CompiledRun, compiled_gather, compiled_plan
 from .control import PLAY, REALTIME, Controller
@@ -37,6 +37,16 @@ from .tree import Group, ModuleInstance, find_component
 DEFAULT_TICK_DURATION = 0.01   # seconds, when a model sets none
 
 
+def _bind_alias(buf) -> None:
+    """An alias output's array: its view of the output it aliases (bound first)."""
+    if buf.alias is None or buf.array is not None:
+        return
+    target, index = buf.alias
+    _bind_alias(target)
+    buf.array, start = alias_view(target.array, index, buf.shape)
+    buf.offset = target.offset + start
+
+
 class Network:
     """A runnable model. Build one with ``ikaros.load``.
 
@@ -50,6 +60,7 @@ class Network:
         self.diagnostics = builder.diagnostics        # the load's settings and warnings
         self.warnings = builder.diagnostics.warnings   # load-time warnings (ModelWarning)
         self._overrides = builder.overrides
+        self.user_data = builder.user_data      # kept when the model is built again
         self.limits = builder.limits
         self.top = top
         self.clock = builder.clock
@@ -76,6 +87,7 @@ class Network:
         self.clock.tick_duration = self._tick_duration()
         self.stop_tick = self._whole_number("stop", minimum=-1)
         self.threads = self._whole_number("threads", minimum=1)
+        self.webui_port = self._whole_number("webui_port", minimum=1, maximum=65535)
         self.startup = builder.startup
         with self.startup.step("memory"):
             self._allocate()
@@ -107,15 +119,17 @@ class Network:
             return ModelError(f"{message} (given on the command line)")
         return self.model.error(message)
 
-    def _whole_number(self, key: str, minimum: int) -> int | None:
-        """A top-group setting that must be a whole number >= minimum (None when unset)."""
+    def _whole_number(self, key: str, minimum: int, maximum: int | None = None) -> int | None:
+        """A top-group setting that must be a whole number >= minimum (and <= maximum; None
+        when unset)."""
         text = self.top.attrs.get(key)
         if text in (None, ""):
             return None
         stripped = text.strip().lstrip("+")
-        if not (stripped.lstrip("-").isdigit() and int(stripped) >= minimum):
-            raise self._setting_error(key, f'{key}="{text}" must be a whole number >= '
-                                           f'{minimum}')
+        if not (stripped.lstrip("-").isdigit() and minimum <= int(stripped)
+                and (maximum is None or int(stripped) <= maximum)):
+            bounds = f">= {minimum}" if maximum is None else f"from {minimum} to {maximum}"
+            raise self._setting_error(key, f'{key}="{text}" must be a whole number {bounds}')
         return int(stripped)
 
     def _allocate(self) -> None:
@@ -132,7 +146,7 @@ class Network:
             for buf in outputs.values():
                 if buf.dynamic:
                     dynamic.append(buf)
-                else:
+                elif buf.alias is None:
                     requests.append((buf, arena.request(buf.shape)))
         for inst in self.schedule:
             inputs, _ = self._buffers[inst]
@@ -154,6 +168,9 @@ class Network:
         views, offsets = arena.views, arena.offsets
         for buf, k in requests:
             buf.array, buf.offset = views[k], offsets[k]
+        for inst in self.schedule:
+            for buf in self._buffers[inst][1].values():
+                _bind_alias(buf)
         for buf in dynamic:
             buf.dynamic_array = DynamicArray(buf.shape)
             buf.array = buf.dynamic_array.storage
@@ -216,7 +233,16 @@ class Network:
         if bulk_copy is not None:
             self._delayed.insert(0, bulk_copy)
         self._pre_tick = pre_tick
-        self._ring_list = list(self.rings.values()) + list(self.dynamic_rings.values())
+        # the histories of outputs of asynchronous modules advance when a job is published
+        async_rings = set()
+        for inst, job in self.async_modules.items():
+            for buf in self._buffers[inst][1].values():
+                ring = self.rings.get(buf) or self.dynamic_rings.get(buf)
+                if ring is not None:
+                    job.rings.append(ring)
+                    async_rings.add(id(ring))
+        self._ring_list = [ring for ring in list(self.rings.values()) +
+                           list(self.dynamic_rings.values()) if id(ring) not in async_rings]
         tick_of = {inst: module_tick(inst, self.clock) if inst not in self.async_modules
                    else gated(self.async_modules[inst], inst, self.clock)
                    for inst in self.schedule}
@@ -333,13 +359,13 @@ class Network:
                     if is_interrupt(e):
                         raise
                     error = inst.node.error(f"init failed: {fault_text(e)}")
-                else:
-                    started.append(inst)        # (an init that raises cleans up after itself)
                 if error is None and self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
                     error = inst.node.error(f"While initializing module {inst.path}: "
                                             f"{self.stop_reason[1]}")
                 if error is not None:
                     raise error from None
+                # (an init that fails, by raising or by a fatal error, cleans up after itself)
+                started.append(inst)
         except BaseException:
             # Devices opened by the modules initialised so far go to their safe state.
             self._stopped = True

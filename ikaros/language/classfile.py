@@ -5,7 +5,7 @@ import os
 
 from ..description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
                            SIZE_RULE_KEYS, STATE_TYPES, StateSpec, canonical_type,
-                           dynamic_rule)
+                           alias_rule, dynamic_rule)
 from .diagnostics import warn_at
 from .node import Node
 from .reader import read_file
@@ -126,11 +126,14 @@ def description_from_node(root: Node, expected_name: str | None = None) -> Class
             raise o.error("an output needs a name")
         rule = {k: o.get(k) for k in SIZE_RULE_KEYS if o.get(k) not in (None, "")}
         dynamic, capacity = _flag(o, "dynamic"), o.get("capacity")
-        wrong = dynamic_rule(dynamic, capacity, rule)
+        alias = o.get("alias")
+        wrong = dynamic_rule(dynamic, capacity, rule) or alias_rule(alias, dynamic, rule)
         if wrong:
             raise o.error(f'output "{o.get("name")}": {wrong}')
         if dynamic:
             rule["capacity"] = capacity
+        if alias is not None:
+            rule["alias"] = alias
         desc.outputs.append(OutputSpec(o.get("name"), o.get("description", ""), rule,
                                        _flag(o, "optional"), _flag(o, "persistent"),
                                        dynamic=dynamic))

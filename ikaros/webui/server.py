@@ -671,7 +671,8 @@ class WebUI:
         def build():
             with access.applied(self.confinement if confined else None):
                 new = Builder(filename, overrides, model=tree, diagnostics=diagnostics,
-                              limits=self.build_limits).build()
+                              limits=self.build_limits,
+                              user_data=getattr(self.net, "user_data", None)).build()
             new.log_level = log_level
             return new
         return await run_build(build, self.build_timeout)

@@ -67,7 +67,7 @@ def test_a_setting_given_on_the_command_line_is_blamed_on_it():
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--token", ""], "argument --token: the access token must not be empty"),
+    (["--token", ""], "argument --token/-a: the access token must not be empty"),
     (["--max-memory", "lots"], 'argument --max-memory: "lots" is not an amount of memory '
                                '(such as 512M or 2G)'),
     (["--max-memory", "0"], 'argument --max-memory: "0" is not an amount of memory > 0'),

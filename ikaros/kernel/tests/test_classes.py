@@ -211,3 +211,14 @@ def test_unknown_class_names_the_element(tmp_path):
         ikaros.load(str(tmp_path / "m.ikg"))
     assert e.value.line == 3 and e.value.filename == str(tmp_path / "m.ikg")
     assert str(e.value) == f'{tmp_path / "m.ikg"}:3: <module name="X">: unknown class "NoSuch"'
+
+
+def test_a_python_class_and_a_group_file_of_one_name_in_one_folder_are_an_error(tmp_path):
+    (tmp_path / "Twice.py").write_text(PY_CLASS)
+    (tmp_path / "Twice.ikg").write_text('<group name="Twice"/>')
+    model = tmp_path / "m.ikg"
+    model.write_text('<group><module class="Twice" name="T"/></group>')
+    with pytest.raises(ikaros.ModelError) as e:
+        ikaros.load(str(model))
+    assert e.value.reason == (f'class "Twice" is declared by two class files in one folder: '
+                              f'{tmp_path / "Twice.py"} and {tmp_path / "Twice.ikg"}; keep one')

@@ -17,8 +17,8 @@ class OutputCSV(ColumnWriter):
     Every tick then writes one row of values with the column's number of decimals
     (``decimals`` unless the column says otherwise), using a point as the decimal mark.
     When WRITE is connected a row is written only on ticks when its first element is above
-    0. A relative ``filename`` is relative to the model file's folder; the file is
-    rewritten at the start of each run and flushed after every row."""
+    0. A relative ``filename`` is relative to the model file's folder (or to the user-data
+    folder given with ``ikaros -u``); the file is rewritten at the start of each run and flushed after every row."""
 
     filename = Parameter("output.csv", "the CSV file to write; relative to the model file's "
                          "folder")

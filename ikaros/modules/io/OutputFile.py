@@ -11,7 +11,7 @@ from ikaros.module import Input, Parameter, attribute_name
 
 from ._columns import ColumnWriter
 from ._csvnames import column_names
-from ._files import counter_capacity, numbered
+from ._files import counter_capacity, model_folder, numbered
 _EXTENSIONS = {".csv": "csv", ".tsv": "tsv", ".json": "json", ".jsonl": "jsonl",
                ".ndjson": "jsonl"}
 _STAMPS = {"yes": "tick", "true": "tick", "on": "tick", "1": "tick",
@@ -29,7 +29,8 @@ class OutputFile(ColumnWriter):
     connections laid end to end); otherwise each connection is a value of its own, named by
     its label (one without a label by its source, as ``C.OUTPUT``), with its own shape (a
     delay window adds an outer axis, one entry per delay in the order listed). A relative
-    ``filename`` is relative to the model file's folder; a ``%d`` in it (or ``%03d`` and so
+    ``filename`` is relative to the model file's folder (or to the user-data folder given
+    with ``ikaros -u``); a ``%d`` in it (or ``%03d`` and so
     on, Ikaros 2) or a run of ``#`` (Ikaros 3: ``##`` is two digits, zero-padded) is
     replaced by the file number, which starts at ``start_index`` (0).
 
@@ -74,7 +75,8 @@ class OutputFile(ColumnWriter):
     of each run."""
 
     filename = Parameter("output.txt", "the file to write; may contain %d or ## for the file "
-                         "number; relative to the model file's folder")
+                         "number; relative to the model file's folder or the user-data "
+                         "folder (ikaros -u)")
     format = Parameter("auto", "the file format (auto: by the file's extension)",
                        options="auto/text/csv/tsv/json/jsonl")
     decimals = Parameter(4, "number of decimals of the columns that do not set their own",
@@ -241,8 +243,8 @@ class OutputFile(ColumnWriter):
         return self._delimiter.join(cells) + "\n"
 
     def _base(self):
-        model_file = getattr(self.element, "file", None)
-        return os.path.dirname(model_file) if model_file else os.getcwd()
+        """Where relative names go: the user-data folder (-u DIR), else the model's."""
+        return self.user_data or model_folder(self)
 
     def _make_folder(self):
         if not self.directory:

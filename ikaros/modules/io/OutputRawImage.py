@@ -18,7 +18,8 @@ class OutputRawImage(Module):
     warning and the run goes on."""
 
     filename = Parameter("", "the file to write; %d (or %02d and so on) is replaced by the "
-                         "file number; relative to the model file's folder")
+                         "file number; relative to the model file's folder or the "
+                         "user-data folder (ikaros -u)")
     scale = Parameter(255.0, "factor each value is multiplied by before it is stored as a "
                       "byte 0..255")
     suppress = Parameter(0, "number of initial ticks on which nothing is written",

@@ -18,10 +18,10 @@ class OutputVideoFile(ImageInputs):
     rate written in the file; ``quality`` chooses the encoder quality. H.264 needs an even
     width and height, so FFmpeg scales other sizes up to the next even size. The file is
     complete when the run stops. A relative ``filename`` is relative to the model file's
-    folder."""
+    folder (or to the user-data folder given with ``ikaros -u``)."""
 
     filename = Parameter("output.mp4", "the movie file to write; relative to the model "
-                         "file's folder")
+                         "file's folder or the user-data folder (ikaros -u)")
     quality = Parameter("normal", "encoder quality", options="verylow/low/normal/high")
     frame_rate = Parameter(25, "frames per second written in the file", type="int")
 

@@ -15,8 +15,10 @@ def model_folder(module) -> str:
 
 def resolve(module, filename: str, write: bool = False) -> str:
     """A file name relative to the model file's folder, as an absolute path. With
-    ``write``, the file's folder is made if it is missing (so ``output/x.csv`` works)."""
-    path = filename if os.path.isabs(filename) else os.path.join(model_folder(module), filename)
+    ``write``, relative to the user-data folder when there is one (``ikaros -u DIR``), and
+    the file's folder is made if it is missing (so ``output/x.csv`` works)."""
+    folder = (write and module.user_data) or model_folder(module)
+    path = filename if os.path.isabs(filename) else os.path.join(folder, filename)
     if write:
         os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     return path

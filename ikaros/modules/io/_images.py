@@ -206,7 +206,7 @@ class ImageFileWriter(ImageInputs):
     filename = Parameter("", "the file to write; %d (or %02d and so on) is replaced by the "
                          "file number, which is offset + the number of ticks so far; "
                          "without %d every image overwrites the same file; relative to the "
-                         "model file's folder")
+                         "model file's folder or the user-data folder (ikaros -u)")
     scale = Parameter(1.0, "factor the image is multiplied by before it is written; values "
                       "outside 0..1 are then clipped")
     suppress = Parameter(0, "number of initial ticks on which nothing is written (their file "
@@ -257,9 +257,9 @@ class ImageFileWriter(ImageInputs):
         if self.scale != 1.0:
             image = image * np.float32(self.scale)
         self.check_range(image)
-        path = resolve(self, name)
+        path = name
         try:
-            resolve(self, name, write=True)
+            path = resolve(self, name, write=True)
             to_pillow(self._Image, image).save(path, format=self.pillow_format,
                                                **self.save_options())
         except (OSError, ValueError) as e:
