@@ -88,9 +88,11 @@ class Recorder:
             self._free.put(block)
         self._row = 0                   # the row of the file of the block's first row
         self._start_block()
-        self._last_flush = time.perf_counter()     # last hand-over of a partial block
-        self._started = self._last_flush
-        self._file_flushed = self._last_flush
+        # when a partly filled block is due to go to the writer, on the clock of the
+        # network's real_time (the start of a tick, in seconds since the network started)
+        self._flush_at = net.clock.real_time + flush_seconds
+        self._real_zero: float | None = None     # real_time of the first row written
+        self._file_flushed = time.perf_counter()
         self._queue: queue.Queue = queue.Queue()
         self._error: BaseException | None = None      # set by the writer thread
         self._reported = False
@@ -153,7 +155,8 @@ class Recorder:
 
     def hook(self) -> None:
         """After every tick: keep the outputs of the tick just done when it is due."""
-        tick = self.net.tick - 1
+        net = self.net
+        tick = net.tick - 1
         if tick < self._next or self._closed:
             return
         if self._error is not None:
@@ -161,14 +164,15 @@ class Recorder:
             return
         self._next = tick + self.every
         ticks = self._ticks
-        if len(ticks) == self._block_rows:
+        n = len(ticks)
+        if n == self._block_rows:
             self._hand_over(full=True)
-            ticks = self._ticks
-        self._tap.keep(self._first + len(ticks))
+            ticks, n = self._ticks, 0
+        self._tap.keep(self._first + n)
         ticks.append(tick)
-        now = time.perf_counter()
+        now = net.clock.real_time
         self._real.append(now)
-        if now - self._last_flush > self.flush_seconds:
+        if now > self._flush_at:
             self._hand_over(full=False)
 
     def _hand_over(self, full: bool) -> None:
@@ -187,7 +191,7 @@ class Recorder:
             self._put(("rows", self._row + sent, ring[sent:whole].copy(),
                        self._ticks[sent:], self._real[sent:], None))
             self._sent = n - n % T
-        self._last_flush = time.perf_counter()
+        self._flush_at = self.net.clock.real_time + self.flush_seconds
 
     def parameter_changed(self, path: str, value: str) -> None:
         """Keep a parameter change with the tick from which it takes effect."""
@@ -288,7 +292,9 @@ class Recorder:
         ticks = np.array(ticks, np.int64)
         self._times["tick"][start:end] = ticks
         self._times["time"][start:end] = ticks * self.net.clock.tick_duration
-        self._times["real_time"][start:end] = np.array(real) - self._started
+        if self._real_zero is None and real:
+            self._real_zero = real[0]
+        self._times["real_time"][start:end] = np.array(real) - (self._real_zero or 0.0)
         now = time.perf_counter()
         if flush or now - self._file_flushed > self.flush_seconds:
             self._file.flush()
