@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import atexit
 import json
+import math
 import os
 import queue
 import sys
@@ -159,7 +160,7 @@ class Recorder:
         """After every tick: keep the outputs of the tick just done when it is due."""
         net = self.net
         tick = net.tick - 1
-        if tick < self._next or self._closed:
+        if tick < self._next:       # not due, or closed
             return
         if self._error is not None:
             self._report()
@@ -233,6 +234,7 @@ class Recorder:
         if self._closed:
             return
         self._closed = True
+        self._next = math.inf
         atexit.unregister(self.close)
         net = self.net
         for hooks, hook in ((net.controller.tick_hooks, self.hook),

@@ -9,11 +9,20 @@ tick ``keep`` copies at once (one NumPy gather).
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 
+NONE = -1          # no row kept
+
+
 class OutputTap:
-    """Copies ``block[index]`` into ``rows[r]`` for the rows ``r`` that ``keep`` names."""
+    """Copies ``block[index]`` into ``rows[r]`` for the rows ``r`` that ``keep`` names.
+
+    ``keep(row)``: the values as they are now (after a tick) go into ``rows[row]``. With the
+    compiled tick it only stores ``row`` where the compiled call looks for it (a C call: no
+    Python frame per tick)."""
 
     def __init__(self, block: np.ndarray, index: np.ndarray, rows: np.ndarray):
         if rows.ndim != 2 or rows.shape[1] != index.size or rows.dtype != np.float32 \
@@ -23,37 +32,34 @@ class OutputTap:
         self.block = block
         self.index = np.asarray(index, np.int64)
         self.rows = rows
-        self.compiled = False           # whether the compiled tick makes the copies
-        self._use(np.zeros(1, np.int64))
+        self._pending: np.ndarray | None = None     # where the compiled call looks
+        self.keep = self._copy_now
 
-    def _use(self, pending: np.ndarray) -> None:
-        self._pending = pending         # the row kept + 1; 0 when none
-        self._mark = memoryview(pending)          # stores in a quarter of NumPy's time
+    @property
+    def compiled(self) -> bool:
+        """Whether the compiled tick makes the copies."""
+        return self._pending is not None
 
-    def keep(self, row: int) -> None:
-        """The values as they are now (after a tick) go into ``rows[row]``."""
-        if self.compiled:
-            self._mark[0] = row + 1
-        else:
-            np.take(self.block, self.index, out=self.rows[row])
+    def _copy_now(self, row: int) -> None:
+        np.take(self.block, self.index, out=self.rows[row])
 
     def settle(self) -> None:
         """Make the copy that ``keep`` left to the next compiled tick now."""
-        row = int(self._pending[0]) - 1
-        if row >= 0:
-            np.take(self.block, self.index, out=self.rows[row])
-            self._pending[0] = 0
+        pending = self._pending
+        if pending is not None and pending[0] != NONE:
+            self._copy_now(int(pending[0]))
+            pending[0] = NONE
 
     def bind(self, pending: np.ndarray) -> None:
         """From now on the compiled tick copies: ``pending`` is the one-element view of its
         index pool where it looks for the row kept."""
         self.settle()
-        pending[0] = 0
-        self._use(pending)
-        self.compiled = True
+        pending[0] = NONE
+        self._pending = pending
+        self.keep = functools.partial(memoryview(pending).__setitem__, 0)
 
     def unbind(self) -> None:
         """From now on ``keep`` copies at once."""
         self.settle()
-        self._use(np.zeros(1, np.int64))
-        self.compiled = False
+        self._pending = None
+        self.keep = self._copy_now

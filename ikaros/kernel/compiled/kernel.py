@@ -177,11 +177,11 @@ def execute(block, code, first, last, params, pool, flags):
                     v = high
                 o[i] = v
         elif op == TAP:
-            row = pool[b] - 1
+            row = pool[b]
             if row >= 0 and (row + 1) * n <= params.size:
                 kept = params[row * n:row * n + n]
                 index = pool[a:a + n]
                 for i in range(n):
                     kept[i] = block[index[i]]
-                pool[b] = 0
+                pool[b] = -1
     return flagged

@@ -330,7 +330,7 @@ def compiled_gather(block: np.ndarray, src: np.ndarray, dst: np.ndarray, execute
     if tap is not None:
         k = tap.index.size
         code.insert(0, [ops.TAP, 0, k, 2 * n, 2 * n + k, 0])
-        pool += [tap.index, np.zeros(1)]
+        pool += [tap.index, np.full(1, -1)]
         params = tap.rows.reshape(-1)
     code = np.array(code, dtype=np.int64)
     pool = np.concatenate(pool).astype(np.int64)
