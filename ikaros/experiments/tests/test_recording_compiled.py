@@ -24,7 +24,7 @@ BODY = """
 <connection source="Counter.OUTPUT" target="Sum.INPUT2" delay="0"/>
 <connection source="Grid.OUTPUT" target="Acc.INPUT"/>
 """
-DATASETS = ("data", "tick", "time")
+DATASETS = ("data", "tick", "time", "real_time")
 
 
 def record(folder, compiled: str, steps: int, ticks: int, **options):
@@ -60,8 +60,10 @@ def test_the_compiled_tick_records_the_same_file(tmp_path, monkeypatch, options)
     assert tapped
     every = options.get("every", 1)
     np.testing.assert_array_equal(plain["tick"], np.arange(0, 430, every))
-    for name in DATASETS:
+    for name in ("data", "tick", "time"):
         np.testing.assert_array_equal(fast[name], plain[name])
+    for real_time in (plain["real_time"], fast["real_time"]):     # from the first row's tick
+        assert real_time[0] == 0 and np.all(np.diff(real_time) >= 0)
     np.testing.assert_array_equal(seen_fast, seen)
     np.testing.assert_array_equal(plain["data"][:-(-30 // every)], seen[::every])
 
