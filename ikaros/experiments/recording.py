@@ -5,7 +5,10 @@ blocks in memory: with the compiled tick the copy is an instruction of the compi
 that starts the next tick (an output tap, kernel/taps.py), so the kernel thread only names
 the row; without it, one NumPy gather. A full block (several HDF5 chunks) goes to a writer
 thread, which byte-shuffles and compresses it without the GIL (chunks.py) and writes each
-chunk as it stands, so compression never holds up the kernel. The file is in SWMR mode:
+chunk as it stands, so compression never holds up the kernel. While it records, the GIL's
+switch interval is short (kernel/switching.py): the writer takes the GIL back after each
+compression within a fraction of a millisecond, not the 5 ms the kernel thread would
+otherwise keep it, and so keeps up with a fast tick. The file is in SWMR mode:
 readers may open it while the run goes on, and a run that is killed leaves a file readable
 up to its last flushed chunk.
 """
@@ -23,6 +26,7 @@ from datetime import datetime, timezone
 
 import numpy as np
 
+from ..kernel import switching
 from ..module import WARNING
 from .chunks import COMPRESSION_LEVEL, shuffled, shuffled_deflate
 from .signals import module_parameters, seeds, select_outputs
@@ -102,6 +106,7 @@ class Recorder:
         self._writer = threading.Thread(target=self._write_loop, name="ikaros-recorder",
                                         daemon=True)
         self._writer.start()
+        switching.shorten()     # the writer gets the GIL back soon after each compression
         self._closed = False
         self._next = net.tick           # the next tick to record
         self._tap = net.add_tap(self._index, self._ring)
@@ -247,6 +252,7 @@ class Recorder:
         net.remove_tap(self._tap)
         self._queue.put(None)
         self._writer.join()
+        switching.restore()
         self._file.close()
         if self._error is not None:     # what was flushed stays readable, not "finished"
             raise OSError(f"writing the recording {self.filename} failed: {self._error}")
@@ -285,7 +291,7 @@ class Recorder:
         ``flush`` (a partly filled block)."""
         T, n = self.chunk_ticks, len(ticks)
         end = start + n
-        payloads = [shuffled_deflate(rows[k:k + T]) for k in range(0, n, T)]
+        payloads = shuffled_deflate(rows[:-(-n // T) * T], T)
         if end > self._data.shape[0]:
             self._data.resize(end, axis=0)
             for dataset in self._times.values():
