@@ -3,7 +3,7 @@ tick the caller picks (a recording's rows).
 
 ``keep(row)`` after a tick asks for that tick's values in ``rows[row]``. With the compiled
 tick, the copy is an instruction of the compiled call that starts the next tick (before
-anything of that tick runs), so keeping a row costs the kernel thread one store and no call;
+anything of that tick runs), so keeping a row costs the kernel thread one store (a C call);
 ``settle()`` makes a copy still pending now (before the rows are read). Without the compiled
 tick ``keep`` copies at once (one NumPy gather).
 """
