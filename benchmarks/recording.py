@@ -2,12 +2,16 @@
 
     python benchmarks/recording.py                 # 6 rounds of 20000 ticks each way
     python benchmarks/recording.py --rounds 3 --ticks 10000
+    IKAROS_COMPILED=0 python benchmarks/recording.py      # with the NumPy kernel
 
-The two kinds of run alternate (not recording, recording, ...) so that the machine's
-changing speed hits both alike. It prints, per kind, the median wall time per tick and the
-median CPU time per tick of the whole process (which includes the recorder's writer
-thread, compressing on the other core), and the extra cost in percent. The kernel
-thread's CPU time is the figure least disturbed by other work on a shared machine.
+Each run loads the model, waits for the compiled tick (when numba is installed) and runs
+100 ticks before it is timed. The two kinds of run alternate (not recording, recording,
+...) so that the machine's changing speed hits both alike. It prints, per kind, the median
+per tick of: the wall time of the run (the kernel thread's time: the cost), the kernel
+thread's CPU time (the figure least disturbed by other work on a shared machine), the CPU
+time of the whole process (with the recorder's writer thread, compressing on the other
+core), and the wall time with the recording's close (writing what is left); and the extra
+cost in percent, with the range over the rounds of the first figure.
 """
 from __future__ import annotations
 
@@ -29,21 +33,24 @@ import models  # noqa: E402
 import ikaros  # noqa: E402
 
 
-def one_run(model: str, ticks: int, record_to: str | None) -> tuple[float, float, float, int]:
-    """Wall, kernel-thread CPU and process CPU seconds per tick of ``ticks`` ticks, and the
-    recorded file's bytes."""
+def one_run(model: str, ticks: int, record_to: str | None) -> tuple:
+    """Seconds per tick of ``ticks`` ticks: wall time and kernel-thread CPU of the run,
+    process CPU and wall time with the recording's close; the recorded file's bytes; and
+    the number of compiled modules."""
     net = ikaros.load(model)
     net.run(ticks=100)                       # warm up
+    compiled = net.wait_compiled(timeout=120)
+    net.run(ticks=100)
     recorder = net.record(record_to) if record_to else None
     wall, thread, cpu = time.perf_counter(), time.thread_time(), time.process_time()
     net.run(ticks=ticks)
+    run_wall, thread = time.perf_counter() - wall, time.thread_time() - thread
     if recorder is not None:
-        recorder.close()                     # the last chunk is part of the cost
-    wall, thread = time.perf_counter() - wall, time.thread_time() - thread
-    cpu = time.process_time() - cpu
+        recorder.close()                     # writing what is left
+    wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
     net.close()
     size = os.path.getsize(record_to) if record_to else 0
-    return wall / ticks, thread / ticks, cpu / ticks, size
+    return (run_wall / ticks, thread / ticks, cpu / ticks, wall / ticks), size, compiled
 
 
 def main() -> None:
@@ -55,10 +62,12 @@ def main() -> None:
         model = models.robot_320(folder)
         h5 = os.path.join(folder, "run.h5")
         plain, recorded, size = [], [], 0
+        load = os.getloadavg()[0]
         for k in range(args.rounds):
-            plain.append(one_run(model, args.ticks, None))
-            recorded.append(one_run(model, args.ticks, h5))
-            size = recorded[-1][3]
+            figures, _, compiled = one_run(model, args.ticks, None)
+            plain.append(figures)
+            figures, size, _ = one_run(model, args.ticks, h5)
+            recorded.append(figures)
             print(f"round {k + 1}: {plain[-1][0] * 1e6:.1f} / {recorded[-1][0] * 1e6:.1f} "
                   f"us per tick", file=sys.stderr, flush=True)
         net = ikaros.load(model)
@@ -66,13 +75,18 @@ def main() -> None:
         net.close()
     def median_us(k):
         return [statistics.median(r[k] for r in runs) * 1e6 for runs in (plain, recorded)]
-    print(f"robot_320, {args.rounds} rounds of {args.ticks} ticks; recording all "
-          f"{columns} output values every tick ({size / args.ticks:.0f} bytes per tick "
-          f"in the file, {columns * 4} raw)")
-    print(f"{'':28} {'not recording':>14} {'recording':>10} {'extra':>8}")
-    for k, label in enumerate(("wall time", "kernel thread CPU", "process CPU")):
+    kernel = f"the compiled tick ({compiled} modules)" if compiled else "the NumPy kernel"
+    print(f"robot_320 with {kernel}, {args.rounds} rounds of {args.ticks} ticks; recording "
+          f"all {columns} output values every tick ({size / args.ticks:.0f} bytes per tick "
+          f"in the file, {columns * 4} raw); load average {load:.2f} before, "
+          f"{os.getloadavg()[0]:.2f} after")
+    print(f"{'us per tick':32} {'not recording':>14} {'recording':>10} {'extra':>8}")
+    for k, label in enumerate(("wall time of the run (the cost)", "kernel thread CPU",
+                               "process CPU, with close", "wall time, with close")):
         a, b = median_us(k)
-        print(f"{label + ', us per tick':28} {a:>14.1f} {b:>10.1f} {(b / a - 1) * 100:>7.1f}%")
+        print(f"{label:32} {a:>14.2f} {b:>10.2f} {(b / a - 1) * 100:>7.1f}%")
+    extra = sorted((r[0] / p[0] - 1) * 100 for p, r in zip(plain, recorded))
+    print(f"extra wall time of the run, round by round: {extra[0]:.1f} to {extra[-1]:.1f} %")
 
 
 if __name__ == "__main__":

@@ -1,15 +1,22 @@
 """Recording a run into one HDF5 file while it runs.
 
-The kernel thread copies the chosen outputs into a block of rows (one NumPy gather per
-recorded tick). A full block is one HDF5 chunk: a writer thread compresses it (byte
-shuffle and zlib, which run without the GIL) and writes it as it stands, so compression
-never holds up the kernel. The file is in SWMR mode: readers may open it while the run goes
-on, and a run that is killed leaves a file readable up to its last flushed chunk.
+The kernel thread keeps the chosen outputs of a recorded tick as one row of a ring of
+blocks in memory: with the compiled tick the copy is an instruction of the compiled call
+that starts the next tick (an output tap, kernel/taps.py), so the kernel thread only names
+the row; without it, one NumPy gather. A full block (several HDF5 chunks) goes to a writer
+thread, which byte-shuffles and compresses it without the GIL (chunks.py) and writes each
+chunk as it stands, so compression never holds up the kernel. While it records, the GIL's
+switch interval is short (kernel/switching.py): the writer takes the GIL back after each
+compression within a fraction of a millisecond, not the 5 ms the kernel thread would
+otherwise keep it, and so keeps up with a fast tick. The file is in SWMR mode:
+readers may open it while the run goes on, and a run that is killed leaves a file readable
+up to its last flushed chunk.
 """
 from __future__ import annotations
 
 import atexit
 import json
+import math
 import os
 import queue
 import sys
@@ -19,17 +26,23 @@ from datetime import datetime, timezone
 
 import numpy as np
 
+from ..kernel import switching
 from ..module import WARNING
+from .chunks import COMPRESSION_LEVEL, shuffled, shuffled_deflate
 from .signals import module_parameters, seeds, select_outputs
 
 FORMAT = "ikaros-recording"
 FORMAT_VERSION = 1
-CHUNK_BYTES = 1 << 20          # at most this many bytes of values per chunk
+# HDF5 takes about 0.1 ms (holding the GIL) per chunk written and per dataset write,
+# whatever its size: big chunks, written a block of them at a time, keep that small per tick
+CHUNK_BYTES = 4 << 20          # at most this many bytes of values per chunk
+BLOCK_BYTES = 32 << 20         # about this many per block handed to the writer
+BLOCK_ROWS = 1 << 16           # and at most this many rows
+RING_BLOCKS = 2                # the block being filled and the one being written
 FLUSH_SECONDS = 1.0            # a partly filled chunk is written after this long
 PATH_BYTES, VALUE_BYTES = 256, 4096     # room for one parameter change
 CHANGE_DTYPE = np.dtype([("tick", "<i8"), ("path", f"S{PATH_BYTES}"),
                          ("value", f"S{VALUE_BYTES}")])
-COMPRESSION_LEVEL = 1
 
 
 def h5py_module():
@@ -39,18 +52,6 @@ def h5py_module():
     except ImportError:
         raise ImportError("recording needs h5py: pip install 'ikaros[record]'") from None
     return h5py
-
-
-try:        # ISA-L's deflate writes the same format as zlib, about 8 times as fast
-    from isal.isal_zlib import compress as _deflate
-except ImportError:
-    from zlib import compress as _deflate
-
-
-def _shuffled_deflate(rows: np.ndarray) -> bytes:
-    """A chunk as HDF5's shuffle and deflate filters would store it."""
-    shuffled = np.ascontiguousarray(rows.view(np.uint8).reshape(-1, rows.itemsize).T)
-    return _deflate(shuffled, COMPRESSION_LEVEL)
 
 
 class Recorder:
@@ -71,7 +72,9 @@ class Recorder:
         self.every = int(every)
         self.signals, self._index = select_outputs(net, only)
         columns = self._index.size
-        self.chunk_ticks = max(1, min(16384, CHUNK_BYTES // (4 * max(columns, 1))))
+        row_bytes = 4 * max(columns, 1)
+        self.chunk_ticks = T = max(1, min(16384, CHUNK_BYTES // row_bytes))
+        self._block_rows = T * max(1, min(BLOCK_BYTES // (T * row_bytes), BLOCK_ROWS // T))
         self.flush_seconds = flush_seconds
         try:
             self._file = h5py.File(self.filename, "w", libver="latest")
@@ -82,21 +85,31 @@ class Recorder:
         self._create_datasets(columns)
         self._file.swmr_mode = True       # from here on readers may open it
         self._file.flush()
-        self._copy_row = self._row_copier(net.arena.block)
-        self._free: queue.SimpleQueue = queue.SimpleQueue()    # row blocks written, to reuse
-        self._start_rows()
-        self._chunk = 0                 # the chunk being filled
-        self._last_flush = time.perf_counter()     # last hand-over of a partial chunk
-        self._started = self._last_flush
-        self._file_flushed = self._last_flush
-        self._queue: queue.Queue = queue.Queue(maxsize=4)
+        shuffled(np.zeros((1, 1), np.float32))      # numba's start, before the run goes on
+        # rows past the last filled one of a block are never read, so need no clearing;
+        # its pages are touched here, not by the kernel thread's copies
+        self._ring = np.empty((RING_BLOCKS * self._block_rows, columns), np.float32)
+        self._ring.fill(0)
+        self._free: queue.SimpleQueue = queue.SimpleQueue()    # blocks free to fill
+        for block in range(RING_BLOCKS):
+            self._free.put(block)
+        self._row = 0                   # the row of the file of the block's first row
+        self._start_block()
+        # when a partly filled block is due to go to the writer, on the clock of the
+        # network's real_time (the start of a tick, in seconds since the network started)
+        self._flush_at = net.clock.real_time + flush_seconds
+        self._real_zero: float | None = None     # real_time of the first row written
+        self._file_flushed = time.perf_counter()
+        self._queue: queue.Queue = queue.Queue()
         self._error: BaseException | None = None      # set by the writer thread
         self._reported = False
         self._writer = threading.Thread(target=self._write_loop, name="ikaros-recorder",
                                         daemon=True)
         self._writer.start()
+        switching.shorten()     # the writer gets the GIL back soon after each compression
         self._closed = False
         self._next = net.tick           # the next tick to record
+        self._tap = net.add_tap(self._index, self._ring)
         hooks = net.controller.tick_hooks
         # a recording ended by the web UI's rebuild left its hook here: drop it
         hooks[:] = [h for h in hooks if not (isinstance(getattr(h, "__self__", None),
@@ -140,59 +153,53 @@ class Recorder:
                                          compression="gzip")
 
     # --- the kernel thread ---------------------------------------------------------------
-    def _row_copier(self, block: np.ndarray):
-        """What the kernel thread does per recorded tick. When the recorded values lie
-        close together in the arena, it copies the span that holds them (one memcpy) and
-        the writer thread picks the columns out of a whole chunk; otherwise it gathers."""
-        index = self._index
-        first, last = (int(index.min()), int(index.max()) + 1) if index.size else (0, 0)
-        if last - first <= 4 * index.size + 1024:
-            self._width, self._columns = last - first, index - first
-            span = block[first:last]
-            return lambda row: np.copyto(row, span)
-        self._width, self._columns = index.size, None
-        return lambda row: np.take(block, index, out=row)
-
-    def _start_rows(self) -> None:
-        T = self.chunk_ticks
-        try:        # rows past the last filled one are never read, so need no clearing
-            self._rows = self._free.get_nowait()
-        except queue.Empty:
-            self._rows = np.zeros((T, self._width), np.float32)
-        self._ticks = np.zeros(T, np.int64)
-        self._real = np.zeros(T, np.float64)
-        self._n = 0
+    def _start_block(self) -> None:
+        """Start filling a free block of the ring (waiting for the writer when none is)."""
+        self._block = self._free.get()
+        self._first = self._block * self._block_rows       # its first row in the ring
+        self._sent = 0                  # rows of it already handed over in whole chunks
+        self._ticks: list[int] = []
+        self._real: list[float] = []
 
     def hook(self) -> None:
         """After every tick: keep the outputs of the tick just done when it is due."""
         net = self.net
         tick = net.tick - 1
-        if tick < self._next or self._closed:
+        if tick < self._next:       # not due, or closed
             return
         if self._error is not None:
             self._report()
             return
         self._next = tick + self.every
-        n = self._n
-        self._copy_row(self._rows[n])
-        self._ticks[n] = tick
-        self._real[n] = now = time.perf_counter()
-        self._n = n = n + 1
-        if n == self.chunk_ticks:
+        ticks = self._ticks
+        n = len(ticks)
+        if n == self._block_rows:
             self._hand_over(full=True)
-        elif now - self._last_flush > self.flush_seconds:
+            ticks, n = self._ticks, 0
+        self._tap.keep(self._first + n)
+        ticks.append(tick)
+        now = net.clock.real_time
+        self._real.append(now)
+        if now > self._flush_at:
             self._hand_over(full=False)
 
     def _hand_over(self, full: bool) -> None:
-        n = self._n
-        rows, ticks, real = self._rows, self._ticks[:n], self._real[:n]
-        if not full:
-            rows, ticks, real = rows.copy(), ticks.copy(), real.copy()
-        self._put(("rows", self._chunk, rows, n, ticks, real))
-        self._last_flush = time.perf_counter()
+        """Give the writer the block (full), or a copy of its rows not yet written in
+        whole chunks (not full: they are written, and rewritten once the block is full)."""
+        self._tap.settle()
+        T, sent, n = self.chunk_ticks, self._sent, len(self._ticks)
+        ring = self._ring[self._first:self._first + self._block_rows]
         if full:
-            self._chunk += 1
-            self._start_rows()
+            self._put(("rows", self._row + sent, ring[sent:], self._ticks[sent:],
+                       self._real[sent:], self._block))
+            self._row += n
+            self._start_block()
+        else:
+            whole = -(-n // T) * T        # to the end of the chunk the last row is in
+            self._put(("rows", self._row + sent, ring[sent:whole].copy(),
+                       self._ticks[sent:], self._real[sent:], None))
+            self._sent = n - n % T
+        self._flush_at = self.net.clock.real_time + self.flush_seconds
 
     def parameter_changed(self, path: str, value: str) -> None:
         """Keep a parameter change with the tick from which it takes effect."""
@@ -227,10 +234,12 @@ class Recorder:
                 self.net.notify(WARNING, None, f"the recording {self.filename} failed: {e}")
 
     def close(self) -> None:
-        """Write what is left, mark the recording finished and close the file."""
+        """Write what is left, mark the recording finished and close the file. Call it
+        between ticks (from the kernel's thread while the network runs)."""
         if self._closed:
             return
         self._closed = True
+        self._next = math.inf
         atexit.unregister(self.close)
         net = self.net
         for hooks, hook in ((net.controller.tick_hooks, self.hook),
@@ -238,10 +247,12 @@ class Recorder:
                             (net.close_hooks, self._close_with_network)):
             if hook in hooks:
                 hooks.remove(hook)
-        if self._n and self._error is None:
+        if self._ticks and self._error is None:
             self._hand_over(full=False)
+        net.remove_tap(self._tap)
         self._queue.put(None)
         self._writer.join()
+        switching.restore()
         self._file.close()
         if self._error is not None:     # what was flushed stays readable, not "finished"
             raise OSError(f"writing the recording {self.filename} failed: {self._error}")
@@ -261,36 +272,41 @@ class Recorder:
             item = self._queue.get()
             if item is None:
                 return
-            if self._error is not None:
-                continue
             try:
-                if item[0] == "rows":
-                    self._write_rows(*item[1:])
-                else:
-                    self._write_change(*item[1:])
-            except Exception as e:      # reported to the kernel thread at its next hand-over
+                if self._error is None:
+                    if item[0] == "rows":
+                        self._write_rows(*item[1:5], flush=item[5] is None)
+                    else:
+                        self._write_change(*item[1:])
+            except Exception as e:      # reported to the kernel thread at its next tick
                 self._error = e
+            finally:
+                if item[0] == "rows" and item[5] is not None:
+                    self._free.put(item[5])     # the kernel thread may fill it again
 
-    def _write_rows(self, chunk: int, rows: np.ndarray, n: int, ticks, real) -> None:
-        start = chunk * self.chunk_ticks
+    def _write_rows(self, start: int, rows: np.ndarray, ticks: list, real: list,
+                    flush: bool) -> None:
+        """Write ``len(ticks)`` rows from the file's row ``start`` (the first of a chunk);
+        ``rows`` holds whole chunks. The file is flushed every ``flush_seconds``, and with
+        ``flush`` (a partly filled block)."""
+        T, n = self.chunk_ticks, len(ticks)
         end = start + n
-        block = rows
-        if self._columns is not None:
-            rows = np.take(rows, self._columns, axis=1)
-        payload = _shuffled_deflate(rows)
-        if n == self.chunk_ticks:
-            self._free.put(block)     # always a whole chunk; rows past n are 0
+        payloads = shuffled_deflate(rows[:-(-n // T) * T], T)
         if end > self._data.shape[0]:
             self._data.resize(end, axis=0)
             for dataset in self._times.values():
                 dataset.resize(end, axis=0)
         if rows.shape[1]:
-            self._data.id.write_direct_chunk((start, 0), payload)
+            for j, payload in enumerate(payloads):
+                self._data.id.write_direct_chunk((start + j * T, 0), payload)
+        ticks = np.array(ticks, np.int64)
         self._times["tick"][start:end] = ticks
         self._times["time"][start:end] = ticks * self.net.clock.tick_duration
-        self._times["real_time"][start:end] = real - self._started
+        if self._real_zero is None and real:
+            self._real_zero = real[0]
+        self._times["real_time"][start:end] = np.array(real) - (self._real_zero or 0.0)
         now = time.perf_counter()
-        if now - self._file_flushed > self.flush_seconds or n < self.chunk_ticks:
+        if flush or now - self._file_flushed > self.flush_seconds:
             self._file.flush()
             self._file_flushed = now
 

@@ -28,6 +28,7 @@ from .fusion import fuse
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .limits import check_memory as _check_memory
 from .ranges import check_parameter, fit_shape
+from .taps import OutputTap
 from .timing import Timing
 from .scope import VariableError, from_python
 from . import state as _state
@@ -81,6 +82,7 @@ class Network:
         # Observers of the run (recordings): each must be quick and must not raise.
         self.parameter_hooks: list = []    # hook(path, value) after set_parameter
         self.close_hooks: list = []        # hook() when close() is called
+        self._taps: list[OutputTap] = []   # add_tap(); the first is copied in the compiled tick
         notify = builder.notify = self.notify
         for inst in order:
             inst.module._ik_notify = notify
@@ -271,10 +273,32 @@ class Network:
             self._compiled_gather()
 
     def _compiled_gather(self) -> None:
-        """The delay-1 copies of small buffers as an instruction of the compiled tick."""
+        """The delay-1 copies of small buffers as an instruction of the compiled tick, and
+        the first output tap's copy with them."""
         if self._bulk is not None:
+            for tap in self._taps:
+                tap.unbind()
             self._delayed[0] = compiled_gather(self.arena.block, *self._bulk.indices(),
-                                               compiled.executor())
+                                               compiled.executor(),
+                                               self._taps[0] if self._taps else None)
+
+    def add_tap(self, index: np.ndarray, rows: np.ndarray) -> OutputTap:
+        """A copy of the arena values at ``index`` into the rows of ``rows`` (float32, one
+        column per index) that its ``keep(row)`` names after a tick; made in the compiled
+        tick when there is one (see taps.py). Call it between ticks."""
+        tap = OutputTap(self.arena.block, index, rows)
+        self._taps.append(tap)
+        if self.compiled_since is not None:
+            self._compiled_gather()
+        return tap
+
+    def remove_tap(self, tap: OutputTap) -> None:
+        """Stop a tap (its last row kept is copied first). Call it between ticks."""
+        tap.unbind()
+        if tap in self._taps:
+            self._taps.remove(tap)
+            if self.compiled_since is not None:
+                self._compiled_gather()
 
     def _background_plan(self) -> None:
         """Before a tick: start making the compiled plan in the background with the first

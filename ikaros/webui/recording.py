@@ -41,7 +41,8 @@ class RecordButton:
             raise ApiError(400, '"on" must be true or false')
         current = self.recorder
         if current is not None and not current.closed:
-            await run_in_threadpool(current.close)   # its network may be another one now
+            # between its network's ticks (that network may be another one now)
+            await run_in_threadpool(between_ticks, current.net, current.close)
         self.recorder = None
         if body["on"]:
             self.recorder = await run_in_threadpool(self._start)

@@ -8,32 +8,12 @@ tick, not at the load, so that it competes with ticks and never with building a 
 Starting numba costs about a second of Python imports and library loading. A thread that
 runs Python gives the GIL up only every ``sys.getswitchinterval()`` (5 ms by default), which
 would make a real-time tick that wakes up meanwhile wait that long; while the thread works,
-the interval is ``SWITCH_INTERVAL``, so a waking tick waits at most about that long."""
+the interval is short (``switching.py``), so a waking tick waits at most about that long."""
 from __future__ import annotations
 
-import sys
 import threading
 
-SWITCH_INTERVAL = 0.0002      # seconds, while a background plan is being made
-
-_lock = threading.Lock()
-_working = [0]                # background plans being made (they share the interval)
-_saved = [0.005]
-
-
-def _enter() -> None:
-    with _lock:
-        if _working[0] == 0:
-            _saved[0] = sys.getswitchinterval()
-            sys.setswitchinterval(min(_saved[0], SWITCH_INTERVAL))
-        _working[0] += 1
-
-
-def _leave() -> None:
-    with _lock:
-        _working[0] -= 1
-        if _working[0] == 0:
-            sys.setswitchinterval(_saved[0])
+from .. import switching
 
 
 class BackgroundPlan:
@@ -54,7 +34,7 @@ class BackgroundPlan:
                                        daemon=True)
 
     def start(self) -> None:
-        _enter()
+        switching.shorten()
         self.thread.start()
 
     @property
@@ -67,7 +47,7 @@ class BackgroundPlan:
         except Exception as e:            # the NumPy plan goes on; the network reports it
             self.error = e
         finally:
-            _leave()
+            switching.restore()
             self.done.set()
 
     def cancel(self) -> None:

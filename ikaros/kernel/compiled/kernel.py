@@ -15,7 +15,7 @@ import numpy as np
 from numba import njit
 
 from .ops import (ABS, ADD, CONSTANT, COPY, DIVIDE, GATHER, INTEGRATE, MAXIMUM, MINIMUM,
-                  MULTIPLY, SCALE, SUBTRACT, SUM, TANH, THRESHOLD)
+                  MULTIPLY, SCALE, SUBTRACT, SUM, TANH, TAP, THRESHOLD)
 
 _BLOCK = 128           # NumPy's pairwise summation block
 _BUFFER = 8192         # NumPy's casting buffer: a float32 array is summed in float64 chunks
@@ -176,4 +176,12 @@ def execute(block, code, first, last, params, pool, flags):
                 if high_on and v > high:
                     v = high
                 o[i] = v
+        elif op == TAP:
+            row = pool[b]
+            if row >= 0 and (row + 1) * n <= params.size:
+                kept = params[row * n:row * n + n]
+                index = pool[a:a + n]
+                for i in range(n):
+                    kept[i] = block[index[i]]
+                pool[b] = -1
     return flagged

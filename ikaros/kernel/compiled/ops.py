@@ -22,3 +22,5 @@ THRESHOLD = 12  # p = bypass, linear, threshold
 SUM = 13        # OUT[0] = the sum of A[0:N] in float64, as NumPy adds (pairwise)
 CONSTANT = 14   # OUT[i] = p[i]
 INTEGRATE = 15  # OUT = OUT * p[0] + p[1] * A, clipped to p[3] when p[2], to p[5] when p[4]
+TAP = 16        # when pool[B] = r >= 0: p[r * N + i] = arena[pool[A + i]] (row r of p), then
+                # pool[B] = -1

@@ -320,14 +320,26 @@ def _user_call(run, block, table, program):
     return call
 
 
-def compiled_gather(block: np.ndarray, src: np.ndarray, dst: np.ndarray, execute):
+def compiled_gather(block: np.ndarray, src: np.ndarray, dst: np.ndarray, execute, tap=None):
     """A copy of arena elements ``src`` to ``dst`` (the delay-1 copies of small buffers) as
-    one instruction of the compiled function."""
-    code = np.array([[ops.GATHER, 0, len(src), 0, len(src), 0]], dtype=np.int64)
-    pool = np.concatenate([src, dst]).astype(np.int64)
+    one instruction of the compiled function; with ``tap`` (a kernel.taps.OutputTap), the
+    copy of the row it keeps comes first, in the same call."""
+    n = len(src)
+    code = [[ops.GATHER, 0, n, 0, n, 0]]
+    pool = [src, dst]
     params = np.zeros(1, dtype=np.float32)
-    flags = np.zeros(1, dtype=np.int64)
+    if tap is not None:
+        k = tap.index.size
+        code.insert(0, [ops.TAP, 0, k, 2 * n, 2 * n + k, 0])
+        pool += [tap.index, np.full(1, -1)]
+        params = tap.rows.reshape(-1)
+    code = np.array(code, dtype=np.int64)
+    pool = np.concatenate(pool).astype(np.int64)
+    flags = np.zeros(len(code), dtype=np.int64)
+    if tap is not None:
+        tap.bind(pool[-1:])
+    last = len(code)
 
     def copy():
-        execute(block, code, 0, 1, params, pool, flags)
+        execute(block, code, 0, last, params, pool, flags)
     return copy
