@@ -96,16 +96,28 @@ class AsyncModule:
         else:
             change()
 
-    def finish(self) -> None:
-        """Wait for the running job and publish it, with the changes queued behind it
-        (before stop). A job or change that fails now is reported as the module's error."""
+    def wait(self, report=None) -> None:
+        """Wait for the running job and publish it, with the changes queued behind it (the
+        state is saved, loaded or reset between jobs). A job or change that fails is
+        reported by ``report`` (default: the module's fatal error, as in a tick)."""
         if self.future is not None:
             try:
                 self.future.result()
                 self._publish()
             except Exception as e:
                 self.future = None
-                self.module.error(f"{type(e).__name__}: {e}")
+                (report or self.module.fatal_error)(f"{type(e).__name__}: {e}")
+
+    def adopt_outputs(self) -> None:
+        """The module's own copies of its outputs take the public values (after a state
+        was loaded or reset), so its next job goes on from them."""
+        for public, private in self.outputs:
+            np.copyto(private, public)
+
+    def finish(self) -> None:
+        """Wait for the running job and publish it, with the changes queued behind it
+        (before stop). A job or change that fails now is reported as the module's error."""
+        self.wait(self.module.error)
         self.executor.shutdown(wait=True)
 
 

@@ -67,6 +67,16 @@ def _modules(net, scope: str | None):
     return found
 
 
+def _between_jobs(net, scope: str | None) -> list:
+    """The asynchronous jobs of the modules in ``scope``, each waited for and published:
+    their state is read or written only between two jobs (as in Ikaros 3)."""
+    jobs = [job for inst in _modules(net, scope)
+            if (job := net.async_modules.get(inst)) is not None]
+    for job in jobs:
+        job.wait()
+    return jobs
+
+
 def _ages(ring) -> list[int]:
     """Row indices of a delay line, newest first."""
     return [(ring.pos - k) % ring.depth for k in range(ring.depth)]
@@ -225,6 +235,7 @@ def apply(net, items: dict, scope: str | None = None, partial: bool = False) -> 
     """Set the state of the modules in ``scope`` from file ``items``; every item is
     checked before anything changes. With ``partial`` (a file of Ikaros 3, which keeps
     only persistent outputs) items the file lacks are left as they are."""
+    jobs = _between_jobs(net, scope)
     now = values(net, scope)
     _fit(now, items, partial)
     typed = {f"{inst.path}.{name}" for inst in _modules(net, scope)
@@ -234,11 +245,14 @@ def apply(net, items: dict, scope: str | None = None, partial: bool = False) -> 
                 for name, buf in net._buffers[inst][1].items() if buf.dynamic_array is not None}
     _write(net, scope, {p: _decode(p, items[p], t, v, p in typed, capacity.get(p))
                         for p, (_, t, v) in now.items() if p in items})
+    for job in jobs:
+        job.adopt_outputs()
 
 
 def save(net, filename: str, scope: str | None = None) -> dict:
     """Write the state of ``scope`` (all modules when empty) to ``filename``, whole or not
     at all; returns the file's header (everything but the items)."""
+    _between_jobs(net, scope)
     items = collect(net, scope)
     data = {"format": FORMAT, "tick": net.tick, "time": net.tick * net.clock.tick_duration,
             "saved_at_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(
@@ -337,10 +351,13 @@ def capture_initial(net) -> dict:
 def reset(net, scope: str | None = None) -> None:
     """Every module in ``scope`` back to its state right after init; with the whole
     network, the tick goes back to 0."""
+    jobs = _between_jobs(net, scope)
     now = values(net, scope)
     initial = {path: net.initial_state[path] for path in now}
     _write(net, scope, {path: v.array() if isinstance(v, _Zeros) else v
                         for path, v in initial.items()})
+    for job in jobs:
+        job.adopt_outputs()
     if not scope:
         net.tick = 0
         net.clock.tick = 0

@@ -1,6 +1,8 @@
 """The OpenAPI 3.1 description of the web UI's HTTP API, served at ``/api/openapi.json``."""
 from __future__ import annotations
 
+from .state import STATE_FILE_PATTERN
+
 
 def _json(schema: dict, description: str = "") -> dict:
     return {"description": description or "OK",
@@ -76,7 +78,6 @@ def _q(name: str, description: str, schema: dict, required: bool = False) -> dic
 
 _NUMBERS = {"$ref": "#/components/schemas/Numbers"}
 _STATES = ["stop", "pause", "step", "play", "fastforward", "realtime"]
-_STATE_FILE = r"^[A-Za-z0-9_][A-Za-z0-9_. -]*\.state$"
 _VALUE = {"description": "a number, bool, string, or (nested) list of numbers; text is "
                          "read as in a model file",
           "anyOf": [{"type": "number"}, {"type": "boolean"}, {"type": "string"}, _NUMBERS]}
@@ -245,7 +246,7 @@ def openapi() -> dict:
             {"type": "object", "required": ["action"], "additionalProperties": False,
              "properties": {
                  "action": {"enum": ["save", "load", "reset"]},
-                 "filename": {"type": "string", "pattern": _STATE_FILE,
+                 "filename": {"type": "string", "pattern": STATE_FILE_PATTERN,
                               "description": "a plain name in the models folder (default: "
                                              "the model's name with .state); not for reset"},
                  "scope": {"type": "string", "description": "a module or group path; "

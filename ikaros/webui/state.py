@@ -14,9 +14,10 @@ from starlette.concurrency import run_in_threadpool
 from ..kernel import state as kernel_state
 from .snapshot import between_ticks
 
-STATE_FILE = re.compile(r"[^\W][\w\-. ]*\.state\Z")
+# a plain name in the models folder: no separators, not hidden, ending in .state
+STATE_FILE = re.compile(r"[^\W][\w\-. &=+,()]*\.state\Z")
+STATE_FILE_PATTERN = r"^[A-Za-z0-9_][A-Za-z0-9_. &=+,()-]*\.state$"   # OpenAPI
 STATE_ACTIONS = ("save", "load", "reset")
-STATE_FILE_PATTERN = r"^[A-Za-z0-9_][A-Za-z0-9_. -]*\.state$"
 
 
 def default_state_file(net) -> str:
@@ -28,7 +29,8 @@ def _state_path(ui, name: str) -> str:
     from .server import ApiError
     if not isinstance(name, str) or not STATE_FILE.match(name) or ".." in name:
         raise ApiError(403, f'"{str(name)[:80]}" is not a plain state file name in the models '
-                            f'folder (letters, digits, _ - . and spaces, ending in .state)')
+                            f'folder (letters, digits, spaces and _ - . & = + , ( ), ending in '
+                            f'.state)')
     return os.path.join(ui._folder(), name)
 
 
@@ -79,7 +81,7 @@ async def state(ui, request):
             from None
     ui.hub.poke()
     answer = {"ok": True, "action": action, "tick": net.tick,
-              "scope": header.get("scope", scope or "network")}
+              "scope": scope or "network"}
     if path:
         answer["file"] = os.path.basename(path)
         answer["item_count"] = header["item_count"]

@@ -10,8 +10,8 @@ expectations are read from root attributes, as the original harness does (TESTS.
 * ``expected_output_contains`` / ``_not_contains`` / ``_once`` / ``_twice``: ``||``-separated
   texts matched against stdout plus stderr; ``expected_output_in_order``: texts that
   appear in this order (ours);
-* ``expected_file_exists`` / ``_not_exists`` / ``expected_file_contains``
-  (``path::text``);
+* ``expected_file_exists`` / ``_not_exists`` / ``expected_file_contains`` /
+  ``_not_contains`` (``path::text``; a file that cannot be read contains nothing);
 * ``initial_file`` is written with ``initial_file_contents`` before the run.
 
 ``${TEST_DIR}`` is the model's folder and ``${TMP}`` a fresh temporary folder. A model that
@@ -116,15 +116,17 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
     for file in _texts(attrs, "expected_file_not_exists"):
         if os.path.exists(expand(file)):
             unmet.append(f"a file {file}")
-    for item in _texts(attrs, "expected_file_contains"):
-        file, _, text = item.partition("::")
-        try:
-            with open(expand(file), encoding="utf-8") as f:
-                found = expand(text) in f.read()
-        except OSError:
-            found = False
-        if not found:
-            unmet.append(f"{text!r} not in {file}")
+    for key, wanted in (("expected_file_contains", True),
+                        ("expected_file_not_contains", False)):
+        for item in _texts(attrs, key):
+            file, _, text = item.partition("::")
+            try:
+                with open(expand(file), encoding="utf-8") as f:
+                    found = expand(text) in f.read()
+            except OSError:
+                found = False
+            if found != wanted:
+                unmet.append(f"{text!r} {'not ' if wanted else ''}in {file}")
     return unmet + ([f"output:\n{output}"] if unmet else [])
 
 

@@ -305,3 +305,47 @@ def test_delta_weights_are_state(tmp_path):
     net.reset_state()
     np.testing.assert_array_equal(net.modules["D"].module.weights, [0, 0])
     net.close()
+
+
+SLOW_COUNTER = '''
+import time
+from ikaros.module import Module, Output, State
+
+
+class SlowCounter(Module):
+    """Test class: each job takes 0.2 s, then counts in ``jobs`` and adds 1 to OUTPUT."""
+    jobs = State(0, "jobs finished")
+    OUTPUT = Output("jobs finished, added up on the output itself", shape=1)
+
+    def tick(self):
+        time.sleep(0.2)
+        self.jobs += 1
+        self.OUTPUT[0] += 1
+'''
+
+
+def test_an_asynchronous_module_is_saved_loaded_and_reset_between_two_jobs(tmp_path):
+    """Save, load and reset wait for the running job (and publish it); a loaded or reset
+    output is the one the module's next job goes on from."""
+    (tmp_path / "SlowCounter.py").write_text(SLOW_COUNTER)
+    path = tmp_path / "a.ikg"
+    path.write_text('<group name="G"><module class="SlowCounter" name="S" async="yes"/>'
+                    '</group>')
+    net = ikaros.load(str(path))
+    module = net.modules["S"].module
+    net.step()                                          # job 1 runs
+    state.save(net, str(tmp_path / "one.state"), "S")   # after job 1
+    items = json.loads((tmp_path / "one.state").read_text())["items"]
+    assert items["S.jobs"]["value"] == 1 and items["S.OUTPUT"]["value"] == [1.0]
+    net.step()                                          # job 2 runs
+    state.load(net, str(tmp_path / "one.state"), "S")   # after job 2: back to 1
+    assert (net.output("S.OUTPUT").tolist(), module.jobs) == ([1.0], 1)
+    net.step()                                          # job 3 goes on from 1
+    state.save(net, str(tmp_path / "two.state"), "S")
+    assert (net.output("S.OUTPUT").tolist(), module.jobs) == ([2.0], 2)
+    net.step()                                          # job 4 runs
+    state.reset(net, "S")                               # after job 4: back to 0
+    assert (net.output("S.OUTPUT").tolist(), module.jobs) == ([0.0], 0)
+    net.step()
+    net.close()                                         # waits for job 5
+    assert (net.output("S.OUTPUT").tolist(), module.jobs) == ([1.0], 1)

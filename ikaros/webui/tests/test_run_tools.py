@@ -98,6 +98,27 @@ def test_state_save_load_and_reset(client, tmp_path):
         r.json()["error"]
 
 
+def test_a_scoped_load_answers_where_it_loaded_and_file_names_may_hold_and_equals(tmp_path):
+    (tmp_path / "two.ikg").write_text('<group name="T"><module class="Constant" name="A" '
+                                      'data="1, 2"/><module class="Constant" name="B" '
+                                      'data="3, 4"/></group>')
+    net = ikaros.load(str(tmp_path / "two.ikg"))
+    net.log_level = WARNING
+    with TestClient(create_app(net)) as c:
+        name = "run a&b=c (2).state"
+        r = c.post("/api/state", json={"action": "save", "filename": name, "scope": "A"})
+        assert r.json()["file"] == name and (tmp_path / name).is_file()
+        r = c.post("/api/state", json={"action": "load", "filename": name, "scope": "B"})
+        assert r.json() == {"ok": True, "action": "load", "tick": 0, "scope": "B",
+                            "file": name, "item_count": 1}
+        assert c.get("/api/data?paths=B.OUTPUT").json()["data"] == {"B.OUTPUT": [1.0, 2.0]}
+        for refused in ("a/b.state", "..&.state", ".a=b.state", "a\\b.state", "a?b.state"):
+            r = c.post("/api/state", json={"action": "save", "filename": refused})
+            assert r.status_code == 403, refused
+    net.close()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run a&b=c (2).state", "two.ikg"]
+
+
 def test_profiling_startup_quit_and_fast_forward(client):
     c = client
     assert c.get("/api/profiling").json() == {
