@@ -68,10 +68,13 @@ class ClassEntry:
                                  self.python)
         if self.ikc:
             if cls is None:
+                script = read_file(self.ikc).attrs.get("python")
+                hint = (f'; its python="{script}" names an Ikaros 3 Python script, which this '
+                        f'project does not run (docs/language.md)' if script else "")
                 raise ModelError(f"class {self.name} is declared in "
                                  f"{os.path.basename(self.ikc)} but has no implementation "
                                  f"(no {self.name}.py beside it, no installed plugin and no "
-                                 f"standard class of that name)")
+                                 f"standard class of that name){hint}")
             desc = read_class_file(self.ikc)
             if _declares_anything(cls):
                 raise ModelError(f'class "{self.name}" is declared twice: in Python '

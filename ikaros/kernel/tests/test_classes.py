@@ -93,6 +93,19 @@ def test_a_script_beside_an_ikc_is_not_its_implementation(tmp_path):
         ikaros.load(str(tmp_path / "m.ikg"))
 
 
+def test_an_ikaros3_python_script_class_is_named_in_the_error(tmp_path):
+    (tmp_path / "Twice.ikc").write_text(IKC_CLASS.replace('<class name="Twice"',
+                                                          '<class name="Twice" python="twice.py"'))
+    (tmp_path / "twice.py").write_text("def tick(inputs, outputs):\n    pass\n")
+    (tmp_path / "m.ikg").write_text(MODEL)
+    with pytest.raises(ikaros.ModelError) as e:
+        ikaros.load(str(tmp_path / "m.ikg"))
+    assert e.value.reason.endswith('has no implementation (no Twice.py beside it, no installed '
+                                   'plugin and no standard class of that name); its '
+                                   'python="twice.py" names an Ikaros 3 Python script, which '
+                                   'this project does not run (docs/language.md)')
+
+
 SCALE_IKC = '''<class name="Scale">
     <parameter name="factor" type="float" default="1"/>
     <input name="INPUT"/>
