@@ -6,7 +6,7 @@ import { WIDGETS } from "../widgets/index.js";
 import { pickClass } from "./class-list.js";
 import { ask, files, pickFile } from "./files.js";
 import { EditorInspector } from "./inspector.js";
-import { graphOf, layout, loadElk, storedPosition } from "./layout.js";
+import { ELK_LIMIT, graphOf, layout, loadElk, storedPosition } from "./layout.js";
 import { EditorModel, GROUP_WIDGETS, clone, elements, kids, node, setWidgetBox, treeAsNetwork, viewsOf, widgetBox } from "./model.js";
 import { NetworkView } from "./network-view.js";
 import { RouteKeeper } from "./routes.js";
@@ -437,8 +437,35 @@ export class Editor {
         return this.routing;
     }
 
-    /** The routes of the open group's connections as drawn now. */
-    currentRoutes() { return this.graph ? this.routesOfGroup().routesFor(this.graph, this.positions) : new Map(); }
+    /** The routes of the open group's connections as drawn now; in a group of more than
+     *  ELK_LIMIT boxes only those near the view at once, the others while the page idles. */
+    currentRoutes() {
+        if (!this.graph) return new Map();
+        const near = this.graph.boxes.length > ELK_LIMIT && this.netView ? this.netView.visible(1) : null;
+        const routes = this.routesOfGroup().routesFor(this.graph, this.positions, near);
+        if (this.routing.pending.length) this.routeWhileIdle();
+        return routes;
+    }
+
+    /** Route the pending connections in slices of idle time, those in the drawn part of the
+     *  view first; draw again once those are routed, and when all are. */
+    routeWhileIdle() {
+        if (this.idleRouting) return;
+        const idle = (f) => window.requestIdleCallback ? requestIdleCallback(f, { timeout: 300 })
+            : setTimeout(() => f({ timeRemaining: () => 10, didTimeout: false }), 0);
+        const step = (deadline) => {
+            this.idleRouting = null;
+            const keeper = this.routing, view = this.netView;
+            if (!keeper?.pending.length || !view || this.mode !== "network") return;
+            const t0 = performance.now();
+            // a slice: the idle time left, or a few milliseconds when the page never idles
+            const more = () => deadline.timeRemaining() > 2 || (deadline.didTimeout && performance.now() - t0 < 8);
+            const { inArea, leftInArea, left } = keeper.routeSome(more, view.drawn || view.visible(1));
+            if (view.routes === keeper.current && ((inArea && !leftInArea) || (!left && !view.drawn))) view.draw();
+            if (left) this.idleRouting = idle(step);
+        };
+        this.idleRouting = idle(step);
+    }
 
     /** The keys of the subgroups of a group whose unused ports are shown. */
     expandedPorts(groupPath) {
