@@ -325,7 +325,8 @@ export class Editor {
 
     async autoLayout() {
         if (!this.graph) return;
-        const { positions, routes } = await layout(this.graph, { force: true });
+        const quick = await layout(this.graph, { force: true });
+        const { positions, routes } = (quick.later && await quick.later) || quick;   // a big group: elkjs's
         this.keepRoutes(this.graph, routes, positions);
         this.edit("auto layout", () => {
             for (const b of this.graph.boxes) {
@@ -424,6 +425,22 @@ export class Editor {
     cut() {
         this.copy();
         if (this.clipboard) this.deleteSelection();
+    }
+
+    /** elkjs's layout of a big group, from a Web Worker, in place of the quick one, unless
+     *  the group was edited or left meanwhile; fitted to the view again if it was fitted
+     *  (at transform ``fit``) and not panned or zoomed since. */
+    async layoutArrives(later, seq, fit) {
+        const result = await later;
+        if (seq !== this.renderSeq || this.mode !== "network" || !this.netView) return;
+        if (result) {
+            this.keepRoutes(this.graph, result.routes, result.positions);
+            this.positions = result.positions;
+        }
+        this.host.dataset.layout = "automatic";
+        this.redraw();
+        const t = this.netView.t;
+        if (result && fit && t.k === fit.k && t.x === fit.x && t.y === fit.y) this.netView.fit();
     }
 
     /** Keep the routes of an automatic layout of the open group. */
@@ -722,20 +739,22 @@ export class Editor {
                 this.netView.shownGroup = null;
             }
             const graph = graphOf(g, this.classes, this.expandedPorts(this.groupPath));
-            const { positions, automatic, routes } = await layout(graph);
+            const { positions, automatic, routes, later } = await layout(graph);
             if (seq !== this.renderSeq) return;
             this.keepRoutes(graph, routes, positions);
             this.graph = graph;
             this.positions = positions;
             this.automatic = automatic;
-            this.host.dataset.layout = automatic ? "automatic" : "stored";
+            this.host.dataset.layout = later ? "quick" : automatic ? "automatic" : "stored";
             this.redraw();
+            const fitted = this.netView.shownGroup !== this.groupPath && !this.transforms.get(this.groupPath);
             if (this.netView.shownGroup !== this.groupPath) {
                 this.netView.shownGroup = this.groupPath;
                 const t = this.transforms.get(this.groupPath);
                 if (t) this.netView.setTransform(t); else this.netView.fit();
             }
             this.host.dataset.ready = String(seq);
+            if (later) this.layoutArrives(later, seq, fitted ? { ...this.netView.t } : null);
         } else {
             if (this.netView) { this.transforms.set(this.groupPath, this.netView.t); this.netView.destroy(); this.netView = null; }
             if (!this.viewEditor) {
