@@ -1,10 +1,11 @@
 """Web UI editor benchmark: first paint, zoom and pan of big groups in headless Chromium.
 
-    python benchmarks/editor.py     # robot_320 (its top group), chains of 320 and 2000 modules
+    python benchmarks/editor.py     # robot_320 (its top group), chains of 320 and 2000 modules,
+                                    # a chain of 2000 with connections that skip 3 modules
 
-For each model (benchmarks/models.py, written to a temporary folder) it serves the model
-with ``ikaros -w PORT`` on 127.0.0.1, opens the page in /usr/bin/chromium, lets the page
-idle (the class list arrives meanwhile), then prints:
+For each model (benchmarks/models.py and skip_chain below, written to a temporary folder)
+it serves the model with ``ikaros -w PORT`` on 127.0.0.1, opens the page in
+/usr/bin/chromium, lets the page idle (the class list arrives meanwhile), then prints:
 
 * first paint: from the click on Edit to two animation frames after the network is drawn;
 * zoom: frames per second while a wheel event is sent on every animation frame for 2 s;
@@ -97,10 +98,25 @@ def measure(model: str) -> None:
           f"routes {routes:4d} in {route_ms:4.0f} ms at once")
 
 
+def skip_chain(folder: str, n: int) -> str:
+    """A flat group of ``n`` modules in a chain, each also fed by the module four places
+    back: connections that must go around the boxes they pass. Returns the file's path."""
+    lines = ['<?xml version="1.0"?>', f'<group name="SkipChain{n}">',
+             '    <module class="Constant" name="M0" data="1" />']
+    lines += [f'    <module class="Add" name="M{i}" />' for i in range(1, n)]
+    for i in range(1, n):
+        lines.append(f'    <connection source="M{i - 1}.OUTPUT" target="M{i}.INPUT1" />')
+        lines.append(f'    <connection source="M{max(0, i - 4)}.OUTPUT" target="M{i}.INPUT2" />')
+    path = os.path.join(folder, f"skip_chain_{n}.ikg")
+    with open(path, "w") as f:
+        f.write("\n".join(lines + ["</group>", ""]))
+    return path
+
+
 def main() -> None:
     with tempfile.TemporaryDirectory() as folder:
         for model in (models.robot_320(folder), models.chain(folder, 320),
-                      models.chain(folder, 2000)):
+                      models.chain(folder, 2000), skip_chain(folder, 2000)):
             measure(model)
 
 
