@@ -182,17 +182,21 @@ function signature(graph) {
 const REPLACED = "replaced by a newer layout";
 let working = null;             // {worker, reject} of the layout in a Web Worker
 
-/** An elkjs layout computed in a Web Worker (elk-worker.js); one at a time, a newer one
- *  replaces the one under way. */
+/** An elkjs layout computed in a Web Worker (elk-worker.js), started once the page idles
+ *  (after the quick layout is painted); one at a time, a newer one replaces the one under way. */
 function layoutInWorker(input) {
-    if (working) { working.worker.terminate(); working.reject(new Error(REPLACED)); }
+    if (working) { working.worker?.terminate(); working.reject(new Error(REPLACED)); }
     return new Promise((resolve, reject) => {
-        const worker = new Worker("/static/editor/elk-worker.js");
-        const me = working = { worker, reject };
-        const done = () => { worker.terminate(); if (working === me) working = null; };
-        worker.onmessage = (e) => { done(); if (e.data.error) reject(new Error(e.data.error)); else resolve(e.data.graph); };
-        worker.onerror = (e) => { done(); reject(new Error(e.message || "the layout worker failed")); };
-        worker.postMessage(input);
+        const me = working = { worker: null, reject };
+        const start = () => {
+            if (working !== me) return;
+            const worker = me.worker = new Worker("/static/editor/elk-worker.js");
+            const done = () => { worker.terminate(); if (working === me) working = null; };
+            worker.onmessage = (e) => { done(); if (e.data.error) reject(new Error(e.data.error)); else resolve(e.data.graph); };
+            worker.onerror = (e) => { done(); reject(new Error(e.message || "the layout worker failed")); };
+            worker.postMessage(input);
+        };
+        if (window.requestIdleCallback) requestIdleCallback(start, { timeout: 500 }); else setTimeout(start, 100);
     });
 }
 
