@@ -8,10 +8,13 @@ import { edgeKey, portOffset } from "./layout.js";
 import { RectIndex, crosses, orthogonalRoute, segmentBox, segmentIndex } from "./router.js";
 
 const NEAR = 30;    // a route this close to a box that moved is routed again
+const REACH = 700;  // how far around its ends a new route may run (router.js searches 600 first)
 
 const rectOf = (b, p) => [p.x, p.y, p.x + b.w, p.y + b.h];
 const sameRect = (a, b) => a && b && a[0] === b[0] && a[1] === b[1] && a[2] === b[2] && a[3] === b[3];
 const segmentsOf = (pts) => pts.slice(1).map((p, i) => [pts[i], p]);
+const boundsOf = (pts) => [[Math.min(...pts.map((p) => p[0])), Math.min(...pts.map((p) => p[1]))],
+    [Math.max(...pts.map((p) => p[0])), Math.max(...pts.map((p) => p[1]))]];
 const touches = (r, area) => r[0] <= area[2] && r[2] >= area[0] && r[1] <= area[3] && r[3] >= area[1];
 
 export class RouteKeeper {
@@ -64,24 +67,39 @@ export class RouteKeeper {
             if (!ends) continue;
             const [a, b] = ends, key = edgeKey(e);
             const r = this.routes.get(key);
+            // a route found clear of every box needs checking only against the boxes that moved
             const kept = r && r.a.x === a.x && r.a.y === a.y && r.b.x === b.x && r.b.y === b.y &&
-                !segmentsOf(r.pts).some(([p, q]) => through(p, q, changed, 0) || through(p, q, all, 1));
-            if (kept) out.set(key, r.pts); else todo.push([key, a, b]);
+                !segmentsOf(r.pts).some(([p, q]) => through(p, q, changed, 0) || (!r.clear && through(p, q, all, 1)));
+            if (kept) { r.clear = true; out.set(key, r.pts); } else todo.push([key, a, b]);
         }
-        // the new routes keep beside the others' segments
-        this.index = { all, segments: segmentIndex([...out.values()].flatMap(segmentsOf)) };
         this.current = out;
         this.pending = [];
+        const now = [];
         for (const job of todo) {
-            if (area && !touches(segmentBox([job[1].x, job[1].y], [job[2].x, job[2].y]), area)) this.pending.push(job);
-            else this.route(job);
+            if (area && !touches(segmentBox([job[1].x, job[1].y], [job[2].x, job[2].y]), area)) {
+                this.pending.push(job);
+                this.routes.delete(job[0]);
+            } else now.push(job);
         }
+        // the new routes keep beside the others' segments: those within reach of the new
+        // routes, all of them when some wait for later
+        let reach = null;
+        for (const [, a, b] of this.pending.length ? [] : now) {
+            const r = segmentBox([a.x, a.y], [b.x, b.y], REACH);
+            reach = reach ? [Math.min(reach[0], r[0]), Math.min(reach[1], r[1]), Math.max(reach[2], r[2]), Math.max(reach[3], r[3])] : r;
+        }
+        const segments = [];
+        if (now.length || this.pending.length) {
+            for (const pts of out.values()) if (!reach || touches(segmentBox(...boundsOf(pts)), reach)) segments.push(...segmentsOf(pts));
+        }
+        this.index = { all, segments: segmentIndex(segments) };
+        for (const job of now) this.route(job);
         return out;
     }
 
     route([key, a, b]) {
         const pts = orthogonalRoute(a, b, this.index.all, this.index.segments);
-        this.routes.set(key, { a, b, pts });
+        this.routes.set(key, { a, b, pts, clear: false });
         this.current.set(key, pts);
         for (const s of segmentsOf(pts)) this.index.segments.add(s, segmentBox(s[0], s[1]));
     }
