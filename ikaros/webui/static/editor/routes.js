@@ -47,8 +47,8 @@ export class RouteKeeper {
 
     /**
      * The route of every connection of ``graph`` at ``positions``: Map edgeKey -> points.
-     * With an ``area`` ([x0, y0, x1, y1]), a connection to be routed anew whose ends both lie
-     * outside it is left out and waits in ``pending`` for routeSome.
+     * With an ``area`` ([x0, y0, x1, y1]), a connection to be routed anew whose ends span a
+     * rectangle apart from it is left out and waits in ``pending`` for routeSome.
      */
     routesFor(graph, positions, area = null) {
         const out = new Map();
