@@ -2,7 +2,8 @@
 (issue 16, part 10), in a real headless Chromium against the real server: orthogonal
 segments only, none through a box, attached to their ports, delay badges on their own
 connection and clear of each other and of the boxes, no two connections of different
-ports on top of each other.
+ports on top of each other; in a flat group of 320 modules too, with its quick layout and
+with elkjs's from a Web Worker.
 
 Screenshots are kept in test-artifacts/."""
 from __future__ import annotations
@@ -213,6 +214,129 @@ def test_stored_positions_are_routed_with_crossing_connections_side_by_side(tmp_
         verticals = sorted(p[0] for e in r["edges"] for p, q in zip(e["points"], e["points"][1:]) if p[0] == q[0])
         assert len(verticals) == 2 and verticals[1] - verticals[0] >= 6, r["edges"]
         page.screenshot(path=os.path.join(ARTIFACTS, "routing-crossed.png"))
+        assert not page.errors, page.errors
+
+    in_own_browser(str(model), lambda s, p: None, check)
+
+
+def flat_group(n):
+    """A flat group of ``n`` modules: a chain, and from every module a connection that skips
+    the next three (over or under them), with delays 1 to 3."""
+    lines = ['<?xml version="1.0"?>', '<group name="Big">', '    <module class="Constant" name="M0" data="1" />']
+    lines += [f'    <module class="Add" name="M{i}" />' for i in range(1, n)]
+    for i in range(1, n):
+        lines.append(f'    <connection source="M{i - 1}.OUTPUT" target="M{i}.INPUT1" delay="{1 + i % 3}" />')
+        lines.append(f'    <connection source="M{max(0, i - 4)}.OUTPUT" target="M{i}.INPUT2" />')
+    return "\n".join(lines + ["</group>", ""])
+
+
+# boxes, connection points and badges (text, rectangle, connection), read in one go
+BIG_DRAWING = """() => {
+    const svg = document.querySelector('#editor-host svg');
+    const boxes = {};
+    for (const g of svg.querySelectorAll('g.box-group')) {
+        const m = /translate\\(([-\\d.]+),([-\\d.]+)\\)/.exec(g.getAttribute('transform')), r = g.querySelector('rect.box');
+        boxes[g.dataset.key] = [+m[1], +m[2], +m[1] + +r.getAttribute('width'), +m[2] + +r.getAttribute('height')];
+    }
+    const edges = window.ikaros.editor.graph.edges.map((e, i) => {
+        const g = svg.querySelector(`g.edge[data-edge='${i}']`);
+        const d = g.querySelector('path.edge-line').getAttribute('d');
+        return {i, d, routed: g.classList.contains('routed'), from: e.from.box.key, to: e.to.box.key,
+            points: (d.match(/-?[\\d.]+,-?[\\d.]+/g) || []).map((p) => p.split(',').map(Number))};
+    });
+    const labels = [...svg.querySelectorAll('g.edge-label')].map((g) => {
+        const r = g.querySelector('rect');
+        return {edge: +g.dataset.edge, text: g.querySelector('text').textContent,
+            box: [+r.getAttribute('x'), +r.getAttribute('y'), +r.getAttribute('x') + +r.getAttribute('width'), +r.getAttribute('y') + +r.getAttribute('height')]};
+    });
+    return {boxes, edges, labels};
+}"""
+
+
+def distance_to_polyline(x, y, pts):
+    best = float("inf")
+    for p, q in zip(pts, pts[1:]):
+        cx, cy = min(max(x, min(p[0], q[0])), max(p[0], q[0])), min(max(y, min(p[1], q[1])), max(p[1], q[1]))
+        best = min(best, ((cx - x) ** 2 + (cy - y) ** 2) ** 0.5)
+    return best
+
+
+def check_big_drawing(page, n):
+    """Every connection of the flat group routed through no box but its ends'; every badge
+    on its own connection, clear of the boxes and of the other badges."""
+    page.wait_for_function("() => window.ikaros.editor.routing && !window.ikaros.editor.routing.pending.length", timeout=20_000)
+    page.wait_for_function(f"() => document.querySelectorAll('#editor-host g.edge.routed').length === {2 * (n - 1)}", timeout=5_000)
+    r = page.evaluate(BIG_DRAWING)
+    assert len(r["boxes"]) == n and len(r["edges"]) == 2 * (n - 1)
+    # boxes in buckets of 200 units, so that each segment is checked against its neighbours
+    buckets = {}
+    for key, b in r["boxes"].items():
+        for i in range(int(b[0] // 200), int(b[2] // 200) + 1):
+            for j in range(int(b[1] // 200), int(b[3] // 200) + 1):
+                buckets.setdefault((i, j), []).append((key, b))
+    for e in r["edges"]:
+        assert e["routed"] and not re.search("[CcQqAa]", e["d"]), e
+        for p, q in zip(e["points"], e["points"][1:]):
+            assert p[0] == q[0] or p[1] == q[1], (e, p, q)
+            near = {key: b for i in range(int(min(p[0], q[0]) // 200), int(max(p[0], q[0]) // 200) + 1)
+                    for j in range(int(min(p[1], q[1]) // 200), int(max(p[1], q[1]) // 200) + 1)
+                    for key, b in buckets.get((i, j), [])}
+            for key, box in near.items():
+                if key not in (e["from"], e["to"]):
+                    assert not crosses(p, q, box), (e["i"], p, q, key, box)
+    labels = r["labels"]
+    assert sorted(x["text"] for x in labels) == sorted([str(1 + i % 3) for i in range(1, n)] + ["1"] * (n - 1))
+    for i, x in enumerate(labels):
+        b = x["box"]
+        assert distance_to_polyline((b[0] + b[2]) / 2, (b[1] + b[3]) / 2, r["edges"][x["edge"]]["points"]) < 1.0, x
+        assert not any(overlap(b, box) for box in r["boxes"].values()), x
+        assert not any(overlap(b, y["box"]) for y in labels[i + 1:]), x
+    return r
+
+
+HOLD_WORKERS = """() => {
+    const Real = window.Worker;
+    window.heldWorkers = [];
+    window.Worker = class extends Real {
+        postMessage(m) { window.heldWorkers.push(() => super.postMessage(m)); }
+    };
+}"""
+
+
+def test_a_group_of_320_modules_is_routed_around_its_boxes(tmp_path):
+    """More than 300 boxes: drawn at once with a quick layout whose connections near the view
+    are routed before the first paint, the others while the page idles; then elkjs's layout
+    arrives from a Web Worker. Each time all connections run around the boxes, also after a
+    box is moved."""
+    model = tmp_path / "big.ikg"
+    model.write_text(flat_group(320))
+    os.makedirs(ARTIFACTS, exist_ok=True)
+
+    def check(server, page):
+        # the layout worker's graph is held back until the quick layout is checked
+        page.evaluate(HOLD_WORKERS)
+        page.click("#toggle-editor")
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        # drawn at once with a quick layout, its connections routed by the editor
+        assert page.get_attribute("#editor-host", "data-layout") == "quick"
+        quick = check_big_drawing(page, 320)
+        assert page.get_attribute("#editor-host", "data-layout") == "quick"
+        page.evaluate("() => window.heldWorkers.forEach((go) => go())")
+        # the quick layout puts the chain in a row: the skips go around the boxes they pass
+        skip = next(e for e in quick["edges"] if e["from"] == "c:M10" and e["to"] == "c:M14")
+        assert len(skip["points"]) > 2, skip
+        # then elkjs's layout from a Web Worker, with its routes
+        page.wait_for_selector("#editor-host[data-layout='automatic']", timeout=20_000)
+        first = check_big_drawing(page, 320)
+        assert first["boxes"] != quick["boxes"]
+        page.evaluate("() => window.ikaros.editor.netView.setTransform({k: 1, x: 20, y: 150})")
+        page.screenshot(path=os.path.join(ARTIFACTS, "routing-big-0.png"))
+
+        # M2 moved down onto the skips' channel: every connection still clear
+        drag_box(page, "M2", 0, 150)
+        moved = check_big_drawing(page, 320)
+        assert abs(moved["boxes"]["c:M2"][1] - first["boxes"]["c:M2"][1] - 150) <= 5   # snapped to 10 units
+        page.screenshot(path=os.path.join(ARTIFACTS, "routing-big-1-moved.png"))
         assert not page.errors, page.errors
 
     in_own_browser(str(model), lambda s, p: None, check)

@@ -6,7 +6,7 @@ import { WIDGETS } from "../widgets/index.js";
 import { pickClass } from "./class-list.js";
 import { ask, files, pickFile } from "./files.js";
 import { EditorInspector } from "./inspector.js";
-import { graphOf, layout, loadElk, storedPosition } from "./layout.js";
+import { ELK_LIMIT, graphOf, layout, loadElk, storedPosition } from "./layout.js";
 import { EditorModel, GROUP_WIDGETS, clone, elements, kids, node, setWidgetBox, treeAsNetwork, viewsOf, widgetBox } from "./model.js";
 import { NetworkView } from "./network-view.js";
 import { RouteKeeper } from "./routes.js";
@@ -325,7 +325,8 @@ export class Editor {
 
     async autoLayout() {
         if (!this.graph) return;
-        const { positions, routes } = await layout(this.graph, { force: true });
+        const quick = await layout(this.graph, { force: true });
+        const { positions, routes } = (quick.later && await quick.later) || quick;   // a big group: elkjs's
         this.keepRoutes(this.graph, routes, positions);
         this.edit("auto layout", () => {
             for (const b of this.graph.boxes) {
@@ -426,6 +427,22 @@ export class Editor {
         if (this.clipboard) this.deleteSelection();
     }
 
+    /** elkjs's layout of a big group, from a Web Worker, in place of the quick one, unless
+     *  the group was edited or left meanwhile; fitted to the view again if it was fitted
+     *  (at transform ``fit``) and not panned or zoomed since. */
+    async layoutArrives(later, seq, fit) {
+        const result = await later;
+        if (seq !== this.renderSeq || this.mode !== "network" || !this.netView) return;
+        if (result) {
+            this.keepRoutes(this.graph, result.routes, result.positions);
+            this.positions = result.positions;
+        }
+        this.host.dataset.layout = "automatic";
+        this.redraw();
+        const t = this.netView.t;
+        if (result && fit && t.k === fit.k && t.x === fit.x && t.y === fit.y) this.netView.fit();
+    }
+
     /** Keep the routes of an automatic layout of the open group. */
     keepRoutes(graph, routes, positions) {
         if (routes) this.routesOfGroup().keepLayout(graph, routes, positions);
@@ -437,8 +454,35 @@ export class Editor {
         return this.routing;
     }
 
-    /** The routes of the open group's connections as drawn now. */
-    currentRoutes() { return this.graph ? this.routesOfGroup().routesFor(this.graph, this.positions) : new Map(); }
+    /** The routes of the open group's connections as drawn now; in a group of more than
+     *  ELK_LIMIT boxes only those near the view at once, the others while the page idles. */
+    currentRoutes() {
+        if (!this.graph) return new Map();
+        const near = this.graph.boxes.length > ELK_LIMIT && this.netView ? this.netView.visible(1) : null;
+        const routes = this.routesOfGroup().routesFor(this.graph, this.positions, near);
+        if (this.routing.pending.length) this.routeWhileIdle();
+        return routes;
+    }
+
+    /** Route the pending connections in slices of idle time, those in the drawn part of the
+     *  view first; draw again once those are routed, and when all are. */
+    routeWhileIdle() {
+        if (this.idleRouting) return;
+        const idle = (f) => window.requestIdleCallback ? requestIdleCallback(f, { timeout: 300 })
+            : setTimeout(() => f({ timeRemaining: () => 10, didTimeout: false }), 0);
+        const step = (deadline) => {
+            this.idleRouting = null;
+            const keeper = this.routing, view = this.netView;
+            if (!keeper?.pending.length || !view || this.mode !== "network") return;
+            const t0 = performance.now();
+            // a slice: the idle time left, or a few milliseconds when the page never idles
+            const more = () => deadline.timeRemaining() > 2 || (deadline.didTimeout && performance.now() - t0 < 8);
+            const { inArea, leftInArea, left } = keeper.routeSome(more, view.drawn || view.visible(1));
+            if (view.routes === keeper.current && ((inArea && !leftInArea) || (!left && !view.drawn))) view.draw();
+            if (left) this.idleRouting = idle(step);
+        };
+        this.idleRouting = idle(step);
+    }
 
     /** The keys of the subgroups of a group whose unused ports are shown. */
     expandedPorts(groupPath) {
@@ -695,20 +739,22 @@ export class Editor {
                 this.netView.shownGroup = null;
             }
             const graph = graphOf(g, this.classes, this.expandedPorts(this.groupPath));
-            const { positions, automatic, routes } = await layout(graph);
+            const { positions, automatic, routes, later } = await layout(graph);
             if (seq !== this.renderSeq) return;
             this.keepRoutes(graph, routes, positions);
             this.graph = graph;
             this.positions = positions;
             this.automatic = automatic;
-            this.host.dataset.layout = automatic ? "automatic" : "stored";
+            this.host.dataset.layout = later ? "quick" : automatic ? "automatic" : "stored";
             this.redraw();
+            const fitted = this.netView.shownGroup !== this.groupPath && !this.transforms.get(this.groupPath);
             if (this.netView.shownGroup !== this.groupPath) {
                 this.netView.shownGroup = this.groupPath;
                 const t = this.transforms.get(this.groupPath);
                 if (t) this.netView.setTransform(t); else this.netView.fit();
             }
             this.host.dataset.ready = String(seq);
+            if (later) this.layoutArrives(later, seq, fitted ? { ...this.netView.t } : null);
         } else {
             if (this.netView) { this.transforms.set(this.groupPath, this.netView.t); this.netView.destroy(); this.netView = null; }
             if (!this.viewEditor) {

@@ -2,7 +2,8 @@
 // layered, left to right along the data flow) for groups whose file gives no _x, _y.
 import { kids, elements, splitAddress } from "./model.js";
 
-export const ELK_LIMIT = 300;   // boxes; a bigger group is laid out by simpleLayout
+export const ELK_LIMIT = 300;   // boxes; a bigger group is drawn first with simpleLayout
+const KEPT_LAYOUTS = 4;         // elkjs layouts of big groups kept for when they are shown again
 export const BOX_W = 170, HEADER = 38, PORT_H = 18, PIN_W = 120, PIN_H = 26;
 
 /**
@@ -131,28 +132,72 @@ export function loadElk() {
 
 /**
  * Positions for every box of a graph: Map(key -> {x, y}). Stored _x/_y are used when
- * every component has them; otherwise the whole group is laid out automatically. Pins
- * (group inputs, outputs, outside addresses) sit at the left and right edges.
+ * every component has them; otherwise the whole group is laid out automatically, with
+ * elkjs's routes (Map edgeKey -> points). Pins (group inputs, outputs, outside addresses) sit
+ * at the left and right edges. A group of more than ELK_LIMIT boxes is laid out by
+ * simpleLayout at once and by elkjs in a Web Worker: ``later`` is the promise of that
+ * layout ({positions, routes}, null when elkjs failed or a newer layout replaced it).
  */
 export async function layout(graph, { force = false } = {}) {
     const comps = graph.boxes.filter(isComponent);
     const stored = new Map(comps.map((b) => [b.key, storedPosition(b)]));
     const manual = !force && comps.length > 0 && comps.every((b) => stored.get(b.key));
-    let pos, routes = null;
+    let pos, routes = null, later = null;
     if (manual) {
         pos = new Map(comps.map((b) => [b.key, stored.get(b.key)]));
         placePins(graph, pos);
+    } else if (graph.boxes.length > ELK_LIMIT) {
+        const sign = signature(graph), kept = bigLayouts.get(sign);
+        if (kept) { pos = new Map(kept.pos); routes = kept.routes; }
+        else {
+            pos = simpleLayout(graph);
+            later = elkLayout(graph, layoutInWorker).then((r) => {
+                bigLayouts.delete(sign);
+                bigLayouts.set(sign, r);
+                if (bigLayouts.size > KEPT_LAYOUTS) bigLayouts.delete(bigLayouts.keys().next().value);
+                return { positions: new Map(r.pos), routes: r.routes };
+            }, (e) => {
+                if (e.message !== REPLACED) console.warn("elk layout failed, keeping the simple one:", e);
+                return null;
+            });
+        }
     } else {
         try {
-            // elkjs takes seconds on thousands of boxes: big groups get the simple layout
-            if (graph.boxes.length > ELK_LIMIT) pos = simpleLayout(graph);
-            else ({ pos, routes } = await elkLayout(graph));
+            ({ pos, routes } = await elkLayout(graph, async (g) => new (await loadElk())().layout(g)));
         } catch (e) {
             console.warn("elk layout failed, using the simple one:", e);
             pos = simpleLayout(graph);
         }
     }
-    return { positions: pos, automatic: !manual, routes };
+    return { positions: pos, automatic: !manual, routes, later };
+}
+
+const bigLayouts = new Map();   // signature -> elkjs's {pos, routes}, the oldest first
+
+/** What a layout depends on: the boxes with their sizes and ports, and the connections. */
+function signature(graph) {
+    return JSON.stringify([graph.boxes.map((b) => [b.key, b.w, b.h, b.inputs, b.outputs]), graph.edges.map(edgeKey)]);
+}
+
+const REPLACED = "replaced by a newer layout";
+let working = null;             // {worker, reject} of the layout in a Web Worker
+
+/** An elkjs layout computed in a Web Worker (elk-worker.js), started once the page idles
+ *  (after the quick layout is painted); one at a time, a newer one replaces the one under way. */
+function layoutInWorker(input) {
+    if (working) { working.worker?.terminate(); working.reject(new Error(REPLACED)); }
+    return new Promise((resolve, reject) => {
+        const me = working = { worker: null, reject };
+        const start = () => {
+            if (working !== me) return;
+            const worker = me.worker = new Worker("/static/editor/elk-worker.js");
+            const done = () => { worker.terminate(); if (working === me) working = null; };
+            worker.onmessage = (e) => { done(); if (e.data.error) reject(new Error(e.data.error)); else resolve(e.data.graph); };
+            worker.onerror = (e) => { done(); reject(new Error(e.message || "the layout worker failed")); };
+            worker.postMessage(input);
+        };
+        if (window.requestIdleCallback) requestIdleCallback(start, { timeout: 500 }); else setTimeout(start, 100);
+    });
 }
 
 function placePins(graph, pos) {
@@ -172,9 +217,8 @@ function placePins(graph, pos) {
 /** What names a connection across layouts: its source and target as written. */
 export function edgeKey(e) { return `${e.node?.attrs.source}>${e.node?.attrs.target || e.node?.attrs.name}`; }
 
-async function elkLayout(graph) {
-    const ELK = await loadElk();
-    const elk = new ELK();
+/** elkjs's layout of a graph ({pos, routes}); ``run`` lays out an elkjs graph. */
+async function elkLayout(graph, run) {
     const pid = (b, side, port) => `${b.key}|${side}|${port}`;
     const children = graph.boxes.map((b) => {
         const ports = [
@@ -189,7 +233,7 @@ async function elkLayout(graph) {
     const edges = graph.edges.map((e, i) => [e, i]).filter(([e]) => e.from.box && e.to.box).map(([e, i]) => ({
         id: "e" + i, sources: [pid(e.from.box, "out", e.from.port)], targets: [pid(e.to.box, "in", e.to.port)],
     }));
-    const result = await elk.layout({
+    const result = await run({
         id: "root",
         layoutOptions: {
             "org.eclipse.elk.algorithm": "layered",

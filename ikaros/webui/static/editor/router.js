@@ -5,6 +5,8 @@
 // clearance from every box: the shortest such path with the fewest bends (A* over the lines
 // through the boxes' sides and the middles between them, with a cost per bend), its inner
 // segments then centred in their channels, beside (not on) other connections' segments.
+// Boxes and segments are looked up in grid buckets (RectIndex), so that a route in a group of
+// thousands of boxes costs what one among its neighbours costs.
 
 const CLEARANCE = 10;      // drawing units kept free around boxes
 const STUB = 20;           // straight run out of a port and into one
@@ -22,19 +24,77 @@ export function crosses(p, q, r, inset = 1) {
         Math.min(p[1], q[1]) < r[3] - inset && Math.max(p[1], q[1]) > r[1] + inset;
 }
 
+const CELL = 256;          // the grid bucket of RectIndex, in drawing units
+
+/** The bounding box of segment p-q widened by ``m``. */
+export const segmentBox = (p, q, m = 0) =>
+    [Math.min(p[0], q[0]) - m, Math.min(p[1], q[1]) - m, Math.max(p[0], q[0]) + m, Math.max(p[1], q[1]) + m];
+
+/** Items with bounding boxes ([x0, y0, x1, y1]) in grid buckets: those near an area are
+ *  found without looking at all of them. */
+export class RectIndex {
+    /** ``items``: rectangles (their own boxes), or [item, box] pairs with ``boxOf`` null. */
+    constructor(items = [], boxOf = (r) => r) {
+        this.cells = new Map();
+        this.boxes = new Map();
+        this.bounds = null;
+        for (const it of items) this.add(it, boxOf(it));
+    }
+
+    get size() { return this.boxes.size; }
+
+    add(item, box = item) {
+        this.boxes.set(item, box);
+        const b = this.bounds;
+        this.bounds = b ? [Math.min(b[0], box[0]), Math.min(b[1], box[1]), Math.max(b[2], box[2]), Math.max(b[3], box[3])] : [...box];
+        for (let i = Math.floor(box[0] / CELL); i <= Math.floor(box[2] / CELL); i++) {
+            for (let j = Math.floor(box[1] / CELL); j <= Math.floor(box[3] / CELL); j++) {
+                const k = i * 65536 + j;
+                const list = this.cells.get(k);
+                if (list) list.push(item); else this.cells.set(k, [item]);
+            }
+        }
+    }
+
+    /** The items whose boxes touch ``area`` (sides included). */
+    near(area) {
+        if (!this.bounds) return [];
+        const a = [Math.max(area[0], this.bounds[0]), Math.max(area[1], this.bounds[1]), Math.min(area[2], this.bounds[2]), Math.min(area[3], this.bounds[3])];
+        if (a[0] > a[2] || a[1] > a[3]) return [];
+        const out = [], seen = new Set();
+        for (let i = Math.floor(a[0] / CELL); i <= Math.floor(a[2] / CELL); i++) {
+            for (let j = Math.floor(a[1] / CELL); j <= Math.floor(a[3] / CELL); j++) {
+                for (const it of this.cells.get(i * 65536 + j) || []) {
+                    if (seen.has(it)) continue;
+                    seen.add(it);
+                    const b = this.boxes.get(it);
+                    if (b[0] <= area[2] && b[2] >= area[0] && b[1] <= area[3] && b[3] >= area[1]) out.push(it);
+                }
+            }
+        }
+        return out;
+    }
+}
+
+/** A RectIndex of segments ([p, q]). */
+export const segmentIndex = (segments = []) => new RectIndex(segments, (s) => segmentBox(s[0], s[1]));
+
 /**
  * The route of a connection from output port ``a`` to input port ``b`` ({x, y}) around the
- * boxes ``rects`` ([x0, y0, x1, y1], the connection's own boxes among them): a list of
- * [x, y] points with axis-parallel segments. ``others``: the segments ([p, q]) of other
- * connections, which its middle segments keep SEPARATION from where there is room.
+ * boxes ``rects`` ([x0, y0, x1, y1], the connection's own boxes among them; a list or a
+ * RectIndex): a list of [x, y] points with axis-parallel segments. ``others``: the segments
+ * ([p, q]) of other connections (a list or a segmentIndex), which its middle segments keep
+ * SEPARATION from where there is room.
  */
 export function orthogonalRoute(a, b, rects, others = []) {
+    const boxes = rects instanceof RectIndex ? rects : new RectIndex(rects);
+    const segments = others instanceof RectIndex ? others : segmentIndex(others);
     const s = [a.x + STUB, a.y], t = [b.x - STUB, b.y];
     for (const clearance of [CLEARANCE, 2]) {
         for (const pad of PADS) {
-            const path = search(s, t, rects, clearance, pad);
+            const path = search(s, t, boxes, clearance, pad);
             if (path === undefined) break;               // too big to search
-            if (path) return simplify(centred([[a.x, a.y], ...path, [b.x, b.y]], rects, clearance, others));
+            if (path) return simplify(centred([[a.x, a.y], ...path, [b.x, b.y]], boxes, clearance, segments));
         }
     }
     const mx = s[0] <= t[0] ? (s[0] + t[0]) / 2 : s[0];
@@ -74,15 +134,15 @@ function gridLines(values) {
 function search(s, t, rects, c, pad) {
     let area;
     if (pad === Infinity) {
-        area = [Math.min(s[0], t[0]), Math.min(s[1], t[1]), Math.max(s[0], t[0]), Math.max(s[1], t[1])];
-        for (const r of rects) area = [Math.min(area[0], r[0]), Math.min(area[1], r[1]), Math.max(area[2], r[2]), Math.max(area[3], r[3])];
+        const r = rects.bounds || [s[0], s[1], s[0], s[1]];
+        area = [Math.min(s[0], t[0], r[0]), Math.min(s[1], t[1], r[1]), Math.max(s[0], t[0], r[2]), Math.max(s[1], t[1], r[3])];
         area = [area[0] - 4 * c - STUB, area[1] - 4 * c - STUB, area[2] + 4 * c + STUB, area[3] + 4 * c + STUB];
     } else {
         area = [Math.min(s[0], t[0]) - pad, Math.min(s[1], t[1]) - pad, Math.max(s[0], t[0]) + pad, Math.max(s[1], t[1]) + pad];
     }
     const clampX = (x) => Math.max(area[0], Math.min(area[2], x)), clampY = (y) => Math.max(area[1], Math.min(area[3], y));
     const obs = [];
-    for (const r of rects) {
+    for (const r of rects.near([area[0] - c, area[1] - c, area[2] + c, area[3] + c])) {
         const o = [r[0] - c, r[1] - c, r[2] + c, r[3] + c];
         if (o[0] >= area[2] || o[2] <= area[0] || o[1] >= area[3] || o[3] <= area[1]) continue;
         if (strictlyInside(s, o) || strictlyInside(t, o)) return null;
@@ -146,7 +206,7 @@ function search(s, t, rects, c, pad) {
 function alongside(p, q, others) {
     const axis = p[0] === q[0] ? 0 : 1, other = 1 - axis;
     const lo = Math.min(p[other], q[other]), hi = Math.max(p[other], q[other]);
-    return others.some(([u, v]) => u[axis] === v[axis] && Math.abs(u[axis] - p[axis]) < SEPARATION &&
+    return others.near(segmentBox(p, q, SEPARATION)).some(([u, v]) => u[axis] === v[axis] && Math.abs(u[axis] - p[axis]) < SEPARATION &&
         Math.min(u[other], v[other]) < hi && Math.max(u[other], v[other]) > lo);
 }
 
@@ -155,9 +215,9 @@ function alongside(p, q, others) {
  *  segments, where that leaves every segment clear of the boxes. */
 function centred(path, rects, c, others) {
     const pts = simplify(path.map((p) => [...p]));
-    const inflated = rects.map((r) => [r[0] - c, r[1] - c, r[2] + c, r[3] + c]);
     // a segment from a port keeps clear of the boxes' insides only (it starts at a side)
-    const clear = (p, q) => p === pts[0] || q === pts.at(-1) ? !rects.some((r) => crosses(p, q, r)) : !inflated.some((o) => crosses(p, q, o, 0));
+    const clear = (p, q) => p === pts[0] || q === pts.at(-1) ? !rects.near(segmentBox(p, q)).some((r) => crosses(p, q, r))
+        : !rects.near(segmentBox(p, q, c)).some((r) => crosses(p, q, [r[0] - c, r[1] - c, r[2] + c, r[3] + c], 0));
     for (let k = 1; k + 2 < pts.length; k++) {
         const p = pts[k], q = pts[k + 1], before = pts[k - 1], after = pts[k + 2];
         const axis = p[0] === q[0] ? 0 : 1;               // 0: a vertical segment, moved along x
@@ -167,7 +227,8 @@ function centred(path, rects, c, others) {
         // the nearest boxes on either side of the segment, over its span
         const span = [Math.min(p[other], q[other]), Math.max(p[other], q[other])];
         let left = lo, right = hi;
-        for (const r of rects) {
+        const around = axis === 0 ? [lo, span[0], hi, span[1]] : [span[0], lo, span[1], hi];
+        for (const r of rects.near(around)) {
             if (r[other] >= span[1] || r[other + 2] <= span[0]) continue;
             if (r[axis + 2] <= p[axis]) left = Math.max(left, r[axis + 2]);
             if (r[axis] >= p[axis]) right = Math.min(right, r[axis]);
