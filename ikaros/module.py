@@ -178,6 +178,20 @@ def parameter_attribute(name: str) -> str:
     return name + "_" if name in RESERVED else name
 
 
+_NONE_CONNECTED: frozenset[str] = frozenset()
+
+
+def _class_ports(cls) -> tuple[dict, dict]:
+    """A module class's inputs and outputs by name, made once per class description (a
+    model of 10,000 modules then makes no dicts for them)."""
+    ports = cls.__dict__.get("_ik_ports")
+    if ports is None or ports[0] is not cls.description:
+        desc = cls.description
+        ports = (desc, {s.name: s for s in desc.inputs}, {s.name: s for s in desc.outputs})
+        cls._ik_ports = ports
+    return ports[1], ports[2]
+
+
 class Module:
     """Base class of every module. Override ``tick`` (and ``init``, ``command``, ``stop``)."""
 
@@ -217,11 +231,13 @@ class Module:
     def __init__(self):
         self.clock = Clock()
         self._ik_notify: Callable[[int, "Module", str], None] = _print_notification
-        self._ik_inputs: dict[str, InputSpec] = {s.name: s for s in self.description.inputs}
-        self._ik_outputs: dict[str, OutputSpec] = {s.name: s for s in self.description.outputs}
+        # the class's ports, shared by its modules until add_input/add_output copies them
+        self._ik_inputs: dict[str, InputSpec]
+        self._ik_outputs: dict[str, OutputSpec]
+        self._ik_inputs, self._ik_outputs = _class_ports(type(self))
         self._ik_input_shapes: dict[str, tuple | None] = {}
         self._ik_output_shapes: dict[str, tuple | None] = {}
-        self._ik_connected: set[str] = set()
+        self._ik_connected: frozenset[str] = _NONE_CONNECTED   # set by the kernel
 
     # --- life cycle: override these ------------------------------------------------------
     def configure(self) -> None:
@@ -247,12 +263,16 @@ class Module:
     def add_input(self, name: str, *, optional: bool = False, flatten: bool = False,
                   stack: bool = False, description: str = "") -> None:
         """Add an input in ``configure`` (for inputs that depend on parameters)."""
+        if self._ik_inputs is _class_ports(type(self))[0]:
+            self._ik_inputs = dict(self._ik_inputs)
         self._ik_inputs[name] = InputSpec(name, description, optional, flatten, stack)
 
     def add_output(self, name: str, shape: tuple | int | str | None = None,
                    description: str = "") -> None:
         """Add an output in ``configure``; a tuple shape fixes its size now."""
         rule = {"shape": shape} if isinstance(shape, str) else {}
+        if self._ik_outputs is _class_ports(type(self))[1]:
+            self._ik_outputs = dict(self._ik_outputs)
         self._ik_outputs[name] = OutputSpec(name, description, rule)
         if shape is not None and not isinstance(shape, str):
             self.set_output_shape(name, shape)

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import collections
+import gc
 import sys
 import time
 from typing import Any
@@ -65,6 +66,8 @@ class Network:
         # Observers of the run (recordings): each must be quick and must not raise.
         self.parameter_hooks: list = []    # hook(path, value) after set_parameter
         self.close_hooks: list = []        # hook() when close() is called
+        # whether the build froze the objects (gc.freeze), given back by close()
+        self.frozen_objects = False
         notify = builder.notify = self.notify
         for inst in order:
             inst.module._ik_notify = notify
@@ -294,7 +297,7 @@ class Network:
         started = []
         try:
             for inst in self.schedule:
-                for copy in self._pre_tick[inst]:
+                for copy in self._pre_tick.get(inst, ()):
                     copy()
                 job = self.async_modules.get(inst)
                 if job is not None:
@@ -522,7 +525,8 @@ class Network:
 
     def close(self) -> None:
         """End the run: every module's stop() is called once. A stop() that fails is
-        reported and makes ``stop_reason`` a fatal error."""
+        reported and makes ``stop_reason`` a fatal error. The objects of a large build
+        go back to the garbage collector (see ``frozen_objects``)."""
         for hook in self.close_hooks:
             hook()
         self.close_hooks.clear()
@@ -532,6 +536,9 @@ class Network:
                 self._end()
             except RunError:
                 pass            # reported; a failed stop() leaves stop_reason fatal
+        if self.frozen_objects:
+            self.frozen_objects = False
+            gc.unfreeze()
 
     def __enter__(self):
         return self

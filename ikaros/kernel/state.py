@@ -59,15 +59,16 @@ def _ages(ring) -> list[int]:
     return [(ring.pos - k) % ring.depth for k in range(ring.depth)]
 
 
-def values(net, scope: str | None = None) -> dict:
+def values(net, scope: str | None = None, keep=np.copy) -> dict:
     """{item path: (kind, value)}: copies of the state of the modules in ``scope`` (a
-    module or group path; all modules when empty)."""
+    module or group path; all modules when empty). ``keep(array)`` makes what is kept of
+    an output (a copy unless told otherwise)."""
     out = {}
     for inst in _modules(net, scope):
         _, outputs = net._buffers[inst]
         for name, buf in outputs.items():
             path = f"{inst.path}.{name}"
-            out[path] = ("output", np.array(buf.array, copy=True))
+            out[path] = ("output", keep(buf.array))
             ring = net.rings.get(buf)
             if ring is not None:
                 out[path + "@delay"] = ("delay", np.stack([ring.rows[k]
@@ -238,10 +239,22 @@ class _Zeros:
 
 def capture_initial(net) -> dict:
     """The state right after init, kept for ``reset``."""
+    zeros: dict[tuple, _Zeros] = {}     # one for all arrays alike
+
+    def kept(array: np.ndarray):
+        if array.any():
+            return array.copy()
+        key = (array.shape, array.dtype)
+        zero = zeros.get(key)
+        if zero is None:
+            zero = zeros[key] = _Zeros(*key)
+        return zero
+
     out = {}
-    for path, (_, value) in values(net).items():
-        zero = isinstance(value, np.ndarray) and not value.any()
-        out[path] = _Zeros(value.shape, value.dtype) if zero else value
+    for path, (kind, value) in values(net, keep=kept).items():
+        if kind != "output" and isinstance(value, np.ndarray) and not value.any():
+            value = kept(value)       # a delay line or a state array, copied already
+        out[path] = value
     return out
 
 
