@@ -120,9 +120,17 @@ class Network:
         arena = Arena()
         self.arena = arena
         requests = []       # (buffer, request number in the arena)
-        runs_by_target: dict = collections.defaultdict(list)
+        only_run: dict = {}         # an input's run, when it has just one
+        several = set()             # inputs with more than one run
+        deepest: dict = {}          # the longest delay read from an output, when >= 2
         for run in self.runs:
-            runs_by_target[run.target].append(run)
+            target = run.target
+            if target in only_run:
+                several.add(target)
+            else:
+                only_run[target] = run
+            if run.delay >= 2 and run.delay > deepest.get(run.source, 0):
+                deepest[run.source] = run.delay
         self._shared = {}
         for inst in self.schedule:
             inputs, outputs = self._buffers[inst]
@@ -133,14 +141,11 @@ class Network:
             for buf in inputs.values():
                 if not buf.incoming:
                     continue
-                runs = runs_by_target[buf]
-                if len(runs) == 1 and runs[0].delay == 0 and runs[0].whole:
-                    self._shared[buf] = runs[0].source
+                run = only_run.get(buf)
+                if run is not None and run.delay == 0 and buf not in several and run.whole:
+                    self._shared[buf] = run.source
                 else:
                     requests.append((buf, arena.request(buf.shape)))
-        deepest: dict = {}
-        for run in self.runs:
-            deepest[run.source] = max(deepest.get(run.source, 0), run.delay)
         _check_memory(arena, requests, deepest)
         arena.allocate()
         views, offsets = arena.views, arena.offsets
@@ -149,8 +154,7 @@ class Network:
         for buf, source in self._shared.items():
             buf.array, buf.offset = source.array.reshape(buf.shape), source.offset
         ring_arena = Arena()
-        self.rings = {src: Ring(src.array, d - 1, ring_arena) for src, d in deepest.items()
-                      if d >= 2}
+        self.rings = {src: Ring(src.array, d - 1, ring_arena) for src, d in deepest.items()}
         ring_arena.allocate()
         for ring in self.rings.values():
             ring.bind()
