@@ -3,6 +3,7 @@ network is closed, and modules of a class share its port tables until one adds a
 from __future__ import annotations
 
 import gc
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -112,3 +113,22 @@ def test_a_port_added_in_configure_is_the_modules_own(tmp_path):
     net.run(1)
     np.testing.assert_array_equal(net.output("B.OUTPUT"), [1, 2])
     net.close()
+
+
+class _M:
+    def __init__(self, name, order):
+        self.name, self.order, self.path = name, order, name
+
+
+def test_schedule_keeps_declaration_order_when_it_works_and_sorts_otherwise():
+    from ikaros.kernel.schedule import schedule
+    a, b, c, d = (_M(n, k) for k, n in enumerate("ABCD"))
+    forward = {(a, c): "n1", (b, c): "n2", (c, d): "n3"}
+    assert [m.name for m in schedule([a, b, c, d], forward)] == ["A", "B", "C", "D"]
+    backward = {(d, a): "n1", (c, b): "n2"}      # D feeds A, C feeds B
+    assert [m.name for m in schedule([a, b, c, d], backward)] == ["C", "B", "D", "A"]
+    node = SimpleNamespace(error=lambda message: ValueError(message))
+    with pytest.raises(ValueError, match="zero-delay cycle: B -> A -> B"):
+        schedule([a, b, c, d], {(a, b): node, (b, a): node})
+    with pytest.raises(ValueError, match="zero-delay cycle: A -> A"):
+        schedule([a, b], {(a, a): node})
