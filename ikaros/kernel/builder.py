@@ -98,6 +98,7 @@ class Builder:
         self._sources: dict[tuple, Buffer] = {}   # (group, address) -> a connection's source
         self.startup = StartupSteps()           # the time of each build step
         self._confined = True          # whether file parameters are checked (set by _build)
+        self._checked_shapes: set[tuple] = set()   # output shapes that passed check_shape
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
@@ -635,8 +636,9 @@ class Builder:
             spec = module._ik_outputs[name]
             try:
                 shape = rule_shape(inst, spec, shapes, partial) if spec.rule else WAIT
-                if shape is not WAIT:
+                if shape is not WAIT and shape not in self._checked_shapes:
                     check_shape(shape)
+                    self._checked_shapes.add(shape)
             except (SizeError, LimitError) as e:
                 raise inst.node.error(f'size of output "{name}": {e}') from None
             if shape is WAIT:

@@ -146,15 +146,17 @@ def fuse(schedule: list, edges: dict, buffers: dict, block: np.ndarray, calls: d
     Returns (sequence, owner, fused) where ``fused`` maps each fused module to its
     operation, or None when nothing can be fused.
     """
+    level = _levels(schedule, edges)
+    width = collections.Counter(level.values())     # only modules of one level fuse
     forms = {}
     for inst in schedule:
-        inputs, outputs = buffers[inst]
-        form = fused_form(inst, inputs, outputs, block)
-        if form is not None:
-            forms[inst] = form
+        if width[level[inst]] > 1:
+            inputs, outputs = buffers[inst]
+            form = fused_form(inst, inputs, outputs, block)
+            if form is not None:
+                forms[inst] = form
     if len(forms) < 2:
         return None
-    level = _levels(schedule, edges)
     groups: dict = collections.defaultdict(list)
     for inst, form in forms.items():
         groups[(level[inst], form)].append((inst, *buffers[inst]))
