@@ -43,8 +43,8 @@ class _collector_paused:
     costs time (the collector runs again as usual afterwards).
 
     The first collection after a build traces every object the build left (about 0.2 us
-    each: 60 ms for a model of 10,000 modules), and the next two of the older generations
-    trace them again. After a large build (``freeze`` with more than FREEZE_MINIMUM new
+    each: 50-60 ms for a model of 10,000 modules), and the next collections of the older
+    generations trace them again (while the model runs). After a large build (``freeze`` with more than FREEZE_MINIMUM new
     objects) every object is moved to the collector's permanent generation instead
     (``gc.freeze``), where no collection traces it; the network's ``close`` gives them
     back (``gc.unfreeze``). Small builds are left alone: they gain little, and a process
