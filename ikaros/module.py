@@ -278,6 +278,25 @@ def parameter_attribute(name: str) -> str:
     return name + "_" if name in RESERVED else name
 
 
+_NONE_CONNECTED: frozenset[str] = frozenset()
+
+
+def _class_ports(cls) -> tuple[dict, dict]:
+    """A module class's inputs and outputs by name, made once per class description (a
+    model of 10,000 modules then makes no dicts for them)."""
+    ports = cls.__dict__.get("_ik_ports")
+    if ports is None or ports[0] is not cls.description:
+        desc = cls.description
+        outputs = {s.name: s for s in desc.outputs}
+        for st in desc.states:
+            if st.type == "matrix":     # sized, allocated and bound like an output
+                outputs[st.name] = OutputSpec(st.name, st.description, dict(st.rule),
+                                              private=True)
+        ports = (desc, {s.name: s for s in desc.inputs}, outputs)
+        cls._ik_ports = ports
+    return ports[1], ports[2]
+
+
 class Module:
     """Base class of every module. Override ``tick`` (and ``init``, ``command``, ``stop``)."""
 
@@ -331,17 +350,16 @@ class Module:
     def __init__(self):
         self.clock = Clock()
         self._ik_notify: Callable[[int, "Module", str], None] = _print_notification
-        self._ik_inputs: dict[str, InputSpec] = {s.name: s for s in self.description.inputs}
-        self._ik_outputs: dict[str, OutputSpec] = {s.name: s for s in self.description.outputs}
+        # the class's ports, shared by its modules until add_input/add_output copies them
+        self._ik_inputs: dict[str, InputSpec]
+        self._ik_outputs: dict[str, OutputSpec]
+        self._ik_inputs, self._ik_outputs = _class_ports(type(self))
         for st in self.description.states:
-            if st.type == "matrix":     # sized, allocated and bound like an output
-                self._ik_outputs[st.name] = OutputSpec(st.name, st.description, dict(st.rule),
-                                                       private=True)
-            else:
+            if st.type != "matrix":
                 setattr(self, st.name, st.default)
         self._ik_input_shapes: dict[str, tuple | None] = {}
         self._ik_output_shapes: dict[str, tuple | None] = {}
-        self._ik_connected: set[str] = set()
+        self._ik_connected: frozenset[str] = _NONE_CONNECTED   # set by the kernel
         self._ik_start_steps = None     # the network's kernel.gating.StartSteps
 
     # --- life cycle: override these ------------------------------------------------------
@@ -368,6 +386,8 @@ class Module:
     def add_input(self, name: str, *, optional: bool = False, flatten: bool = False,
                   stack: bool = False, description: str = "", use_label: bool = False) -> None:
         """Add an input in ``configure`` (for inputs that depend on parameters)."""
+        if self._ik_inputs is _class_ports(type(self))[0]:
+            self._ik_inputs = dict(self._ik_inputs)
         self._ik_inputs[name] = InputSpec(name, description, optional, flatten, stack,
                                           use_label=use_label)
 
@@ -376,6 +396,8 @@ class Module:
                    ) -> None:
         """Add an output in ``configure``; a tuple shape fixes its size now. With
         ``capacity`` (a tuple or a shape expression) and no shape it is a dynamic output."""
+        if self._ik_outputs is _class_ports(type(self))[1]:
+            self._ik_outputs = dict(self._ik_outputs)
         if capacity is not None:
             if shape is not None:
                 raise TypeError("a dynamic output is sized by its capacity, not by a shape")

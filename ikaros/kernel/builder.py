@@ -3,7 +3,6 @@ schedule and the element maps a Network runs."""
 from __future__ import annotations
 
 import collections
-import contextlib
 import gc
 import os
 import re
@@ -38,16 +37,37 @@ _ONE_TICK = [1]     # the default delay (link delays are never changed after par
 _SHORT_DELAYS = {"0": [0], "1": _ONE_TICK}   # shared, as _ONE_TICK is
 
 
-@contextlib.contextmanager
-def _collector_paused():
+# A build that leaves more new objects than this freezes them (see _collector_paused).
+FREEZE_MINIMUM = 50_000
+
+
+class _collector_paused:
     """Reading and building make many long-lived objects; collecting garbage meanwhile only
-    costs time (the collector runs again as usual afterwards)."""
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
+    costs time (the collector runs again as usual afterwards).
+
+    The first collection after a build traces every object the build left (about 0.2 us
+    each: 50-60 ms for a model of 10,000 modules), and the next collections of the older
+    generations trace them again (while the model runs). After a large build (``freeze`` with more than FREEZE_MINIMUM new
+    objects) every object is moved to the collector's permanent generation instead
+    (``gc.freeze``), where no collection traces it; the network's ``close`` gives them
+    back (``gc.unfreeze``). Small builds are left alone: they gain little, and a process
+    that loads many small models without closing them must not keep their garbage."""
+
+    def __enter__(self):
+        self.enabled = gc.isenabled()
+        gc.disable()
+        self.count = gc.get_count()[0]
+        return self
+
+    def freeze(self) -> bool:
+        """Freeze every object if the build left many; returns whether it did."""
+        if not self.enabled or gc.get_count()[0] - self.count <= FREEZE_MINIMUM:
+            return False
+        gc.freeze()
+        return True
+
+    def __exit__(self, *exc):
+        if self.enabled:
             gc.enable()
 
 
@@ -83,6 +103,7 @@ class Builder:
         self._sources: dict[tuple, Buffer] = {}   # (group, address) -> a connection's source
         self.startup = StartupSteps()           # the time of each build step
         self._confined = True          # whether file parameters are checked (set by _build)
+        self._checked_shapes: set[tuple] = set()   # output shapes that passed check_shape
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
@@ -544,13 +565,18 @@ class Builder:
             raise
 
     def _resolve_sizes(self) -> None:
+        shared_sets: dict[tuple, frozenset] = {}
         for inst in self.instances:
             inputs, _ = self.buffers[inst]
             for buf in inputs.values():
                 if not buf.incoming and not buf.optional:
                     raise inst.node.error(f'required input "{buf.name}" of {inst.path} is not '
                                           f'connected')
-            inst.module._ik_connected = {n for n, b in inputs.items() if b.incoming}
+            names = tuple(n for n, b in inputs.items() if b.incoming)
+            connected = shared_sets.get(names)      # one set for every module alike
+            if connected is None:
+                connected = shared_sets[names] = frozenset(names)
+            inst.module._ik_connected = connected
         # A worklist: whenever a buffer gets its size, the owners of what it feeds are
         # looked at again, so sizing is linear in the size of the model.
         # When the worklist runs dry with outputs unsized (a loop through a delay), size_set
@@ -649,8 +675,9 @@ class Builder:
                 continue                # sized below, from the output it views
             try:
                 shape = rule_shape(inst, spec, shapes, partial) if spec.rule else WAIT
-                if shape is not WAIT:
+                if shape is not WAIT and shape not in self._checked_shapes:
                     check_shape(shape)
+                    self._checked_shapes.add(shape)
             except (SizeError, LimitError) as e:
                 what = f'capacity of dynamic output "{name}" of {inst.path} ' \
                        f'("{spec.rule["capacity"]}")' if spec.dynamic else \
@@ -734,12 +761,14 @@ class Builder:
     # --- everything ----------------------------------------------------------------------
     def build(self):
         """Build the network; raises ModelError naming the file, line and element."""
-        with _collector_paused(), collecting(self.diagnostics), \
+        with _collector_paused() as collector, collecting(self.diagnostics), \
                 applied(self.limits or current_limits()):
             if self.model is None:
                 with self.startup.step("read the model file"):
                     self.model = read_file(self.filename, self._text, root_tag="group")
-            return self._build()
+            net = self._build()
+            net.frozen_objects = collector.freeze()
+            return net
 
     def _build(self):
         from .network import Network

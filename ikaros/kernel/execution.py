@@ -140,7 +140,10 @@ class Plan:
                  threads: int, cost, fuser=None):
         self.schedule = schedule
         self.index = {inst: i for i, inst in enumerate(schedule)}
-        self.calls = {inst: list(pre_tick.get(inst, ())) + [tick_of[inst]] for inst in schedule}
+        self.calls = {}
+        for inst in schedule:
+            copies = pre_tick.get(inst)
+            self.calls[inst] = copies + [tick_of[inst]] if copies else [tick_of[inst]]
         result = fuser(self.calls) if fuser is not None and threads <= 1 else None
         if result is not None:
             self.sequence, self.owner, self.fused = result

@@ -58,6 +58,23 @@ def fused_form(inst, inputs: dict, outputs: dict, block: np.ndarray) -> tuple | 
     return None
 
 
+def _levels(schedule: list, edges: dict) -> dict:
+    """Each module's depth in the zero-delay graph: 0 without zero-delay inputs, else one
+    more than its deepest source."""
+    preds: dict = {}
+    for (a, b) in edges:
+        found = preds.get(b)
+        if found is None:
+            preds[b] = [a]
+        else:
+            found.append(a)
+    level = {}
+    for inst in schedule:
+        found = preds.get(inst)
+        level[inst] = 1 + max(map(level.__getitem__, found)) if found else 0
+    return level
+
+
 class FusedOp:
     """One ufunc over the elements of several modules: gather, compute, scatter."""
 
@@ -129,18 +146,20 @@ def fuse(schedule: list, edges: dict, buffers: dict, block: np.ndarray, calls: d
     Returns (sequence, owner, fused) where ``fused`` maps each fused module to its
     operation, or None when nothing can be fused.
     """
-    preds = collections.defaultdict(list)
-    for (a, b) in edges:
-        preds[b].append(a)
-    level = {}
+    level = _levels(schedule, edges)
+    width = collections.Counter(level.values())     # only modules of one level fuse
+    forms = {}
     for inst in schedule:
-        level[inst] = 1 + max((level[p] for p in preds[inst]), default=-1)
+        if width[level[inst]] > 1:
+            inputs, outputs = buffers[inst]
+            form = fused_form(inst, inputs, outputs, block)
+            if form is not None:
+                forms[inst] = form
+    if len(forms) < 2:
+        return None
     groups: dict = collections.defaultdict(list)
-    for inst in schedule:
-        inputs, outputs = buffers[inst]
-        form = fused_form(inst, inputs, outputs, block)
-        if form is not None:
-            groups[(level[inst], form)].append((inst, inputs, outputs))
+    for inst, form in forms.items():
+        groups[(level[inst], form)].append((inst, *buffers[inst]))
     groups = {k: v for k, v in groups.items() if len(v) > 1}
     if not groups:
         return None

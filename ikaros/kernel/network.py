@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import collections
+import gc
 import os
 import sys
 import time
@@ -83,6 +84,8 @@ class Network:
         self.parameter_hooks: list = []    # hook(path, value) after set_parameter
         self.close_hooks: list = []        # hook() when close() is called
         self._taps: list[OutputTap] = []   # add_tap(); the first is copied in the compiled tick
+        # whether the build froze the objects (gc.freeze), given back by close()
+        self.frozen_objects = False
         notify = builder.notify = self.notify
         for inst in order:
             inst.module._ik_notify = notify
@@ -138,9 +141,17 @@ class Network:
         arena = Arena()
         self.arena = arena
         requests = []       # (buffer, request number in the arena)
-        runs_by_target: dict = collections.defaultdict(list)
+        only_run: dict = {}         # an input's run, when it has just one
+        several = set()             # inputs with more than one run
+        deepest: dict = {}          # the longest delay read from an output, when >= 2
         for run in self.runs:
-            runs_by_target[run.target].append(run)
+            target = run.target
+            if target in only_run:
+                several.add(target)
+            else:
+                only_run[target] = run
+            if run.delay >= 2 and run.delay > deepest.get(run.source, 0):
+                deepest[run.source] = run.delay
         self._shared = {}
         dynamic = []        # dynamic buffers: outside the arena
         for inst in self.schedule:
@@ -155,16 +166,13 @@ class Network:
             for buf in inputs.values():
                 if not buf.incoming:
                     continue
-                runs = runs_by_target[buf]
-                if len(runs) == 1 and runs[0].delay == 0 and runs[0].whole:
-                    self._shared[buf] = runs[0].source
+                run = only_run.get(buf)
+                if run is not None and run.delay == 0 and buf not in several and run.whole:
+                    self._shared[buf] = run.source
                 elif buf.dynamic:
                     dynamic.append(buf)
                 else:
                     requests.append((buf, arena.request(buf.shape)))
-        deepest: dict = {}
-        for run in self.runs:
-            deepest[run.source] = max(deepest.get(run.source, 0), run.delay)
         _check_memory(arena, requests, deepest)
         arena.allocate()
         views, offsets = arena.views, arena.offsets
@@ -181,7 +189,7 @@ class Network:
             buf.dynamic_array = source.dynamic_array
         ring_arena = Arena()
         self.rings = {src: Ring(src.array, d - 1, ring_arena) for src, d in deepest.items()
-                      if d >= 2 and not src.dynamic}
+                      if not src.dynamic}
         ring_arena.allocate()
         for ring in self.rings.values():
             ring.bind()
@@ -369,7 +377,7 @@ class Network:
         started = []
         try:
             for inst in self.schedule:
-                for copy in self._pre_tick[inst]:
+                for copy in self._pre_tick.get(inst, ()):
                     copy()
                 job = self.async_modules.get(inst)
                 if job is not None:
@@ -598,7 +606,8 @@ class Network:
 
     def close(self) -> None:
         """End the run: every module's stop() is called once. A stop() that fails is
-        reported and makes ``stop_reason`` a fatal error."""
+        reported and makes ``stop_reason`` a fatal error. The objects of a large build
+        go back to the garbage collector (see ``frozen_objects``)."""
         for hook in self.close_hooks:
             hook()
         self.close_hooks.clear()
@@ -608,6 +617,9 @@ class Network:
                 self._end()
             except RunError:
                 pass            # reported; a failed stop() leaves stop_reason fatal
+        if self.frozen_objects:
+            self.frozen_objects = False
+            gc.unfreeze()
 
     def __enter__(self):
         return self

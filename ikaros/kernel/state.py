@@ -82,10 +82,11 @@ def _ages(ring) -> list[int]:
     return [(ring.pos - k) % ring.depth for k in range(ring.depth)]
 
 
-def values(net, scope: str | None = None) -> dict:
+def values(net, scope: str | None = None, keep=np.ndarray.copy) -> dict:
     """{item path: (kind, type, value)}: copies of the state of the modules in ``scope`` (a
     module or group path; all modules when empty). ``type`` is "matrix", or a scalar's
-    type: the one its ``State`` declares, or that of its value."""
+    type: the one its ``State`` declares, or that of its value. ``keep(array)`` makes what
+    is kept of an output (a copy unless told otherwise)."""
     out = {}
     for inst in _modules(net, scope):
         _, outputs = net._buffers[inst]
@@ -96,7 +97,7 @@ def values(net, scope: str | None = None) -> dict:
                 out[path] = ("dynamic", "matrix", buf.dynamic_array.data.copy())
                 continue
             kind = "state" if specs[name].private else "output"
-            out[path] = (kind, "matrix", np.array(buf.array, copy=True))
+            out[path] = (kind, "matrix", keep(buf.array))
             ring = net.rings.get(buf)
             if ring is not None:
                 out[path + "@delay"] = ("delay", "matrix",
@@ -341,10 +342,22 @@ class _Zeros:
 
 def capture_initial(net) -> dict:
     """The state right after init, kept for ``reset``."""
+    zeros: dict[tuple, _Zeros] = {}     # one for all arrays alike
+
+    def kept(array: np.ndarray):
+        if np.count_nonzero(array):         # (a tenth of the time of array.any())
+            return array.copy()
+        key = (array.shape, array.dtype)
+        zero = zeros.get(key)
+        if zero is None:
+            zero = zeros[key] = _Zeros(*key)
+        return zero
+
     out = {}
-    for path, (_, _, value) in values(net).items():
-        zero = isinstance(value, np.ndarray) and not value.any()
-        out[path] = _Zeros(value.shape, value.dtype) if zero else value
+    for path, (_, _, value) in values(net, keep=kept).items():
+        if isinstance(value, np.ndarray) and not np.count_nonzero(value):
+            value = kept(value)       # a delay line, dynamic output or array attribute
+        out[path] = value
     return out
 
 
