@@ -1,9 +1,12 @@
 """Recording a run into one HDF5 file while it runs.
 
-The kernel thread keeps the chosen outputs of a recorded tick as one row of a ring of
-blocks in memory: with the compiled tick the copy is an instruction of the compiled call
-that starts the next tick (an output tap, kernel/taps.py), so the kernel thread only names
-the row; without it, one NumPy gather. A full block (several HDF5 chunks) goes to a writer
+The chosen outputs of a recorded tick go into the next row of a ring of blocks in memory,
+by an output tap (kernel/taps.py): with the compiled tick an instruction of the compiled
+call that starts the next tick keeps the row and its tick number and moves on to the next
+row, so no Python runs per tick; without it, one NumPy gather. The tap calls the recorder
+back only when a block is full, and when the writer asks for the rows so far (every
+``flush_seconds``); the real time of a row is read then and interpolated by tick number for
+the rows in between. A full block (several HDF5 chunks) goes to a writer
 thread, which byte-shuffles and compresses it without the GIL (chunks.py) and writes each
 chunk as it stands, so compression never holds up the kernel. While it records, the GIL's
 switch interval is short (kernel/switching.py): the writer takes the GIL back after each
@@ -16,7 +19,6 @@ from __future__ import annotations
 
 import atexit
 import json
-import math
 import os
 import queue
 import sys
@@ -27,6 +29,7 @@ from datetime import datetime, timezone
 import numpy as np
 
 from ..kernel import switching
+from ..kernel.taps import ROW, SIGNAL
 from ..module import WARNING
 from .chunks import COMPRESSION_LEVEL, shuffled, shuffled_deflate
 from .signals import module_parameters, seeds, select_outputs
@@ -90,14 +93,19 @@ class Recorder:
         # its pages are touched here, not by the kernel thread's copies
         self._ring = np.empty((RING_BLOCKS * self._block_rows, columns), np.float32)
         self._ring.fill(0)
+        self._real = np.zeros(len(self._ring))       # the real_time of each row
         self._free: queue.SimpleQueue = queue.SimpleQueue()    # blocks free to fill
         for block in range(RING_BLOCKS):
             self._free.put(block)
         self._row = 0                   # the row of the file of the block's first row
+        self._closed = False
+        self._tap = net.add_tap(self._index, self._ring, self.every, self._signalled)
         self._start_block()
-        # when a partly filled block is due to go to the writer, on the clock of the
-        # network's real_time (the start of a tick, in seconds since the network started)
-        self._flush_at = net.clock.real_time + flush_seconds
+        if flush_seconds <= 0:
+            self._tap.request()
+        # real times are read when the tap calls back, and rows between two readings get
+        # times interpolated by tick: (tick, its real_time) of the last reading
+        self._anchor = (net.tick - 1, net.clock.real_time)
         self._real_zero: float | None = None     # real_time of the first row written
         self._file_flushed = time.perf_counter()
         self._queue: queue.Queue = queue.Queue()
@@ -107,14 +115,6 @@ class Recorder:
                                         daemon=True)
         self._writer.start()
         switching.shorten()     # the writer gets the GIL back soon after each compression
-        self._closed = False
-        self._next = net.tick           # the next tick to record
-        self._tap = net.add_tap(self._index, self._ring)
-        hooks = net.controller.tick_hooks
-        # a recording ended by the web UI's rebuild left its hook here: drop it
-        hooks[:] = [h for h in hooks if not (isinstance(getattr(h, "__self__", None),
-                                                        Recorder) and h.__self__.closed)]
-        hooks.append(self.hook)
         net.parameter_hooks.append(self.parameter_changed)
         net.close_hooks.append(self._close_with_network)
         atexit.register(self.close)     # a script that ends without close() loses nothing
@@ -158,48 +158,56 @@ class Recorder:
         self._block = self._free.get()
         self._first = self._block * self._block_rows       # its first row in the ring
         self._sent = 0                  # rows of it already handed over in whole chunks
-        self._ticks: list[int] = []
-        self._real: list[float] = []
+        self._timed = self._first       # the ring row up to which real times are set
+        self._tap.give(self._first, self._first + self._block_rows)
 
-    def hook(self) -> None:
-        """After every tick: keep the outputs of the tick just done when it is due."""
-        net = self.net
-        tick = net.tick - 1
-        if tick < self._next:       # not due, or closed
-            return
+    def _signalled(self) -> None:
+        """The tap's call back (at the start of a tick): the block is full, or the writer
+        asked for the rows so far (about once a second)."""
+        tap = self._tap
         if self._error is not None:
+            tap.stop()
             self._report()
             return
-        self._next = tick + self.every
-        ticks = self._ticks
-        n = len(ticks)
-        if n == self._block_rows:
-            self._hand_over(full=True)
-            ticks, n = self._ticks, 0
-        self._tap.keep(self._first + n)
-        ticks.append(tick)
-        now = net.clock.real_time
-        self._real.append(now)
-        if now > self._flush_at:
-            self._hand_over(full=False)
+        tap.state[SIGNAL] = self.flush_seconds <= 0     # (0: hand over after every tick)
+        self._hand_over()
 
-    def _hand_over(self, full: bool) -> None:
-        """Give the writer the block (full), or a copy of its rows not yet written in
-        whole chunks (not full: they are written, and rewritten once the block is full)."""
-        self._tap.settle()
-        T, sent, n = self.chunk_ticks, self._sent, len(self._ticks)
-        ring = self._ring[self._first:self._first + self._block_rows]
-        if full:
-            self._put(("rows", self._row + sent, ring[sent:], self._ticks[sent:],
-                       self._real[sent:], self._block))
+    def _time_rows(self) -> None:
+        """The real times of the rows kept since the last reading: now's reading (the start
+        of the tick just done) for that tick, interpolated by tick for the others."""
+        net = self.net
+        row = int(self._tap.state[ROW])
+        tick, now = net.tick - 1, net.clock.real_time
+        if row > self._timed:
+            ticks = self._tap.ticks[self._timed:row]
+            last_tick, last = self._anchor
+            if tick > last_tick:
+                self._real[self._timed:row] = last + (ticks - last_tick) * (
+                    (now - last) / (tick - last_tick))
+            else:
+                self._real[self._timed:row] = now
+            self._timed = row
+        self._anchor = (tick, now)
+
+    def _hand_over(self) -> None:
+        """Give the writer the block when full, else a copy of its rows not yet written in
+        whole chunks (they are written, and rewritten once the block is full)."""
+        self._time_rows()
+        T, sent, first = self.chunk_ticks, self._sent, self._first
+        n = int(self._tap.state[ROW]) - first
+        ring = self._ring[first:first + self._block_rows]
+        ticks = self._tap.ticks[first:first + n]
+        real = self._real[first:first + n]
+        if n == self._block_rows:
+            self._put(("rows", self._row + sent, ring[sent:], ticks[sent:], real[sent:],
+                       self._block))
             self._row += n
             self._start_block()
-        else:
+        elif n > sent:
             whole = -(-n // T) * T        # to the end of the chunk the last row is in
-            self._put(("rows", self._row + sent, ring[sent:whole].copy(),
-                       self._ticks[sent:], self._real[sent:], None))
+            self._put(("rows", self._row + sent, ring[sent:whole].copy(), ticks[sent:],
+                       real[sent:], None))
             self._sent = n - n % T
-        self._flush_at = self.net.clock.real_time + self.flush_seconds
 
     def parameter_changed(self, path: str, value: str) -> None:
         """Keep a parameter change with the tick from which it takes effect."""
@@ -239,16 +247,15 @@ class Recorder:
         if self._closed:
             return
         self._closed = True
-        self._next = math.inf
         atexit.unregister(self.close)
         net = self.net
-        for hooks, hook in ((net.controller.tick_hooks, self.hook),
-                            (net.parameter_hooks, self.parameter_changed),
+        for hooks, hook in ((net.parameter_hooks, self.parameter_changed),
                             (net.close_hooks, self._close_with_network)):
             if hook in hooks:
                 hooks.remove(hook)
-        if self._ticks and self._error is None:
-            self._hand_over(full=False)
+        if self._error is None:
+            self._tap.settle()          # the row of the tick just done
+            self._hand_over()
         net.remove_tap(self._tap)
         self._queue.put(None)
         self._writer.join()
@@ -268,24 +275,38 @@ class Recorder:
 
     # --- the writer thread ---------------------------------------------------------------
     def _write_loop(self) -> None:
+        """Write what the kernel thread hands over; ask it for the rows of a partly filled
+        block every ``flush_seconds``."""
+        every = self.flush_seconds
+        due = time.perf_counter() + every
         while True:
-            item = self._queue.get()
-            if item is None:
-                return
+            try:
+                item = self._queue.get(timeout=max(due - time.perf_counter(), 0)
+                                       if every > 0 else None)
+            except queue.Empty:
+                item = ()
+            if every > 0 and time.perf_counter() >= due:
+                self._tap.request()
+                due = time.perf_counter() + every
+            if not item:
+                if item is None:
+                    return
+                continue
             try:
                 if self._error is None:
                     if item[0] == "rows":
                         self._write_rows(*item[1:5], flush=item[5] is None)
                     else:
                         self._write_change(*item[1:])
-            except Exception as e:      # reported to the kernel thread at its next tick
+            except Exception as e:      # reported to the kernel thread at its next call back
                 self._error = e
+                self._tap.request()
             finally:
                 if item[0] == "rows" and item[5] is not None:
                     self._free.put(item[5])     # the kernel thread may fill it again
 
-    def _write_rows(self, start: int, rows: np.ndarray, ticks: list, real: list,
-                    flush: bool) -> None:
+    def _write_rows(self, start: int, rows: np.ndarray, ticks: np.ndarray,
+                    real: np.ndarray, flush: bool) -> None:
         """Write ``len(ticks)`` rows from the file's row ``start`` (the first of a chunk);
         ``rows`` holds whole chunks. The file is flushed every ``flush_seconds``, and with
         ``flush`` (a partly filled block)."""
@@ -299,10 +320,10 @@ class Recorder:
         if rows.shape[1]:
             for j, payload in enumerate(payloads):
                 self._data.id.write_direct_chunk((start + j * T, 0), payload)
-        ticks = np.array(ticks, np.int64)
+        ticks = np.asarray(ticks, np.int64)
         self._times["tick"][start:end] = ticks
         self._times["time"][start:end] = ticks * self.net.clock.tick_duration
-        if self._real_zero is None and real:
+        if self._real_zero is None and len(real):
             self._real_zero = real[0]
         self._times["real_time"][start:end] = np.array(real) - (self._real_zero or 0.0)
         now = time.perf_counter()

@@ -84,6 +84,7 @@ class Network:
         self.parameter_hooks: list = []    # hook(path, value) after set_parameter
         self.close_hooks: list = []        # hook() when close() is called
         self._taps: list[OutputTap] = []   # add_tap(); the first is copied in the compiled tick
+        self._tap_steps: list = []         # the others' steps, at the end of _delayed
         # whether the build froze the objects (gc.freeze), given back by close()
         self.frozen_objects = False
         notify = builder.notify = self.notify
@@ -281,32 +282,39 @@ class Network:
             self._compiled_gather()
 
     def _compiled_gather(self) -> None:
-        """The delay-1 copies of small buffers as an instruction of the compiled tick, and
-        the first output tap's copy with them."""
-        if self._bulk is not None:
-            for tap in self._taps:
-                tap.unbind()
+        """The delay-1 copies of small buffers as an instruction of the compiled tick, with
+        the first output tap's row; the other taps step with NumPy at the start of a tick."""
+        for tap in self._taps:
+            tap.unbind()
+        compiled_tap = None
+        if self._bulk is not None and self.compiled_since is not None:
+            compiled_tap = self._taps[0] if self._taps else None
             self._delayed[0] = compiled_gather(self.arena.block, *self._bulk.indices(),
-                                               compiled.executor(),
-                                               self._taps[0] if self._taps else None)
+                                               compiled.executor(), compiled_tap,
+                                               self.tick - 1)
+        steps = [tap.step for tap in self._taps if tap is not compiled_tap]
+        self._delayed[len(self._delayed) - len(self._tap_steps):] = steps
+        self._tap_steps = steps
 
-    def add_tap(self, index: np.ndarray, rows: np.ndarray) -> OutputTap:
-        """A copy of the arena values at ``index`` into the rows of ``rows`` (float32, one
-        column per index) that its ``keep(row)`` names after a tick; made in the compiled
-        tick when there is one (see taps.py). Call it between ticks."""
-        tap = OutputTap(self.arena.block, index, rows)
+    def add_tap(self, index: np.ndarray, rows: np.ndarray, every: int,
+                on_signal) -> OutputTap:
+        """Keep the arena values at ``index`` in successive rows of ``rows`` (float32, one
+        column per index) after every ``every``-th tick from the next one on, in the compiled
+        tick when there is one; ``on_signal`` is called when the room given is full or asked
+        for (see taps.py). Call it between ticks."""
+        tap = OutputTap(self.arena.block, index, rows, self.tick, every, on_signal)
         self._taps.append(tap)
-        if self.compiled_since is not None:
-            self._compiled_gather()
+        self._compiled_gather()
         return tap
 
     def remove_tap(self, tap: OutputTap) -> None:
-        """Stop a tap (its last row kept is copied first). Call it between ticks."""
+        """Stop a tap (the row of the tick just done is kept first). Call it between
+        ticks."""
+        tap.settle()
         tap.unbind()
         if tap in self._taps:
             self._taps.remove(tap)
-            if self.compiled_since is not None:
-                self._compiled_gather()
+            self._compiled_gather()
 
     def _background_plan(self) -> None:
         """Before a tick: start making the compiled plan in the background with the first

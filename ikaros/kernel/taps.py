@@ -1,30 +1,32 @@
-"""Output taps: copies of chosen arena values into the rows of a caller's array, one row per
-tick the caller picks (a recording's rows).
+"""Output taps: copies of chosen arena values into successive rows of a caller's array (a
+recording's ring of blocks), every ``every``-th tick, with no Python per tick kept.
 
-``keep(row)`` after a tick asks for that tick's values in ``rows[row]``. With the compiled
-tick, the copy is an instruction of the compiled call that starts the next tick (before
-anything of that tick runs), so keeping a row costs the kernel thread one store (a C call);
-``settle()`` makes a copy still pending now (before the rows are read). Without the compiled
-tick ``keep`` copies at once (one NumPy gather).
+At the start of every tick (before anything of it runs) the tap looks at the values of the
+tick just done: when that tick is due, they go into the next row of the room the caller gave
+(``give(start, end)``) and the tick's number into ``ticks``. With the compiled tick this is an
+instruction of the compiled call (ops.TAP), whose state is an int64 array the tap shares
+with it; without it, ``step()`` does the same with NumPy. The caller is called back
+(``on_signal``) only when the room is full or it asked for it (``request()``, from any
+thread): once a block, and once a second for a partial flush. ``settle()`` takes the row of
+the tick just done now (before the rows are read at the end).
 """
 from __future__ import annotations
 
-import functools
+from typing import Callable
 
 import numpy as np
 
-
-NONE = -1          # no row kept
+from .compiled.ops import (TAP_DUE as DUE, TAP_END as END, TAP_EVERY as EVERY,
+                           TAP_ROW as ROW, TAP_SIGNAL as SIGNAL, TAP_STATE as STATE,
+                           TAP_TICK as TICK)
 
 
 class OutputTap:
-    """Copies ``block[index]`` into ``rows[r]`` for the rows ``r`` that ``keep`` names.
+    """Keeps ``block[index]`` in ``rows[state[ROW]]`` (and the tick in ``ticks``) after every
+    due tick, from tick ``first`` on; see the module docstring."""
 
-    ``keep(row)``: the values as they are now (after a tick) go into ``rows[row]``. With the
-    compiled tick it only stores ``row`` where the compiled call looks for it (a C call: no
-    Python frame per tick)."""
-
-    def __init__(self, block: np.ndarray, index: np.ndarray, rows: np.ndarray):
+    def __init__(self, block: np.ndarray, index: np.ndarray, rows: np.ndarray, first: int,
+                 every: int, on_signal: Callable[[], None]):
         if rows.ndim != 2 or rows.shape[1] != index.size or rows.dtype != np.float32 \
                 or not rows.flags.c_contiguous:
             raise ValueError("a tap's rows are a C-contiguous float32 array of "
@@ -32,34 +34,69 @@ class OutputTap:
         self.block = block
         self.index = np.asarray(index, np.int64)
         self.rows = rows
-        self._pending: np.ndarray | None = None     # where the compiled call looks
-        self.keep = self._copy_now
+        self.on_signal = on_signal
+        state = np.zeros(STATE, np.int64)
+        state[[TICK, DUE, EVERY]] = first - 1, first, every
+        # (state, ticks) swapped in one assignment, so another thread sees a matching pair
+        self.views = (state, np.zeros(len(rows), np.int64))
+        self.compiled = False         # whether the compiled tick takes the rows
 
     @property
-    def compiled(self) -> bool:
-        """Whether the compiled tick makes the copies."""
-        return self._pending is not None
+    def state(self) -> np.ndarray:
+        return self.views[0]
 
-    def _copy_now(self, row: int) -> None:
-        np.take(self.block, self.index, out=self.rows[row])
+    @property
+    def ticks(self) -> np.ndarray:
+        """The tick of each row kept."""
+        return self.views[1]
+
+    def give(self, start: int, end: int) -> None:
+        """Rows ``start`` to ``end - 1`` are free to fill."""
+        state = self.state
+        state[ROW], state[END] = start, end
+
+    def stop(self) -> None:
+        """Keep no more rows and call back no more."""
+        state = self.state
+        state[DUE], state[ROW], state[END], state[SIGNAL] = np.iinfo(np.int64).max // 2, 0, -1, 0
+
+    def request(self) -> None:
+        """Call ``on_signal`` at the start of the next tick (safe from any thread)."""
+        self.views[0][SIGNAL] = 1
+
+    def _take(self) -> bool:
+        """Keep the arena's values when due; whether to call back (as the compiled TAP)."""
+        state = self.state
+        t, row = state[TICK], state[ROW]
+        if t >= state[DUE] and row < state[END]:
+            np.take(self.block, self.index, out=self.rows[row])
+            self.ticks[row] = t
+            state[ROW] = row = row + 1
+            state[DUE] = t + state[EVERY]
+        return row == state[END] or state[SIGNAL] != 0
+
+    def step(self) -> None:
+        """At the start of a tick (without the compiled tick)."""
+        signal = self._take()
+        self.state[TICK] += 1
+        if signal:
+            self.on_signal()
 
     def settle(self) -> None:
-        """Make the copy that ``keep`` left to the next compiled tick now."""
-        pending = self._pending
-        if pending is not None and pending[0] != NONE:
-            self._copy_now(int(pending[0]))
-            pending[0] = NONE
+        """Keep the values of the tick just done now, when due (between ticks)."""
+        self._take()
 
-    def bind(self, pending: np.ndarray) -> None:
-        """From now on the compiled tick copies: ``pending`` is the one-element view of its
-        index pool where it looks for the row kept."""
-        self.settle()
-        pending[0] = NONE
-        self._pending = pending
-        self.keep = functools.partial(memoryview(pending).__setitem__, 0)
+    def bind(self, view: np.ndarray, tick: int) -> None:
+        """From now on the compiled tick takes the rows: ``view`` is the part of its index
+        pool that holds the state and ticks; ``tick`` the one the arena holds."""
+        state, ticks = self.views
+        view[:STATE], view[STATE:] = state, ticks
+        view[TICK] = tick
+        self.views = (view[:STATE], view[STATE:])
+        self.compiled = True
 
     def unbind(self) -> None:
-        """From now on ``keep`` copies at once."""
-        self.settle()
-        self._pending = None
-        self.keep = self._copy_now
+        """From now on ``step()`` takes the rows."""
+        if self.compiled:
+            self.views = (self.state.copy(), self.ticks.copy())
+            self.compiled = False

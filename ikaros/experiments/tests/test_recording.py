@@ -188,7 +188,8 @@ def test_a_failing_recording_stops_with_a_warning_and_the_run_goes_on(tmp_path):
     stopped = []
     net.modules["Counter"].module.stop = lambda: stopped.append(True)
     net.run(ticks=5)
-    recorder._error = OSError("disk full")     # as the writer thread reports a failure
+    recorder._error = OSError("disk full")     # as the writer thread reports a failure:
+    recorder._tap.request()                    # the recorder hears of it at the next tick
     net.run(ticks=5)                           # no exception: the model keeps running
     assert net.tick == 10
     net.close()

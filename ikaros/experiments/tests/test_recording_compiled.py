@@ -1,5 +1,7 @@
 """Recording with the compiled tick (its output tap copies the rows in the compiled call)
 gives the same file as recording with the NumPy kernel, tick by tick."""
+import time
+
 import numpy as np
 import pytest
 
@@ -83,3 +85,49 @@ def test_the_row_of_the_last_tick_is_kept_when_the_recording_ends(tmp_path):
     # plus Counter
     np.testing.assert_array_equal(ds["Sum.OUTPUT"].values[:, 0],
                                   2 * np.maximum(k - 1, 0) + (k + 1))
+
+
+def test_the_compiled_tick_calls_the_recorder_only_when_a_block_is_full(tmp_path, monkeypatch):
+    # 15 values a row, 5 rows a block: the compiled call keeps rows and tick numbers by
+    # itself and calls the recorder back once per block (no flush asked for in 60 s)
+    monkeypatch.setattr(recording, "CHUNK_BYTES", 64)
+    monkeypatch.setattr(recording, "BLOCK_BYTES", 300)
+    calls = []
+    signalled = recording.Recorder._signalled
+    monkeypatch.setattr(recording.Recorder, "_signalled",
+                        lambda self: (calls.append(self.net.tick), signalled(self)))
+    net = load_body(tmp_path, BODY, compiled="yes")
+    recorder = recording.Recorder(net, str(tmp_path / "run.h5"), every=2,
+                                  flush_seconds=60)
+    assert recorder._tap.compiled and recorder._block_rows == 5
+    net.run(ticks=101)          # ticks 0 to 100; the 51st row (tick 100) taken at the close
+    recorder.close()
+    # the 5th row of a block (tick 8, 18, ...) is kept when the next tick starts
+    assert calls == list(range(9, 100, 10))
+    net.close()
+    with h5py.File(tmp_path / "run.h5", "r") as f:
+        np.testing.assert_array_equal(f["tick"][()], np.arange(0, 101, 2))
+        np.testing.assert_array_equal(f["time"][()], np.arange(0, 101, 2) * 0.01)
+        np.testing.assert_array_equal(f["data"][:, 0], np.arange(1, 102, 2))   # Counter
+
+
+def test_the_writer_asks_for_the_rows_of_a_partly_filled_block_while_running(tmp_path):
+    # one block holds the whole run: its rows reach the file only when the writer asks
+    # for them (every flush_seconds), while the network runs
+    net = load_body(tmp_path, BODY, compiled="yes")
+    path = tmp_path / "run.h5"
+    recorder = recording.Recorder(net, str(path), only="Counter.OUTPUT", flush_seconds=0.05)
+    assert recorder._tap.compiled and recorder._block_rows > 10000
+    deadline = time.monotonic() + 30
+    rows = 0
+    while rows == 0:
+        assert time.monotonic() < deadline, "no rows in the file after 30 s"
+        net.run(ticks=10)
+        time.sleep(0.02)
+        with h5py.File(path, "r", swmr=True) as f:
+            rows = f["tick"].shape[0]
+            ticks, data = f["tick"][()], f["data"][:rows, 0]
+    np.testing.assert_array_equal(ticks, np.arange(rows))
+    np.testing.assert_array_equal(data, np.arange(1, rows + 1))
+    recorder.close()
+    net.close()

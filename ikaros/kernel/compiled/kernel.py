@@ -15,7 +15,8 @@ import numpy as np
 from numba import njit
 
 from .ops import (ABS, ADD, CONSTANT, COPY, DIVIDE, GATHER, INTEGRATE, MAXIMUM, MINIMUM,
-                  MULTIPLY, SCALE, SUBTRACT, SUM, TANH, TAP, THRESHOLD)
+                  MULTIPLY, SCALE, SUBTRACT, SUM, TANH, TAP, TAP_DUE, TAP_END, TAP_EVERY,
+                  TAP_ROW, TAP_SIGNAL, TAP_STATE, TAP_TICK, THRESHOLD)
 
 _BLOCK = 128           # NumPy's pairwise summation block
 _BUFFER = 8192         # NumPy's casting buffer: a float32 array is summed in float64 chunks
@@ -177,11 +178,20 @@ def execute(block, code, first, last, params, pool, flags):
                     v = high
                 o[i] = v
         elif op == TAP:
-            row = pool[b]
-            if row >= 0 and (row + 1) * n <= params.size:
+            t = pool[b + TAP_TICK]
+            row = pool[b + TAP_ROW]
+            end = pool[b + TAP_END]
+            if t >= pool[b + TAP_DUE] and row < end and (row + 1) * n <= params.size:
                 kept = params[row * n:row * n + n]
                 index = pool[a:a + n]
                 for i in range(n):
                     kept[i] = block[index[i]]
-                pool[b] = -1
+                pool[b + TAP_STATE + row] = t
+                row += 1
+                pool[b + TAP_ROW] = row
+                pool[b + TAP_DUE] = t + pool[b + TAP_EVERY]
+            pool[b + TAP_TICK] = t + 1
+            if row == end or pool[b + TAP_SIGNAL] != 0:
+                flags[k] = 1
+                flagged += 1
     return flagged

@@ -22,5 +22,16 @@ THRESHOLD = 12  # p = bypass, linear, threshold
 SUM = 13        # OUT[0] = the sum of A[0:N] in float64, as NumPy adds (pairwise)
 CONSTANT = 14   # OUT[i] = p[i]
 INTEGRATE = 15  # OUT = OUT * p[0] + p[1] * A, clipped to p[3] when p[2], to p[5] when p[4]
-TAP = 16        # when pool[B] = r >= 0: p[r * N + i] = arena[pool[A + i]] (row r of p), then
-                # pool[B] = -1
+TAP = 16        # an output tap (kernel/taps.py); pool[B:] is its state (TAP_* below) and
+                # the tick of each row: when the arena's tick is due and there is room,
+                # row ROW of p (N values each) = arena[pool[A + i]]; flagged when the room
+                # is full or SIGNAL is set
+
+# the state of a tap, at pool[B + ...]; the tick of row r at pool[B + TAP_STATE + r]
+TAP_TICK = 0        # the tick whose values the arena holds
+TAP_DUE = 1         # the next tick to keep
+TAP_EVERY = 2
+TAP_ROW = 3         # the row the next kept tick goes into
+TAP_END = 4         # the row past the room given
+TAP_SIGNAL = 5      # 1: flag at the next call whatever happens
+TAP_STATE = 6

@@ -320,10 +320,12 @@ def _user_call(run, block, table, program):
     return call
 
 
-def compiled_gather(block: np.ndarray, src: np.ndarray, dst: np.ndarray, execute, tap=None):
+def compiled_gather(block: np.ndarray, src: np.ndarray, dst: np.ndarray, execute,
+                    tap=None, tick: int = -1):
     """A copy of arena elements ``src`` to ``dst`` (the delay-1 copies of small buffers) as
-    one instruction of the compiled function; with ``tap`` (a kernel.taps.OutputTap), the
-    copy of the row it keeps comes first, in the same call."""
+    one instruction of the compiled function; with ``tap`` (a kernel.taps.OutputTap, the
+    arena holding the values of ``tick``), the tap's row comes first, in the same call, and
+    the tap is called back when the call flags it."""
     n = len(src)
     code = [[ops.GATHER, 0, n, 0, n, 0]]
     pool = [src, dst]
@@ -331,15 +333,20 @@ def compiled_gather(block: np.ndarray, src: np.ndarray, dst: np.ndarray, execute
     if tap is not None:
         k = tap.index.size
         code.insert(0, [ops.TAP, 0, k, 2 * n, 2 * n + k, 0])
-        pool += [tap.index, np.full(1, -1)]
+        pool += [tap.index, np.zeros(ops.TAP_STATE + len(tap.ticks), np.int64)]
         params = tap.rows.reshape(-1)
     code = np.array(code, dtype=np.int64)
     pool = np.concatenate(pool).astype(np.int64)
     flags = np.zeros(len(code), dtype=np.int64)
-    if tap is not None:
-        tap.bind(pool[-1:])
     last = len(code)
+    if tap is None:
+        def copy():
+            execute(block, code, 0, last, params, pool, flags)
+        return copy
+    tap.bind(pool[2 * n + tap.index.size:], tick)
+    signal = tap.on_signal
 
-    def copy():
-        execute(block, code, 0, last, params, pool, flags)
-    return copy
+    def copy_and_tap():
+        if execute(block, code, 0, last, params, pool, flags):
+            signal()
+    return copy_and_tap
