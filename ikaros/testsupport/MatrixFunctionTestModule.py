@@ -42,8 +42,10 @@ class MatrixFunctionTestModule(InternalModule):
     """Checks, in ``init``, one group of array operations on its float32 buffers (``test``)
     with exact expected values, and prints ``MATRIX TEST <test> OK``; the first mismatch is
     a fatal error naming it. OUTPUT is 3x4, COLUMNS 4, IMAGE a 3x4x5 colour image and GRAY
-    4x5. With ``test="submatrix"`` the values written through views of OUTPUT in ``init``
-    are checked again on INPUT in every tick (connect OUTPUT to INPUT)."""
+    4x5. When OUTPUT is connected to INPUT (delay 1), ``submatrix`` checks on INPUT, in
+    every tick, the values written through views of OUTPUT in ``init``, and ``contracts``
+    checks on tick 0 that an array put in place of OUTPUT in ``init`` was not read; OK is
+    then printed after tick 0."""
 
     test = Parameter("reductions", "the group of operations to check", options=TESTS)
     INPUT = Input("OUTPUT again, for the submatrix test", optional=True)
@@ -53,21 +55,22 @@ class MatrixFunctionTestModule(InternalModule):
     GRAY = Output("a gray image (rows, cols)", shape="4,5")
 
     def init(self):
-        self._run(getattr(self, f"_{self.test}"))
+        self._run(getattr(self, f"_{self.test}"), report=self.INPUT is None)
 
     def tick(self):
-        if self.test == "submatrix" and self.INPUT is not None:
-            self._run(lambda: expect("INPUT (the OUTPUT written through views)", self.INPUT,
-                                     SUBMATRIX))
+        if self.INPUT is None or self.test not in ("submatrix", "contracts"):
+            return
+        check = self._views_read if self.test == "submatrix" else self._replaced_output
+        self._run(check, report=self.clock.tick == 0)
 
-    def _run(self, check) -> None:
+    def _run(self, check, report: bool) -> None:
+        """Runs ``check``: a mismatch is a fatal error; else prints OK if ``report``."""
         try:
             check()
         except Mismatch as e:
             self.fatal_error(f"MATRIX TEST {self.test} FAILED: {e}")
         else:
-            if not getattr(self, "_reported", False):
-                self._reported = True
+            if report:
                 self.print(f"MATRIX TEST {self.test} OK")
 
     def _fill(self) -> np.ndarray:
@@ -220,6 +223,9 @@ class MatrixFunctionTestModule(InternalModule):
         expect("max of a column view", m[:, 3].max(), 20)
         expect("a block's transpose", m[1:, :2].T, [[5, 14], [6, 16]])
 
+    def _views_read(self):
+        expect("INPUT (the OUTPUT written through views)", self.INPUT, SUBMATRIX)
+
     def _contracts(self):
         m = self.OUTPUT
         raises("a 5-vector written into the 3x4 OUTPUT", ValueError,
@@ -235,6 +241,15 @@ class MatrixFunctionTestModule(InternalModule):
         raises("a dynamic array resized beyond its capacity", ValueError,
                lambda: dynamic.resize((4, 2)), "does not fit the capacity")
         expect("OUTPUT after the refused writes", m, np.zeros((3, 4)))
+        # Replacing an output array is not caught (docs/writing-modules.md): the kernel
+        # keeps its buffer, and the new array is read by no one (checked on tick 0).
+        self._kernel_output = m
+        self.OUTPUT = np.full((3, 4), 99, np.float32)
+
+    def _replaced_output(self):
+        expect("INPUT after OUTPUT was replaced by another array", self.INPUT,
+               np.zeros((3, 4)))
+        self.OUTPUT = self._kernel_output
 
     def _hotspots(self):
         m = self._fill()
