@@ -141,7 +141,8 @@ def test_support_classes_are_found_but_internal():
     support = os.path.join(os.path.dirname(ikaros.__file__), "testsupport")
     registry = ClassRegistry([support])
     names = ["KernelTestModule", "DelaySequenceSource", "TaskLifecycleTestModule",
-             "PersistentStateTestModule"]
+             "PersistentStateTestModule", "MatrixFunctionTestModule",
+             "ComputeEngineTestModule"]
     for name in names:
         assert registry.find(name).description().internal, name
     listed = ikaros.classes(support)
