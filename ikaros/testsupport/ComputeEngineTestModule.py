@@ -20,15 +20,16 @@ SHAPES = {
     "shape_input": (2, 3, 4), "shape_slice": (3, 4), "shape_index": (4,),
     "shape_size": (24,), "shape_rank": (3,), "shape_list": (3, 4),
     "shape_arithmetic": (2, 8), "shape_optional": (3,), "shape_matrix": (2, 4),
+    "shape_axes": (4, 3, 2),
 }
 
 
 class ComputeEngineTestModule(InternalModule):
     """Checks at init that its parameters have the values the model's expressions must give
     (variables, arithmetic, inherited and chained variables, data-block paths, ``{...}``,
-    matrix elements), and that each ``shape_*`` parameter, a shape expression (``INPUT.shape``,
-    ``INPUT.shape[1:3]``, ``INPUT.size``, ``@rows, @cols``, ``optional(...)``, ...), sizes
-    the output of that name as it must. Prints ``COMPUTE ENGINE TEST OK``; the first
+    matrix elements), and that each ``shape_*`` parameter, a shape expression
+    (``INPUT.shape``, ``INPUT.shape[1:3]``, ``INPUT.size``, ``INPUT.size_x``,
+    ``@rows, @cols``, ``optional(...)``, ...), sizes the output of that name as it must. Prints ``COMPUTE ENGINE TEST OK``; the first
     mismatch is a fatal error naming it."""
 
     arithmetic = Parameter(0.0, "@a+@b*@c: 14")
@@ -54,6 +55,7 @@ class ComputeEngineTestModule(InternalModule):
     shape_arithmetic = Parameter("", "INPUT.shape[1]-@k+1, @cols*2: 2x8")
     shape_optional = Parameter("", "@rows, optional(@zero): 3")
     shape_matrix = Parameter("", "matrix.rows, matrix.cols*2: 2x4")
+    shape_axes = Parameter("", "INPUT.size_x, INPUT.size_y, INPUT.size_z: 4x3x2")
     INPUT = Input("a 2x3x4 array whose shape the shape expressions read")
 
     def configure(self):
