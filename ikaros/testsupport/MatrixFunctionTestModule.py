@@ -48,20 +48,23 @@ class MatrixFunctionTestModule(InternalModule):
     then printed after tick 0."""
 
     test = Parameter("reductions", "the group of operations to check", options=TESTS)
-    INPUT = Input("OUTPUT again, for the submatrix test", optional=True)
+    INPUT = Input("OUTPUT again, for the submatrix and contracts tests", optional=True)
     OUTPUT = Output("the 3x4 buffer the checks write", shape="3,4")
-    COLUMNS = Output("a 4-vector written by reductions", shape="4")
+    COLUMNS = Output("a 4-vector the checks write", shape="4")
     IMAGE = Output("a colour image (3, rows, cols)", shape="3,4,5")
     GRAY = Output("a gray image (rows, cols)", shape="4,5")
 
     def init(self):
-        self._run(getattr(self, f"_{self.test}"), report=self.INPUT is None)
+        self._run(getattr(self, f"_{self.test}"), report=not self._checks_input())
 
     def tick(self):
-        if self.INPUT is None or self.test not in ("submatrix", "contracts"):
+        if not self._checks_input():
             return
         check = self._views_read if self.test == "submatrix" else self._replaced_output
         self._run(check, report=self.clock.tick == 0)
+
+    def _checks_input(self) -> bool:
+        return self.INPUT is not None and self.test in ("submatrix", "contracts")
 
     def _run(self, check, report: bool) -> None:
         """Runs ``check``: a mismatch is a fatal error; else prints OK if ``report``."""
