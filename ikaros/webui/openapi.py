@@ -304,7 +304,9 @@ def openapi() -> dict:
             "webui_req_int": {"type": "number", "description": "seconds between two data "
                               "snapshots at least (the model's setting of that name)"},
             "webui_log_buffer_limit": {"type": "integer", "description": "the messages "
-                                       "kept for /api/log"}}},
+                                       "kept for /api/log"},
+            "rgb_quality": {"type": "integer", "description": "of JPEG colour images"},
+            "gray_quality": {"type": "integer", "description": "of JPEG gray images"}}},
         "Network": {"type": "object", "properties": {
             "file": {"type": "string"}, "name": {"type": "string"},
             "top": {"$ref": "#/components/schemas/Group"},

@@ -339,7 +339,8 @@ class WebUI:
             if keep != self.logbook.messages.maxlen:
                 self.logbook.messages = collections.deque(self.logbook.messages, maxlen=keep)
         if not self._max_rate_given:
-            self.hub.min_interval = settings.snapshot_interval(net, 1.0 / DEFAULT_MAX_RATE)
+            self.hub.min_interval = settings.req_interval(net, 1.0 / DEFAULT_MAX_RATE)
+        self.hub.rgb_quality, self.hub.gray_quality = settings.jpeg_qualities(net)
 
     # --- reads ---------------------------------------------------------------------------
     def status(self) -> dict:
@@ -347,6 +348,8 @@ class WebUI:
         figures["file"] = os.path.basename(self.net.filename or "")
         figures["webui_req_int"] = self.hub.min_interval
         figures["webui_log_buffer_limit"] = self.logbook.messages.maxlen
+        figures["rgb_quality"] = self.hub.rgb_quality
+        figures["gray_quality"] = self.hub.gray_quality
         stop = self.net.stop_tick
         figures["stop_tick"] = stop if stop is not None and stop >= 0 else None
         if self.net.stopped:

@@ -64,3 +64,57 @@ def test_a_bad_value_is_a_warning_and_the_default_is_used(tmp_path, key, text, d
     warnings_ = [m for _, level, _, m in net.log if level == WARNING]
     assert len(warnings_) == 1 and warnings_[0].startswith(f'{key}="{text}" must be {rule}')
     net.close()
+
+
+def test_the_jpeg_qualities_of_colour_and_gray_images(tmp_path):
+    net = load_body(tmp_path, BODY, rgb_quality="13", gray_quality="17")
+    status = status_of(net)
+    assert (status["rgb_quality"], status["gray_quality"]) == (13, 17)
+    net.close()
+    net = load_body(tmp_path, BODY, rgb_quality="0", gray_quality="101")
+    status = status_of(net)
+    assert (status["rgb_quality"], status["gray_quality"]) == (85, 85)
+    warnings_ = [m for _, level, _, m in net.log if level == WARNING]
+    assert warnings_ == ['rgb_quality="0" must be a whole number from 1 to 100; the web UI '
+                         'uses 85', 'gray_quality="101" must be a whole number from 1 to '
+                         '100; the web UI uses 85']
+    net.close()
+
+
+def test_a_jpeg_image_is_encoded_at_the_quality_given():
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    from ikaros.webui.encoding import encode_array
+    a = np.random.default_rng(1).random((3, 32, 32))
+    low, default = encode_array(a, "jpeg", 13), encode_array(a, "jpeg")
+    pixels = (np.clip(a, 0, 1) * 255 + 0.5).astype(np.uint8).transpose(1, 2, 0)
+    expected = io.BytesIO()
+    Image.fromarray(np.ascontiguousarray(pixels), "RGB").save(expected, "JPEG", quality=13)
+    assert low == expected.getvalue() and len(low) < len(default)
+
+
+def test_the_frames_carry_jpeg_images_at_the_models_qualities(tmp_path):
+    from ikaros.webui.encoding import decode_frame, encode_array
+    body = ('<module class="Constant" name="Gray" data="0 0.5; 1 0.25"/>\n'
+            '<module class="Constant" name="Rgb" '
+            'data="[[[1, 0], [0, 1]], [[0, 1], [0, 1]], [[0, 0], [1, 1]]]"/>')
+    net = load_body(tmp_path, body, rgb_quality="13", gray_quality="17")
+    with TestClient(create_app(net)) as client, client.websocket_connect("/api/ws") as ws:
+        ws.send_json({"type": "subscribe", "buffers": [
+            {"path": "Gray.OUTPUT", "format": "jpeg"}, {"path": "Rgb.OUTPUT", "format": "jpeg"}]})
+        ws.send_json({"type": "ready"})
+        while True:
+            m = ws.receive()
+            if m.get("bytes") is not None:
+                header, data = decode_frame(m["bytes"])
+                break
+    gray, rgb = net.buffer_array("Gray.OUTPUT"), net.buffer_array("Rgb.OUTPUT")
+    assert data["Gray.OUTPUT"] == encode_array(gray, "jpeg", 17)
+    assert data["Gray.OUTPUT"] != encode_array(gray, "jpeg", 13)
+    assert rgb.shape == (3, 2, 2)
+    assert data["Rgb.OUTPUT"] == encode_array(rgb, "jpeg", 13)
+    assert data["Rgb.OUTPUT"] != encode_array(rgb, "jpeg", 17)
+    net.close()
