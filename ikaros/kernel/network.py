@@ -31,6 +31,7 @@ from .limits import check_memory as _check_memory
 from .ranges import check_parameter, fit_shape
 from .taps import OutputTap
 from .timing import Timing
+from .watchdog import Watchdog, task_timeout
 from .scope import VariableError, from_python
 from . import state as _state
 from .state import capture_initial
@@ -94,6 +95,9 @@ class Network:
         self.stop_tick = self._whole_number("stop", minimum=-1)
         self.threads = self._whole_number("threads", minimum=1)
         self.webui_port = self._whole_number("webui_port", minimum=1, maximum=65535)
+        self.task_timeout = task_timeout(self.top.attrs.get("task_timeout"),
+                                         lambda m: self._setting_error("task_timeout", m))
+        self._watchdog: Watchdog | None = None
         self.startup = builder.startup
         with self.startup.step("memory"):
             self._allocate()
@@ -103,6 +107,8 @@ class Network:
             self._init_modules()
         self.initial_state = capture_initial(self)      # what reset_state goes back to
         self._check_checksum()
+        if self.task_timeout:
+            self._watchdog = Watchdog(self, self.task_timeout, Network._tick.__code__)
 
     # --- setup ---------------------------------------------------------------------------
     def _tick_duration(self) -> float:
@@ -456,6 +462,15 @@ class Network:
                 print(f"{LEVEL_NAMES[level].replace('_', ' ')}: {text}\n", end="",
                       file=sys.stderr, flush=True)
 
+    def time_out(self, where: str, warning: str, reason: str) -> None:
+        """The watchdog found a tick too long: warn now, and end the run with ``reason``
+        (a fatal error) when the tick has finished."""
+        self.notify(WARNING, None, warning)
+        self.log.append((self.tick, FATAL_ERROR, where, reason))
+        if self.stop_reason is None or self.stop_reason[0] != FATAL_ERROR:
+            self._stop_where = where
+            self.stop_reason = (FATAL_ERROR, reason)
+
     # --- running -------------------------------------------------------------------------
     @property
     def stopped(self) -> bool:
@@ -488,6 +503,8 @@ class Network:
         """End the run after the current tick: call every module's stop once."""
         if not self._stopped:
             self._stopped = True
+            if self._watchdog is not None:
+                self._watchdog.close()
             self._cancel_background()
             for job in self.async_modules.values():
                 job.finish()

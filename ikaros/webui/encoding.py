@@ -32,9 +32,9 @@ def raw_bytes(array: np.ndarray) -> bytes:
     return np.ascontiguousarray(array, dtype="<f4").tobytes()
 
 
-def image_bytes(array: np.ndarray, fmt: str) -> bytes:
-    """A PNG or JPEG file of an array of values 0..1: (rows, cols) gray or (3, rows, cols)
-    colour."""
+def image_bytes(array: np.ndarray, fmt: str, quality: int = JPEG_QUALITY) -> bytes:
+    """A PNG or JPEG file (of this quality, 1-100) of an array of values 0..1: (rows, cols)
+    gray or (3, rows, cols) colour."""
     from PIL import Image
     a = np.nan_to_num(np.asarray(array, dtype=np.float32), nan=0.0, posinf=1.0, neginf=0.0)
     pixels = (np.clip(a, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
@@ -49,17 +49,17 @@ def image_bytes(array: np.ndarray, fmt: str) -> bytes:
     if fmt == "png":
         image.save(out, "PNG", compress_level=PNG_COMPRESS_LEVEL)
     elif fmt == "jpeg":
-        image.save(out, "JPEG", quality=JPEG_QUALITY)
+        image.save(out, "JPEG", quality=quality)
     else:
         raise ValueError(f'unknown image format "{fmt}"')
     return out.getvalue()
 
 
-def encode_array(array: np.ndarray, fmt: str) -> bytes:
-    """The payload of one buffer in one format."""
+def encode_array(array: np.ndarray, fmt: str, quality: int = JPEG_QUALITY) -> bytes:
+    """The payload of one buffer in one format (``quality``: of a JPEG image)."""
     if fmt == "raw":
         return raw_bytes(array)
-    return image_bytes(array, fmt)
+    return image_bytes(array, fmt, quality)
 
 
 def encode_frame(tick: int, time: float, items: list[tuple]) -> bytes:

@@ -300,7 +300,13 @@ def openapi() -> dict:
             "ticks_per_second": num_or_none, "ticks_per_second_mean": num_or_none,
             "actual_tick_duration": num_or_none, "lag": num, "lag_max": num,
             "lag_p99": num, "resyncs": {"type": "integer"}, "cpu_usage": num, "idle": num,
-            "file": {"type": "string"}}},
+            "file": {"type": "string"},
+            "webui_req_int": {"type": "number", "description": "seconds between two data "
+                              "snapshots at least (the model's setting of that name)"},
+            "webui_log_buffer_limit": {"type": "integer", "description": "the messages "
+                                       "kept for /api/log"},
+            "rgb_quality": {"type": "integer", "description": "of JPEG colour images"},
+            "gray_quality": {"type": "integer", "description": "of JPEG gray images"}}},
         "Network": {"type": "object", "properties": {
             "file": {"type": "string"}, "name": {"type": "string"},
             "top": {"$ref": "#/components/schemas/Group"},

@@ -8,6 +8,7 @@ is described in docs/webui-protocol.md; ``/api/openapi.json`` describes the HTTP
 from __future__ import annotations
 
 import asyncio
+import collections
 import contextlib
 import ipaddress
 import json
@@ -36,7 +37,7 @@ from ..kernel.control import PAUSE, STATES, STEP, STOP
 from ..kernel.carry import take_over
 from ..language.writer import write_file
 from ..module import Module
-from . import compat, editing
+from . import compat, editing, settings
 from . import state as run_tools
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
@@ -314,7 +315,10 @@ class WebUI:
         self.build_limits = build_limits
         self.logbook = LogBook(net)
         self.rates = TickRate()
-        self.hub = Hub(net, self.status, self.logbook, budget, max_rate, status_interval)
+        self.hub = Hub(net, self.status, self.logbook, budget, max_rate or DEFAULT_MAX_RATE,
+                       status_interval)
+        self._max_rate_given = max_rate is not None     # else the model's webui_req_int
+        self._model_settings(net)
         self._classes = None
         self._changing = threading.Lock()       # one apply / open / new at a time
         self._ended_by_stop = None              # the network whose run the stop button ended
@@ -328,10 +332,24 @@ class WebUI:
         self._cli_stop = net.stop_tick if str(net.stop_tick) != str(own_stop).strip() and \
             not (net.stop_tick is None and own_stop in (None, "")) else None
 
+    def _model_settings(self, net) -> None:
+        """The web UI settings of the model's top group (webui/settings.py)."""
+        keep = settings.log_limit(net)
+        with self.logbook._lock:
+            if keep != self.logbook.messages.maxlen:
+                self.logbook.messages = collections.deque(self.logbook.messages, maxlen=keep)
+        if not self._max_rate_given:
+            self.hub.min_interval = settings.req_interval(net, 1.0 / DEFAULT_MAX_RATE)
+        self.hub.rgb_quality, self.hub.gray_quality = settings.jpeg_qualities(net)
+
     # --- reads ---------------------------------------------------------------------------
     def status(self) -> dict:
         figures = plain(self.net.controller.figures())
         figures["file"] = os.path.basename(self.net.filename or "")
+        figures["webui_req_int"] = self.hub.min_interval
+        figures["webui_log_buffer_limit"] = self.logbook.messages.maxlen
+        figures["rgb_quality"] = self.hub.rgb_quality
+        figures["gray_quality"] = self.hub.gray_quality
         stop = self.net.stop_tick
         figures["stop_tick"] = stop if stop is not None and stop >= 0 else None
         if self.net.stopped:
@@ -704,6 +722,7 @@ class WebUI:
         self.failure = None
         self.logbook.net = new
         self.logbook._last = None
+        self._model_settings(new)
         hub = self.hub
         hub.net = new
         hub.snap.net = new
@@ -830,7 +849,7 @@ class WebUI:
 
 def create_app(net, token: str | None = None, static_dir: str | None = None, *,
                hosts: tuple | None = None, budget: float = DEFAULT_BUDGET,
-               max_rate: float = DEFAULT_MAX_RATE,
+               max_rate: float | None = None,
                status_interval: float = STATUS_INTERVAL,
                models_dir: str | None = None, max_body: int = DEFAULT_MAX_BODY,
                build_timeout: float = DEFAULT_BUILD_TIMEOUT,
@@ -839,8 +858,9 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
     ``hosts``, requests whose ``Host`` names another host are refused (a guard against DNS
     rebinding when no token is required). ``budget`` is the time in seconds the kernel may
     spend copying data for clients after one tick; ``max_rate`` caps the data frames per
-    second. ``models_dir`` is the folder the editor saves, lists, opens and creates models
-    in (default: the model's folder). The editor may replace the running network:
+    second (default: one per the model's ``webui_req_int`` seconds, else 15). ``models_dir``
+    is the folder the editor saves, lists, opens and creates models in (default: the
+    model's folder). The editor may replace the running network:
     ``app.state.ui.net`` is the current one. ``max_body`` limits request bodies and
     WebSocket messages (bytes); the editor's builds are abandoned after ``build_timeout``
     seconds and may use ``max_memory`` bytes of buffers. ``failure`` is a model that failed

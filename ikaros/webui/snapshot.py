@@ -20,7 +20,7 @@ from typing import Callable
 import numpy as np
 
 from ..module import LEVEL_NAMES
-from .encoding import IMAGE_FORMATS, encode_array, encode_frame
+from .encoding import IMAGE_FORMATS, JPEG_QUALITY, encode_array, encode_frame
 from .history import (DEFAULT_POINTS, HISTORY_FORMATS, Recorder, encode_events,
                       encode_history)
 
@@ -260,6 +260,7 @@ class Hub:
         self.snap.read_history = self._read_history
         self.min_interval = 1.0 / max_rate if max_rate and max_rate > 0 else 0.0
         self.status_interval = status_interval
+        self.rgb_quality = self.gray_quality = JPEG_QUALITY    # of JPEG images
         self.clients: set[Client] = set()
         self.loop: asyncio.AbstractEventLoop | None = None
         self.in_flight = False
@@ -382,8 +383,10 @@ class Hub:
             for c in targets:
                 for path, fmt in c.subs:
                     if fmt in IMAGE_FORMATS and (path, fmt) not in cache:
+                        array = snap.plan.arrays[path]
+                        quality = self.rgb_quality if array.ndim == 3 else self.gray_quality
                         cache[(path, fmt)] = await asyncio.to_thread(
-                            encode_array, snap.plan.arrays[path], fmt)
+                            encode_array, array, fmt, quality)
             for c in targets:
                 if c in self.clients:
                     self._send_frame(c, snap, cache)
