@@ -38,7 +38,7 @@ FORMAT = "ikaros-recording"
 FORMAT_VERSION = 1
 # HDF5 takes about 0.1 ms (holding the GIL) per chunk written and per dataset write,
 # whatever its size: big chunks, written a block of them at a time, keep that small per tick
-CHUNK_BYTES = 4 << 20          # at most this many bytes of values per chunk
+CHUNK_BYTES = 16 << 20        # at most this many bytes of values per chunk
 BLOCK_BYTES = 32 << 20         # about this many per block handed to the writer
 BLOCK_ROWS = 1 << 16           # and at most this many rows
 RING_BLOCKS = 2                # the block being filled and the one being written

@@ -7,7 +7,7 @@ from ikaros.module import Module, Parameter, attribute_name, require
 
 from ._files import build_error, resolve
 
-BLOCK_TICKS = 1024     # recorded rows read from the file at a time
+BLOCK_TICKS = 1024     # recorded rows read from the file at a time, unless chunked
 
 
 class Replay(Module):
@@ -63,6 +63,8 @@ class Replay(Module):
                 raise build_error(self, f'the recording "{self.filename}" has no outputs '
                                         f'of module "{self.module}"')
         self._rows = min(f["data"].shape[0], f["tick"].shape[0])
+        # a block is a chunk of the file (decompressed once), or BLOCK_TICKS rows
+        self._block_ticks = f["data"].chunks[0] if f["data"].chunks else BLOCK_TICKS
         if self._rows == 0:
             raise build_error(self, f'the recording "{self.filename}" has no rows')
         self._start = min(start for _, start, _ in chosen.values())
@@ -81,8 +83,8 @@ class Replay(Module):
 
     def _row(self, k: int) -> np.ndarray:
         if not (self._block_first <= k < self._block_first + self._block.shape[0]):
-            first = k - k % BLOCK_TICKS
-            last = min(first + BLOCK_TICKS, self._rows)
+            first = k - k % self._block_ticks
+            last = min(first + self._block_ticks, self._rows)
             self._block = self._file["data"][first:last, self._start:self._stop]
             self._block_first = first
         return self._block[k - self._block_first]
