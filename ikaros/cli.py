@@ -10,6 +10,7 @@ import traceback
 from . import classes, load
 from .experiments import commandline as experiment_options
 from .errors import ModelError, RunError
+from .language.reader import read_file
 from .module import DEBUG, FATAL_ERROR, PRINT
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
@@ -206,12 +207,34 @@ def _split_args(p, args: list[str]) -> tuple[str | None, dict]:
     return model, overrides
 
 
-def _listen(opts):
+def _web_port(opts, model_port: int | None) -> int:
+    """The web UI's port: -w, else the model's ``webui_port``, else 8000."""
+    return opts.port if opts.port is not None else model_port or 8000
+
+
+def _model_port(model: str | None, overrides: dict) -> int | None:
+    """``webui_port`` given on the command line or in the model's top group, read before
+    the model is built; None when there is none or it is not a port (the load reports a
+    bad one)."""
+    text = overrides.get("webui_port")
+    if text is None and model is not None:
+        try:
+            text = read_file(model, root_tag="group").attrs.get("webui_port")
+        except (ModelError, OSError, ValueError):
+            return None                 # the load reports it
+    try:
+        port = int(str(text).strip())
+    except ValueError:
+        return None
+    return port if 1 <= port <= 65535 else None
+
+
+def _listen(opts, model_port: int | None):
     """The web UI's listening socket, opened before the model is built so that a port in
     use ends the command before any module's ``init`` runs; None (reported) if it fails."""
     from .webui.server import ServeError, listen
     try:
-        return listen(opts.bind, 8000 if opts.port is None else opts.port)
+        return listen(opts.bind, _web_port(opts, model_port))
     except ServeError as e:
         print(f"ikaros: error: {e}", file=sys.stderr)
         return None
@@ -252,9 +275,7 @@ def _serve(net, opts, failure: dict | None = None, sock=None) -> int:
             print(f"ikaros: access token: {token}", flush=True)
     try:
         net.profiling = opts.profile
-        port = opts.port if opts.port is not None else \
-            getattr(net, "webui_port", None) or 8000
-        serve(net, host, port, token, state,
+        serve(net, host, _web_port(opts, net.webui_port), token, state,
               on_ready=ready, models_dir=opts.models, max_memory=opts.max_memory,
               max_body=opts.max_body, build_timeout=opts.build_timeout, failure=failure,
               on_end=end, sock=sock)
@@ -360,7 +381,7 @@ def main(argv: list[str] | None = None) -> int:
                 return EXIT_ERROR
         if opts.strict and opts.lenient:
             p.error("--strict and --lenient can not be used together")
-        sock = None if opts.batch else _listen(opts)
+        sock = None if opts.batch else _listen(opts, _model_port(model, overrides))
         if not opts.batch and sock is None:
             return EXIT_ERROR
         failure = None

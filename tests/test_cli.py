@@ -135,3 +135,27 @@ def test_user_data_folder_takes_written_files_and_the_model_cannot_choose_it(tmp
     assert [w.message for w in net.warnings][:1] == [
         "user_data in a model file is ignored (a model may not choose where files are "
         "written); use ikaros -u DIR"]
+
+
+def test_the_web_ui_listens_on_the_models_webui_port_unless_w_is_given(tmp_path):
+    import signal
+    import socket
+    ports = []
+    for _ in range(2):
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            ports.append(s.getsockname()[1])
+    model = tmp_path / "m.ikg"
+    model.write_text(f'<group webui_port="{ports[0]}"><module class="Constant" name="C" '
+                     f'data="1"/></group>')
+    for extra, port in (([], ports[0]), (["-w", str(ports[1])], ports[1]),
+                        ([f"webui_port={ports[1]}"], ports[1])):
+        proc = subprocess.Popen([sys.executable, "-m", "ikaros", *extra, str(model)],
+                                cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                text=True)
+        try:
+            line = proc.stdout.readline()
+        finally:
+            proc.send_signal(signal.SIGINT)
+            proc.communicate(timeout=20)
+        assert f" at http://127.0.0.1:{port}/" in line, line

@@ -50,6 +50,11 @@ def _bind_alias(buf) -> None:
     buf.offset = target.offset + start
 
 
+def _live_array(buf) -> np.ndarray:
+    """A buffer's array (an unconnected optional one has none: empty)."""
+    return buf.array if buf.array is not None else np.zeros((0,), np.float32)
+
+
 class Network:
     """A runnable model. Build one with ``ikaros.load``.
 
@@ -663,8 +668,7 @@ class Network:
     def buffer_array(self, path: str) -> np.ndarray:
         """The live array of a module output or input (not a copy; do not write to it).
         Of a dynamic buffer, the whole capacity."""
-        buf = self._buffer(path)
-        return buf.array if buf.array is not None else np.zeros((0,), np.float32)
+        return _live_array(self._buffer(path))
 
     def _buffer(self, path: str):
         comp, name = self._component(path, "output or input")
@@ -689,7 +693,7 @@ class Network:
         buf = self._buffer(path)
         if buf.dynamic_array is not None:
             return buf.dynamic_array.data.copy()
-        return buf.array.copy() if buf.array is not None else np.zeros((0,), np.float32)
+        return _live_array(buf).copy()
 
     def parameter(self, path: str) -> Any:
         """The current value of a module parameter (or a group attribute, as text)."""
