@@ -42,6 +42,7 @@ class ParameterSpec:
     finite: bool = True          # whether nan and inf are refused
     file: bool = False           # whether the value names a file or folder
     shape: str | None = None     # a matrix's fixed shape expression (Ikaros 3 ``shape``)
+    fixed: bool = False          # whether a change while the model runs is refused
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "type": self.type, "default": _plain(self.default),
@@ -58,6 +59,8 @@ class ParameterSpec:
             d["file"] = True
         if self.shape:
             d["shape"] = self.shape
+        if self.fixed:
+            d["fixed"] = True
         return d
 
 
@@ -218,6 +221,8 @@ class ClassDescription:
                 opts += f", range {low}..{high}"
             if p.shape:
                 opts += f", shape {p.shape}"
+            if p.fixed:
+                opts += ", fixed while running"
             lines.append(f"  {p.name} ({p.type}, default {_plain(p.default)!r}{opts}): "
                          f"{p.description}")
         lines.append("Inputs:" if self.inputs else "Inputs: none")

@@ -104,8 +104,9 @@ def _default(value) -> str:
 
 def _parameter_row(p: ParameterSpec) -> str:
     options = ", ".join(_code(o) for o in p.options)
+    fixed = " (fixed while the model runs)" if p.fixed else ""
     return (f"| {_code(p.name)} | {_cell(p.type)} | {_default(p.default)} | {options} | "
-            f"{_cell(p.description)} |")
+            f"{_cell(p.description + fixed)} |")
 
 
 def _input_row(i: InputSpec) -> str:

@@ -81,12 +81,14 @@ class Parameter:
     ``file=True`` marks a string that names a file or folder (a model from the web UI may
     name only files in its models folder; parameters named ``filename``, ``*_file``,
     ``directory`` and the like are taken as file names in any case).
+    ``fixed=True`` marks a parameter the module uses once, when it is built or started (a
+    buffer's capacity, a file to read): a change while the model runs is refused.
     """
 
     def __init__(self, default: Any = None, description: str = "", *, type: str | None = None,
                  options: list[str] | str | None = None, control: str | None = None,
                  name: str | None = None, range: tuple | None = None, finite: bool = True,
-                 file: bool = False):
+                 file: bool = False, fixed: bool = False):
         if isinstance(options, str):
             options = [o.strip() for o in re.split(r"[,/]", options) if o.strip()]
         self.options = list(options or [])
@@ -100,13 +102,15 @@ class Parameter:
         self.range = tuple(range) if range is not None else None
         self.finite = finite
         self.file = file
+        self.fixed = fixed
 
     def __set_name__(self, owner, name):
         self.name = self.name or name
 
     def spec(self) -> ParameterSpec:
         return ParameterSpec(self.name, self.type, self.default, self.description,
-                             self.options, self.control, self.range, self.finite, self.file)
+                             self.options, self.control, self.range, self.finite, self.file,
+                             fixed=self.fixed)
 
 
 class Input:
@@ -253,14 +257,17 @@ class InputPart:
 
 
 class Clock:
-    """The kernel's clock as modules see it: read ``tick`` and ``time`` inside ``tick()``."""
-    __slots__ = ("tick", "tick_duration", "time", "real_time")
+    """The kernel's clock as modules see it: read ``tick`` and ``time`` inside ``tick()``.
+    ``lag`` is how many seconds late the tick started in real-time mode (its deadline is
+    ``tick * tick_duration`` after the time base started); 0 in the other modes."""
+    __slots__ = ("tick", "tick_duration", "time", "real_time", "lag")
 
     def __init__(self, tick_duration: float = 0.0):
         self.tick = -1                  # -1 during init; the first tick is 0
         self.tick_duration = tick_duration
         self.time = 0.0                 # nominal time: tick * tick_duration
         self.real_time = 0.0            # seconds since the run started
+        self.lag = 0.0                  # seconds behind the real-time deadline
 
 
 # Names the module API uses: a Python class may not give them to a parameter or port; one

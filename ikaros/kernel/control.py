@@ -201,6 +201,7 @@ class Controller:
                 if lag > self.resync_lag:
                     self._resync(now, lag)
             timing.tick_started(now, lag)
+            net.clock.lag = lag or 0.0
             net._tick()
             if state == FASTFORWARD:
                 skipped = now - hooks_done < FASTFORWARD_HOOK_INTERVAL

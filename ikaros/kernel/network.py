@@ -547,6 +547,7 @@ class Network:
     def step(self) -> None:
         """Run exactly one tick."""
         self._check_running()
+        self.clock.lag = 0.0
         self._tick()
         if self._controller is not None:
             for hook in self._controller.tick_hooks:
@@ -712,6 +713,9 @@ class Network:
         if not isinstance(comp, ModuleInstance) or name not in comp.values:
             raise KeyError(f'no parameter "{path}" in {self.top.name}')
         spec = comp.module.description.parameter(name)
+        if spec.fixed:
+            raise ValueError(f'parameter "{path}" is fixed while the model runs (the module '
+                             f'uses it when it starts); change it in the model file')
         try:
             new = from_python(value, spec)
             if spec.shape:              # a fixed shape: the one the model gave it

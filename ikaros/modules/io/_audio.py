@@ -11,6 +11,18 @@ from ikaros.module import require
 from ._files import resolve
 
 
+def sound_info(module, name: str) -> tuple[int, int, int]:
+    """(channels, sample rate, frames) of the sound file ``name`` (relative to the
+    module's model file), without reading its samples; a file that cannot be read is a
+    ValueError naming it."""
+    soundfile = require("soundfile", "soundfile", extra="sound")
+    try:
+        info = soundfile.info(resolve(module, name))
+    except (RuntimeError, OSError) as e:        # soundfile's errors
+        raise ValueError(f'cannot read the sound file "{name}": {e}') from None
+    return info.channels, info.samplerate, info.frames
+
+
 def read_sound(module, name: str, samplerate: int | None,
                channels: int) -> tuple[np.ndarray, int]:
     """The sound file ``name`` (relative to the module's model file) as float32 (frames,

@@ -1,0 +1,86 @@
+"""Tests of the System module: the clock's values, and the rates measured with a fake time."""
+import os
+
+import numpy as np
+import pytest
+
+from ikaros.modules.utility import System as system_module
+from ikaros.testing import load_body as load
+
+OUTPUTS = ("TICK", "TIME", "TICK_DURATION", "REAL_TIME", "LAG", "TICKS_PER_SECOND",
+           "CPU_USAGE", "CORES")
+
+
+def values(net) -> dict:
+    return {name: float(net.output(f"S.{name}")[0]) for name in OUTPUTS}
+
+
+class FakeTime:
+    """Wall-clock and CPU time that the test moves on."""
+
+    def __init__(self):
+        self.wall = self.cpu = 0.0
+
+    def perf_counter(self):
+        return self.wall
+
+    def process_time(self):
+        return self.cpu
+
+
+def test_the_clock_each_tick(tmp_path):
+    net = load(tmp_path, '<module class="System" name="S"/>', tick_duration="0.25")
+    try:
+        before = values(net)
+        assert before["TICK"] == -1 and before["TIME"] == 0
+        assert before["TICKS_PER_SECOND"] == 0 and before["CPU_USAGE"] == 0
+        assert before["CORES"] == (os.cpu_count() or 1)
+        for k in range(3):
+            net.step()
+            now = values(net)
+            assert (now["TICK"], now["TIME"], now["TICK_DURATION"], now["LAG"]) == \
+                (k, k * 0.25, 0.25, 0)
+            assert now["REAL_TIME"] == np.float32(net.clock.real_time)
+        assert now["REAL_TIME"] > before["REAL_TIME"]
+    finally:
+        net.close()
+
+
+def test_rates_over_the_window(tmp_path, monkeypatch):
+    fake = FakeTime()
+    monkeypatch.setattr(system_module, "time", fake)
+    net = load(tmp_path, '<module class="System" name="S" window="3"/>')
+    try:
+        cores = os.cpu_count() or 1
+        rates = []
+        for wall, cpu in ((1.0, 0.5), (1.5, 0.75), (2.0, 1.0), (4.0, 1.25)):
+            fake.wall, fake.cpu = wall, cpu
+            net.step()
+            rates.append((float(net.output("S.TICKS_PER_SECOND")[0]),
+                          float(net.output("S.CPU_USAGE")[0])))
+        # the window: 1 tick (no rate yet), then ticks at 1.0, 1.5; 1.0..2.0; 1.5..4.0
+        assert rates == [(0, 0), (2, pytest.approx(0.5 / cores)),
+                         (2, pytest.approx(0.5 / cores)),
+                         (pytest.approx(0.8), pytest.approx(0.2 / cores))]
+    finally:
+        net.close()
+
+
+def test_lag_is_the_real_time_lag_of_the_tick(tmp_path):
+    net = load(tmp_path, '<module class="System" name="S"/>', tick_duration="0.01")
+    try:
+        net.run(3, real_time=True)
+        assert net.output("S.LAG")[0] == np.float32(net.timing.lag) >= 0
+        net.step()                                   # not real time: no lag
+        assert net.output("S.LAG").tolist() == [0]
+    finally:
+        net.close()
+
+
+def test_the_window_is_fixed_while_running(tmp_path):
+    net = load(tmp_path, '<module class="System" name="S" window="5"/>')
+    try:
+        with pytest.raises(ValueError, match='"S.window" is fixed while the model runs'):
+            net.set_parameter("S.window", 9)
+    finally:
+        net.close()
