@@ -22,6 +22,7 @@ class InputAudioFile(Module):
     other value must be the file's number of channels, or the model does not build (the
     error names the file and both counts). ``sample_rate`` 0 keeps the file's rate; another value
     resamples the file to it when the model starts (linear interpolation, as InputSound).
+    The whole file is read into memory when the model starts.
     Ikaros 3 has a class of this name whose interface its reference does not describe:
     these parameter and output names are this project's own, so an Ikaros 3 model that
     uses InputAudioFile may need its attributes renamed. InputSound reads a file too (mixed

@@ -175,14 +175,21 @@ def test_one_x_shared_by_several_samples(tmp_path):
         net.close()
 
 
-def test_collect_gates_the_pairs(tmp_path):
-    net = regression(tmp_path, [1, 2], [1, 2], collect="0")
+def test_collect_gates_the_pairs_and_the_prediction_follows_x(tmp_path):
+    net = regression(tmp_path, [1, 2, 3], [3, 5, 7], 'models="linear"', collect="0")
     try:
         net.step()
         assert net.output("R.COUNT").tolist() == [0]
         net.set_parameter("G.data", "1")
         net.step()
-        assert net.output("R.COUNT").tolist() == [2]
+        assert net.output("R.COUNT").tolist() == [3]
+        assert net.output("R.PREDICTION").tolist() == pytest.approx([3, 5, 7])
+        net.set_parameter("G.data", "0")
+        net.set_parameter("X.data", "10 20 -1")      # not collected, but predicted
+        net.step()
+        assert net.output("R.COUNT").tolist() == [3]
+        assert net.output("R.PREDICTION").tolist() == pytest.approx([21, 41, -1])
+        assert net.output("R.COEFFICIENTS")[0].tolist() == pytest.approx([1, 2, 0])
     finally:
         net.close()
 
