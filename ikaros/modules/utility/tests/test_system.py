@@ -78,9 +78,21 @@ def test_lag_is_the_real_time_lag_of_the_tick(tmp_path):
 
 
 def test_the_window_is_fixed_while_running(tmp_path):
+    assert system_module.System.description.parameter("window").to_dict()["fixed"] is True
     net = load(tmp_path, '<module class="System" name="S" window="5"/>')
     try:
         with pytest.raises(ValueError, match='"S.window" is fixed while the model runs'):
             net.set_parameter("S.window", 9)
+        assert net.parameter("S.window") == 5
+    finally:
+        net.close()
+
+
+def test_an_asynchronous_system_module_sees_the_lag_of_its_tick(tmp_path):
+    net = load(tmp_path, '<module class="System" name="S" async="yes"/>', tick_duration="0.01")
+    try:
+        net.run(4, real_time=True)
+        lag = float(net.output("S.LAG")[0])
+        assert 0 < lag < 0.5                # its own copy of the clock carries the lag
     finally:
         net.close()
