@@ -1,0 +1,158 @@
+"""The module of a class whose code is a Python script run in a worker process."""
+from __future__ import annotations
+
+import os
+import sys
+
+import numpy as np
+
+from ..module import DEBUG, EXCEPTION, PRINT, WARNING, Module, attribute_name, \
+    parameter_attribute
+from .process import WorkerCrashed, WorkerProcess
+
+# what the script's log levels (proxy.py) are in the kernel's log
+LEVELS = {"print": PRINT, "warning": WARNING, "error": EXCEPTION, "debug": DEBUG}
+ON_ERROR = ("fail", "zero", "log")
+
+
+class ScriptError(RuntimeError):
+    """A script failed (the message ends with the script's traceback), or its worker
+    process did."""
+
+
+class ScriptedModule(Module):
+    """Runs its class's script (``script``) in a worker process of its own: the kernel
+    sends the inputs, changed parameters and tick number, the worker runs the script's
+    hook and sends back the outputs. See docs/python-scripts.md."""
+
+    script: str = ""                     # the script's path (set for each class)
+    script_parameters: tuple = ()       # the .ikc's parameters, which the script sees
+    on_error: str = "fail"
+    restart_on_crash: bool = False
+    use_global_names: bool = False
+    python_executable: str = ""
+
+    def init(self) -> None:
+        self._worker: WorkerProcess | None = None
+        self._sent: dict = {}
+        self._start()
+
+    # --- the worker ------------------------------------------------------------------------
+    def _start(self) -> None:
+        python = self.python_executable or sys.executable
+        try:
+            worker = WorkerProcess(python, self._log, self.warning)
+        except OSError as e:
+            raise ScriptError(f"the Python interpreter {python} (python_executable) for "
+                              f"{self.path} cannot be started: {e.strerror or e}") from None
+        self._worker = worker
+        inputs = {n: self._input(n) for n in self._ik_inputs}
+        outputs = {n: self._output(n) for n in self._ik_outputs}
+        fields, arrays = self._parameter_message(self._parameter_values())
+        fields.update(name=self.name, path=self.path, script=self.script,
+                      on_error=self.on_error, use_global_names=self.use_global_names,
+                      inputs={n: None if a is None else list(a.shape)
+                              for n, a in inputs.items()},
+                      outputs={n: list(a.shape) for n, a in outputs.items()})
+        arrays.update({"in:" + n: a for n, a in inputs.items() if a is not None})
+        arrays.update({"out:" + n: a for n, a in outputs.items()})
+        try:
+            answer, _ = worker.request("start", fields, arrays,
+                                       {"out:" + n: a for n, a in outputs.items()})
+        except WorkerCrashed as e:
+            self._worker = None
+            details = "".join("\n" + line for line in e.stderr)
+            raise ScriptError(f"the worker process of {self.path} ({python}) {e} before "
+                              f"its script started{details}") from None
+        if answer["kind"] == "failed":
+            worker.close()
+            self._worker = None
+            raise ScriptError(_failure_text(answer))
+        worker.forward_stderr = True
+        for line in worker.stderr_lines:
+            self.warning(line)
+
+    def _input(self, name: str) -> np.ndarray | None:
+        array = getattr(self, attribute_name(name), None)
+        return None if array is None else np.asarray(array)
+
+    def _output(self, name: str) -> np.ndarray:
+        return np.asarray(getattr(self, attribute_name(name)))
+
+    def _log(self, level: str, text: str) -> None:
+        self.notify(LEVELS.get(level, PRINT), text)
+
+    # --- parameters ------------------------------------------------------------------------
+    def _parameter_values(self) -> dict:
+        return {name: getattr(self, parameter_attribute(name))
+                for name in self.script_parameters}
+
+    def _changed_parameters(self) -> dict:
+        """The parameters whose values changed since they were last sent."""
+        changed = {}
+        for name, value in self._parameter_values().items():
+            old = self._sent.get(name, self)
+            same = np.array_equal(old, value) if isinstance(value, np.ndarray) and \
+                isinstance(old, np.ndarray) else (type(old) is type(value) and old == value)
+            if not same:
+                changed[name] = value
+        return changed
+
+    def _parameter_message(self, values: dict) -> tuple[dict, dict]:
+        fields, arrays = {}, {}
+        for name, value in values.items():
+            self._sent[name] = value.copy() if isinstance(value, np.ndarray) else value
+            if isinstance(value, np.ndarray):
+                arrays["par:" + name] = value
+            else:
+                fields[name] = value.item() if isinstance(value, np.generic) else value
+        return {"parameters": fields}, arrays
+
+    # --- the run ---------------------------------------------------------------------------
+    def tick(self) -> None:
+        fields, arrays = self._parameter_message(self._changed_parameters())
+        fields["tick"] = self.clock.tick
+        for name in self._ik_inputs:
+            array = self._input(name)
+            if array is not None:
+                arrays["in:" + name] = array
+        outputs = {n: self._output(n) for n in self._ik_outputs}
+        try:
+            answer, _ = self._worker.request("tick", fields, arrays,
+                                             {"out:" + n: a for n, a in outputs.items()})
+        except WorkerCrashed as e:
+            self._crashed(e)
+            return
+        if answer["kind"] == "failed":
+            self._failed(answer, outputs)
+
+    def _failed(self, answer: dict, outputs: dict) -> None:
+        text = _failure_text(answer)
+        if self.on_error == "fail":
+            raise ScriptError(text)
+        self.error(text)
+        if self.on_error == "zero":
+            for array in outputs.values():
+                array[...] = 0
+
+    def _crashed(self, error: WorkerCrashed) -> None:
+        self._worker = None
+        what = f"the worker process of {self.path} ({os.path.basename(self.script)}) {error}"
+        if not self.restart_on_crash:
+            raise ScriptError(what)
+        self.warning(f"{what}; restarting it (restart_on_crash)")
+        self._sent = {}
+        self._start()
+
+    def stop(self) -> None:
+        worker, self._worker = getattr(self, "_worker", None), None
+        if worker is None:
+            return
+        failure = worker.close()
+        if failure is not None:
+            self._failed(failure, {})
+
+
+def _failure_text(answer: dict) -> str:
+    trace = answer.get("traceback") or ""
+    return answer["message"] + ("\n" + trace if trace else "")
