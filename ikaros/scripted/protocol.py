@@ -33,7 +33,9 @@ def send(stream, kind: str, fields: dict | None = None,
     if arrays:
         described = []
         for key, array in arrays.items():
-            array = np.ascontiguousarray(array)
+            array = np.asarray(array)
+            if not array.flags.c_contiguous:
+                array = array.copy(order="C")
             described.append([key, array.dtype.str, list(array.shape)])
             if array.nbytes:
                 parts.append(memoryview(array.reshape(-1)).cast("B"))

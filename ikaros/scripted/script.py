@@ -12,7 +12,10 @@ from typing import Any
 
 import numpy as np
 
-from proxy import ModuleProxy, copy_returned
+try:                    # imported from the ikaros package (its tests)
+    from .proxy import ModuleProxy, copy_returned
+except ImportError:     # in the worker, which has this folder on sys.path (worker.py)
+    from proxy import ModuleProxy, copy_returned
 
 HOOKS = ("init", "tick", "shutdown")
 LOGGING_HELPERS = ("log", "warning", "error", "debug")
