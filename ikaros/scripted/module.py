@@ -9,6 +9,7 @@ import numpy as np
 from ..module import DEBUG, EXCEPTION, PRINT, WARNING, Module, attribute_name, \
     parameter_attribute
 from .process import WorkerCrashed, WorkerProcess
+from .shared import SharedArrays, unlink
 
 # what the script's log levels (proxy.py) are in the kernel's log
 LEVELS = {"print": PRINT, "warning": WARNING, "error": EXCEPTION, "debug": DEBUG}
@@ -46,28 +47,32 @@ class ScriptedModule(Module):
             raise ScriptError(f"the Python interpreter {python} (python_executable) for "
                               f"{self.path} cannot be started: {e.strerror or e}") from None
         self._worker = worker
-        inputs = {n: self._input(n) for n in self._ik_inputs}
-        outputs = {n: self._output(n) for n in self._ik_outputs}
+        inputs = {"in:" + n: self._input(n) for n in self._ik_inputs}
+        outputs = {"out:" + n: self._output(n) for n in self._ik_outputs}
+        ports = {k: a for k, a in list(inputs.items()) + list(outputs.items())
+                 if a is not None}
+        self._shared = SharedArrays.create({k: a.shape for k, a in ports.items()})
+        for key, array in ports.items():
+            np.copyto(self._shared.arrays[key], array)
         fields, arrays = self._parameter_message(self._parameter_values())
         fields.update(name=self.name, path=self.path, script=self.script,
                       on_error=self.on_error, use_global_names=self.use_global_names,
-                      inputs={n: None if a is None else list(a.shape)
-                              for n, a in inputs.items()},
-                      outputs={n: list(a.shape) for n, a in outputs.items()})
-        arrays.update({"in:" + n: a for n, a in inputs.items() if a is not None})
-        arrays.update({"out:" + n: a for n, a in outputs.items()})
+                      inputs=[n for n in self._ik_inputs], outputs=list(self._ik_outputs),
+                      shared=self._shared.description)
         try:
-            answer, _ = worker.request("start", fields, arrays,
-                                       {"out:" + n: a for n, a in outputs.items()})
+            answer, _ = worker.request("start", fields, arrays)
         except WorkerCrashed as e:
             self._worker = None
             details = "".join("\n" + line for line in e.stderr)
             raise ScriptError(f"the worker process of {self.path} ({python}) {e} before "
                               f"its script started{details}") from None
+        finally:
+            unlink(self._shared.path)
         if answer["kind"] == "failed":
             worker.close()
             self._worker = None
             raise ScriptError(_failure_text(answer))
+        self._take_outputs()
         worker.forward_stderr = True
         for line in worker.stderr_lines:
             self.warning(line)
@@ -109,31 +114,37 @@ class ScriptedModule(Module):
         return {"parameters": fields}, arrays
 
     # --- the run ---------------------------------------------------------------------------
+    def _take_outputs(self) -> None:
+        shared = self._shared.arrays
+        for name in self._ik_outputs:
+            np.copyto(self._output(name), shared["out:" + name])
+
     def tick(self) -> None:
         fields, arrays = self._parameter_message(self._changed_parameters())
         fields["tick"] = self.clock.tick
+        shared = self._shared.arrays
         for name in self._ik_inputs:
             array = self._input(name)
             if array is not None:
-                arrays["in:" + name] = array
-        outputs = {n: self._output(n) for n in self._ik_outputs}
+                np.copyto(shared["in:" + name], array)
         try:
-            answer, _ = self._worker.request("tick", fields, arrays,
-                                             {"out:" + n: a for n, a in outputs.items()})
+            answer, _ = self._worker.request("tick", fields, arrays)
         except WorkerCrashed as e:
             self._crashed(e)
             return
         if answer["kind"] == "failed":
-            self._failed(answer, outputs)
+            self._failed(answer)
+        else:
+            self._take_outputs()
 
-    def _failed(self, answer: dict, outputs: dict) -> None:
+    def _failed(self, answer: dict) -> None:
+        """A hook failed: on_error says what happens (the worker has set its outputs to
+        0 or back to their last values already)."""
         text = _failure_text(answer)
         if self.on_error == "fail":
             raise ScriptError(text)
         self.error(text)
-        if self.on_error == "zero":
-            for array in outputs.values():
-                array[...] = 0
+        self._take_outputs()
 
     def _crashed(self, error: WorkerCrashed) -> None:
         self._worker = None
@@ -150,7 +161,10 @@ class ScriptedModule(Module):
             return
         failure = worker.close()
         if failure is not None:
-            self._failed(failure, {})
+            text = _failure_text(failure)
+            if self.on_error == "fail":
+                raise ScriptError(text)
+            self.error(text)
 
 
 def _failure_text(answer: dict) -> str:

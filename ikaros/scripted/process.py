@@ -65,19 +65,19 @@ class WorkerProcess:
             else:
                 self.stderr_lines.append(line)
 
-    def request(self, kind: str, fields: dict | None = None, arrays: dict | None = None,
-                into: dict | None = None) -> tuple[dict, dict]:
+    def request(self, kind: str, fields: dict | None = None,
+                arrays: dict | None = None) -> tuple[dict, dict]:
         """Send a message and wait for the answer (log messages meanwhile go to
         ``on_log``). Raises WorkerCrashed if the worker ends first."""
         try:
             send(self.proc.stdin, kind, fields, arrays)
-            return self._answer(into)
+            return self._answer()
         except (WorkerGone, BrokenPipeError, ConnectionResetError):
             raise self._crashed() from None
 
-    def _answer(self, into: dict | None) -> tuple[dict, dict]:
+    def _answer(self) -> tuple[dict, dict]:
         while True:
-            header, arrays = receive(self.proc.stdout, into)
+            header, arrays = receive(self.proc.stdout)
             if header["kind"] != "log":
                 return header, arrays
             self.on_log(header["level"], header["text"])
@@ -106,7 +106,7 @@ class WorkerProcess:
         try:
             self.proc.stdin.close()
             while True:
-                header, _ = self._answer(None)
+                header, _ = self._answer()
                 if header["kind"] == "failed":
                     failure = header
         except (WorkerGone, OSError, ValueError):

@@ -47,17 +47,13 @@ def send(stream, kind: str, fields: dict | None = None,
     stream.flush()
 
 
-def receive(stream, into: dict[str, np.ndarray] | None = None) -> tuple[dict, dict]:
-    """Read one message: (header, {key: array}). An array whose key is in ``into`` with the
-    same dtype and shape is read straight into that array (no copy), which is returned."""
+def receive(stream) -> tuple[dict, dict]:
+    """Read one message: (header, {key: array})."""
     header_length, _ = _LENGTHS.unpack(_read_exactly(stream, _LENGTHS.size))
     header = json.loads(_read_exactly(stream, header_length))
     arrays = {}
     for key, dtype, shape in header.pop("arrays", ()):
-        target = (into or {}).get(key)
-        if target is None or target.dtype.str != dtype or list(target.shape) != shape \
-                or not target.flags.c_contiguous or not target.flags.writeable:
-            target = np.empty(shape, dtype=np.dtype(dtype))
+        target = np.empty(shape, dtype=np.dtype(dtype))
         if target.nbytes:
             _read_into(stream, memoryview(target.reshape(-1)).cast("B"))
         arrays[key] = target

@@ -21,10 +21,11 @@ _shutting_down = False    # the shutdown hook runs: the parent check waits for i
 from protocol import WorkerGone, receive, send  # noqa: E402  (this folder is sys.path[0])
 from proxy import DEBUG, ERROR, LOG, WARNING, ModuleProxy  # noqa: E402
 from script import Script, ScriptError  # noqa: E402
+from shared import SharedArrays  # noqa: E402
 
 # the script's own imports must not find this folder's files
 sys.path[:] = [p for p in sys.path if os.path.abspath(p or ".") != _HERE]
-for _name in ("protocol", "proxy", "script"):
+for _name in ("protocol", "proxy", "script", "shared"):
     sys.modules.pop(_name, None)
 
 
@@ -105,9 +106,7 @@ class Worker:
     def serve(self):
         while True:
             try:
-                header, arrays = receive(self.channel.reader,
-                                         {"in:" + k: v for k, v in self.inputs.items()
-                                          if v is not None})
+                header, arrays = receive(self.channel.reader)
             except WorkerGone:          # the kernel closed the pipe: the run has ended
                 self.shutdown()
                 return
@@ -126,11 +125,9 @@ class Worker:
                                      "traceback": getattr(error, "traceback_text", "")})
 
     def start(self, header, arrays):
-        shapes = header["inputs"]
-        self.inputs = {name: arrays.get("in:" + name) if shape is not None else None
-                       for name, shape in shapes.items()}
-        self.outputs = {name: arrays["out:" + name].astype("float32", copy=False)
-                        for name in header["outputs"]}
+        shared = SharedArrays.open(header["shared"]).arrays
+        self.inputs = {name: shared.get("in:" + name) for name in header["inputs"]}
+        self.outputs = {name: shared["out:" + name] for name in header["outputs"]}
         self.on_error = header["on_error"]
         proxy = ModuleProxy(header["name"], header["path"], self.inputs, self.outputs,
                             _parameters(header, arrays), self.channel.log)
@@ -142,7 +139,7 @@ class Worker:
             self.script = None
             return self._failed(e)
         self._flush()
-        self.channel.send("ready", None, {"out:" + k: v for k, v in self.outputs.items()})
+        self.channel.send("ready")
 
     def tick(self, header, arrays):
         module = self.script.module
@@ -157,7 +154,7 @@ class Worker:
                 array[...] = kept[name] if kept is not None else 0
             return self._failed(e)
         self._flush()
-        self.channel.send("done", None, {"out:" + k: v for k, v in self.outputs.items()})
+        self.channel.send("done")
 
     def shutdown(self):
         """Run the script's shutdown hook and say how it went (the kernel reads until the

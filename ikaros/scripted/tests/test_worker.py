@@ -99,6 +99,7 @@ def test_close_runs_shutdown_and_ends_the_worker(tmp_path):
     net.run(3)
     pid = _worker_pid(tmp_path)
     assert _alive(pid)
+    assert not os.path.exists(net.modules["S"].module._shared.path)    # mapped, not named
     net.close()
     assert (tmp_path / "shutdown").read_text() == "after tick 2"
     assert not _alive(pid)
