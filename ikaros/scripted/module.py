@@ -48,7 +48,7 @@ class ScriptedModule(Module):
                               f"{self.path} cannot be started: {e.strerror or e}") from None
         self._worker = worker
         inputs = {"in:" + n: self._input(n) for n in self._ik_inputs}
-        outputs = {"out:" + n: self._output(n) for n in self._ik_outputs}
+        outputs = {"out:" + n: self._output(n) for n in self._outputs()}
         ports = {k: a for k, a in list(inputs.items()) + list(outputs.items())
                  if a is not None}
         self._shared = SharedArrays.create({k: a.shape for k, a in ports.items()})
@@ -57,7 +57,7 @@ class ScriptedModule(Module):
         fields, arrays = self._parameter_message(self._parameter_values())
         fields.update(name=self.name, path=self.path, script=self.script,
                       on_error=self.on_error, use_global_names=self.use_global_names,
-                      inputs=[n for n in self._ik_inputs], outputs=list(self._ik_outputs),
+                      inputs=list(self._ik_inputs), outputs=self._outputs(),
                       shared=self._shared.description)
         try:
             answer, _ = worker.request("start", fields, arrays)
@@ -114,9 +114,13 @@ class ScriptedModule(Module):
         return {"parameters": fields}, arrays
 
     # --- the run ---------------------------------------------------------------------------
+    def _outputs(self) -> list[str]:
+        """The outputs the script sees (not the matrix states the kernel keeps)."""
+        return [name for name, spec in self._ik_outputs.items() if not spec.private]
+
     def _take_outputs(self) -> None:
         shared = self._shared.arrays
-        for name in self._ik_outputs:
+        for name in self._outputs():
             np.copyto(self._output(name), shared["out:" + name])
 
     def tick(self) -> None:

@@ -186,3 +186,25 @@ def test_a_killed_kernel_leaves_no_worker(tmp_path):
     proc.wait(timeout=5)
     proc.stdout.close()
     assert _gone_soon(pid)
+
+
+def test_settings_are_inherited_and_states_are_not_the_scripts(tmp_path):
+    """on_error from a group around the module; a <state> of the class is the kernel's,
+    not one of the script's outputs; with on_error="log" what the failing tick wrote to
+    an accumulating output is dropped."""
+    (tmp_path / "Acc.ikc").write_text('<class name="Acc" python="acc.py">\n'
+                                      '    <output name="OUTPUT" size="1"/>\n'
+                                      '    <state name="MEMORY" shape="2"/>\n</class>\n')
+    (tmp_path / "acc.py").write_text("def tick(module):\n"
+                                     "    assert list(module.outputs) == ['OUTPUT']\n"
+                                     "    module.OUTPUT[0] += 1\n"
+                                     "    if module.tick == 1:\n"
+                                     "        raise ValueError('x')\n")
+    (tmp_path / "m.ikg").write_text('<group name="M" on_error="log"><group name="G">'
+                                    '<module class="Acc" name="A"/></group></group>')
+    with ikaros.load(str(tmp_path / "m.ikg"), quiet=True) as net:
+        seen = []
+        for _ in range(4):
+            net.step()
+            seen.append(net.output("G.A.OUTPUT").tolist())
+        assert seen == [[1], [1], [2], [3]] and net.parameter("G.A.on_error") == "log"
