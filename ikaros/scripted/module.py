@@ -34,8 +34,8 @@ class ScriptedModule(Module):
     python_executable: str = ""
 
     def init(self) -> None:
-        self._worker: WorkerProcess | None = None
-        self._sent: dict = {}
+        self._ik_worker: WorkerProcess | None = None
+        self._ik_sent: dict = {}
         self._start()
 
     # --- the worker ------------------------------------------------------------------------
@@ -46,31 +46,31 @@ class ScriptedModule(Module):
         except OSError as e:
             raise ScriptError(f"the Python interpreter {python} (python_executable) for "
                               f"{self.path} cannot be started: {e.strerror or e}") from None
-        self._worker = worker
+        self._ik_worker = worker
         inputs = {"in:" + n: self._input(n) for n in self._ik_inputs}
         outputs = {"out:" + n: self._output(n) for n in self._outputs()}
         ports = {k: a for k, a in list(inputs.items()) + list(outputs.items())
                  if a is not None}
-        self._shared = SharedArrays.create({k: a.shape for k, a in ports.items()})
+        self._ik_shared = SharedArrays.create({k: a.shape for k, a in ports.items()})
         for key, array in ports.items():
-            np.copyto(self._shared.arrays[key], array)
+            np.copyto(self._ik_shared.arrays[key], array)
         fields, arrays = self._parameter_message(self._parameter_values())
         fields.update(name=self.name, path=self.path, script=self.script,
                       on_error=self.on_error, use_global_names=self.use_global_names,
                       inputs=list(self._ik_inputs), outputs=self._outputs(),
-                      shared=self._shared.description)
+                      shared=self._ik_shared.description)
         try:
             answer, _ = worker.request("start", fields, arrays)
         except WorkerCrashed as e:
-            self._worker = None
+            self._ik_worker = None
             details = "".join("\n" + line for line in e.stderr)
             raise ScriptError(f"the worker process of {self.path} ({python}) {e} before "
                               f"its script started{details}") from None
         finally:
-            unlink(self._shared.path)
+            unlink(self._ik_shared.path)
         if answer["kind"] == "failed":
             worker.close()
-            self._worker = None
+            self._ik_worker = None
             raise ScriptError(_failure_text(answer))
         self._take_outputs()
         worker.forward_stderr = True
@@ -96,7 +96,7 @@ class ScriptedModule(Module):
         """The parameters whose values changed since they were last sent."""
         changed = {}
         for name, value in self._parameter_values().items():
-            old = self._sent.get(name, self)
+            old = self._ik_sent.get(name, self)
             same = np.array_equal(old, value) if isinstance(value, np.ndarray) and \
                 isinstance(old, np.ndarray) else (type(old) is type(value) and old == value)
             if not same:
@@ -106,7 +106,7 @@ class ScriptedModule(Module):
     def _parameter_message(self, values: dict) -> tuple[dict, dict]:
         fields, arrays = {}, {}
         for name, value in values.items():
-            self._sent[name] = value.copy() if isinstance(value, np.ndarray) else value
+            self._ik_sent[name] = value.copy() if isinstance(value, np.ndarray) else value
             if isinstance(value, np.ndarray):
                 arrays["par:" + name] = value
             else:
@@ -119,20 +119,20 @@ class ScriptedModule(Module):
         return [name for name, spec in self._ik_outputs.items() if not spec.private]
 
     def _take_outputs(self) -> None:
-        shared = self._shared.arrays
+        shared = self._ik_shared.arrays
         for name in self._outputs():
             np.copyto(self._output(name), shared["out:" + name])
 
     def tick(self) -> None:
         fields, arrays = self._parameter_message(self._changed_parameters())
         fields["tick"] = self.clock.tick
-        shared = self._shared.arrays
+        shared = self._ik_shared.arrays
         for name in self._ik_inputs:
             array = self._input(name)
             if array is not None:
                 np.copyto(shared["in:" + name], array)
         try:
-            answer, _ = self._worker.request("tick", fields, arrays)
+            answer, _ = self._ik_worker.request("tick", fields, arrays)
         except WorkerCrashed as e:
             self._crashed(e)
             return
@@ -151,16 +151,16 @@ class ScriptedModule(Module):
         self._take_outputs()
 
     def _crashed(self, error: WorkerCrashed) -> None:
-        self._worker = None
+        self._ik_worker = None
         what = f"the worker process of {self.path} ({os.path.basename(self.script)}) {error}"
         if not self.restart_on_crash:
             raise ScriptError(what)
         self.warning(f"{what}; restarting it (restart_on_crash)")
-        self._sent = {}
+        self._ik_sent = {}
         self._start()
 
     def stop(self) -> None:
-        worker, self._worker = getattr(self, "_worker", None), None
+        worker, self._ik_worker = getattr(self, "_ik_worker", None), None
         if worker is None:
             return
         failure = worker.close()

@@ -99,7 +99,7 @@ def test_close_runs_shutdown_and_ends_the_worker(tmp_path):
     net.run(3)
     pid = _worker_pid(tmp_path)
     assert _alive(pid)
-    assert not os.path.exists(net.modules["S"].module._shared.path)    # mapped, not named
+    assert not os.path.exists(net.modules["S"].module._ik_shared.path)    # mapped, not named
     net.close()
     assert (tmp_path / "shutdown").read_text() == "after tick 2"
     assert not _alive(pid)
@@ -208,3 +208,21 @@ def test_settings_are_inherited_and_states_are_not_the_scripts(tmp_path):
             net.step()
             seen.append(net.output("G.A.OUTPUT").tolist())
         assert seen == [[1], [1], [2], [3]] and net.parameter("G.A.on_error") == "log"
+
+
+def test_a_model_applied_again_has_one_worker_per_module(tmp_path):
+    """The editor's Apply: the new network's module starts its own worker (its init runs
+    again) and keeps the outputs; the old network's worker ends."""
+    net = ikaros.load(_model(tmp_path, 'gain="3"'), quiet=True)
+    net.run(2)
+    old_pid = _worker_pid(tmp_path)
+    new = net.apply(net.model)
+    try:
+        new_pid = _worker_pid(tmp_path)
+        assert new_pid != old_pid and not _alive(old_pid) and _alive(new_pid)
+        assert new.output("S.OUTPUT").tolist() == [3, 6]
+        new.step()
+        assert new.output("S.OUTPUT").tolist() == [3, 6]
+    finally:
+        new.close()
+    assert not _alive(new_pid)
