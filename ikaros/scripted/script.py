@@ -10,7 +10,6 @@ import re
 import traceback
 from typing import Any
 
-import numpy as np
 
 try:                    # imported from the ikaros package (its tests)
     from .proxy import ModuleProxy, copy_returned
