@@ -99,7 +99,10 @@ class ClassEntry:
             raise ModelError(f'class {self.name} names the script '
                              f'python="{root.attrs.get("python")}", which does not exist '
                              f'({self.script})', self.ikc, root.line, root.label())
-        cls = script_class(read_class_file(self.ikc), self.script, root.attrs)
+        try:
+            cls = script_class(read_class_file(self.ikc), self.script, root.attrs)
+        except ValueError as e:
+            raise ModelError(str(e), self.ikc, root.line, root.label()) from None
         self._desc = cls.description
         self._desc.source = self._desc.source or self.ikc
         return cls

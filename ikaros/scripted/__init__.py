@@ -50,7 +50,12 @@ def script_of(ikc: str, root_attrs: dict, defines_module) -> str | None:
 def script_class(description: ClassDescription, script: str,
                  class_attrs: dict) -> type[ScriptedModule]:
     """The module class of a class file whose code is ``script``: the .ikc's description
-    with the scripted-class settings added (defaults from ``class_attrs``)."""
+    with the scripted-class settings added (defaults from ``class_attrs``). A dynamic
+    output, which a script cannot resize, is a ValueError."""
+    dynamic = [o.name for o in description.outputs if o.dynamic]
+    if dynamic:
+        raise ValueError(f"a class written as a Python script cannot have dynamic outputs "
+                         f"({', '.join(dynamic)})")
     own = tuple(p.name for p in description.parameters)
     taken = set(own)
     for name, kind, default, text, options in SETTINGS:

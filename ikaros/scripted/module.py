@@ -6,8 +6,8 @@ import sys
 
 import numpy as np
 
-from ..module import DEBUG, EXCEPTION, PRINT, WARNING, Module, attribute_name, \
-    parameter_attribute
+from ..module import DEBUG, EXCEPTION, PRINT, WARNING, DynamicArray, Module, \
+    attribute_name, parameter_attribute
 from .process import WorkerCrashed, WorkerProcess
 from .shared import SharedArrays, unlink
 
@@ -79,6 +79,9 @@ class ScriptedModule(Module):
 
     def _input(self, name: str) -> np.ndarray | None:
         array = getattr(self, attribute_name(name), None)
+        if isinstance(array, DynamicArray):
+            raise ScriptError(f"the input {name} of {self.path} is fed by a dynamic output, "
+                              f"which a class written as a Python script cannot take")
         return None if array is None else np.asarray(array)
 
     def _output(self, name: str) -> np.ndarray:
@@ -115,8 +118,10 @@ class ScriptedModule(Module):
 
     # --- the run ---------------------------------------------------------------------------
     def _outputs(self) -> list[str]:
-        """The outputs the script sees (not the matrix states the kernel keeps)."""
-        return [name for name, spec in self._ik_outputs.items() if not spec.private]
+        """The outputs the script sees: not the matrix states the kernel keeps, nor the
+        aliases (views of another output, which the script writes)."""
+        return [name for name, spec in self._ik_outputs.items()
+                if not spec.private and "alias" not in spec.rule]
 
     def _take_outputs(self) -> None:
         shared = self._ik_shared.arrays

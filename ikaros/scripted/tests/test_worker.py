@@ -226,3 +226,65 @@ def test_a_model_applied_again_has_one_worker_per_module(tmp_path):
     finally:
         new.close()
     assert not _alive(new_pid)
+
+
+def _class(tmp_path, ikc_body: str, script: str, model_body: str) -> str:
+    (tmp_path / "K.ikc").write_text(f'<class name="K" python="k.py">\n{ikc_body}\n</class>\n')
+    (tmp_path / "k.py").write_text(script)
+    (tmp_path / "m.ikg").write_text(f'<group name="M">\n{model_body}\n</group>\n')
+    return str(tmp_path / "m.ikg")
+
+
+def test_an_alias_output_views_what_the_script_writes(tmp_path):
+    model = _class(tmp_path, '<output name="OUTPUT" size_x="3" size_y="2"/>\n'
+                             '<output name="ROW" alias="OUTPUT[1]"/>',
+                   "def tick(module):\n"
+                   "    assert sorted(module.outputs) == ['OUTPUT']\n"
+                   "    module.OUTPUT[:] = [[1, 2, 3], [4, 5, 6]]\n",
+                   '<module class="K" name="S"/>')
+    with ikaros.load(model, quiet=True) as net:
+        net.step()
+        assert net.output("S.ROW").tolist() == [4, 5, 6]
+
+
+def test_a_dynamic_output_is_refused_at_the_class_file(tmp_path):
+    model = _class(tmp_path, '<output name="OUTPUT" dynamic="yes" capacity="4"/>',
+                   "def tick():\n    pass\n", '<module class="K" name="S"/>')
+    with pytest.raises(ikaros.ModelError) as e:
+        ikaros.load(model, quiet=True)
+    assert "a class written as a Python script cannot have dynamic outputs (OUTPUT)" in \
+        str(e.value) and "K.ikc:1" in str(e.value)
+
+
+def test_an_input_fed_by_a_dynamic_output_is_refused(tmp_path):
+    support = os.path.join(REPO, "ikaros", "testsupport")
+    model = _class(tmp_path, '<input name="INPUT"/>\n<output name="OUTPUT" size="1"/>',
+                   "def tick():\n    pass\n",
+                   f'<module class="DynamicMatrixSource" name="D" path="{support}"/>\n'
+                   '<module class="K" name="S"/>\n'
+                   '<connection source="D.OUTPUT" target="S.INPUT"/>')
+    with pytest.raises(ikaros.ModelError, match="init failed: ScriptError: the input INPUT "
+                                                "of S is fed by a dynamic output, which a "
+                                                "class written as a Python script cannot "
+                                                "take"):
+        ikaros.load(model, quiet=True)
+
+
+def test_the_worker_does_not_need_ikaros(tmp_path):
+    """The worker runs with an interpreter in which ``import ikaros`` fails."""
+    blocker = tmp_path / "blocker" / "ikaros"
+    blocker.mkdir(parents=True)
+    (blocker / "__init__.py").write_text("raise ImportError('the worker imported ikaros')\n")
+    python = tmp_path / "python-without-ikaros"
+    python.write_text(f'#!/bin/sh\nPYTHONPATH="{blocker.parent}" exec "{sys.executable}" "$@"\n')
+    python.chmod(0o755)
+    model = _class(tmp_path, '<input name="INPUT"/>\n<output name="OUTPUT" size="1"/>',
+                   "import sys\n\ndef tick(module):\n"
+                   "    assert 'ikaros' not in sys.modules\n"
+                   "    module.OUTPUT[0] = module.INPUT.sum()\n",
+                   '<module class="Constant" name="C" data="1 2"/>\n'
+                   f'<module class="K" name="S" python_executable="{python}"/>\n'
+                   '<connection source="C.OUTPUT" target="S.INPUT" delay="0"/>')
+    with ikaros.load(model, quiet=True) as net:
+        net.step()
+        assert net.output("S.OUTPUT").tolist() == [3]
