@@ -73,9 +73,7 @@ class ScriptedModule(Module):
             self._ik_worker = None
             raise ScriptError(_failure_text(answer))
         self._take_outputs()
-        worker.forward_stderr = True
-        for line in worker.stderr_lines:
-            self.warning(line)
+        worker.forward_stderr()
 
     def _input(self, name: str) -> np.ndarray | None:
         array = getattr(self, attribute_name(name), None)
@@ -130,7 +128,7 @@ class ScriptedModule(Module):
 
     def tick(self) -> None:
         fields, arrays = self._parameter_message(self._changed_parameters())
-        fields["tick"] = self.clock.tick
+        fields.update(tick=self.clock.tick, on_error=self.on_error)
         shared = self._ik_shared.arrays
         for name in self._ik_inputs:
             array = self._input(name)

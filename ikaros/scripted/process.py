@@ -42,13 +42,14 @@ def exit_text(code: int | None) -> str:
 class WorkerProcess:
     """A worker running ``python worker.py``. Log messages that arrive while the kernel
     waits for an answer go to ``on_log(level, text)``; lines the process writes to its
-    stderr go to ``on_stderr(line)`` once ``forward_stderr`` is set (before, they are kept
-    for the error message of a worker that fails to start)."""
+    stderr go to ``on_stderr(line)`` once ``forward_stderr()`` is called (before, they are
+    kept in ``stderr_lines`` for the error message of a worker that fails to start)."""
 
     def __init__(self, python: str, on_log: Callable[[str, str], None],
                  on_stderr: Callable[[str], None]):
         self.on_log, self.on_stderr = on_log, on_stderr
-        self.forward_stderr = False
+        self._forwarding = False
+        self._stderr_lock = threading.Lock()
         self.stderr_lines: collections.deque = collections.deque(maxlen=40)
         self.proc = subprocess.Popen([python, WORKER], stdin=subprocess.PIPE,
                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE)
@@ -60,10 +61,20 @@ class WorkerProcess:
     def _read_stderr(self) -> None:
         for raw in self.proc.stderr:
             line = raw.decode("utf-8", "replace").rstrip("\n")
-            if self.forward_stderr:
-                self.on_stderr(line)
-            else:
-                self.stderr_lines.append(line)
+            with self._stderr_lock:
+                if not self._forwarding:
+                    self.stderr_lines.append(line)
+                    continue
+            self.on_stderr(line)
+
+    def forward_stderr(self) -> None:
+        """From now on, and for the lines kept so far, call ``on_stderr``."""
+        with self._stderr_lock:
+            self._forwarding = True
+            kept = list(self.stderr_lines)
+            self.stderr_lines.clear()
+        for line in kept:
+            self.on_stderr(line)
 
     def request(self, kind: str, fields: dict | None = None,
                 arrays: dict | None = None) -> tuple[dict, dict]:

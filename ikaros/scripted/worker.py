@@ -145,6 +145,7 @@ class Worker:
         module = self.script.module
         module.set_parameters(_parameters(header, arrays))
         module.tick = header["tick"]
+        self.on_error = header["on_error"]      # a parameter: it may have changed
         kept = {k: v.copy() for k, v in self.outputs.items()} \
             if self.on_error == "log" else None
         try:
