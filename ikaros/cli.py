@@ -144,6 +144,9 @@ def parser() -> argparse.ArgumentParser:
                         "MODEL.state beside the model")
     p.add_argument("-p", "--profile", action="store_true",
                    help="measure per-module time and print the timing figures at exit")
+    p.add_argument("--python", metavar="PATH",
+                   help="the Python interpreter that runs the scripts of Python-scripted "
+                        "classes (python_executable; Ikaros 3's -p PATH; default: this one)")
     p.add_argument("-q", "--quiet", action="store_true",
                    help="print only errors: no warnings, no print messages")
     p.add_argument("--strict", action="store_true",
@@ -370,6 +373,8 @@ def main(argv: list[str] | None = None) -> int:
             overrides["tick_duration"] = str(opts.tick_duration)
         if opts.threads is not None:
             overrides["threads"] = str(opts.threads)
+        if opts.python is not None:
+            overrides["python_executable"] = opts.python
         if opts.models is not None and not os.path.isdir(opts.models):
             p.error(f'--models "{opts.models}" is not a folder')
         if not opts.batch:

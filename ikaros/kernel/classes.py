@@ -17,6 +17,7 @@ from ..language.classfile import read_class_file
 from ..language.diagnostics import warn, warn_at
 from ..language.reader import read_file
 from ..module import Module
+from ..scripted import script_class, script_of
 
 STDLIB = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "modules")
 ENTRY_POINT_GROUP = "ikaros.modules"
@@ -26,10 +27,12 @@ ENTRY_POINT_GROUP = "ikaros.modules"
 class ClassEntry:
     """Where a class is declared. ``python`` and ``ikc`` are files; ``group`` is an .ikg file
     used as a class; ``loaded`` is a class object from an entry point; ``implementation`` is
-    the entry (a plugin's or the standard library's) that implements an .ikc found alone."""
+    the entry (a plugin's or the standard library's) that implements an .ikc found alone;
+    ``script`` is the Python script of an .ikc whose code runs in a worker process."""
     name: str
     python: str | None = None
     ikc: str | None = None
+    script: str | None = None
     group: str | None = None
     package: str | None = None        # the import name of a standard-library module file
     loaded: type | None = None
@@ -59,6 +62,8 @@ class ClassEntry:
             _check_interface(self.ikc, cls.description)
             self._desc = cls.description
             return cls
+        if self.script is not None:
+            return self._scripted()
         cls = self.loaded
         if cls is None and self.python:
             module = _import_file(self.python, self.package)
@@ -68,13 +73,10 @@ class ClassEntry:
                                  self.python)
         if self.ikc:
             if cls is None:
-                script = read_file(self.ikc).attrs.get("python")
-                hint = (f'; its python="{script}" names an Ikaros 3 Python script, which this '
-                        f'project does not run (docs/language.md)' if script else "")
                 raise ModelError(f"class {self.name} is declared in "
                                  f"{os.path.basename(self.ikc)} but has no implementation "
                                  f"(no {self.name}.py beside it, no installed plugin and no "
-                                 f"standard class of that name){hint}")
+                                 f"standard class of that name)")
             desc = read_class_file(self.ikc)
             if _declares_anything(cls):
                 raise ModelError(f'class "{self.name}" is declared twice: in Python '
@@ -87,6 +89,22 @@ class ClassEntry:
         self._desc = cls.description
         if not self._desc.source:
             self._desc.source = self.python or self.ikc or getattr(cls, "__module__", "")
+        return cls
+
+
+    def _scripted(self) -> type[Module]:
+        """The class of an .ikc whose code is a Python script (docs/python-scripts.md)."""
+        root = read_file(self.ikc)
+        if not os.path.isfile(self.script):
+            raise ModelError(f'class {self.name} names the script '
+                             f'python="{root.attrs.get("python")}", which does not exist '
+                             f'({self.script})', self.ikc, root.line, root.label())
+        try:
+            cls = script_class(read_class_file(self.ikc), self.script, root.attrs)
+        except ValueError as e:
+            raise ModelError(str(e), self.ikc, root.line, root.label()) from None
+        self._desc = cls.description
+        self._desc.source = self._desc.source or self.ikc
         return cls
 
 
@@ -250,7 +268,7 @@ class ClassRegistry:
             entry = self._in_folder(folder).get(name)
             if entry is None or (entry.is_group and entry.group in skip_files):
                 continue
-            if entry.python and not _defines_class(entry):
+            if entry.python and not _defines_class(entry.python, entry.name):
                 entry.python = None         # a script beside the model, not a module
             if entry.group and (entry.python or entry.ikc):
                 raise ModelError(f'class "{name}" is declared by two class files in one '
@@ -267,6 +285,10 @@ class ClassRegistry:
         implement it. An .ikc whose <group> root holds modules is a group class (Ikaros 3)."""
         if _is_composite(entry.ikc):
             entry.group, entry.ikc = entry.ikc, None
+            return entry
+        entry.script = script_of(entry.ikc, read_file(entry.ikc).attrs,
+                                 lambda path: _defines_class(path, entry.name))
+        if entry.script is not None:
             return entry
         found = entry_point_classes().get(name := entry.name) or stdlib_classes().get(name)
         if found is not None and not found.is_group:
@@ -289,16 +311,16 @@ def _is_composite(ikc: str) -> bool:
     return root.tag == "group" and next(root.elements("module"), None) is not None
 
 
-def _defines_class(entry: ClassEntry) -> bool:
-    """Whether a user folder's Python file defines a Module class of its own name (a cheap
+def _defines_class(path: str, name: str) -> bool:
+    """Whether a user folder's Python file defines a Module class called ``name`` (a cheap
     text check, so helper scripts and scripts for other programs beside a model are not
     imported: a module of this project uses ikaros)."""
     try:
-        with open(entry.python, encoding="utf-8") as f:
+        with open(path, encoding="utf-8") as f:
             text = f.read()
     except (OSError, UnicodeDecodeError):
         return False
-    return f"class {entry.name}(" in text and "ikaros" in text
+    return f"class {name}(" in text and "ikaros" in text
 
 
 def classes(folders: list[str] = ()) -> dict[str, ClassDescription]:

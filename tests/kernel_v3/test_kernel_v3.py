@@ -14,7 +14,8 @@ expectations are read from root attributes, as the original harness does (TESTS.
   ``_not_contains`` (``path::text``; a file that cannot be read contains nothing);
 * ``initial_file`` is written with ``initial_file_contents`` before the run.
 
-``${TEST_DIR}`` is the model's folder and ``${TMP}`` a fresh temporary folder. A model that
+``${TEST_DIR}`` is the model's folder, ``${TMP}`` a fresh temporary folder and
+``${PYTHON}`` the interpreter running the tests (for ``--python``). A model that
 reads what another writes (a state file) names it in ``requires``: that model runs first,
 with the same ``${TMP}``, and must pass too. ``run_in_tmp="true"`` runs a copy of the model
 placed in ``${TMP}`` (for a model that writes beside itself). Where our
@@ -30,6 +31,7 @@ The test-only classes the models use live in ikaros/testsupport; the models reac
 import os
 import shlex
 import shutil
+import sys
 
 import http_harness
 import pytest
@@ -79,8 +81,8 @@ def _run(name: str, tmp_path, capsys) -> list[str]:
         path = shutil.copy(path, tmp_path)
 
     def expand(text):
-        return text.replace("${TEST_DIR}", os.path.dirname(path)).replace("${TMP}",
-                                                                         str(tmp_path))
+        return text.replace("${TEST_DIR}", os.path.dirname(path)).replace(
+            "${TMP}", str(tmp_path)).replace("${PYTHON}", sys.executable)
 
     if attrs.get("initial_file"):
         with open(expand(attrs["initial_file"]), "w", encoding="utf-8") as f:

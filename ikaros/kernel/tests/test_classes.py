@@ -93,17 +93,33 @@ def test_a_script_beside_an_ikc_is_not_its_implementation(tmp_path):
         ikaros.load(str(tmp_path / "m.ikg"))
 
 
-def test_an_ikaros3_python_script_class_is_named_in_the_error(tmp_path):
+def test_an_ikaros3_python_script_class_runs_its_script(tmp_path):
+    """python="twice.py" on the class: the script runs in a worker (docs/python-scripts.md),
+    with the .ikc's parameters and the scripted-class settings."""
     (tmp_path / "Twice.ikc").write_text(IKC_CLASS.replace('<class name="Twice"',
                                                           '<class name="Twice" python="twice.py"'))
-    (tmp_path / "twice.py").write_text("def tick(inputs, outputs):\n    pass\n")
+    (tmp_path / "twice.py").write_text("def tick(module):\n"
+                                       "    return {'OUTPUT': module.gain * module.INPUT}\n")
     (tmp_path / "m.ikg").write_text(MODEL)
-    with pytest.raises(ikaros.ModelError) as e:
-        ikaros.load(str(tmp_path / "m.ikg"))
-    assert e.value.reason.endswith('has no implementation (no Twice.py beside it, no installed '
-                                   'plugin and no standard class of that name); its '
-                                   'python="twice.py" names an Ikaros 3 Python script, which '
-                                   'this project does not run (docs/language.md)')
+    with ikaros.load(str(tmp_path / "m.ikg"), quiet=True) as net:
+        net.step()
+        assert net.output("T.OUTPUT").tolist() == [2, 4]
+        assert net.parameter("T.on_error") == "fail"
+    desc = ikaros.classes(str(tmp_path))["Twice"]
+    assert [p.name for p in desc.parameters] == ["gain", "mode", "on_error", "restart_on_crash",
+                                                 "use_global_names", "python_executable"]
+
+
+def test_a_script_beside_an_ikc_with_a_tick_function_is_its_script(tmp_path):
+    """Ikaros 3 finds <Class>.py beside the .ikc: one that defines tick() and is no module
+    of this project's API is the class's script."""
+    (tmp_path / "Twice.ikc").write_text(IKC_CLASS)
+    (tmp_path / "Twice.py").write_text("def tick(module):\n"
+                                       "    module.OUTPUT[:] = 3 * module.INPUT\n")
+    (tmp_path / "m.ikg").write_text(MODEL)
+    with ikaros.load(str(tmp_path / "m.ikg"), quiet=True) as net:
+        net.step()
+        assert net.output("T.OUTPUT").tolist() == [3, 6]
 
 
 SCALE_IKC = '''<class name="Scale">
