@@ -49,16 +49,25 @@ def _folder(text: str) -> str:
 
 def _literal_values(argv: list[str]) -> list[str]:
     """``-a VALUE`` and ``--token VALUE`` take VALUE as it stands, even ``-banana``
-    (argparse would take it for an option)."""
+    (argparse would take it for an option). ``-p`` is Ikaros 2's profile flag, but
+    followed by an executable file it is Ikaros 3's ``-p PATH``, the scripts' interpreter."""
     out, i = [], 0
     while i < len(argv):
         if argv[i] in ("-a", "--token") and i + 1 < len(argv):
             out.append("--token=" + argv[i + 1])
             i += 2
+        elif argv[i] == "-p" and i + 1 < len(argv) and _is_interpreter(argv[i + 1]):
+            out.append("--python=" + argv[i + 1])
+            i += 2
         else:
             out.append(argv[i])
             i += 1
     return out
+
+
+def _is_interpreter(path: str) -> bool:
+    return (not path.endswith((".ikg", ".ikc")) and os.path.isfile(path)
+            and os.access(path, os.X_OK))
 
 
 def _memory(text: str) -> int:
@@ -146,7 +155,8 @@ def parser() -> argparse.ArgumentParser:
                    help="measure per-module time and print the timing figures at exit")
     p.add_argument("--python", metavar="PATH",
                    help="the Python interpreter that runs the scripts of Python-scripted "
-                        "classes (python_executable; Ikaros 3's -p PATH; default: this one)")
+                        "classes (python_executable; also -p PATH, as in Ikaros 3, when PATH is an "
+                        "executable file; default: this one)")
     p.add_argument("-q", "--quiet", action="store_true",
                    help="print only errors: no warnings, no print messages")
     p.add_argument("--strict", action="store_true",
