@@ -1,0 +1,123 @@
+"""Scripted modules where a researcher meets them: commands from the user interface, state
+files and resets, a model built in Python code, and recordings."""
+import os
+
+import numpy as np
+import pytest
+
+import ikaros
+
+IKC = '''<class name="Acc" python="acc.py">
+    <parameter name="gain" type="number" default="1"/>
+    <input name="INPUT"/>
+    <output name="OUTPUT" size="INPUT.size"/>
+</class>
+'''
+
+SCRIPT = '''count = 0
+
+
+def tick(module):
+    module.OUTPUT[:] += module.INPUT * module.gain
+'''
+
+COMMAND = '''
+
+def command(module, name, x, y, value):
+    print(f"{name} {x} {y} {value} gain={module.gain}")
+    if name == "set":
+        module.OUTPUT[:] = value
+    if name == "half-set":
+        module.OUTPUT[:] = 99
+        raise ValueError("refused")
+'''
+
+MODEL = '''<group name="M">
+    <module class="Constant" name="C" data="1 2 3"/>
+    <module class="Acc" name="A"/>
+    <connection source="C.OUTPUT" target="A.INPUT" delay="0"/>
+</group>
+'''
+
+
+def _model(tmp_path, script=SCRIPT):
+    (tmp_path / "Acc.ikc").write_text(IKC)
+    (tmp_path / "acc.py").write_text(script)
+    (tmp_path / "m.ikg").write_text(MODEL)
+    return str(tmp_path / "m.ikg")
+
+
+def _messages(net):
+    return [m for _, _, path, m in net.log if path == "A"]
+
+
+def test_a_command_reaches_the_script_with_its_details_and_the_parameters(tmp_path):
+    with ikaros.load(_model(tmp_path, SCRIPT + COMMAND), quiet=True) as net:
+        net.run(2)
+        net.set_parameter("A.gain", 4)
+        net.command("A", "set", 1, 2, [10, 20, 30])
+        assert net.output("A.OUTPUT").tolist() == [10, 20, 30]
+        assert _messages(net)[-1] == "set 1.0 2.0 [10, 20, 30] gain=4.0"
+        net.command("A", "set", value=np.array([1.5, 0, 0]))
+        assert net.output("A.OUTPUT").tolist() == [1.5, 0, 0]
+        net.step()
+        assert net.output("A.OUTPUT").tolist() == [5.5, 8, 12]
+
+
+def test_a_failing_command_is_the_commands_error_and_changes_no_output(tmp_path):
+    with ikaros.load(_model(tmp_path, SCRIPT + COMMAND), quiet=True) as net:
+        net.run(2)
+        with pytest.raises(RuntimeError, match=r"command\(\) of acc.py failed: ValueError: "
+                                               r"refused\n(?s:.*)acc.py\", line 14, in command"):
+            net.command("A", "half-set")
+        assert net.output("A.OUTPUT").tolist() == [2, 4, 6]
+        net.step()                                  # the run goes on from what it had
+        assert net.output("A.OUTPUT").tolist() == [3, 6, 9]
+        with pytest.raises(RuntimeError, match="the value of command set for A cannot be "
+                                               "sent to acc.py"):
+            net.command("A", "set", value=object())
+
+
+@pytest.mark.parametrize("signature, seen", [
+    ("module, name", "set"),
+    ("module, name, x, y=0", "set 3.0 0.0"),
+    ("*details", "set 3.0 0.0 None"),
+])
+def test_a_command_hook_takes_as_many_details_as_it_names(tmp_path, signature, seen):
+    names = "details[1:]" if signature == "*details" else \
+        "(" + ", ".join(p.split("=")[0] for p in signature.split(", ")[1:]) + ",)"
+    script = SCRIPT + f"\n\ndef command({signature}):\n    print(*{names})\n"
+    with ikaros.load(_model(tmp_path, script), quiet=True) as net:
+        net.command("A", "set", 3)
+        assert _messages(net)[-1] == seen
+
+
+def test_a_script_without_a_command_hook_takes_no_commands(tmp_path):
+    with ikaros.load(_model(tmp_path), quiet=True) as net:
+        with pytest.raises(RuntimeError, match=r"A takes no commands \(acc.py defines no "
+                                               r"command\(\) function\)"):
+            net.command("A", "reset")
+
+
+def test_a_command_hook_that_cannot_take_a_name_is_an_error_at_start(tmp_path):
+    with pytest.raises(ikaros.ModelError, match=r"command\(\) in acc.py must take "
+                                                r"\(module, name\)"):
+        ikaros.load(_model(tmp_path, SCRIPT + "\n\ndef command(module):\n    pass\n"),
+                    quiet=True)
+
+
+def test_a_loaded_state_and_a_reset_are_what_the_script_accumulates_on(tmp_path):
+    model = _model(tmp_path)
+    state = str(tmp_path / "m.state")
+    with ikaros.load(model, quiet=True) as net:
+        net.run(3)
+        assert net.output("A.OUTPUT").tolist() == [3, 6, 9]
+        net.save_state(state)
+    with ikaros.load(model, quiet=True, load_state=state) as net:
+        assert net.output("A.OUTPUT").tolist() == [3, 6, 9]
+        net.step()
+        assert net.output("A.OUTPUT").tolist() == [4, 8, 12]
+        net.reset_state()
+        assert net.output("A.OUTPUT").tolist() == [0, 0, 0]
+        net.step()
+        assert net.output("A.OUTPUT").tolist() == [1, 2, 3]
