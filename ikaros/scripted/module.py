@@ -34,19 +34,43 @@ class ScriptedModule(Module):
     use_global_names: bool = False
     python_executable: str = ""
 
+    _ik_spawned: WorkerProcess | None = None     # started before init, not yet used
+    _ik_worker: WorkerProcess | None = None
+
+    def _ik_before_init(self) -> None:
+        """Start the worker process now, so that the interpreters of all scripted modules
+        start at once; init hands it the script (a process that cannot be started is
+        init's error)."""
+        try:
+            self._ik_spawned = self._spawn()
+        except ScriptError:
+            self._ik_spawned = None
+
+    def _ik_not_initialised(self) -> None:
+        """The start-up failed before (or during) init: no worker is left behind."""
+        for name in ("_ik_spawned", "_ik_worker"):
+            worker = getattr(self, name)
+            setattr(self, name, None)
+            if worker is not None:
+                worker.kill()
+
     def init(self) -> None:
-        self._ik_worker: WorkerProcess | None = None
         self._ik_sent: dict = {}
         self._start()
 
     # --- the worker ------------------------------------------------------------------------
-    def _start(self) -> None:
+    def _spawn(self) -> WorkerProcess:
         python = self.python_executable or sys.executable
         try:
-            worker = WorkerProcess(python, self._log, self.warning)
+            return WorkerProcess(python, self._log, self.warning)
         except OSError as e:
             raise ScriptError(f"the Python interpreter {python} (python_executable) for "
                               f"{self.path} cannot be started: {e.strerror or e}") from None
+
+    def _start(self) -> None:
+        """Start the script in a worker (the one started before init, else a new one)."""
+        python = self.python_executable or sys.executable
+        worker, self._ik_spawned = self._ik_spawned or self._spawn(), None
         self._ik_worker = worker
         inputs = {"in:" + n: self._input(n) for n in self._ik_inputs}
         outputs = {"out:" + n: self._output(n) for n in self._outputs()}

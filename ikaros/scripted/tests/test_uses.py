@@ -121,3 +121,84 @@ def test_a_loaded_state_and_a_reset_are_what_the_script_accumulates_on(tmp_path)
         assert net.output("A.OUTPUT").tolist() == [0, 0, 0]
         net.step()
         assert net.output("A.OUTPUT").tolist() == [1, 2, 3]
+
+
+INTERRUPT = '''from ikaros.module import Module
+
+
+class Interrupt(Module):
+    def init(self):
+        raise KeyboardInterrupt
+'''
+
+INIT_FAILS = '''def init():
+    raise ValueError("no start")
+
+
+def tick():
+    pass
+'''
+
+
+def _my_workers() -> list[int]:
+    """The worker processes of this process that still run."""
+    found = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/stat") as f:
+                state, parent = f.read().rsplit(")", 1)[1].split()[:2]
+            with open(f"/proc/{pid}/cmdline", "rb") as f:
+                command = f.read()
+        except (FileNotFoundError, ProcessLookupError):
+            continue
+        if int(parent) == os.getpid() and state != "Z" and b"scripted/worker.py" in command:
+            found.append(int(pid))
+    return found
+
+
+def _three(tmp_path, middle: str) -> str:
+    _model(tmp_path)
+    (tmp_path / "Interrupt.py").write_text(INTERRUPT)
+    (tmp_path / "Fails.ikc").write_text('<class name="Fails" python="fails.py"/>')
+    (tmp_path / "fails.py").write_text(INIT_FAILS)
+    (tmp_path / "three.ikg").write_text(f'''<group name="M">
+    <module class="Constant" name="C" data="1 2 3"/>
+    <module class="Acc" name="A"/>
+    <module class="{middle}" name="X"/>
+    <module class="Acc" name="B"/>
+    <connection source="C.OUTPUT" target="A.INPUT"/>
+    <connection source="C.OUTPUT" target="B.INPUT"/>
+</group>
+''')
+    return str(tmp_path / "three.ikg")
+
+
+def test_workers_start_together_and_a_failed_start_leaves_none(tmp_path):
+    assert _my_workers() == []
+    with pytest.raises(ikaros.ModelError, match=r'<module name="X">: init failed: '
+                                                r'ScriptError: init\(\) of fails.py failed'):
+        ikaros.load(_three(tmp_path, "Fails"), quiet=True)
+    assert _my_workers() == []
+
+
+def test_ctrl_c_while_the_modules_start_leaves_no_worker(tmp_path):
+    with pytest.raises(KeyboardInterrupt):
+        ikaros.load(_three(tmp_path, "Interrupt"), quiet=True)
+    assert _my_workers() == []
+
+
+def test_a_model_in_code_with_a_scripted_class_from_a_folder(tmp_path):
+    _model(tmp_path)
+    model = ikaros.Group("M")
+    model.module("Constant", "C", data="1 2 3")
+    model.module("Acc", "A", gain=2, path=str(tmp_path))
+    model.connect("C.OUTPUT", "A.INPUT", delay=0)
+    net = model.build()
+    (worker,) = _my_workers()
+    net.run(2)
+    net.set_parameter("A.gain", 0.5)
+    net.step()
+    assert net.output("A.OUTPUT").tolist() == [4.5, 9, 13.5]
+    shared = net.modules["A"].module._ik_shared.path
+    net.close()
+    assert _my_workers() == [] and not os.path.exists(shared)
