@@ -1,6 +1,8 @@
 """Scripted modules where a researcher meets them: commands from the user interface, state
 files and resets, a model built in Python code, and recordings."""
 import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -140,9 +142,9 @@ def tick():
 '''
 
 
-def _my_workers() -> list[int]:
-    """The worker processes of this process that still run."""
-    found = []
+def _my_workers(descendants: bool = False) -> list[int]:
+    """The worker processes of this process (or of its descendants) that still run."""
+    parents, workers = {}, []
     for pid in filter(str.isdigit, os.listdir("/proc")):
         try:
             with open(f"/proc/{pid}/stat") as f:
@@ -151,9 +153,18 @@ def _my_workers() -> list[int]:
                 command = f.read()
         except (FileNotFoundError, ProcessLookupError):
             continue
-        if int(parent) == os.getpid() and state != "Z" and b"scripted/worker.py" in command:
-            found.append(int(pid))
-    return found
+        parents[int(pid)] = int(parent)
+        if state != "Z" and b"scripted/worker.py" in command:
+            workers.append(int(pid))
+
+    def mine(pid):
+        while (pid := parents.get(pid, 0)) > 1:
+            if pid == os.getpid():
+                return True
+            if not descendants:
+                return False
+        return False
+    return [pid for pid in workers if mine(pid)]
 
 
 def _three(tmp_path, middle: str) -> str:
@@ -202,3 +213,21 @@ def test_a_model_in_code_with_a_scripted_class_from_a_folder(tmp_path):
     shared = net.modules["A"].module._ik_shared.path
     net.close()
     assert _my_workers() == [] and not os.path.exists(shared)
+
+
+def test_a_recording_has_the_scripted_modules_outputs(tmp_path):
+    model = _model(tmp_path)
+    recording = str(tmp_path / "run.h5")
+    done = subprocess.run([sys.executable, "-m", "ikaros", "-b", "-q", "-s", "3", "--record",
+                           recording, model], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    ds = ikaros.open_recording(recording)
+    assert ds["A.OUTPUT"].values.tolist() == [[1, 2, 3], [2, 4, 6], [3, 6, 9]]
+
+
+def test_a_sweep_in_local_processes_over_a_scripts_parameter(tmp_path):
+    table = ikaros.sweep(_model(tmp_path), {"A.gain": [1, 3]}, ticks=2,
+                         record=["A.OUTPUT"], workers=2, progress=False)
+    assert table["status"].tolist() == ["ok", "ok"]
+    assert table[["A.OUTPUT[0]", "A.OUTPUT[2]"]].values.tolist() == [[2, 6], [6, 18]]
+    assert _my_workers(descendants=True) == []
