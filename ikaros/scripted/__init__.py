@@ -64,6 +64,7 @@ def script_class(description: ClassDescription, script: str,
                 name, kind, class_attrs.get(name, default), text, options))
     cls = type(description.name, (ScriptedModule,), {
         "__module__": __name__, "script": script, "script_parameters": own})
+    description.script = script
     cls.description = description
     cls.ikc_description = True
     return cls

@@ -231,3 +231,20 @@ def test_a_sweep_in_local_processes_over_a_scripts_parameter(tmp_path):
     assert table["status"].tolist() == ["ok", "ok"]
     assert table[["A.OUTPUT[0]", "A.OUTPUT[2]"]].values.tolist() == [[2, 6], [6, 18]]
     assert _my_workers(descendants=True) == []
+
+
+def test_the_command_line_lists_and_describes_a_scripted_class_beside_a_model(tmp_path):
+    model = _model(tmp_path)
+
+    def ikaros_command(*options):
+        done = subprocess.run([sys.executable, "-m", "ikaros", *options, model],
+                              capture_output=True, text=True, timeout=60)
+        assert done.returncode == 0, done.stderr
+        return done.stdout.splitlines()
+    assert any(line.split() == ["Acc"] for line in ikaros_command("--classes"))
+    described = ikaros_command("--class", "Acc")
+    assert described[0] == "Acc"
+    assert "  gain (number, default '1'): " in described
+    assert described[-2:] == [f"Source: {tmp_path / 'Acc.ikc'}",
+                              f"Script: {tmp_path / 'acc.py'} (runs in a worker process "
+                              f"per module)"]

@@ -69,9 +69,10 @@ def server(tmp_path):
     srv.stop()
 
 
-def test_a_scripted_class_in_the_web_ui(server):
+def test_a_scripted_class_in_the_web_ui(server, tmp_path):
     desc = server.get("/api/classes")["Acc"]
     assert desc["description"] == "adds gain times its input to its output"
+    assert desc["script"] == str(tmp_path / "acc.py")
     assert desc["parameters"][0] == {"name": "gain", "type": "number", "default": "1",
                                      "description": "the factor"}
     info = server.get("/api/module?path=A")
