@@ -187,6 +187,7 @@ class ClassDescription:
     outputs: list[OutputSpec] = field(default_factory=list)
     states: list[StateSpec] = field(default_factory=list)
     source: str = ""             # the file the description was read from
+    script: str = ""             # the Python script that is the class's code (python=)
     view: Any = None             # a default view (a Node) carried by the class, if any
     internal: bool = False
 
@@ -208,6 +209,7 @@ class ClassDescription:
             "outputs": [p.to_dict() for p in self.outputs],
             **({"states": [s.to_dict() for s in self.states]} if self.states else {}),
             "source": self.source,
+            **({"script": self.script} if self.script else {}),
         }
 
     def to_text(self) -> str:
@@ -241,6 +243,8 @@ class ClassDescription:
             lines.append(f"  {st.name} ({st.type}, {what}): {st.description}")
         if self.source:
             lines.append(f"Source: {self.source}")
+        if self.script:
+            lines.append(f"Script: {self.script} (runs in a worker process per module)")
         return "\n".join(lines)
 
 

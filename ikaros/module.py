@@ -389,6 +389,15 @@ class Module:
     def stop(self) -> None:
         """Called once when the run ends."""
 
+    def _ik_before_init(self) -> None:
+        """Kernel-internal: called for every module of the schedule before the first
+        ``init`` runs, to start what takes long in the background (a scripted module's
+        worker process), so that all modules start theirs at once."""
+
+    def _ik_not_initialised(self) -> None:
+        """Kernel-internal: the start-up failed before this module's ``init`` ran or
+        completed: release what ``_ik_before_init`` took. Safe to call more than once."""
+
     # --- build-time API ------------------------------------------------------------------
     def add_input(self, name: str, *, optional: bool = False, flatten: bool = False,
                   stack: bool = False, description: str = "", use_label: bool = False) -> None:

@@ -396,6 +396,8 @@ class Network:
         started = []
         try:
             for inst in self.schedule:
+                inst.module._ik_before_init()
+            for inst in self.schedule:
                 for copy in self._pre_tick.get(inst, ()):
                     copy()
                 job = self.async_modules.get(inst)
@@ -424,7 +426,13 @@ class Network:
             for job in self.async_modules.values():
                 job.finish()
             self.plan.close()
-            self._stop_modules(started)
+            try:
+                self._stop_modules(started)
+            finally:
+                initialised = set(started)
+                for inst in self.schedule:
+                    if inst not in initialised:
+                        inst.module._ik_not_initialised()
             raise
 
     def _check_checksum(self) -> None:

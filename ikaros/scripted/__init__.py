@@ -1,8 +1,8 @@
 """Classes whose code is a Python script (Ikaros 3 ``<class python="script.py">``).
 
 The class's ports and parameters come from its .ikc file; its script defines hook
-functions (``init``, ``tick``, ``shutdown``) and runs in a worker process per module, with
-the interpreter of ``python_executable``. See docs/python-scripts.md.
+functions (``init``, ``tick``, ``shutdown``, ``command``) and runs in a worker process per
+module, with the interpreter of ``python_executable``. See docs/python-scripts.md.
 """
 from __future__ import annotations
 
@@ -64,6 +64,7 @@ def script_class(description: ClassDescription, script: str,
                 name, kind, class_attrs.get(name, default), text, options))
     cls = type(description.name, (ScriptedModule,), {
         "__module__": __name__, "script": script, "script_parameters": own})
+    description.script = script
     cls.description = description
     cls.ikc_description = True
     return cls

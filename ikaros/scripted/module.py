@@ -1,6 +1,7 @@
 """The module of a class whose code is a Python script run in a worker process."""
 from __future__ import annotations
 
+import json
 import os
 import sys
 
@@ -33,19 +34,43 @@ class ScriptedModule(Module):
     use_global_names: bool = False
     python_executable: str = ""
 
+    _ik_spawned: WorkerProcess | None = None     # started before init, not yet used
+    _ik_worker: WorkerProcess | None = None
+
+    def _ik_before_init(self) -> None:
+        """Start the worker process now, so that the interpreters of all scripted modules
+        start at once; init hands it the script (a process that cannot be started is
+        init's error)."""
+        try:
+            self._ik_spawned = self._spawn()
+        except ScriptError:
+            self._ik_spawned = None
+
+    def _ik_not_initialised(self) -> None:
+        """The start-up failed before (or during) init: no worker is left behind."""
+        for name in ("_ik_spawned", "_ik_worker"):
+            worker = getattr(self, name)
+            setattr(self, name, None)
+            if worker is not None:
+                worker.kill()
+
     def init(self) -> None:
-        self._ik_worker: WorkerProcess | None = None
         self._ik_sent: dict = {}
         self._start()
 
     # --- the worker ------------------------------------------------------------------------
-    def _start(self) -> None:
+    def _spawn(self) -> WorkerProcess:
         python = self.python_executable or sys.executable
         try:
-            worker = WorkerProcess(python, self._log, self.warning)
+            return WorkerProcess(python, self._log, self.warning)
         except OSError as e:
             raise ScriptError(f"the Python interpreter {python} (python_executable) for "
                               f"{self.path} cannot be started: {e.strerror or e}") from None
+
+    def _start(self) -> None:
+        """Start the script in a worker (the one started before init, else a new one)."""
+        python = self.python_executable or sys.executable
+        worker, self._ik_spawned = self._ik_spawned or self._spawn(), None
         self._ik_worker = worker
         inputs = {"in:" + n: self._input(n) for n in self._ik_inputs}
         outputs = {"out:" + n: self._output(n) for n in self._outputs()}
@@ -72,6 +97,7 @@ class ScriptedModule(Module):
             worker.close()
             self._ik_worker = None
             raise ScriptError(_failure_text(answer))
+        self._ik_hooks = frozenset(answer.get("hooks", ()))
         self._take_outputs()
         worker.forward_stderr()
 
@@ -126,6 +152,13 @@ class ScriptedModule(Module):
         for name in self._outputs():
             np.copyto(self._output(name), shared["out:" + name])
 
+    def _give_outputs(self) -> None:
+        """The outputs as the kernel has them, for a script that accumulates in them: a
+        state file loaded, or a reset, may have changed them since the last tick."""
+        shared = self._ik_shared.arrays
+        for name in self._outputs():
+            np.copyto(shared["out:" + name], self._output(name))
+
     def tick(self) -> None:
         fields, arrays = self._parameter_message(self._changed_parameters())
         fields.update(tick=self.clock.tick, on_error=self.on_error)
@@ -134,6 +167,7 @@ class ScriptedModule(Module):
             array = self._input(name)
             if array is not None:
                 np.copyto(shared["in:" + name], array)
+        self._give_outputs()
         try:
             answer, _ = self._ik_worker.request("tick", fields, arrays)
         except WorkerCrashed as e:
@@ -143,6 +177,37 @@ class ScriptedModule(Module):
             self._failed(answer)
         else:
             self._take_outputs()
+
+    def command(self, name: str, x: float = 0, y: float = 0, value=None) -> None:
+        """A command from the user interface: the script's ``command`` hook, with the
+        parameters as they are now. A script without the hook, a value that cannot be
+        sent, or a hook that raises is a ScriptError (the command fails; the run goes
+        on)."""
+        script = os.path.basename(self.script)
+        if self._ik_worker is None or "command" not in self._ik_hooks:
+            raise ScriptError(f"{self.path} takes no commands ({script} defines no "
+                              f"command() function)")
+        given = {"value": value.item() if isinstance(value, np.generic) else value}
+        if isinstance(value, np.ndarray):
+            given = {}
+        try:
+            json.dumps(given)
+        except (TypeError, ValueError) as e:
+            raise ScriptError(f"the value of command {name} for {self.path} cannot be sent "
+                              f"to {script}: {e}") from None
+        fields, arrays = self._parameter_message(self._changed_parameters())
+        fields.update(given, name=str(name), x=float(x), y=float(y))
+        if isinstance(value, np.ndarray):
+            arrays["value"] = value
+        self._give_outputs()
+        try:
+            answer, _ = self._ik_worker.request("command", fields, arrays)
+        except WorkerCrashed as e:
+            self._crashed(e)
+            return
+        if answer["kind"] == "failed":
+            raise ScriptError(_failure_text(answer))
+        self._take_outputs()
 
     def _failed(self, answer: dict) -> None:
         """A hook failed: on_error says what happens (the worker has set its outputs to

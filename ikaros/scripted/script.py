@@ -16,7 +16,8 @@ try:                    # imported from the ikaros package (its tests)
 except ImportError:     # in the worker, which has this folder on sys.path (worker.py)
     from proxy import ModuleProxy, copy_returned
 
-HOOKS = ("init", "tick", "shutdown")
+HOOKS = ("init", "tick", "shutdown", "command")
+COMMAND_ARGUMENTS = ("module", "name", "x", "y", "value")   # what command() may take
 LOGGING_HELPERS = ("log", "warning", "error", "debug")
 _HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -105,24 +106,32 @@ class Script:
         try:
             signature = inspect.signature(hook)
         except (TypeError, ValueError):
-            return hook, 1
+            return hook, len(COMMAND_ARGUMENTS) if name == "command" else 1
         positional = [p for p in signature.parameters.values()
                       if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
         required = [p for p in positional if p.default is p.empty]
-        if len(required) > 1 or any(p.kind == p.KEYWORD_ONLY and p.default is p.empty
-                                    for p in signature.parameters.values()):
+        keyword_only = any(p.kind == p.KEYWORD_ONLY and p.default is p.empty
+                           for p in signature.parameters.values())
+        varying = any(p.kind == p.VAR_POSITIONAL for p in signature.parameters.values())
+        if name == "command":
+            if len(required) > len(COMMAND_ARGUMENTS) or keyword_only or \
+                    (len(positional) < 2 and not varying):
+                raise ScriptError(f"command() in {self.file} must take (module, name), "
+                                  f"optionally followed by x, y and value, not {signature}")
+            return hook, len(COMMAND_ARGUMENTS) if varying else \
+                min(len(positional), len(COMMAND_ARGUMENTS))
+        if len(required) > 1 or keyword_only:
             raise ScriptError(f"{name}() in {self.file} must take no argument or one (the "
                               f"module), not {signature}")
-        takes_module = bool(positional) or any(p.kind == p.VAR_POSITIONAL
-                                               for p in signature.parameters.values())
-        return hook, int(takes_module)
+        return hook, int(bool(positional) or varying)
 
     def has(self, name: str) -> bool:
         return self.hooks[name] is not None
 
-    def call(self, name: str) -> Any:
-        """Call a hook (nothing if the script has none); an exception in it is a
-        ScriptError with the script's traceback."""
+    def call(self, name: str, *details: Any) -> Any:
+        """Call a hook (nothing if the script has none) with the module, if it takes it,
+        and ``details`` (a command's name, x, y and value, as many as it takes); an
+        exception in it is a ScriptError with the script's traceback."""
         found = self.hooks[name]
         if found is None:
             return None
@@ -130,7 +139,7 @@ class Script:
         if self.globals:
             self._refresh_globals()
         try:
-            result = hook(self.module) if arguments else hook()
+            result = hook(*(self.module, *details)[:arguments])
             if name == "tick":
                 copy_returned(self.module.path, dict(self.module.outputs), result)
                 self._take_rebound_outputs()

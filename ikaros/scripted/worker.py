@@ -112,6 +112,8 @@ class Worker:
                 return
             if header["kind"] == "start":
                 self.start(header, arrays)
+            elif header["kind"] == "command":
+                self.command(header, arrays)
             else:
                 self.tick(header, arrays)
 
@@ -139,7 +141,8 @@ class Worker:
             self.script = None
             return self._failed(e)
         self._flush()
-        self.channel.send("ready")
+        self.channel.send("ready", {"hooks": [name for name in self.script.hooks
+                                              if self.script.has(name)]})
 
     def tick(self, header, arrays):
         module = self.script.module
@@ -153,6 +156,19 @@ class Worker:
         except ScriptError as e:
             for name, array in self.outputs.items():
                 array[...] = kept[name] if kept is not None else 0
+            return self._failed(e)
+        self._flush()
+        self.channel.send("done")
+
+    def command(self, header, arrays):
+        """A command from the user interface, between ticks: the script's command hook
+        (the kernel calls it only when the script has one). A failure is the command's:
+        the kernel does not take what the hook wrote."""
+        self.script.module.set_parameters(_parameters(header, arrays))
+        value = arrays["value"] if "value" in arrays else header.get("value")
+        try:
+            self.script.call("command", header["name"], header["x"], header["y"], value)
+        except ScriptError as e:
             return self._failed(e)
         self._flush()
         self.channel.send("done")
