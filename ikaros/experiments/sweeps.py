@@ -128,6 +128,9 @@ def _build(spec: RunSpec):
     net = Builder(spec.model, overrides, model=tree,
                   diagnostics=Diagnostics(quiet=True)).build()
     net.log_level = -1          # the runs print nothing; failures go to the table
+    for path in spec.settings.keys() - later.keys():
+        if "." in path:
+            net.parameter(path)       # a name the module does not have is an error
     for path, value in later.items():     # modules the tree does not show (class files)
         net.set_parameter(path, value)
     return net

@@ -148,3 +148,9 @@ def test_a_local_ray_instance_gives_the_same_table(model):
     pd.testing.assert_frame_equal(table[same], local[same])
     assert list(table["status"]) == ["ok", "error", "ok", "error"]
     assert list(table["Double.OUTPUT"][[0, 2]]) == [30.0, 90.0]
+
+
+def test_a_parameter_the_module_does_not_have_fails_the_run_with_its_name(model):
+    runs = single_runs(model, {"Double.nope": [1], "Counter.step": [1]}, 5)
+    assert [r["status"] for r in runs] == ["error"]
+    assert runs[0]["error"].startswith('KeyError: \'no parameter "Double.nope" in Sweep\'')
