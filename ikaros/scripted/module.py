@@ -56,6 +56,8 @@ class ScriptedModule(Module):
 
     def init(self) -> None:
         self._ik_sent: dict = {}
+        self._ik_parameter_attributes = [(name, parameter_attribute(name))
+                                         for name in self.script_parameters]
         self._start()
 
     # --- the worker ------------------------------------------------------------------------
@@ -77,8 +79,12 @@ class ScriptedModule(Module):
         ports = {k: a for k, a in list(inputs.items()) + list(outputs.items())
                  if a is not None}
         self._ik_shared = SharedArrays.create({k: a.shape for k, a in ports.items()})
+        shared = self._ik_shared.arrays
         for key, array in ports.items():
-            np.copyto(self._ik_shared.arrays[key], array)
+            np.copyto(shared[key], array)
+        # the kernel binds a module's ports once, so each pairs with its shared copy once
+        self._ik_input_pairs = [(a, shared[k]) for k, a in inputs.items() if a is not None]
+        self._ik_output_pairs = [(a, shared[k]) for k, a in outputs.items()]
         fields, arrays = self._parameter_message(self._parameter_values())
         fields.update(name=self.name, path=self.path, script=self.script,
                       on_error=self.on_error, use_global_names=self.use_global_names,
@@ -116,8 +122,8 @@ class ScriptedModule(Module):
 
     # --- parameters ------------------------------------------------------------------------
     def _parameter_values(self) -> dict:
-        return {name: getattr(self, parameter_attribute(name))
-                for name in self.script_parameters}
+        return {name: getattr(self, attribute)
+                for name, attribute in self._ik_parameter_attributes}
 
     def _changed_parameters(self) -> dict:
         """The parameters whose values changed since they were last sent."""
@@ -148,30 +154,29 @@ class ScriptedModule(Module):
                 if not spec.private and "alias" not in spec.rule]
 
     def _take_outputs(self) -> None:
-        shared = self._ik_shared.arrays
-        for name in self._outputs():
-            np.copyto(self._output(name), shared["out:" + name])
+        for output, shared in self._ik_output_pairs:
+            np.copyto(output, shared)
 
-    def _give_outputs(self) -> None:
-        """The outputs as the kernel has them, for a script that accumulates in them: a
-        state file loaded, or a reset, may have changed them since the last tick."""
-        shared = self._ik_shared.arrays
-        for name in self._outputs():
-            np.copyto(shared["out:" + name], self._output(name))
+    def _request(self, kind: str, fields: dict, arrays: dict) -> dict | None:
+        """Send a tick or command with the outputs as the kernel has them (a script that
+        accumulates in them sees a loaded state or a reset); the answer, or None when the
+        worker crashed (and was restarted, if it may be)."""
+        for output, shared in self._ik_output_pairs:
+            np.copyto(shared, output)
+        try:
+            answer, _ = self._ik_worker.request(kind, fields, arrays)
+        except WorkerCrashed as e:
+            self._crashed(e)
+            return None
+        return answer
 
     def tick(self) -> None:
         fields, arrays = self._parameter_message(self._changed_parameters())
         fields.update(tick=self.clock.tick, on_error=self.on_error)
-        shared = self._ik_shared.arrays
-        for name in self._ik_inputs:
-            array = self._input(name)
-            if array is not None:
-                np.copyto(shared["in:" + name], array)
-        self._give_outputs()
-        try:
-            answer, _ = self._ik_worker.request("tick", fields, arrays)
-        except WorkerCrashed as e:
-            self._crashed(e)
+        for array, shared in self._ik_input_pairs:
+            np.copyto(shared, array)
+        answer = self._request("tick", fields, arrays)
+        if answer is None:
             return
         if answer["kind"] == "failed":
             self._failed(answer)
@@ -199,11 +204,8 @@ class ScriptedModule(Module):
         fields.update(given, name=str(name), x=float(x), y=float(y))
         if isinstance(value, np.ndarray):
             arrays["value"] = value
-        self._give_outputs()
-        try:
-            answer, _ = self._ik_worker.request("command", fields, arrays)
-        except WorkerCrashed as e:
-            self._crashed(e)
+        answer = self._request("command", fields, arrays)
+        if answer is None:
             return
         if answer["kind"] == "failed":
             raise ScriptError(_failure_text(answer))
