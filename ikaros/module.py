@@ -276,7 +276,7 @@ RESERVED = {"name", "path", "clock", "element", "init", "tick", "command", "stop
             "set_sizes", "add_input", "add_output", "input_shape", "output_shape",
             "set_output_shape", "connected", "input_parts", "input_label", "notify", "print",
             "warning", "error", "fatal_error", "end_of_file", "description", "parameter_names",
-            "state", "start_steps"}
+            "state", "start_steps", "dialect"}
 
 
 def parameter_attribute(name: str) -> str:
@@ -349,6 +349,10 @@ class Module:
     path: str = ""
     element: Any = None             # the model-file element of this module (a language Node)
     user_data: str | None = None    # where files with relative names are written (-u DIR)
+    # The Ikaros version the model file was written for: "2" (the paper's system, the default)
+    # or "3". A class that Ikaros 2 and 3 compute differently reads it to give a file the
+    # behaviour of its own version (docs/language.md says how the kernel decides it).
+    dialect: str = "2"
     # The kernel's input buffers (set when they are made), which give input_parts and
     # input_label.
     _ik_input_buffers: dict = {}
