@@ -113,6 +113,10 @@ class Builder:
                                 "choose where files are written); use ikaros -u DIR")
             del attrs["user_data"]
         attrs.update(self.overrides)
+        self.dialect = attrs.get("dialect", "2")
+        if self.dialect not in ("2", "3"):
+            raise self.model.error(f'dialect="{self.dialect}" must be "2" (Ikaros 2) or "3" '
+                                   f'(Ikaros 3)')
         name = attrs.get("name") or "Main"
         return self._group(self.model, None, name, attrs, (self.filename,))
 
@@ -275,6 +279,7 @@ class Builder:
                 from None
         module.name, module.path, module.element = inst.name, inst.path, inst.node
         module.user_data = self.user_data
+        module.dialect = self.dialect
         module.clock = self.clock
         for name, value in inst.values.items():
             setattr(module, parameter_attribute(name), value)
