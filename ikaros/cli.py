@@ -115,6 +115,16 @@ def parser() -> argparse.ArgumentParser:
                    help="the real-time tick duration in seconds")
     p.add_argument("-t", "--threads", type=_positive_int, metavar="N",
                    help="size of the worker thread pool")
+    p.add_argument("--priority", nargs="?", const="fifo", metavar="POLICY",
+                   help="run the tick and device threads at a real-time priority: fifo "
+                        "(the default), rr, or nice, optionally with a level (fifo:80, "
+                        "nice:-5); memory is locked too (lock_memory=no keeps it unlocked); "
+                        "what is refused is a warning")
+    p.add_argument("--cpus", metavar="CORES",
+                   help="pin the tick and device threads to these cores (1, 0,2 or 2-3)")
+    p.add_argument("--blas-threads", metavar="N",
+                   help="threads of the numerical libraries (BLAS, OpenMP) in real time "
+                        "(default: the cores less one; off: not limited)")
     p.add_argument("-S", "--start", action="store_true",
                    help="web UI: start running at once (-r starts in real time)")
     p.add_argument("-i", "--info", action="store_true",
@@ -385,6 +395,9 @@ def main(argv: list[str] | None = None) -> int:
             overrides["threads"] = str(opts.threads)
         if opts.python is not None:
             overrides["python_executable"] = opts.python
+        for key in ("priority", "cpus", "blas_threads"):
+            if getattr(opts, key) is not None:
+                overrides[key] = getattr(opts, key)
         if opts.models is not None and not os.path.isdir(opts.models):
             p.error(f'--models "{opts.models}" is not a folder')
         if not opts.batch:

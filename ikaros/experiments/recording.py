@@ -28,6 +28,7 @@ from datetime import datetime, timezone
 
 import numpy as np
 
+from ..hardware import priority
 from ..kernel import switching
 from ..kernel.taps import ROW, SIGNAL
 from ..module import WARNING
@@ -277,6 +278,7 @@ class Recorder:
     def _write_loop(self) -> None:
         """Write what the kernel thread hands over; ask it for the rows of a partly filled
         block every ``flush_seconds``."""
+        priority.background_thread()
         every = self.flush_seconds
         due = time.perf_counter() + every
         while True:

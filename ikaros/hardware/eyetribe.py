@@ -12,6 +12,8 @@ import socket
 import threading
 import time
 
+from . import priority
+
 PORT = 6555
 HEARTBEAT_SECONDS = 0.25
 PUSH_REQUEST = {"category": "tracker", "request": "set", "values": {"push": True,
@@ -69,6 +71,7 @@ class EyeTribeClient:
         return s
 
     def _run(self) -> None:
+        priority.device_thread()
         s, buffer, last_beat = self._socket, "", 0.0
         while not self._stop.is_set():
             try:

@@ -19,6 +19,8 @@ import threading
 import time
 from typing import Callable
 
+from . import priority
+
 log = logging.getLogger(__name__)
 
 _at_exit: dict[int, tuple[str, Callable[[], None]]] = {}
@@ -79,6 +81,7 @@ class Watchdog:
             self._thread.join(timeout=1.0)
 
     def _watch(self) -> None:
+        priority.device_thread()
         while not self._stop.wait(min(0.05, self.timeout / 4)):
             with self._lock:
                 due = not self.fired and time.monotonic() - self._last > self.timeout

@@ -8,7 +8,8 @@ import threading
 import time
 from concurrent.futures import Future
 
-from ..module import WARNING
+from ..hardware import priority
+from ..module import PRINT, WARNING
 from .timing import Waiter
 
 STOP, PAUSE, STEP, PLAY, REALTIME = "stop", "pause", "step", "play", "realtime"
@@ -43,6 +44,7 @@ class Controller:
         self.tick_hooks: list = []
         self._steps = 0
         self._step_lock = threading.Lock()
+        self._priority_told = False
         text = net.top.attrs.get("real_time_resync_lag")
         self.resync_lag = float(text) if text not in (None, "") else DEFAULT_RESYNC_LAG
 
@@ -145,13 +147,30 @@ class Controller:
         # Objects that live as long as the network need not be traced by every full
         # garbage collection: freezing them keeps collections short while ticks are due.
         gc.freeze()
+        self._claim_priority()
         try:
             self._run_loop()
         finally:
+            self.net.thread_pools.set_realtime(False)
             gc.unfreeze()
 
+    def _claim_priority(self) -> None:
+        """Give the thread that runs the ticks the priority the run asked for, and say once
+        what was granted and what was refused."""
+        granted = priority.tick_thread()
+        if granted is None or self._priority_told:
+            return
+        self._priority_told = True
+        cores = granted["cpus"]
+        text = f"priority: tick thread {granted['tick_thread']}" \
+               + (f", cores {','.join(map(str, cores))}" if cores else "") \
+               + (", memory locked" if granted["memory_locked"] else "")
+        self.net.notify(PRINT, None, text)
+        for refusal in granted["refused"]:
+            self.net.notify(WARNING, None, f"priority refused: {refusal}")
+
     def _run_loop(self) -> None:
-        net, timing = self.net, self.net.timing
+        net, timing, pools = self.net, self.net.timing, self.net.thread_pools
         perf = time.perf_counter
         hooks_done, skipped = 0.0, False
         while True:
@@ -178,6 +197,8 @@ class Controller:
                 self._wake.wait(0.05)
                 self._wake.clear()
                 continue
+            if (state == REALTIME) is not pools.active:
+                pools.set_realtime(state == REALTIME)
             lag = None
             now = perf()
             if state == REALTIME:
@@ -227,4 +248,6 @@ class Controller:
         out = {"state": self.state, "tick": net.tick,
                "tick_duration": net.clock.tick_duration, "time": net.clock.time}
         out.update(net.timing.figures())
+        out["priority"] = priority.report()
+        out["thread_pools"] = net.thread_pools.report()
         return out

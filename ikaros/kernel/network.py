@@ -15,6 +15,8 @@ from ..errors import ModelError, RunError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.values import ValueError_, format_number, value_text
 from ..language.writer import write_file
+from ..hardware import priority
+from ..hardware.priority import PriorityError, PriorityRequest
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
                       WARNING, attribute_name, parameter_attribute)
 from . import compiled
@@ -30,6 +32,7 @@ from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .limits import check_memory as _check_memory
 from .ranges import check_parameter, fit_shape
 from .taps import OutputTap
+from .threadpools import ThreadPools, parse_setting as parse_threadpool_setting
 from .timing import Timing
 from .watchdog import Watchdog, task_timeout
 from .scope import VariableError, from_python
@@ -103,6 +106,10 @@ class Network:
         self.task_timeout = task_timeout(self.top.attrs.get("task_timeout"),
                                          lambda m: self._setting_error("task_timeout", m))
         self._watchdog: Watchdog | None = None
+        self.priority_request = self._priority_request()
+        self.thread_pools = ThreadPools(self._thread_pool_setting())
+        # before init, so that device threads the modules start there get the priority too
+        priority.configure(self.priority_request)
         self.startup = builder.startup
         with self.startup.step("memory"):
             self._allocate()
@@ -135,6 +142,21 @@ class Network:
         if key in self._overrides:
             return ModelError(f"{message} (given on the command line)")
         return self.model.error(message)
+
+    def _priority_request(self) -> PriorityRequest | None:
+        attrs = self.top.attrs
+        try:
+            return PriorityRequest.parse(attrs.get("priority"), attrs.get("cpus"),
+                                         attrs.get("lock_memory"))
+        except PriorityError as error:
+            key = str(error).partition("=")[0]
+            raise self._setting_error(key, str(error)) from None
+
+    def _thread_pool_setting(self) -> int | None:
+        try:
+            return parse_threadpool_setting(self.top.attrs.get("blas_threads"))
+        except ValueError as error:
+            raise self._setting_error("blas_threads", str(error)) from None
 
     def _whole_number(self, key: str, minimum: int, maximum: int | None = None) -> int | None:
         """A top-group setting that must be a whole number >= minimum (and <= maximum; None

@@ -306,7 +306,26 @@ def openapi() -> dict:
             "webui_log_buffer_limit": {"type": "integer", "description": "the messages "
                                        "kept for /api/log"},
             "rgb_quality": {"type": "integer", "description": "of JPEG colour images"},
-            "gray_quality": {"type": "integer", "description": "of JPEG gray images"}}},
+            "gray_quality": {"type": "integer", "description": "of JPEG gray images"},
+            "priority": {"type": ["object", "null"], "description": "what the run asked for "
+                         "(priority, cpus, lock_memory), was granted and was refused; null "
+                         "when it asked for nothing", "properties": {
+                             "requested": {"type": "string"},
+                             "tick_thread": {"type": ["string", "null"]},
+                             "device_threads": {"type": "array", "items": {"type": "string"}},
+                             "background_threads": {"type": "array",
+                                                    "items": {"type": "string"}},
+                             "cpus": {"type": ["array", "null"],
+                                      "items": {"type": "integer"}},
+                             "memory_locked": {"type": ["boolean", "null"]},
+                             "refused": {"type": "array", "items": {"type": "string"}}}},
+            "thread_pools": {"type": "object", "description": "the numerical libraries' "
+                             "thread pools, limited while the run is in real time",
+                             "properties": {
+                                 "limit": {"type": ["integer", "null"]},
+                                 "realtime": {"type": "boolean"},
+                                 "error": {"type": "string"},
+                                 "pools": {"type": "array", "items": obj}}}}},
         "Network": {"type": "object", "properties": {
             "file": {"type": "string"}, "name": {"type": "string"},
             "top": {"$ref": "#/components/schemas/Group"},

@@ -33,6 +33,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from .. import access, limits
 from ..errors import ModelError, RunError
+from ..hardware import priority
 from ..kernel.control import PAUSE, STATES, STEP, STOP
 from ..kernel.carry import take_over
 from ..language.writer import write_file
@@ -1013,6 +1014,7 @@ def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = No
         if on_ready is not None:
             shown = f"[{host}]" if ":" in host else host
             on_ready(f"http://{shown}:{port}/")
+        priority.background_thread()        # this thread serves; the kernel's is started
         server.run(sockets=[sock])
     finally:
         current = app.state.ui.net          # the editor may have replaced the network

@@ -3,6 +3,7 @@ import threading
 
 import numpy as np
 
+from ikaros.hardware import priority
 from ikaros.module import Input, MissingDependency, Module, Output, Parameter
 
 from ._files import resolve
@@ -128,6 +129,7 @@ class DeviceReader:
         raise NotImplementedError
 
     def _run(self):
+        priority.device_thread()
         while not self._stop.is_set():
             frames = self.grab()
             if frames is None:

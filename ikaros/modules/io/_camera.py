@@ -8,6 +8,7 @@ from typing import Callable
 
 import numpy as np
 
+from ikaros.hardware import priority
 from ikaros.module import Module, Output, Parameter, require
 
 
@@ -98,6 +99,7 @@ class FrameGrabber:
         return planes
 
     def _run(self):
+        priority.device_thread()
         try:
             self._grab()
         finally:

@@ -5,6 +5,13 @@ import { STATE_TEXT } from "./controls.js";
 const ms = (s) => (typeof s === "number" ? (s * 1000).toFixed(2) + " ms" : "-");
 const pct = (f) => (typeof f === "number" ? (f * 100).toFixed(1) + " %" : "-");
 const num = (v, d = 1) => (typeof v === "number" ? v.toFixed(d) : v ?? "-");
+// The numerical libraries' threads: limited while the run is in real time.
+const threadPools = (p) => {
+    if (!p) return "-";
+    if (p.error) return p.error;
+    const now = (p.pools ?? []).map((x) => `${x.library} ${x.threads}`).join(", ") || "none loaded";
+    return p.limit ? `${now} (${p.limit} in real time)` : `${now} (not limited)`;
+};
 
 const FIELDS = [
     ["System", [
@@ -28,6 +35,13 @@ const FIELDS = [
     ["CPU", [
         ["cpu_usage", "usage", (s) => pct(s.cpu_usage)],
         ["idle", "idle time", (s) => pct(s.idle)],
+    ]],
+    ["Priority", [
+        ["priority_tick", "tick thread", (s) => (s.priority ? s.priority.tick_thread ?? "-" : "normal (not asked for)")],
+        ["priority_cpus", "cores", (s) => (s.priority?.cpus ? s.priority.cpus.join(", ") : "any")],
+        ["priority_memory", "memory locked", (s) => (s.priority?.memory_locked ? "yes" : "no")],
+        ["priority_refused", "refused", (s) => (s.priority?.refused?.length ? s.priority.refused.join(" | ") : "nothing")],
+        ["thread_pools", "math threads", (s) => threadPools(s.thread_pools)],
     ]],
     ["Web UI", [
         ["ui_updates", "updates/s", (s, ui) => num(ui.updatesPerSecond, 1)],

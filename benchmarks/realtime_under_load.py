@@ -1,0 +1,162 @@
+"""Real time on a busy machine: tick lag with and without a CPU hog, with and without the
+priority request (``priority="fifo"``: SCHED_FIFO for the tick thread, memory locked).
+
+    python benchmarks/realtime_under_load.py                 # 30 s per run, 8 runs: ~4.5 min
+    python benchmarks/realtime_under_load.py --seconds 5     # a quick look
+
+Two models, each run in a process of its own:
+* robot_320 (benchmarks/models.py: 320 modules) at 1 kHz;
+* the Epi bus at 100 Hz: the Dynamixel module with 19 servos (Protocol 2.0, sync write of goal
+  positions and sync read of present positions every tick) against the simulator
+  (``ikaros-sim dynamixel --line-time``) in a process of its own, as a real bus would be.
+
+The hog is one busy-loop process per core, at normal priority. Printed per run: lag p50, p99
+and max over every tick (ms), resynchronisations, ticks run of those asked for, what the
+priority request was granted, and the garbage collections of each generation during the run
+(count / longest, ms). SCHED_FIFO is granted only where the process may (root, or
+CAP_SYS_NICE, or ``ulimit -r``); otherwise the run says what was refused and falls back to
+the best nice it can get.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, ROOT)
+
+from benchmarks import models  # noqa: E402
+from benchmarks.robots import LATENCY_MS, SERVOS, start_simulator  # noqa: E402
+
+# The run, in a child process: every tick's lag is kept by a tick hook.
+RUN = """
+import gc, json, sys, time
+import numpy as np
+import ikaros
+path, ticks, settings = sys.argv[1], int(sys.argv[2]), json.loads(sys.argv[3])
+net = ikaros.load(path, **settings)
+collections, started = {0: [], 1: [], 2: []}, {}
+def timed(phase, info):
+    if phase == "start":
+        started["at"] = time.perf_counter()
+    else:
+        collections[info["generation"]].append(time.perf_counter() - started["at"])
+gc.callbacks.append(timed)
+lags, done = np.zeros(ticks), [0]
+def keep():
+    if done[0] < ticks:
+        lags[done[0]] = net.clock.lag
+        done[0] += 1
+net.controller.tick_hooks.append(keep)
+error = None
+try:
+    net.run(ticks=ticks, real_time=True)
+except Exception as e:
+    error = f"{type(e).__name__}: {e}"
+figures = net.figures()
+net.close()
+kept = lags[:done[0]]
+print("RESULT", json.dumps({
+    "ticks": done[0], "error": error, "resyncs": figures["resyncs"],
+    "p50": float(np.percentile(kept, 50)) if done[0] else None,
+    "p99": float(np.percentile(kept, 99)) if done[0] else None,
+    "max": float(kept.max()) if done[0] else None,
+    "priority": figures["priority"],
+    "gc": {g: [len(d), max(d, default=0.0)] for g, d in collections.items()}}))
+"""
+
+
+def epi_bus_model(folder: str, device: str) -> str:
+    goals = " ".join(f"{180 + 20 * ((i % 3) - 1)}" for i in range(SERVOS))
+    ids = " ".join(map(str, range(1, SERVOS + 1)))
+    path = os.path.join(folder, "epi_bus.ikg")
+    with open(path, "w") as f:
+        f.write(f'<group name="EpiBus" tick_duration="0.01">\n'
+                f'<module class="Constant" name="Goals" data="{goals}"/>\n'
+                f'<module class="Dynamixel" name="Servos" device="{device}" servo_id="{ids}" '
+                f'protocol="2" feedback="position" print_info="none" '
+                f'serial_latency="{LATENCY_MS}"/>\n'
+                f'<connection source="Goals.OUTPUT" target="Servos.GOAL_POSITION"/>\n'
+                f'</group>\n')
+    return path
+
+
+def _above_the_hog(pid: int) -> None:
+    try:
+        for tid in map(int, os.listdir(f"/proc/{pid}/task")):
+            os.sched_setscheduler(tid, os.SCHED_FIFO, os.sched_param(45))
+        print("the servo simulator runs at SCHED_FIFO 45 (servos do not share the CPU)")
+    except PermissionError:
+        print("the servo simulator runs at normal priority (SCHED_FIFO not permitted): under "
+              "the hog it answers late, as no real servo would")
+
+
+def start_hog() -> list[subprocess.Popen]:
+    return [subprocess.Popen([sys.executable, "-c", "while True: pass"])
+            for _ in range(os.cpu_count() or 1)]
+
+
+def run(path: str, ticks: int, settings: dict) -> dict:
+    env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    done = subprocess.run([sys.executable, "-c", RUN, path, str(ticks), json.dumps(settings)],
+                          capture_output=True, text=True, env=env, timeout=ticks + 600)
+    lines = [x for x in done.stdout.splitlines() if x.startswith("RESULT ")]
+    if not lines:
+        return {"ticks": 0, "error": done.stderr.strip().splitlines()[-1:], "resyncs": 0,
+                "p50": None, "p99": None, "max": None, "priority": None, "gc": {}}
+    return json.loads(lines[-1][len("RESULT "):])
+
+
+def show(name: str, hog: bool, asked: bool, ticks: int, r: dict) -> None:
+    ms = lambda s: "-" if s is None else f"{s * 1000:.3f}"     # noqa: E731
+    granted = (r["priority"] or {}).get("tick_thread") or "normal"
+    print(f"{name:10s} {'hog' if hog else 'quiet':5s} {granted:15s} "
+          f"p50 {ms(r['p50']):>7s}  p99 {ms(r['p99']):>7s}  max {ms(r['max']):>8s} ms  "
+          f"resyncs {r['resyncs']:3d}  ticks {r['ticks']}/{ticks}"
+          + "  gc " + " ".join(f"g{g}:{n}/{ms(t)}" for g, (n, t) in r["gc"].items())
+          + (f"  error: {r['error']}" if r["error"] else ""), flush=True)
+    for refusal in (r["priority"] or {}).get("refused", []) if asked else []:
+        print(f"{'':17s}refused: {refusal}")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--seconds", type=float, default=30.0, help="per run (default 30)")
+    parser.add_argument("--priority", default="fifo", help="the request (default fifo)")
+    options = parser.parse_args()
+    print(f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}, "
+          f"{'root' if os.geteuid() == 0 else 'not root'}; {options.seconds:g} s per run")
+    simulator, device = start_simulator()
+    try:
+        # Servos are hardware of their own: they do not wait for the hog. Where the process
+        # may, the simulator that stands in for them runs above it.
+        _above_the_hog(simulator.pid)
+        with tempfile.TemporaryDirectory() as folder:
+            cases = [("robot_320", models.robot_320(folder), 0.001),
+                     ("epi_bus", epi_bus_model(folder, device), 0.01)]
+            for name, path, dt in cases:
+                ticks = int(options.seconds / dt)
+                for hog in (False, True):
+                    for asked in (False, True):
+                        settings = {"tick_duration": dt}
+                        if asked:
+                            settings["priority"] = options.priority
+                        hogs = start_hog() if hog else []
+                        try:
+                            result = run(path, ticks, settings)
+                        finally:
+                            for p in hogs:
+                                p.kill()
+                                p.wait()
+                        show(name, hog, asked, ticks, result)
+    finally:
+        simulator.terminate()
+        simulator.wait(timeout=10)
+
+
+if __name__ == "__main__":
+    main()
