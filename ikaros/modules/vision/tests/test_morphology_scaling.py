@@ -48,12 +48,20 @@ def test_integral_image_is_the_summed_area_table(tmp_path):
         float(GRAY[3:8, 5:11].sum()), abs=1e-4)
 
 
-def test_downsample_takes_the_mean_of_2x2_blocks(tmp_path):
-    out, = outputs(tmp_path, "Downsample", {"INPUT": GRAY[:, :11]}, "OUTPUT")
+def test_downsample_takes_every_second_pixel_by_default(tmp_path):
+    image = np.arange(35, dtype=np.float32).reshape(5, 7)
+    out, = outputs(tmp_path, "Downsample", {"INPUT": image}, "OUTPUT")
+    assert np.array_equal(out, [[0, 2, 4], [14, 16, 18]])   # rows 0, 2; columns 0, 2, 4
+    out, = outputs(tmp_path, "Downsample", {"INPUT": COLOUR}, "OUTPUT")
+    assert np.array_equal(out, COLOUR[:, 0:6:2, 0:8:2])
+
+
+def test_downsample_mean_takes_the_mean_of_2x2_blocks(tmp_path):
+    out, = outputs(tmp_path, "Downsample", {"INPUT": GRAY[:, :11]}, "OUTPUT", method="mean")
     assert out.shape == (4, 5)
     blocks = GRAY[:8, :10].reshape(4, 2, 5, 2).mean(axis=(1, 3))
     assert np.allclose(out, blocks, atol=1e-6)
-    out, = outputs(tmp_path, "Downsample", {"INPUT": COLOUR}, "OUTPUT")
+    out, = outputs(tmp_path, "Downsample", {"INPUT": COLOUR}, "OUTPUT", method="mean")
     assert out.shape == (3, 3, 4)
     assert np.allclose(out, COLOUR[:, :6, :8].reshape(3, 3, 2, 4, 2).mean(axis=(2, 4)),
                        atol=1e-6)
