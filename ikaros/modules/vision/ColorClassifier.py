@@ -56,12 +56,15 @@ class ColorClassifier(Module):
         self._planes = (self.COLORSPACE_R, self.COLORSPACE_G, self.COLORSPACE_B)
 
     def _selected(self, dr: np.ndarray, dg: np.ndarray) -> np.ndarray:
-        """Whether offsets (dr, dg) from white have the hue and saturation selected."""
+        """Whether offsets (dr, dg) from white have the hue and saturation selected. The
+        hue test needs no angles: within ± width of the direction u = (sin c, cos c) means
+        d · u >= |d| cos(width) (every hue when width is 180 or more)."""
         saturation = np.hypot(dr, dg)
-        hue = np.degrees(np.arctan2(dr, dg))
-        off = np.abs((hue - self.color + 180.0) % 360.0 - 180.0)
-        return ((off <= self.width) & (saturation > self.saturation_min) &
-                (saturation < self.saturation_max))
+        hue = np.radians(self.color)
+        along = dr * np.float32(np.sin(hue)) + dg * np.float32(np.cos(hue))
+        width = np.radians(min(max(self.width, 0.0), 180.0))
+        return ((along >= saturation * np.float32(np.cos(width))) &
+                (saturation > self.saturation_min) & (saturation < self.saturation_max))
 
     def tick(self):
         dr = self.R - 1.0 / 3.0

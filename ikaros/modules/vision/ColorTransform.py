@@ -39,12 +39,30 @@ class ColorTransform(ThreePlanes):
         if self.scale == 0:
             raise ValueError("scale must not be 0 (it divides the inputs)")
         self._image = np.zeros(self.OUTPUT.shape, np.float64)
+        self._total = np.zeros(self.OUTPUT.shape[1:], np.float32)
+        self._nonzero = np.zeros(self.OUTPUT.shape[1:], bool)
 
     def compute(self):
+        if self.transform == "RGB->rgI":
+            self._rgi()
+            return
         image = self._image
         for src, dst in zip(self.planes_in, image):
             np.divide(src, self.scale, out=dst)
         self.OUTPUT[...] = getattr(self, "_" + self.transform.replace("->", "_to_"))(image)
+
+    def _rgi(self):
+        """r = R/(R+G+B), g = G/(R+G+B) (1/3 where the sum is 0), I = (R+G+B) / scale, in
+        float32 on buffers made once (the chromaticities do not depend on scale)."""
+        red, green, blue = self.planes_in
+        total, out = self._total, self.OUTPUT
+        np.add(red, green, out=total)
+        total += blue
+        np.not_equal(total, 0.0, out=self._nonzero)
+        for src, dst in ((red, out[0]), (green, out[1])):
+            dst.fill(1.0 / 3.0)
+            np.divide(src, total, out=dst, where=self._nonzero)
+        np.divide(total, self.scale, out=out[2])
 
     def _linear(self, rgb):
         return srgb_expand(rgb) if self.gamma == "srgb" else rgb
@@ -63,10 +81,3 @@ class ColorTransform(ThreePlanes):
 
     def _Lab_to_RGB(self, lab):
         return np.clip(self._XYZ_to_RGB(lab_to_xyz(lab)), 0.0, 1.0)
-
-    @staticmethod
-    def _RGB_to_rgI(rgb):
-        total = rgb.sum(axis=0)
-        chroma = np.full((2,) + total.shape, 1.0 / 3.0)
-        np.divide(rgb[:2], total, out=chroma, where=total != 0)
-        return np.concatenate([chroma, total[None]])

@@ -122,7 +122,7 @@ def hue_pixel(hue, saturation, intensity=1.0):
 
 def test_classifier_hue_is_the_class_files_direction(tmp_path):
     # red r = 2/3, g = 0 (hue 135); green r = 0, g = 2/3 (315); blue r = g = 1/7 (225)
-    colours = [(2, 0, 1), (0, 2, 1), (0.1, 0.1, 0.5), (0.4, 0.4, 0.4)]
+    colours = [(2, 0, 1), (0, 2, 1), (0.1, 0.1, 0.5), (0.5, 0.5, 0.5)]
     image = pixels(*colours)
     out, *_ = classify(tmp_path, image, color=135)
     assert np.array_equal(out[0], [1, 0, 0, 0])        # color="135" selects red
