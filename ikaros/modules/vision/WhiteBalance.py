@@ -35,15 +35,13 @@ class WhiteBalance(ThreePlanes):
     y0 = Parameter(20, "first row of the reference region")
     y1 = Parameter(20, "the row after the reference region's last")
 
-    def configure(self):
+    def init(self):
+        super().init()
         if self.dialect == "3":
             given = getattr(self.element, "attrs", {})
             for name, value in IKAROS3_DEFAULTS.items():
                 if name not in given:
                     setattr(self, name, value)
-
-    def init(self):
-        super().init()
         self._region()
 
     def _region(self) -> tuple[slice, slice]:
