@@ -72,9 +72,10 @@ MODEL = '''<?xml version="1.0"?>
     <module class="GaussianFilter" name="BlurR" sigma="1" kernel_size="5" />
     <module class="GaussianFilter" name="BlurG" sigma="1" kernel_size="5" />
     <module class="GaussianFilter" name="BlurI" sigma="1" kernel_size="5" />
-    <module class="ColorClassifier" name="Classifier" color="333" width="30" diagnostics="no" />
+    <module class="ColorClassifier" name="Classifier" color="117" width="15" diagnostics="no" />
     <module class="Dilate" name="Dilate" />
-    <module class="SpatialClustering" name="Clustering" threshold="0.5" cluster_radius="0.05" />
+    <module class="SpatialClustering" name="Clustering" threshold="0.5" cluster_radius="0.05"
+                min_cluster_area="0.001" />
     <module class="Overlay" name="Overlay" />
     <connection source="Camera.OUTPUT" target="Chromaticity.INPUT" delay="0" />
     <connection source="Chromaticity.OUTPUT0" target="BlurR.INPUT" delay="0" />
@@ -147,8 +148,8 @@ class DirectPipeline:
         self.overlay = np.zeros((3,) + shape, np.float32)
         self.square = np.ones((3, 3), np.uint8)
         self.kernel = cv2.getGaussianKernel(5, 1.0).astype(np.float32)
-        angle = np.radians(333.0)
-        self.ux, self.uy, self.cos_half = np.cos(angle), np.sin(angle), np.cos(np.radians(15))
+        angle = np.radians(117.0)               # the hue direction (sin c, cos c) in (r, g)
+        self.ux, self.uy, self.cos_half = np.sin(angle), np.cos(angle), np.cos(np.radians(15))
         self.radius = int(round(0.05 * (cols - 6)))
 
     def colour_transform(self, image):

@@ -22,10 +22,15 @@ def test_overhead_tracker_follows_each_robot_within_one_pixel():
         for _ in range(40):
             net.step()
             truth = net.output("Camera.POSITIONS")
-            for i, robot in enumerate(("RedRobot", "GreenRobot", "BlueRobot")):
+            for i, colour in enumerate(("Red", "Green", "Blue")):
+                robot = colour + "Robot"
                 error = np.abs(net.output(f"{robot}.OUTPUT")[0] - truth[i]) * [320, 240]
                 assert error.max() <= 1.0, (robot, net.tick, error)
-                assert net.output(f"{robot}.CONFIDENCE")[0] == 1
+                # every marker pixel is in the one cluster: count / (2 pi r²), r = 16
+                pixels = net.output(f"{colour}Marker.OUTPUT").sum()
+                assert pixels > 200
+                assert net.output(f"{robot}.CONFIDENCE")[0] == pytest.approx(
+                    pixels / (2 * np.pi * 16 ** 2), rel=1e-6)
 
 
 def test_attention_focus_is_on_the_red_disc():

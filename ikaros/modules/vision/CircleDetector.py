@@ -13,12 +13,13 @@ class CircleDetector(Module):
     found). The centre is the point with most votes (votes on a 1-pixel grid, smoothed over
     3 x 3); the diameter is twice the median distance to it of the elements whose
     gradient points along the radius (within 25°) at a distance in the radius range.
-    POSITION is (x, y, support): the centre and the fraction of the elements that support
-    the circle; DIAMETER is in pixels; all are 0 when no element is given. HISTX and HISTDX
-    are 15-bin histograms of the elements' x positions (over their range) and of the x
-    component of their gradient direction (over -1..1), for display. The Ikaros 2 class
-    found the circle from histograms of positions and orientations; this one votes, which
-    also works with several objects in view."""
+    POSITION is (x, y, support): the centre in pixels (x = column, y = row, as in
+    EDGE_LIST) and the fraction of the elements that support the circle; DIAMETER is in
+    pixels; all are 0 when no element is given. HISTX and HISTDX are 15-bin histograms of
+    the elements' x positions (over their range) and of the x component of their gradient
+    direction (over -1..1), for display. The Ikaros 2 class found the circle from
+    histograms of positions and orientations, by formulas the reference does not give; this
+    one votes, which also works with several objects in view."""
 
     min_radius = Parameter(20.0, "smallest radius searched, in pixels")
     max_radius = Parameter(100.0, "largest radius searched, in pixels")

@@ -8,22 +8,30 @@ from ._cv import pixel_of
 
 
 class ColorMatch(Module):
-    """How close each pixel's colour is to a prototype colour: OUTPUT = gain ·
-    exp(-d² / 2 sigma²), where d is the Euclidean distance between the pixel's three
-    values and the prototype, in the units of the input (for example L*a*b* from
-    ColorTransform, where the default sigma of 25 suits); values below ``threshold`` are
-    set to 0. The prototype starts at (target0, target1, target2), and is set there again
-    whenever these parameters change. It is learned: on a tick when REINFORCEMENT (its
-    first value) is above 0 and FOCUS (x, y, fractions of the width and height) is
-    connected, the prototype moves towards the colour at the focus by alpha ·
-    reinforcement of the difference. The colour is read from TARGETINPUT (or TARGETINPUT0..2)
-    when connected, otherwise from the image itself. The image comes on INPUT
-    (3, rows, cols) or on INPUT0..2."""
+    """How close each pixel's colour is to a prototype colour, compared by chromaticity, as
+    Ikaros 3 computes it (its golden outputs fix the formula; the Ikaros 2 reference says
+    only "a similarity of width sigma", and this module computes the same for it). Each
+    colour (c0, c1, c2) is divided by its sum c0 + c1 + c2, and OUTPUT = gain ·
+    exp(-sigma · d), where d is the Euclidean distance between the pixel's and the
+    prototype's divided colours. A pixel whose sum is not above ``threshold`` gives 0 (the
+    golden outputs show this for a sum of 0 and that values below ``threshold`` are not
+    cut; that the test is on the sum is this module's reading); a prototype whose sum is 0
+    counts as (0, 0, 0). The prototype starts at (target0, target1, target2), and is set
+    there again whenever these parameters change. It is learned: on a tick when
+    REINFORCEMENT (its first value) is above 0 and FOCUS is connected, after OUTPUT is
+    computed, the prototype becomes p + alpha · reinforcement · (t - p), where p is the
+    prototype divided by its sum and t the colour at the focus as it is (not divided), so
+    the next tick's OUTPUT shows it. The colour is read from TARGETINPUT (or
+    TARGETINPUT0..2) when connected, otherwise from the image itself. FOCUS is a position
+    (x, y) in fractions of the width and height (docs/images.md); the golden case, (1, 0)
+    in a 2 x 2 image, reads column 1 of row 0 under this convention as under pixel indices.
+    The image comes on INPUT (3, rows, cols) or on INPUT0..2."""
 
     alpha = Parameter(0.01, "learning rate of the prototype")
-    sigma = Parameter(25.0, "width of the similarity, in the units of the input")
+    sigma = Parameter(25.0, "how fast the similarity falls with the distance of the "
+                      "chromaticities")
     gain = Parameter(1.0, "the output for a perfect match")
-    threshold = Parameter(0.0, "outputs below this are set to 0")
+    threshold = Parameter(0.0, "pixels whose channel sum is not above this give 0")
     target0 = Parameter(0.0, "first value of the starting prototype")
     target1 = Parameter(0.0, "second value of the starting prototype")
     target2 = Parameter(0.0, "third value of the starting prototype")
@@ -52,26 +60,35 @@ class ColorMatch(Module):
         self._planes = plane_inputs(self)
         self._targets = plane_inputs(self, "TARGETINPUT") or self._planes
         self._start = None
-        self._distance = np.zeros(self.OUTPUT.shape, np.float32)
-        self._difference = np.zeros(self.OUTPUT.shape, np.float32)
+        shape = self.OUTPUT.shape
+        self._sum = np.zeros(shape, np.float64)
+        self._distance = np.zeros(shape, np.float64)
+        self._difference = np.zeros(shape, np.float64)
 
     def tick(self):
         start = (self.target0, self.target1, self.target2)
         if start != self._start:
             self._start, self.prototype = start, np.array(start, np.float64)
-        self._learn()
-        d2, diff, out = self._distance, self._difference, self.OUTPUT
+        prototype = chromaticity(self.prototype)
+        total, d2, diff = self._sum, self._distance, self._difference
+        np.add(self._planes[0], self._planes[1], out=total)
+        total += self._planes[2]
+        valid = total > self.threshold
+        np.copyto(total, 1.0, where=~valid)
         d2.fill(0.0)
-        for plane, value in zip(self._planes, self.prototype):
-            np.subtract(plane, value, out=diff)
+        for plane, value in zip(self._planes, prototype):
+            np.divide(plane, total, out=diff)
+            diff -= value
             diff *= diff
             d2 += diff
-        np.multiply(d2, -0.5 / (self.sigma * self.sigma), out=out)
-        np.exp(out, out=out)
-        out *= self.gain
-        out[out < self.threshold] = 0.0
+        np.sqrt(d2, out=d2)
+        d2 *= -self.sigma
+        np.exp(d2, out=d2)
+        d2 *= self.gain
+        np.multiply(d2, valid, out=self.OUTPUT)
+        self._learn(prototype)
 
-    def _learn(self):
+    def _learn(self, prototype):
         if self.FOCUS is None or self.REINFORCEMENT is None or self.FOCUS.size < 2:
             return
         reinforcement = float(self.REINFORCEMENT.flat[0])
@@ -80,4 +97,10 @@ class ColorMatch(Module):
         rows, cols = self._targets[0].shape
         row, col = pixel_of(float(self.FOCUS.flat[0]), float(self.FOCUS.flat[1]), rows, cols)
         colour = np.array([p[row, col] for p in self._targets], np.float64)
-        self.prototype += self.alpha * reinforcement * (colour - self.prototype)
+        self.prototype = prototype + self.alpha * reinforcement * (colour - prototype)
+
+
+def chromaticity(colour: np.ndarray) -> np.ndarray:
+    """A colour divided by the sum of its three values; (0, 0, 0) when the sum is 0."""
+    total = colour.sum()
+    return colour / total if total != 0 else np.zeros(3)

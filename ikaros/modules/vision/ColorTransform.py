@@ -4,49 +4,80 @@ import numpy as np
 from ikaros.module import Parameter
 
 from ._colour import ThreePlanes
-
-CODES = {"RGB->Lab": "COLOR_RGB2Lab", "RGB->XYZ": "COLOR_RGB2XYZ",
-         "Lab->RGB": "COLOR_Lab2RGB", "XYZ->RGB": "COLOR_XYZ2RGB"}
+from ._colour_spaces import (RGB_TO_XYZ, XYZ_TO_RGB, lab_to_xyz, mix, srgb_compress,
+                             srgb_expand, xyz_to_lab)
 
 
 class ColorTransform(ThreePlanes):
-    """Converts colours between spaces with OpenCV's cvtColor (D65 white):
-    RGB->Lab gives CIE L*a*b* (L 0..100, a and b about -128..127) from sRGB values 0..1
-    (gamma-expanded first), Lab->RGB the reverse (OpenCV computes these with tables,
-    within about 0.2 of the exact L*a*b* values); RGB->XYZ and XYZ->RGB use the linear
-    sRGB matrix on the values as they are (OpenCV applies no gamma there). RGB->rgI gives
-    the chromaticities r = R / (R+G+B) and g = G / (R+G+B) (0 where R+G+B is 0) and the
-    intensity I = (R+G+B) / 3, the input of ColorClassifier. The result is multiplied by
-    ``scale``. The image comes on INPUT (3, rows, cols) or on INPUT0..2 (R, G, B or the
-    planes of the source space), and goes out on OUTPUT and on OUTPUT0..2."""
+    """Converts colours between spaces, as Ikaros 2 and 3 do. The inputs are first divided
+    by ``scale`` (255 for 8-bit levels). RGB is **linear** (no sRGB gamma) with the BT.709
+    primaries and the D65 white: RGB->XYZ multiplies by the matrix
+    X = 0.412453 R + 0.357581 G + 0.180423 B, Y = 0.212670 R + 0.715160 G + 0.072169 B,
+    Z = 0.019334 R + 0.119193 G + 0.950227 B, and XYZ->RGB by its published inverse
+    (3.240479 -1.537150 -0.498535; -0.969256 1.875992 0.041556; 0.055648 -0.204043
+    1.057311), unclamped. RGB->Lab gives CIE L*a*b* of that XYZ relative to the white
+    (0.950456, 1, 1.088754): f(t) = t^(1/3) above 0.008856, else 7.787 t + 16/116;
+    L = 116 f(Y) - 16, a = 500 (f(X) - f(Y)), b = 200 (f(Y) - f(Z)), so a grey of 0.5 gives
+    L = 76.07. Lab->RGB is the inverse, clamped to 0..1. RGB->rgI gives the chromaticities
+    r = R / (R+G+B) and g = G / (R+G+B) (1/3 each where R+G+B is 0) and I = R+G+B (the sum,
+    after the division by ``scale``; the input of ColorClassifier). With ``gamma="srgb"``
+    (this project's option; OpenCV's convention) RGB values are sRGB-encoded instead:
+    expanded to linear light before RGB->Lab and RGB->XYZ and compressed after Lab->RGB and
+    XYZ->RGB, so a grey of 0.5 gives L = 53.39. The image comes on INPUT (3, rows, cols) or
+    on INPUT0..2 (R, G, B or the planes of the source space), and goes out on OUTPUT and on
+    OUTPUT0..2. (That ``scale`` divides the inputs is known for RGB->Lab and RGB->rgI; the
+    other conversions are taken to do the same.)"""
 
     transform = Parameter("RGB->Lab", "the conversion",
                           options="RGB->Lab/RGB->XYZ/Lab->RGB/XYZ->RGB/RGB->rgI")
-    scale = Parameter(1.0, "multiplies the result")
+    scale = Parameter(1.0, "divides the inputs (255 for 8-bit levels)")
+    gamma = Parameter("none", "none: linear RGB, as in Ikaros; srgb: sRGB-encoded RGB "
+                      "(OpenCV's conversion)", options="none/srgb")
 
     def init(self):
         super().init()
-        shape = self.OUTPUT.shape[1:]
-        self._pixels = np.zeros(shape + (3,), np.float32)
-        self._converted = np.zeros(shape + (3,), np.float32)
-        self._sum = np.zeros(shape, np.float32)
-        self._nonzero = np.zeros(shape, bool)
+        if self.scale == 0:
+            raise ValueError("scale must not be 0 (it divides the inputs)")
+        self._image = np.zeros(self.OUTPUT.shape, np.float64)
+        self._total = np.zeros(self.OUTPUT.shape[1:], np.float32)
+        self._nonzero = np.zeros(self.OUTPUT.shape[1:], bool)
 
     def compute(self):
-        cv2, out = self.cv2, self.OUTPUT
         if self.transform == "RGB->rgI":
-            red, green, blue = self.planes_in
-            np.add(red, green, out=self._sum)
-            self._sum += blue
-            np.greater(self._sum, 0.0, out=self._nonzero)
-            for src, dst in ((red, out[0]), (green, out[1])):
-                dst.fill(0.0)
-                np.divide(src, self._sum, out=dst, where=self._nonzero)
-            np.multiply(self._sum, 1.0 / 3.0, out=out[2])
-        else:
-            cv2.merge(self.planes_in, dst=self._pixels)
-            cv2.cvtColor(self._pixels, getattr(cv2, CODES[self.transform]),
-                         dst=self._converted)
-            np.copyto(out, self._converted.transpose(2, 0, 1))
-        if self.scale != 1.0:
-            out *= self.scale
+            self._rgi()
+            return
+        image = self._image
+        for src, dst in zip(self.planes_in, image):
+            np.divide(src, self.scale, out=dst)
+        self.OUTPUT[...] = getattr(self, "_" + self.transform.replace("->", "_to_"))(image)
+
+    def _rgi(self):
+        """r = R/(R+G+B), g = G/(R+G+B) (1/3 where the sum is 0), I = (R+G+B) / scale, in
+        float32 on buffers made once (the chromaticities do not depend on scale)."""
+        red, green, blue = self.planes_in
+        total, out = self._total, self.OUTPUT
+        np.add(red, green, out=total)
+        total += blue
+        np.not_equal(total, 0.0, out=self._nonzero)
+        for src, dst in ((red, out[0]), (green, out[1])):
+            dst.fill(1.0 / 3.0)
+            np.divide(src, total, out=dst, where=self._nonzero)
+        np.divide(total, self.scale, out=out[2])
+
+    def _linear(self, rgb):
+        return srgb_expand(rgb) if self.gamma == "srgb" else rgb
+
+    def _encoded(self, rgb):
+        return srgb_compress(rgb) if self.gamma == "srgb" else rgb
+
+    def _RGB_to_XYZ(self, rgb):
+        return mix(RGB_TO_XYZ, self._linear(rgb))
+
+    def _XYZ_to_RGB(self, xyz):
+        return self._encoded(mix(XYZ_TO_RGB, xyz))
+
+    def _RGB_to_Lab(self, rgb):
+        return xyz_to_lab(self._RGB_to_XYZ(rgb))
+
+    def _Lab_to_RGB(self, lab):
+        return np.clip(self._XYZ_to_RGB(lab_to_xyz(lab)), 0.0, 1.0)

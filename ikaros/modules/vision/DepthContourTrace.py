@@ -12,7 +12,8 @@ class DepthContourTrace(Module):
     over 2 · segment_smoothing + 1 outline points, and cuts it into segments of about
     segment_length pixels: OUTPUT has one row (x0, y0, x1, y1) per segment, in pixels
     (x = column, y = row), at most segment_count of them, and LENGTH says how many. BOX is
-    the region's bounding box as its four corners (x, y), clockwise from the top-left.
+    the region's bounding box as its four corners (x, y) in pixels, clockwise from the
+    top-left.
     DEBUG is half the input with the segments drawn at 1; it has the input's size (Ikaros 2
     fixed it at 640 × 480)."""
 

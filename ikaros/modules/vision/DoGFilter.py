@@ -3,22 +3,26 @@ import numpy as np
 
 from ikaros.module import Output, Parameter
 
-from ._filters import KernelFilter, kernel_grid, odd_kernel_size
+from ._filters import KernelFilter, balance, kernel_grid, odd_kernel_size
 
 
 class DoGFilter(KernelFilter):
     """Correlates the image with a difference of two Gaussians, G(sigma1) - G(sigma2),
-    sampled on a ``kernel_size`` x ``kernel_size`` grid. With ``normalize`` each Gaussian
-    is scaled to sum 1 on the grid, so the kernel sums to 0 and a flat image gives 0;
-    without it each is the continuous Gaussian exp(-r²/2σ²) / (2πσ²). As in Ikaros 2 the
-    output is the part of the image where the whole kernel fits (kernel_size - 1 rows and
-    columns smaller); a colour image is filtered plane by plane. KERNEL is the kernel and
-    PROFILE its middle row. The sigmas may change while the model runs."""
+    sampled on a ``kernel_size`` x ``kernel_size`` grid of offsets (x, y) from its centre,
+    as Ikaros 2 does: each Gaussian is exp(-(x² + y²) / 2σ²) / (σ·sqrt(2π)), with the
+    constant of the 1-D Gaussian. With ``normalize`` the kernel's positive entries are
+    then scaled to sum 1 and its negative entries to sum -1 (so it sums to 0 and a flat
+    image gives 0). As in Ikaros 2 the output is the part of the image where the whole
+    kernel fits (kernel_size - 1 rows and columns smaller); a colour image is filtered
+    plane by plane. KERNEL is the kernel and PROFILE its middle row. The sigmas may change
+    while the model runs. (kernel_size must be odd here, so that the kernel has a centre
+    pixel; what Ikaros 2 does with an even size is not in the reference.)"""
 
     sigma1 = Parameter(1.0, "standard deviation of the positive Gaussian, in pixels")
     sigma2 = Parameter(0.5, "standard deviation of the subtracted Gaussian, in pixels")
     kernel_size = Parameter(5, "width and height of the kernel, a positive odd number")
-    normalize = Parameter(True, "scale each Gaussian to sum 1 on the grid")
+    normalize = Parameter(True, "scale the positive entries to sum 1 and the negative "
+                          "ones to sum -1")
     KERNEL = Output("the kernel", shape="@kernel_size, @kernel_size")
     PROFILE = Output("the middle row of the kernel", shape="1, @kernel_size")
 
@@ -34,9 +38,8 @@ class DoGFilter(KernelFilter):
         r2 = x * x + y * y
         kernel = 0.0
         for sign, sigma in ((1.0, self.sigma1), (-1.0, self.sigma2)):
-            g = np.exp(-r2 / (2.0 * sigma * sigma))
-            g /= g.sum() if self.normalize else 2.0 * np.pi * sigma * sigma
-            kernel = kernel + sign * g
-        self.KERNEL[...] = kernel
+            kernel = kernel + sign * np.exp(-r2 / (2.0 * sigma * sigma)) / (
+                sigma * np.sqrt(2.0 * np.pi))
+        self.KERNEL[...] = balance(kernel) if self.normalize else kernel
         self.kernel = self.KERNEL
         self.PROFILE[0] = self.KERNEL[self.kernel_rows // 2]

@@ -1,15 +1,22 @@
 """Downsample: halves the image size."""
-from ikaros.module import Input, Module, Output
+import numpy as np
+
+from ikaros.module import Input, Module, Output, Parameter
 
 from ._cv import check_image, opencv, planes, with_size
 
 
 class Downsample(Module):
-    """Halves the width and height of the image: each output pixel is the mean of a 2 x 2
-    block of input pixels (OpenCV's area resize); an odd last row or column is dropped. A
-    colour image is halved plane by plane. (Ikaros 2 describes its class as halving
-    without interpolation; the block mean is this module's choice, as it does not alias
-    fine patterns.)"""
+    """Halves the width and height of the image. As Ikaros 2 describes its class, without
+    interpolation (the default ``method="subsample"``): the output pixel (r, c) is the
+    input pixel (2r, 2c), the top-left of its 2 x 2 block (which pixel of the block Ikaros
+    2 takes is not in the reference; the top-left is this module's reading). With
+    ``method="mean"`` (this project's option) it is the mean of the block (OpenCV's area
+    resize), which does not alias fine patterns. An odd last row or column is dropped. A
+    colour image is halved plane by plane."""
+
+    method = Parameter("subsample", "subsample: every second pixel, as in Ikaros 2; mean: "
+                       "the mean of each 2 x 2 block", options="subsample/mean")
 
     INPUT = Input("the image: gray (rows, cols) or colour (3, rows, cols)")
     OUTPUT = Output("the image at half the size (rows // 2, cols // 2)")
@@ -33,4 +40,7 @@ class Downsample(Module):
 
     def tick(self):
         for src, dst in self._pairs:
-            self.cv2.resize(src, self._size, dst=dst, interpolation=self.cv2.INTER_AREA)
+            if self.method == "mean":
+                self.cv2.resize(src, self._size, dst=dst, interpolation=self.cv2.INTER_AREA)
+            else:
+                np.copyto(dst, src[::2, ::2])

@@ -9,19 +9,21 @@ from ._filters import KernelFilter, kernel_grid
 
 
 class GaborFilter(KernelFilter):
-    """Correlates the image with a Gabor kernel, the product of a Gaussian envelope
-    exp(-(x'² + gamma² y'²) / 2σ²) and a grating cos(2π x' / lambda + phi), where
-    x' = x cos(theta) + y sin(theta) and y' = -x sin(theta) + y cos(theta) (x to the right,
-    y down, theta in radians). ``scale`` multiplies ``sigma`` and ``lambda``. The kernel
-    is square, 2·ceil(3·σ·scale·max(1, 1/gamma)) + 1 pixels wide, so the envelope has
-    fallen to about 1 % at its edge; this size is fixed when the model is built. As in
-    Ikaros 2 the output is the part of the image where the whole kernel fits; a colour
-    image is filtered plane by plane. FILTER is the kernel, GAUSSIAN its envelope and
-    GRATING its grating. (The class has no kernel-size parameter, so this size rule is
-    this module's own; OpenCV's getGaborKernel is not used because it stores its kernel
-    flipped, for convolution.)"""
+    """Correlates the image with a Gabor kernel and outputs the absolute value, as Ikaros 2
+    does. The kernel is square, of radius int(2·scale + 0.5) pixels (5 x 5 by default); it
+    is the product of a Gaussian envelope exp(-(x'² + gamma² y'²) / 2σ²) and a grating
+    cos(2π x' / lambda + phi), where x' = x cos(theta) + y sin(theta) and
+    y' = -x sin(theta) + y cos(theta) (x to the right, y down, from the kernel's centre,
+    theta in radians); ``sigma`` and ``lambda`` are in pixels and are not multiplied by
+    ``scale``, which sets only the size. As in Ikaros 2 the output is the part of the image
+    where the whole kernel fits (2·radius rows and columns smaller); a colour image is
+    filtered plane by plane. FILTER is the kernel, GAUSSIAN its envelope and GRATING its
+    grating. (The reference gives the kernel's size, the absolute value and the parameter
+    names; the envelope and grating above are the standard Gabor formulas, and whether
+    Ikaros 2 writes them exactly so is not in the reference. The kernel size is fixed when
+    the model is built.)"""
 
-    scale = Parameter(1.0, "multiplies sigma and lambda")
+    scale = Parameter(1.0, "sets the kernel's radius, int(2·scale + 0.5) pixels")
     gamma = Parameter(0.5, "aspect ratio of the envelope (its width along the grating's "
                       "stripes is sigma / gamma)")
     # 'lambda' is a Python keyword: the value is read with getattr(self, "lambda")
@@ -34,9 +36,9 @@ class GaborFilter(KernelFilter):
     GRATING = Output("the grating of the kernel")
 
     def kernel_shape(self):
-        if self.sigma <= 0 or self.scale <= 0 or self.gamma <= 0:
-            raise ValueError("sigma, scale and gamma must be above 0")
-        k = 2 * math.ceil(3.0 * self.sigma * self.scale * max(1.0, 1.0 / self.gamma)) + 1
+        if self.sigma <= 0 or self.scale < 0 or getattr(self, "lambda") == 0:
+            raise ValueError("sigma must be above 0, scale 0 or more and lambda not 0")
+        k = 2 * int(2.0 * self.scale + 0.5) + 1
         return k, k
 
     def set_sizes(self):
@@ -50,10 +52,14 @@ class GaborFilter(KernelFilter):
 
     def make_kernel(self):
         x, y = kernel_grid(self.kernel_rows)
-        sigma, wavelength = self.sigma * self.scale, getattr(self, "lambda") * self.scale
+        sigma, wavelength = self.sigma, getattr(self, "lambda")
         c, s = math.cos(self.theta), math.sin(self.theta)
         xr, yr = x * c + y * s, -x * s + y * c
         self.GAUSSIAN[...] = np.exp(-(xr * xr + self.gamma ** 2 * yr * yr) / (2 * sigma ** 2))
         self.GRATING[...] = np.cos(2.0 * np.pi * xr / wavelength + self.phi)
         np.multiply(self.GAUSSIAN, self.GRATING, out=self.FILTER)
         self.kernel = self.FILTER
+
+    def filter(self, src, dst):
+        super().filter(src, dst)
+        np.abs(dst, out=dst)

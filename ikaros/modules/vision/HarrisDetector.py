@@ -1,57 +1,57 @@
-"""HarrisDetector: Harris corner response from image gradients."""
+"""HarrisDetector: corner response from image gradients."""
 import numpy as np
 
 from ikaros.module import Input, Module, Output
 
-from ._cv import check_gray, opencv, shrunk
+from ._cv import check_gray, opencv
+
+BORDER = 2          # the window reaches 2 pixels up and left, 1 down and right
+EPSILON = 1e-5
 
 
 class HarrisDetector(Module):
-    """The Harris corner response from the gradient images DX and DY (for example the dx
-    and dy of GaussianEdgeDetector or SobelEdgeDetector): with A, B and C the sums of
-    DX², DY² and DX·DY over the 3 x 3 square around a pixel, the response is
-    A·B - C² - 0.04·(A + B)². Corners give large positive values, edges negative ones. As in
-    Ikaros 2 the output is the part where the square fits, 2 rows and columns smaller."""
+    """The corner response of Ikaros 2's HarrisDetector from the gradient images DX and DY
+    (for example the dx and dy of GaussianEdgeDetector or SobelEdgeDetector): with Sxx, Syy
+    and Sxy the sums of DX², DY² and DX·DY over the 4 x 4 window of rows r - 2 .. r + 1 and
+    columns c - 2 .. c + 1, OUTPUT[r, c] = (Sxx·Syy - Sxy²) / (Sxx + Syy + 1e-5), the
+    determinant of the structure matrix over its trace. OUTPUT has the size of DX, with 0
+    in a border 2 pixels wide all round."""
 
     DX = Input("the derivative to the right (rows, cols)")
     DY = Input("the derivative downwards (rows, cols)")
-    OUTPUT = Output("the corner response, 2 rows and columns smaller than DX")
-
-    k = 0.04
+    OUTPUT = Output("the corner response, the size of DX, 0 in a 2-pixel border",
+                    shape="DX.shape")
 
     def configure(self):
         self.cv2 = opencv()
 
-    def set_sizes(self):
-        dx, dy = self.input_shape("DX"), self.input_shape("DY")
-        if dx and dy:
-            check_gray(dx, "DX")
-            check_gray(dy, "DY")
-            if dx != dy:
-                raise ValueError(f"DX and DY must have the same size, not {dx} and {dy}")
-            self.set_output_shape("OUTPUT", shrunk(dx, 3))
-
     def init(self):
+        check_gray(self.DX.shape, "DX")
+        check_gray(self.DY.shape, "DY")
+        if self.DX.shape != self.DY.shape:
+            raise ValueError(f"DX and DY must have the same size, not {self.DX.shape} and "
+                             f"{self.DY.shape}")
         shape = self.DX.shape
         self._products = [np.zeros(shape, np.float32) for _ in range(3)]
         self._sums = [np.zeros(shape, np.float32) for _ in range(3)]
-        self._valid = [s[1:-1, 1:-1] for s in self._sums]
-        self._scratch = np.zeros(self.OUTPUT.shape, np.float32)
+        inner = (slice(BORDER, shape[0] - BORDER), slice(BORDER, shape[1] - BORDER))
+        self._inner = inner
+        self._scratch = np.zeros(self.OUTPUT[inner].shape, np.float32)
 
     def tick(self):
-        cv2 = self.cv2
         xx, yy, xy = self._products
         np.multiply(self.DX, self.DX, out=xx)
         np.multiply(self.DY, self.DY, out=yy)
         np.multiply(self.DX, self.DY, out=xy)
         for product, total in zip(self._products, self._sums):
-            cv2.boxFilter(product, -1, (3, 3), dst=total, normalize=False)
-        a, b, c = self._valid
-        out, t = self.OUTPUT, self._scratch
-        np.multiply(a, b, out=out)
-        np.multiply(c, c, out=t)
+            # anchor (2, 2) of a 4 x 4 box: offsets -2 .. +1 around each pixel
+            self.cv2.boxFilter(product, -1, (4, 4), dst=total, anchor=(BORDER, BORDER),
+                               normalize=False)
+        sxx, syy, sxy = (s[self._inner] for s in self._sums)
+        out, t = self.OUTPUT[self._inner], self._scratch
+        np.multiply(sxx, syy, out=out)
+        np.multiply(sxy, sxy, out=t)
         out -= t
-        np.add(a, b, out=t)
-        t *= t
-        t *= self.k
-        out -= t
+        np.add(sxx, syy, out=t)
+        t += EPSILON
+        out /= t

@@ -6,20 +6,22 @@ from ikaros.module import Input, Module, Output, Parameter
 
 class SaliencePoints(Module):
     """Turns a list of points into a saliency map of ``size_x`` x ``size_y``: each point
-    adds a Gaussian blob of standard deviation ``sigma`` pixels, of height its salience.
-    INPUT has one point per row (a single row may be given as a vector); columns
-    ``select`` and ``select`` + 1 hold x and y, and column ``select_salience`` its salience
-    ("none": every point has salience 1). x · ``scale`` and y · ``scale`` are positions in
-    the map in pixels from its left and top edges, so the centre of pixel (r, c) is at
-    (c + 0.5, r + 0.5); with scale = the map size, x and y are fractions of the width and
-    height as the other vision modules give them. COUNT (its first value), when connected,
-    says how many rows are used. The blobs are added as one matrix product, not pixel by
-    pixel."""
+    adds a Gaussian blob of standard deviation ``sigma`` pixels whose height is ``scale``
+    times its salience, as in Ikaros 2. INPUT has one point per row (a single row may be
+    given as a vector); columns ``select`` and ``select`` + 1 hold x and y, positions in
+    fractions of the map's width and height (docs/images.md: x from 0 at the left edge to
+    1 at the right, y from 0 at the top to 1 at the bottom), so a point sits at
+    (x·size_x, y·size_y) pixels from the top-left corner; column ``select_salience`` holds
+    its salience ("none": every point has salience 1). The blob's value at a pixel is
+    measured from the pixel's centre, (c + 0.5, r + 0.5), the library's convention (the
+    reference does not say which point of a pixel Ikaros 2 uses, nor whether overlapping
+    blobs add: here they add). COUNT (its first value), when connected, says how many rows
+    are used. The blobs are added as one matrix product, not pixel by pixel."""
 
     size_x = Parameter(128, "width of the map")
     size_y = Parameter(128, "height of the map")
     sigma = Parameter(2.0, "standard deviation of each blob, in pixels")
-    scale = Parameter(1.0, "multiplies the coordinates to give map pixels")
+    scale = Parameter(1.0, "the height of a blob of salience 1")
     select = Parameter(0, "the column of x (y is the next one)")
     select_salience = Parameter("none", "the column of the salience, or none for 1",
                                 type="string")
@@ -44,10 +46,11 @@ class SaliencePoints(Module):
         points = self._points
         n = points.shape[0] if self.COUNT is None else min(int(self.COUNT.flat[0]),
                                                             points.shape[0])
-        x = points[:n, self.select] * self.scale
-        y = points[:n, self.select + 1] * self.scale
+        x = points[:n, self.select] * self.size_x
+        y = points[:n, self.select + 1] * self.size_y
         column = self.select_salience.strip().lower()
         salience = np.ones(n, np.float32) if column == "none" else points[:n, int(column)]
+        salience = salience * self.scale
         k = -0.5 / (self.sigma * self.sigma)
         across = np.exp(k * (self._cols[None, :] - x[:, None]) ** 2)
         down = np.exp(k * (self._rows[None, :] - y[:, None]) ** 2) * salience[:, None]

@@ -19,7 +19,9 @@ class StaufferGrimson(Module):
     with Zivkovic's refinement of the update (a matched Gaussian learns at alpha / weight
     rather than at α·N(x)); standard deviations never fall below a tenth of
     initialStandardDeviation. The first image starts the model, and OUTPUT is 0 on that
-    tick."""
+    tick. (The reference names Stauffer and Grimson's method but not Ikaros 2's update
+    formulas, so whether its values follow the paper's α·N(x) or this refinement is not
+    known.)"""
 
     alpha = Parameter(0.005, "learning rate of the weights, means and variances")
     T = Parameter(0.8, "the part of the weight that is background")

@@ -5,33 +5,59 @@ from ikaros.module import Parameter
 
 from ._colour import ThreePlanes
 
+# The defaults of the Ikaros 3 class (its golden outputs show them), used in a model file
+# of that version for the parameters the module's element does not set.
+IKAROS3_DEFAULTS = {"red_target": 1.0, "green_target": 1.0, "blue_target": 1.0,
+                    "x0": 0, "x1": 1, "y0": 0, "y1": 1}
+
 
 class WhiteBalance(ThreePlanes):
-    """Von Kries white balance: each of the red, green and blue planes is multiplied by the
-    gain that brings its mean over a reference region to the target colour,
-    gain = (target / 255) / mean. The reference region is the rectangle of columns
-    ``x0``..``x1`` and rows ``y0``..``y1`` (pixels, both ends included, clipped to the
-    image); by default the single pixel in column 10, row 20. The targets are 8-bit levels
-    (255 is 1.0), as their Ikaros 2 defaults of 255 suggest. A plane whose region mean is 0
-    keeps gain 1. The region and targets may change while the model runs. The image comes
-    on INPUT (3, rows, cols) or on INPUT0..2, and goes out on OUTPUT and on OUTPUT0..2.
-    (This reading of x0, x1, y0 and y1 as the region's bounds is this module's; the four
-    further parameters of the Ikaros 2 class are not implemented.)"""
+    """Von Kries white balance, as Ikaros 2 and 3 compute it: each of the red, green and
+    blue planes is multiplied by gain = target / mean, where mean is the plane's mean over
+    the reference region, the columns ``x0`` .. ``x1`` - 1 and rows ``y0`` .. ``y1`` - 1
+    (pixels; x1 and y1 are exclusive, and the region is clipped to the image). The targets
+    are in the image's own units (1 is white for images of 0..1). A plane whose region mean
+    is 0 gets gain 0 (what Ikaros 3 gives; Ikaros 2's result is not documented). The
+    defaults are Ikaros 2's (targets 255; x0 = x1 = 10 and y0 = y1 = 20, an empty region,
+    so a model must set the region); in a model file of Ikaros 3 (``dialect`` 3) the
+    parameters the module's element does not set take Ikaros 3's defaults instead: targets
+    1 and the region x0 = 0, x1 = 1, y0 = 0, y1 = 1, the top-left pixel. An empty region is
+    an error. The region and targets may change while the model runs. The image comes on
+    INPUT (3, rows, cols) or on INPUT0..2, and goes out on OUTPUT and on OUTPUT0..2. (The
+    four further parameters of the Ikaros 2 class are not described in the reference and
+    are not implemented.)"""
 
-    red_target = Parameter(255.0, "the red level the region is brought to (0..255)")
-    green_target = Parameter(255.0, "the green level the region is brought to (0..255)")
-    blue_target = Parameter(255.0, "the blue level the region is brought to (0..255)")
+    red_target = Parameter(255.0, "the red value the region's mean is brought to")
+    green_target = Parameter(255.0, "the green value the region's mean is brought to")
+    blue_target = Parameter(255.0, "the blue value the region's mean is brought to")
     x0 = Parameter(10, "first column of the reference region")
-    x1 = Parameter(10, "last column of the reference region")
+    x1 = Parameter(10, "the column after the reference region's last")
     y0 = Parameter(20, "first row of the reference region")
-    y1 = Parameter(20, "last row of the reference region")
+    y1 = Parameter(20, "the row after the reference region's last")
+
+    def init(self):
+        super().init()
+        if self.dialect == "3":
+            given = getattr(self.element, "attrs", {})
+            for name, value in IKAROS3_DEFAULTS.items():
+                if name not in given:
+                    setattr(self, name, value)
+        self._region()
+
+    def _region(self) -> tuple[slice, slice]:
+        """The rows and columns of the reference region, clipped to the image."""
+        rows, cols = self.OUTPUT.shape[1:]
+        r0, r1 = max(self.y0, 0), min(self.y1, rows)
+        c0, c1 = max(self.x0, 0), min(self.x1, cols)
+        if r1 <= r0 or c1 <= c0:
+            raise ValueError(f"the reference region (columns x0={self.x0} to x1={self.x1}, "
+                             f"rows y0={self.y0} to y1={self.y1}, ends excluded) has no "
+                             f"pixel in the {rows} x {cols} image")
+        return slice(r0, r1), slice(c0, c1)
 
     def compute(self):
-        rows, cols = self.OUTPUT.shape[1:]
-        r0, r1 = sorted((min(max(self.y0, 0), rows - 1), min(max(self.y1, 0), rows - 1)))
-        c0, c1 = sorted((min(max(self.x0, 0), cols - 1), min(max(self.x1, 0), cols - 1)))
+        region = self._region()
         targets = (self.red_target, self.green_target, self.blue_target)
         for plane, out, target in zip(self.planes_in, self.OUTPUT, targets):
-            mean = float(plane[r0:r1 + 1, c0:c1 + 1].mean())
-            gain = target / 255.0 / mean if mean != 0 else 1.0
-            np.multiply(plane, gain, out=out)
+            mean = float(np.mean(plane[region], dtype=np.float64))
+            np.multiply(plane, target / mean if mean != 0 else 0.0, out=out)

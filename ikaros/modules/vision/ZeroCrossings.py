@@ -7,9 +7,12 @@ from ._cv import check_gray
 
 
 class ZeroCrossings(Module):
-    """Marks the zero crossings of an image (for example the output of LoGFilter): OUTPUT
-    is 1 at a pixel whose value and that of its right or lower neighbour have opposite
-    signs (their product is below 0), and 0 elsewhere."""
+    """Marks the zero crossings of an image (for example the output of LoGFilter), as
+    Ikaros 2 does: OUTPUT is 1 at the pixel (r, c) when the product of its value with that
+    of the pixel below (r + 1, c), the pixel to the right (r, c + 1) or the pixel
+    diagonally below-right (r + 1, c + 1) is 0 or less, and 0 elsewhere. The last row and
+    the last column are always 0. (A pixel of value 0 next to any pixel therefore counts as
+    a crossing.)"""
 
     INPUT = Input("the image (rows, cols)")
     OUTPUT = Output("1 at the zero crossings, 0 elsewhere", shape="INPUT.shape")
@@ -17,14 +20,17 @@ class ZeroCrossings(Module):
     def init(self):
         check_gray(self.INPUT.shape)
         rows, cols = self.INPUT.shape
-        self._right = np.zeros((rows, cols - 1), bool)
-        self._down = np.zeros((rows - 1, cols), bool)
+        self._product = np.zeros((rows - 1, cols - 1), np.float32)
+        self._crossing = np.zeros((rows - 1, cols - 1), bool)
+        self._any = np.zeros((rows - 1, cols - 1), bool)
 
     def tick(self):
-        x, out = self.INPUT, self.OUTPUT
-        np.less(x[:, :-1] * x[:, 1:], 0.0, out=self._right)
-        np.less(x[:-1, :] * x[1:, :], 0.0, out=self._down)
-        out.fill(0.0)
-        out[:, :-1] += self._right
-        out[:-1, :] += self._down
-        np.minimum(out, 1.0, out=out)
+        x, product, crossing, found = self.INPUT, self._product, self._crossing, self._any
+        here = x[:-1, :-1]
+        found.fill(False)
+        for neighbour in (x[1:, :-1], x[:-1, 1:], x[1:, 1:]):
+            np.multiply(here, neighbour, out=product)
+            np.less_equal(product, 0.0, out=crossing)
+            found |= crossing
+        self.OUTPUT.fill(0.0)
+        self.OUTPUT[:-1, :-1] = found

@@ -7,7 +7,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output
 
-from ._cv import check_gray, is_colour, opencv
+from ._cv import check_gray, is_colour
 
 
 def plane_inputs_shape(module: Module, prefix: str = "INPUT",
@@ -62,9 +62,6 @@ class ThreePlanes(Module):
     OUTPUT0 = Output("the first plane of OUTPUT")
     OUTPUT1 = Output("the second plane of OUTPUT")
     OUTPUT2 = Output("the third plane of OUTPUT")
-
-    def configure(self):
-        self.cv2 = opencv()
 
     def set_sizes(self):
         shape = plane_inputs_shape(self)

@@ -88,3 +88,15 @@ def kernel_grid(size: int) -> tuple[np.ndarray, np.ndarray]:
     (1, size) and (size, 1) arrays."""
     r = np.arange(size, dtype=np.float64) - (size - 1) / 2.0
     return r[None, :], r[:, None]
+
+
+def balance(kernel: np.ndarray) -> np.ndarray:
+    """The kernel with its positive entries scaled to sum 1 and its negative entries to sum
+    -1 (the ``normalize`` of Ikaros 2's DoGFilter and LoGFilter); a sign with no entries is
+    left as it is."""
+    kernel = np.array(kernel, np.float64)
+    for part in (kernel > 0, kernel < 0):
+        total = abs(kernel[part].sum())
+        if total > 0:
+            kernel[part] /= total
+    return kernel

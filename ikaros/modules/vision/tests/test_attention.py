@@ -65,22 +65,25 @@ def test_attention_window_prefers_top_down_and_reads_corner_bounds(tmp_path):
 
 
 def test_salience_points_adds_gaussian_blobs(tmp_path):
-    points = [[0, 4.5, 3.5, 2.0], [0, 10.0, 6.0, 0.5], [0, 1, 1, 9]]
+    # points at (x size_x, y size_y) = (4.5, 3.5) and (10, 6) pixels, saliences 2 and 0.5
+    points = [[0, 4.5 / 12, 3.5 / 8, 2.0], [0, 10 / 12, 6 / 8, 0.5], [0, 0.1, 0.1, 9]]
     out, = outputs(tmp_path, "SaliencePoints", {"INPUT": points, "COUNT": [2]}, "OUTPUT",
-                   size_x=12, size_y=8, sigma=1.5, select=1, select_salience=3)
+                   size_x=12, size_y=8, sigma=1.5, select=1, select_salience=3, scale=3)
     rows, cols = np.mgrid[0:8, 0:12] + 0.5
-    expected = sum(s * np.exp(-((cols - x) ** 2 + (rows - y) ** 2) / (2 * 1.5 ** 2))
+    expected = sum(3 * s * np.exp(-((cols - x) ** 2 + (rows - y) ** 2) / (2 * 1.5 ** 2))
                    for x, y, s in ((4.5, 3.5, 2.0), (10.0, 6.0, 0.5)))
     assert out.shape == (8, 12)
     assert np.allclose(out, expected, atol=1e-5)
-    assert out[3, 4] == pytest.approx(2.0, abs=1e-3)
+    assert out[3, 4] == pytest.approx(6.0, abs=1e-3)   # height scale x salience
 
 
-def test_salience_points_from_fractions_with_scale(tmp_path):
+def test_salience_points_are_fractions_of_the_map_with_scale_1(tmp_path):
     out, = outputs(tmp_path, "SaliencePoints", {"INPUT": [0.25, 0.75]}, "OUTPUT", size_x=8,
-                   size_y=8, scale=8, sigma=1)
+                   size_y=8, sigma=1)
+    # the point is at (2, 6) pixels, the corner between columns 1, 2 and rows 5, 6
     assert np.unravel_index(np.argmax(out), out.shape) in ((5, 1), (5, 2), (6, 1), (6, 2))
-    assert out[5, 1] == pytest.approx(out[6, 2], abs=1e-6)   # the point is at (2, 6)
+    assert out[5, 1] == pytest.approx(np.exp(-0.25), abs=1e-6)
+    assert out[5, 1] == pytest.approx(out[6, 2], abs=1e-6)
 
 
 def test_salience_points_checks_the_columns(tmp_path):

@@ -9,18 +9,19 @@ from vision_models import literal, outputs, run
 
 RNG = np.random.default_rng(5)
 
-M = np.array([[0.412453, 0.357580, 0.180423],          # linear sRGB -> XYZ (D65)
+M = np.array([[0.412453, 0.357580, 0.180423],          # linear BT.709 RGB -> XYZ (D65)
               [0.212671, 0.715160, 0.072169],
               [0.019334, 0.119193, 0.950227]])
-WHITE = M.sum(axis=1)
+WHITE = np.array([0.950456, 1.0, 1.088754])
 
 
-def lab(rgb):
-    """CIE L*a*b* of sRGB values 0..1 (gamma-expanded), from the definitions."""
+def lab(rgb, srgb=False):
+    """CIE L*a*b* of RGB values 0..1, from the definitions: linear RGB as the original
+    takes it, or sRGB-encoded values (gamma-expanded first)."""
     rgb = np.asarray(rgb, float)
-    linear = np.where(rgb <= 0.04045, rgb / 12.92, ((rgb + 0.055) / 1.055) ** 2.4)
-    xyz = (M @ linear.reshape(3, -1)).reshape(rgb.shape) / WHITE.reshape((3,) + (1,) * (
-        rgb.ndim - 1))
+    if srgb:
+        rgb = np.where(rgb <= 0.04045, rgb / 12.92, ((rgb + 0.055) / 1.055) ** 2.4)
+    xyz = np.einsum("ij,j...->i...", M, rgb) / WHITE.reshape((3,) + (1,) * (rgb.ndim - 1))
     f = np.where(xyz > (6 / 29) ** 3, np.cbrt(xyz), xyz / (3 * (6 / 29) ** 2) + 4 / 29)
     return np.stack([116 * f[1] - 16, 500 * (f[0] - f[1]), 200 * (f[1] - f[2])])
 
@@ -30,48 +31,64 @@ def pixels(*colours):
     return np.asarray(colours, np.float32).T[:, None, :]
 
 
-def test_rgb_to_lab_known_values(tmp_path):
-    image = pixels((1, 0, 0), (0.5, 0.5, 0.5), (0.2, 0.6, 0.9), (1, 1, 1))
+def test_rgb_to_lab_takes_rgb_as_linear(tmp_path):
+    image = pixels((0.5, 0.5, 0.5), (1, 1, 1), (0.2, 0.6, 0.9), (0.004, 0.002, 0.001))
     out, = outputs(tmp_path, "ColorTransform", {"INPUT": image}, "OUTPUT")
+    # Y of a grey of 0.5 is 0.5: L = 116 * 0.5^(1/3) - 16 = 76.07 (not sRGB's 53.39)
+    assert out[0, 0, 0] == pytest.approx(116 * 0.5 ** (1 / 3) - 16, abs=1e-3)
+    assert out[0, 0, 0] == pytest.approx(76.07, abs=0.005)
+    assert np.allclose(out[:, 0, 1], (100, 0, 0), atol=1e-3)
+    assert np.allclose(out, lab(image), atol=2e-3)     # also the line below Y = 0.008856
+
+
+def test_rgb_to_lab_scale_divides_the_inputs(tmp_path):
+    image = pixels((230, 76, 25), (128, 128, 128))
+    out, = outputs(tmp_path, "ColorTransform", {"INPUT": image}, "OUTPUT", scale=255)
+    assert np.allclose(out, lab(image / 255), atol=2e-3)
+
+
+def test_gamma_srgb_is_the_srgb_conversion(tmp_path):
+    image = pixels((1, 0, 0), (0.5, 0.5, 0.5), (0.2, 0.6, 0.9))
+    out, = outputs(tmp_path, "ColorTransform", {"INPUT": image}, "OUTPUT", gamma="srgb")
     assert np.allclose(out[:, 0, 0], (53.24, 80.09, 67.20), atol=0.05)  # the textbook red
-    assert np.allclose(out, lab(image), atol=0.2)      # OpenCV interpolates in tables
-    assert np.allclose(out[:, 0, 3], (100, 0, 0), atol=0.05)
+    assert out[0, 0, 1] == pytest.approx(53.39, abs=0.01)
+    assert np.allclose(out, lab(image, srgb=True), atol=2e-3)
+    back, = outputs(tmp_path, "ColorTransform", {"INPUT": out}, "OUTPUT", gamma="srgb",
+                    transform="Lab->RGB")
+    assert np.allclose(back, image, atol=1e-4)
+
+
+def test_lab_to_rgb_is_the_inverse_clamped_to_0_1(tmp_path):
+    image = RNG.uniform(0.05, 0.95, (3, 1, 4))
+    colours = np.concatenate([lab(image), lab(pixels((1.5, 0.5, -0.2)))], axis=2)
+    out, = outputs(tmp_path, "ColorTransform", {"INPUT": colours}, "OUTPUT",
+                   transform="Lab->RGB")
+    assert np.allclose(out[:, :, :4], image, atol=1e-4)  # no gamma compression
+    assert np.allclose(out[:, 0, 4], (1, 0.5, 0), atol=1e-4)
 
 
 def test_rgb_to_xyz_is_linear_and_planes_are_outputs_too(tmp_path):
     image = RNG.random((3, 4, 5)).astype(np.float32)
     planes = {f"INPUT{i}": image[i] for i in range(3)}
     out, x, y, z = outputs(tmp_path, "ColorTransform", planes, "OUTPUT", "OUTPUT0", "OUTPUT1",
-                           "OUTPUT2", transform="RGB->XYZ", scale=2)
+                           "OUTPUT2", transform="RGB->XYZ", scale=0.5)
     expected = 2 * np.einsum("ij,jrc->irc", M, image)
     assert np.allclose(out, expected, atol=1e-4)
     assert np.array_equal(x, out[0]) and np.array_equal(y, out[1]) and np.array_equal(z, out[2])
-
-
-def test_lab_and_xyz_round_trips(tmp_path):
-    image = RNG.uniform(0.05, 0.95, (3, 3, 4)).astype(np.float32)
-    body = (f'<module class="Constant" name="C" data="{literal(image)}"/>'
-            '<module class="ColorTransform" name="A" transform="RGB->Lab"/>'
-            '<module class="ColorTransform" name="B" transform="Lab->RGB"/>'
-            '<module class="ColorTransform" name="X" transform="RGB->XYZ"/>'
-            '<module class="ColorTransform" name="Y" transform="XYZ->RGB"/>'
-            '<connection source="C.OUTPUT" target="A.INPUT" delay="0"/>'
-            '<connection source="A.OUTPUT" target="B.INPUT" delay="0"/>'
-            '<connection source="C.OUTPUT" target="X.INPUT" delay="0"/>'
-            '<connection source="X.OUTPUT" target="Y.INPUT" delay="0"/>')
-    with load_body(tmp_path, body) as net:
-        net.step()
-        assert np.allclose(net.output("B.OUTPUT"), image, atol=5e-3)
-        assert np.allclose(net.output("Y.OUTPUT"), image, atol=1e-4)
+    back, = outputs(tmp_path, "ColorTransform", {"INPUT": expected}, "OUTPUT",
+                    transform="XYZ->RGB", scale=2)
+    assert np.allclose(back, image, atol=1e-4)
 
 
 def test_rgb_to_rgi(tmp_path):
     image = pixels((0.6, 0.3, 0.3), (0, 0, 0), (0.1, 0.2, 0.7))
     out, = outputs(tmp_path, "ColorTransform", {"INPUT": image}, "OUTPUT", transform="RGB->rgI")
-    total = image.sum(axis=0)
-    assert np.allclose(out[0, 0], [0.5, 0, 0.1], atol=1e-6)
-    assert np.allclose(out[1, 0], [0.25, 0, 0.2], atol=1e-6)
-    assert np.allclose(out[2], total / 3, atol=1e-6)
+    assert np.allclose(out[0, 0], [0.5, 1 / 3, 0.1], atol=1e-6)   # black: 1/3
+    assert np.allclose(out[1, 0], [0.25, 1 / 3, 0.2], atol=1e-6)
+    assert np.allclose(out[2, 0], [1.2, 0, 1.0], atol=1e-6)       # I = R + G + B
+    out, = outputs(tmp_path, "ColorTransform", {"INPUT": image * 255}, "OUTPUT",
+                   transform="RGB->rgI", scale=255)
+    assert np.allclose(out[2, 0], [1.2, 0, 1.0], atol=1e-6)
 
 
 def test_partial_plane_inputs_are_a_model_error(tmp_path):
@@ -95,20 +112,34 @@ def classify(tmp_path, image, **params):
                                                  "COLORSPACE_B")]
 
 
-def test_classifier_selects_a_hue_sector(tmp_path):
-    # blue-ish (hue 225 exactly: r = g), pale blue, red, gray, a blue at hue 225 + 12
-    t = np.radians(237)
-    tilted = (1 / 3 + 0.3 * np.cos(t), 1 / 3 + 0.3 * np.sin(t))
-    colours = [(0.1, 0.1, 0.5), (0.5, 0.5, 0.6), (0.8, 0.1, 0.1), (0.4, 0.4, 0.4),
-               (tilted[0], tilted[1], 1 - sum(tilted))]
+def hue_pixel(hue, saturation, intensity=1.0):
+    """An (r, g, b) colour whose rg chromaticity lies ``saturation`` from white in the
+    class file's direction (sin hue, cos hue) of the plane (r - 1/3, g - 1/3)."""
+    t = np.radians(hue)
+    r, g = 1 / 3 + saturation * np.sin(t), 1 / 3 + saturation * np.cos(t)
+    return tuple(intensity * np.array([r, g, 1 - r - g]))
+
+
+def test_classifier_hue_is_the_class_files_direction(tmp_path):
+    # red r = 2/3, g = 0 (hue 135); green r = 0, g = 2/3 (315); blue r = g = 1/7 (225)
+    colours = [(2, 0, 1), (0, 2, 1), (0.1, 0.1, 0.5), (0.5, 0.5, 0.5)]
     image = pixels(*colours)
-    out, *_ = classify(tmp_path, image)
-    # saturation of (0.1, 0.1, 0.5): r = g = 1/7, distance from white sqrt(2) * (1/3 - 1/7)
-    assert np.array_equal(out[0], [1, 0, 0, 0, 0])
-    out, *_ = classify(tmp_path, image, width=30)
-    assert np.array_equal(out[0], [1, 0, 0, 0, 1])
-    out, *_ = classify(tmp_path, image, color=333.4, width=10, saturation_max=0.75)
-    assert np.array_equal(out[0], [0, 0, 1, 0, 0])
+    out, *_ = classify(tmp_path, image, color=135)
+    assert np.array_equal(out[0], [1, 0, 0, 0])        # color="135" selects red
+    out, *_ = classify(tmp_path, image, color=315)
+    assert np.array_equal(out[0], [0, 1, 0, 0])
+    out, *_ = classify(tmp_path, image)                # the default 225: blue
+    assert np.array_equal(out[0], [0, 0, 1, 0])
+    out, *_ = classify(tmp_path, image, saturation_min=0, width=180)
+    assert np.array_equal(out[0], [1, 1, 1, 0])        # gray: saturation 0 is not above 0
+
+
+def test_classifier_width_is_either_side_and_saturation_bounds_are_strict(tmp_path):
+    image = pixels(hue_pixel(225 + 19.9, 0.3), hue_pixel(225 - 19.9, 0.3),
+                   hue_pixel(225 + 20.1, 0.3), hue_pixel(225, 0.051), hue_pixel(225, 0.049),
+                   hue_pixel(225, 0.499), hue_pixel(225, 0.501))
+    out, *_ = classify(tmp_path, image)                # width 20, saturation 0.05 .. 0.5
+    assert np.array_equal(out[0], [1, 1, 0, 1, 0, 1, 0])
 
 
 def test_classifier_compensation_removes_a_colour_cast(tmp_path):
@@ -133,26 +164,41 @@ def test_classifier_diagnostic_plane(tmp_path):
     assert red[0, 255] == 0 and green[0, 255] == 0     # r + g > 1 is outside
 
 
+def chroma_distance(image, colour):
+    """The distance of each pixel's colour divided by its sum from ``colour`` divided by
+    its sum (the issue's and the golden files' ColorMatch)."""
+    colour = np.asarray(colour, float)
+    total = image.sum(axis=0)
+    return np.sqrt(((image / total - (colour / colour.sum())[:, None, None]) ** 2).sum(axis=0))
+
+
 def test_color_match_similarity(tmp_path):
     image = RNG.uniform(0, 100, (3, 4, 6)).astype(np.float32)
+    image[:, 0, 0] = (0.1, 0.1, 0.1)                     # sum 0.3: not above the threshold
+    image[:, 0, 1] = (5, 10, 15)                         # the target's chromaticity
     out, = outputs(tmp_path, "ColorMatch", {"INPUT": image}, "OUTPUT", target0=50,
-                   target1=20, target2=70, sigma=30, gain=2, threshold=0.5)
-    d2 = ((image - np.array([50, 20, 70])[:, None, None]) ** 2).sum(axis=0)
-    expected = 2 * np.exp(-d2 / (2 * 30 ** 2))
-    expected[expected < 0.5] = 0
+                   target1=100, target2=150, sigma=3, gain=2, threshold=0.5)
+    expected = 2 * np.exp(-3 * chroma_distance(image, (50, 100, 150)))
+    expected[0, 0] = 0
+    assert out[0, 1] == pytest.approx(2, abs=1e-5)
     assert np.allclose(out, expected, atol=1e-5)
+    assert (out[expected > 0] < 0.5).any()               # values below the threshold stay
 
 
 def test_color_match_learns_the_colour_at_the_focus(tmp_path):
-    image = np.zeros((3, 4, 4), np.float32)
+    image = np.ones((3, 4, 4), np.float32)
     image[:, 1, 3] = (10, 20, 30)                      # x = 0.9, y = 0.3 is in this pixel
     inputs = {"INPUT0": image[0], "INPUT1": image[1], "INPUT2": image[2],
               "FOCUS": [0.9, 0.3], "REINFORCEMENT": [0.5]}
-    with run(tmp_path, "ColorMatch", inputs, ticks=0, alpha=0.2, sigma=10) as net:
-        net.step()
-        out = net.output("M.OUTPUT")
-        prototype = 0.1 * np.array([10, 20, 30])       # alpha * reinforcement = 0.1
-        d2 = ((image - prototype[:, None, None]) ** 2).sum(axis=0)
-        assert np.allclose(out, np.exp(-d2 / 200), atol=1e-6)
-        net.run(ticks=200)
-        assert net.output("M.OUTPUT")[1, 3] == pytest.approx(1.0, abs=1e-3)
+    with run(tmp_path, "ColorMatch", inputs, ticks=0, alpha=0.2, sigma=10, target0=4,
+             target1=2, target2=2) as net:
+        net.step()                                     # OUTPUT from the starting prototype
+        assert np.allclose(net.output("M.OUTPUT"),
+                           np.exp(-10 * chroma_distance(image, (4, 2, 2))), atol=1e-6)
+        net.step()                                     # and then from the learned one:
+        start = np.array([0.5, 0.25, 0.25])            # the prototype divided by its sum
+        learned = start + 0.1 * (np.array([10, 20, 30]) - start)  # alpha * reinforcement
+        assert np.allclose(net.output("M.OUTPUT"),
+                           np.exp(-10 * chroma_distance(image, learned)), atol=1e-6)
+        net.run(ticks=50)
+        assert net.output("M.OUTPUT")[1, 3] == pytest.approx(1.0, abs=1e-5)

@@ -130,23 +130,65 @@ def test_hysteresis_follows_weak_edges_from_strong_ones(tmp_path):
 
 
 def test_zero_crossings(tmp_path):
-    image = np.array([[1, -1, -2, 0, 3], [2, 2, -1, 0, 4], [-1, 1, 1, 1, 1]], np.float32)
+    image = np.array([[1, -1, -2, 0, 3],
+                      [2, 2, -1, 5, 4],
+                      [-1, 1, 1, 1, 1],
+                      [3, 3, -6, 2, -7]], np.float32)
     out, = outputs(tmp_path, "ZeroCrossings", {"INPUT": image}, "OUTPUT")
-    right = np.zeros(image.shape, bool)
-    down = np.zeros(image.shape, bool)
-    right[:, :-1] = image[:, :-1] * image[:, 1:] < 0
-    down[:-1] = image[:-1] * image[1:] < 0
-    assert np.array_equal(out, (right | down).astype(np.float32))
-    assert out[0, 0] == 1 and out[0, 3] == 0
+    rows, cols = image.shape
+    expected = np.zeros((rows, cols), np.float32)
+    for r in range(rows - 1):
+        for c in range(cols - 1):
+            here = image[r, c]
+            if min(here * image[r + 1, c], here * image[r, c + 1],
+                   here * image[r + 1, c + 1]) <= 0:
+                expected[r, c] = 1
+    assert np.array_equal(out, expected)
+    assert out[1, 0] == 1                              # 2 above -1
+    assert out[0, 2] == 1 and out[0, 3] == 1          # a product of 0 counts
+    assert out[1, 3] == 0                              # 5: all three neighbours positive
+    assert not out[-1].any() and not out[:, -1].any()  # last row and column stay 0
+
+
+def test_zero_crossings_on_the_diagonal_only(tmp_path):
+    image = np.array([[1, 2, 3], [2, -1, 4], [3, 4, 5]], np.float32)
+    out, = outputs(tmp_path, "ZeroCrossings", {"INPUT": image}, "OUTPUT")
+    # (0, 0): below 2, right 2, diagonal -1; (1, 1) is -1 with positive neighbours
+    assert np.array_equal(out, [[1, 1, 0], [1, 1, 0], [0, 0, 0]])
+
+
+def harris(dx, dy):
+    """Ikaros 2's response: 4 x 4 sums over offsets -2..+1, 0 in a 2-pixel border."""
+    rows, cols = dx.shape
+    out = np.zeros((rows, cols))
+    for r in range(2, rows - 2):
+        for c in range(2, cols - 2):
+            wx = dx[r - 2:r + 2, c - 2:c + 2].astype(np.float64)
+            wy = dy[r - 2:r + 2, c - 2:c + 2].astype(np.float64)
+            sxx, syy, sxy = (wx * wx).sum(), (wy * wy).sum(), (wx * wy).sum()
+            out[r, c] = (sxx * syy - sxy * sxy) / (sxx + syy + 1e-5)
+    return out
 
 
 def test_harris_response_against_window_sums(tmp_path):
     dx, dy = RNG.standard_normal((2, 9, 10)).astype(np.float32)
     out, = outputs(tmp_path, "HarrisDetector", {"DX": dx, "DY": dy}, "OUTPUT")
-    ones = np.ones((3, 3))
-    a, b, c = (correlate(p, ones) for p in (dx * dx, dy * dy, dx * dy))
-    assert out.shape == (7, 8)
-    assert np.allclose(out, a * b - c * c - 0.04 * (a + b) ** 2, rtol=1e-4, atol=1e-4)
+    assert out.shape == (9, 10)
+    assert np.allclose(out, harris(dx, dy), rtol=1e-4, atol=1e-5)
+    assert not out[:2].any() and not out[-2:].any()
+    assert not out[:, :2].any() and not out[:, -2:].any()
+
+
+def test_harris_hand_checked_values(tmp_path):
+    dx, dy = np.zeros((2, 6, 6), np.float32)
+    dx[3, 3], dy[3, 3] = 1, 1        # alone in a window: Sxx Syy = Sxy², response 0
+    dx[0, 0], dy[1, 1] = 2, 3        # in the windows of (2, 2) and (2, 3) only
+    out, = outputs(tmp_path, "HarrisDetector", {"DX": dx, "DY": dy}, "OUTPUT")
+    # (2, 2): rows 0..3, columns 0..3: Sxx = 4 + 1, Syy = 9 + 1, Sxy = 1
+    assert out[2, 2] == pytest.approx((5 * 10 - 1) / (15 + 1e-5), rel=1e-6)
+    # (2, 3): columns 1..4 hold (1, 1) and (3, 3): Sxx = 1, Syy = 10, Sxy = 1
+    assert out[2, 3] == pytest.approx((10 - 1) / (11 + 1e-5), rel=1e-6)
+    assert out[4, 4] == pytest.approx(0.0, abs=1e-6)   # rows and columns 2..5: (3, 3) only
 
 
 def test_harris_is_largest_at_the_corners_of_a_square(tmp_path):
@@ -162,12 +204,12 @@ def test_harris_is_largest_at_the_corners_of_a_square(tmp_path):
     with load_body(tmp_path, body) as net:
         net.step()
         response = net.output("H.OUTPUT")
-    assert response.shape == (16, 16)                  # 20 - 2 (Sobel) - 2 (Harris)
-    peaks = np.argwhere(response >= 0.9 * response.max()) + 2
+    assert response.shape == (18, 18)                  # 20 - 2 (Sobel); Harris keeps it
+    peaks = np.argwhere(response >= 0.9 * response.max()) + 1
     corners = np.array([[5, 5], [5, 14], [14, 5], [14, 14]])
     distance = np.abs(peaks[:, None, :] - corners[None]).max(axis=2).min(axis=1)
     assert distance.max() <= 1                         # every peak at a corner
-    assert response[8, 8] == 0 and response[:, 8].min() < 0   # flat inside, edges negative
+    assert response[8, 8] == 0 and response.min() >= -1e-3   # flat inside; no negatives
 
 
 def test_fast_finds_the_corners_of_a_square(tmp_path):

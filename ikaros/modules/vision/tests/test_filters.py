@@ -71,7 +71,8 @@ def test_a_vector_is_not_an_image(tmp_path):
 
 
 def gaussian(r2, sigma):
-    return np.exp(-r2 / (2 * sigma ** 2))
+    """A Gaussian with the 1-D constant 1 / (sigma sqrt(2 pi)), as Ikaros 2's DoGFilter."""
+    return np.exp(-r2 / (2 * sigma ** 2)) / (sigma * math.sqrt(2 * math.pi))
 
 
 def grid(size):
@@ -79,23 +80,29 @@ def grid(size):
     return x[None, :] ** 2 + x[:, None] ** 2
 
 
-def test_dog_kernel_is_a_difference_of_normalised_gaussians(tmp_path):
+def balanced(kernel):
+    """Positive entries scaled to sum 1, negative ones to sum -1."""
+    positive, negative = kernel > 0, kernel < 0
+    return np.where(positive, kernel / kernel[positive].sum(),
+                    np.where(negative, kernel / -kernel[negative].sum(), 0.0))
+
+
+def test_dog_normalize_scales_positive_and_negative_parts_apart(tmp_path):
     out, kernel, profile = outputs(tmp_path, "DoGFilter", {"INPUT": GRAY}, "OUTPUT", "KERNEL",
                                    "PROFILE")
-    g1, g2 = gaussian(grid(5), 1.0), gaussian(grid(5), 0.5)
-    expected = g1 / g1.sum() - g2 / g2.sum()
+    expected = balanced(gaussian(grid(5), 1.0) - gaussian(grid(5), 0.5))
     assert np.allclose(kernel, expected, atol=1e-6)
-    assert kernel.sum() == pytest.approx(0.0, abs=1e-6)
+    assert kernel[kernel > 0].sum() == pytest.approx(1.0, abs=1e-6)
+    assert kernel[kernel < 0].sum() == pytest.approx(-1.0, abs=1e-6)
     assert np.array_equal(profile[0], kernel[2])
     assert out.shape == (8, 10) and np.allclose(out, valid(GRAY, expected), atol=1e-5)
 
 
-def test_dog_without_normalize_uses_the_continuous_gaussians(tmp_path):
-    (kernel,) = outputs(tmp_path, "DoGFilter", {"INPUT": GRAY}, "KERNEL", sigma1=2,
-                        sigma2=1, normalize="no")
-    r2 = grid(5)
-    expected = gaussian(r2, 2) / (2 * np.pi * 4) - gaussian(r2, 1) / (2 * np.pi)
-    assert np.allclose(kernel, expected, atol=1e-6)
+def test_dog_without_normalize_uses_the_1d_constant(tmp_path):
+    (kernel,) = outputs(tmp_path, "DoGFilter", {"INPUT": GRAY}, "KERNEL", normalize="no")
+    # at the centre: 1/sqrt(2 pi) - 1/(0.5 sqrt(2 pi)) = -0.398942
+    assert kernel[2, 2] == pytest.approx(-0.398942, abs=1e-6)
+    assert np.allclose(kernel, gaussian(grid(5), 1) - gaussian(grid(5), 0.5), atol=1e-6)
 
 
 def test_log_kernel_and_response_to_a_bright_spot(tmp_path):
@@ -109,24 +116,41 @@ def test_log_kernel_and_response_to_a_bright_spot(tmp_path):
     assert out.shape == (5, 5)
     assert out[2, 2] == pytest.approx(expected[2, 2], abs=1e-6) and out[2, 2] < 0
     (normalised,) = outputs(tmp_path, "LoGFilter", {"INPUT": GRAY}, "KERNEL")
-    assert normalised.sum() == pytest.approx(0.0, abs=1e-6)
-    assert np.allclose(normalised, expected - expected.mean(), atol=1e-6)
+    assert np.allclose(normalised, balanced(expected), atol=1e-6)
+    assert normalised[normalised < 0].sum() == pytest.approx(-1.0, abs=1e-6)
+    assert normalised[2, 2] == pytest.approx(-2 / (2 * np.pi) / -expected[expected < 0].sum())
 
 
-def test_gabor_kernel_parts_and_output(tmp_path):
-    out, filt, envelope, grating = outputs(
-        tmp_path, "GaborFilter", {"INPUT": np.tile(GRAY, (2, 2))}, "OUTPUT", "FILTER",
-        "GAUSSIAN", "GRATING", theta=0.5, phi=0.3)
-    size = 2 * math.ceil(3 * 1.0 / 0.5) + 1
-    assert filt.shape == (size, size)
+def gabor(size, theta=0.0, phi=1.57, sigma=1.0, wavelength=4.0, gamma=0.5):
     c = np.arange(size) - size // 2
     x, y = c[None, :], c[:, None]
-    xr, yr = x * math.cos(0.5) + y * math.sin(0.5), -x * math.sin(0.5) + y * math.cos(0.5)
-    assert np.allclose(envelope, np.exp(-(xr ** 2 + 0.25 * yr ** 2) / 2), atol=1e-6)
-    assert np.allclose(grating, np.cos(2 * np.pi * xr / 4 + 0.3), atol=1e-6)
+    xr, yr = x * math.cos(theta) + y * math.sin(theta), -x * math.sin(theta) + y * math.cos(theta)
+    envelope = np.exp(-(xr ** 2 + gamma ** 2 * yr ** 2) / (2 * sigma ** 2))
+    return envelope, np.cos(2 * np.pi * xr / wavelength + phi)
+
+
+def test_gabor_is_5x5_by_default_and_rectified(tmp_path):
+    image = RNG.random((9, 10)).astype(np.float32) - 0.5   # a 9 x 10 image is enough
+    out, filt, envelope, grating = outputs(tmp_path, "GaborFilter", {"INPUT": image},
+                                           "OUTPUT", "FILTER", "GAUSSIAN", "GRATING",
+                                           theta=0.5, phi=0.3)
+    expected_envelope, expected_grating = gabor(5, theta=0.5, phi=0.3)
+    assert filt.shape == (5, 5)
+    assert np.allclose(envelope, expected_envelope, atol=1e-6)
+    assert np.allclose(grating, expected_grating, atol=1e-6)
     assert np.allclose(filt, envelope * grating, atol=1e-6)
-    assert out.shape == (24 - size + 1, 28 - size + 1)
-    assert np.allclose(out, valid(np.tile(GRAY, (2, 2)), filt), atol=1e-4)
+    assert out.shape == (5, 6)
+    correlation = valid(image, filt)
+    assert (correlation < 0).any()
+    assert np.allclose(out, np.abs(correlation), atol=1e-5)
+
+
+@pytest.mark.parametrize("scale, size", [(1.3, 7), (0.2, 1), (0.25, 3), (2, 9)])
+def test_gabor_scale_sets_only_the_size(tmp_path, scale, size):
+    filt, = outputs(tmp_path, "GaborFilter", {"INPUT": np.zeros((12, 12))}, "FILTER",
+                    scale=scale)                       # radius int(2 scale + 0.5)
+    envelope, grating = gabor(size)                    # sigma and lambda not scaled
+    assert np.allclose(filt, envelope * grating, atol=1e-6)
 
 
 @pytest.mark.parametrize("size", [3, 5, 7])
@@ -145,15 +169,15 @@ def test_median_removes_salt_noise(tmp_path):
     assert np.array_equal(out, np.full((6, 6), 0.5, np.float32))
 
 
-def test_convolution_flips_the_kernel_and_scales_biases_rectifies(tmp_path):
+def test_convolution_flips_the_kernel_and_scales_biases_rectifies_to_abs(tmp_path):
     kernel = np.array([[1, 2, 0], [0, -1, 3]], np.float32)
     (out,) = outputs(tmp_path, "ImageConvolution", {"INPUT": COLOUR}, "OUTPUT",
                      kernel="1 2 0; 0 -1 3", scale=2, bias=-1.5, rectify="yes")
     expected = np.stack([signal.convolve2d(p.astype(np.float64), kernel, mode="valid")
                          for p in COLOUR])
     assert out.shape == (3, 9, 9)
-    assert np.allclose(out, np.maximum(2 * expected - 1.5, 0), atol=1e-5)
-    assert (out == 0).any()
+    assert ((2 * expected - 1.5) < -0.5).any()          # negatives become positive
+    assert np.allclose(out, np.abs(2 * expected - 1.5), atol=1e-5)
 
 
 def test_convolution_kernel_can_change_but_not_its_size(tmp_path):

@@ -4,6 +4,7 @@ import pytest
 from numpy.lib.stride_tricks import sliding_window_view
 
 import ikaros
+from ikaros.module import Module
 from vision_models import outputs, run
 
 RNG = np.random.default_rng(3)
@@ -47,12 +48,20 @@ def test_integral_image_is_the_summed_area_table(tmp_path):
         float(GRAY[3:8, 5:11].sum()), abs=1e-4)
 
 
-def test_downsample_takes_the_mean_of_2x2_blocks(tmp_path):
-    out, = outputs(tmp_path, "Downsample", {"INPUT": GRAY[:, :11]}, "OUTPUT")
+def test_downsample_takes_every_second_pixel_by_default(tmp_path):
+    image = np.arange(35, dtype=np.float32).reshape(5, 7)
+    out, = outputs(tmp_path, "Downsample", {"INPUT": image}, "OUTPUT")
+    assert np.array_equal(out, [[0, 2, 4], [14, 16, 18]])   # rows 0, 2; columns 0, 2, 4
+    out, = outputs(tmp_path, "Downsample", {"INPUT": COLOUR}, "OUTPUT")
+    assert np.array_equal(out, COLOUR[:, 0:6:2, 0:8:2])
+
+
+def test_downsample_mean_takes_the_mean_of_2x2_blocks(tmp_path):
+    out, = outputs(tmp_path, "Downsample", {"INPUT": GRAY[:, :11]}, "OUTPUT", method="mean")
     assert out.shape == (4, 5)
     blocks = GRAY[:8, :10].reshape(4, 2, 5, 2).mean(axis=(1, 3))
     assert np.allclose(out, blocks, atol=1e-6)
-    out, = outputs(tmp_path, "Downsample", {"INPUT": COLOUR}, "OUTPUT")
+    out, = outputs(tmp_path, "Downsample", {"INPUT": COLOUR}, "OUTPUT", method="mean")
     assert out.shape == (3, 3, 4)
     assert np.allclose(out, COLOUR[:, :6, :8].reshape(3, 3, 2, 4, 2).mean(axis=(2, 4)),
                        atol=1e-6)
@@ -68,22 +77,42 @@ def test_upsample_repeats_pixels(tmp_path):
 
 def test_white_balance_brings_the_reference_region_to_the_target(tmp_path):
     image = np.stack([np.full((30, 20), v, np.float32) for v in (0.8, 0.5, 0.4)])
-    image[:, 20, 10] = (0.5, 0.25, 0.2)              # the default reference pixel (x 10, y 20)
+    image[:, 20, 10] = (0.5, 0.25, 0.2)              # the region x 10..10, y 20..20
     out, red, green, blue = outputs(tmp_path, "WhiteBalance", {"INPUT": image}, "OUTPUT",
-                                    "OUTPUT0", "OUTPUT1", "OUTPUT2", blue_target=102)
-    gains = np.array([1 / 0.5, 1 / 0.25, 0.4 / 0.2])[:, None, None]
+                                    "OUTPUT0", "OUTPUT1", "OUTPUT2", red_target=1,
+                                    green_target=1, blue_target=0.4, x1=11, y1=21)
+    gains = np.array([1 / 0.5, 1 / 0.25, 0.4 / 0.2])[:, None, None]  # targets in 0..1 units
     assert np.allclose(out, image * gains, atol=1e-6)
     assert np.allclose(out[:, 20, 10], (1.0, 1.0, 0.4), atol=1e-6)
     assert np.array_equal(red, out[0]) and np.array_equal(green, out[1])
     assert np.array_equal(blue, out[2])
 
 
-def test_white_balance_on_separate_planes_with_a_region(tmp_path):
+def test_white_balance_region_ends_are_exclusive(tmp_path):
     planes = {f"INPUT{i}": COLOUR[i] for i in range(3)}
     out0, out2 = outputs(tmp_path, "WhiteBalance", planes, "OUTPUT0", "OUTPUT2", x0=2, x1=4,
                          y0=1, y1=3)
-    assert np.allclose(out0, COLOUR[0] / COLOUR[0, 1:4, 2:5].mean(), atol=1e-5)
-    assert np.allclose(out2, COLOUR[2] / COLOUR[2, 1:4, 2:5].mean(), atol=1e-5)
+    # columns 2 and 3, rows 1 and 2; the default target 255
+    assert np.allclose(out0, 255 * COLOUR[0] / COLOUR[0, 1:3, 2:4].mean(), rtol=1e-5)
+    assert np.allclose(out2, 255 * COLOUR[2] / COLOUR[2, 1:3, 2:4].mean(), rtol=1e-5)
+
+
+def test_white_balance_zero_mean_gives_zero_and_empty_region_is_an_error(tmp_path):
+    image = np.stack([np.full((4, 4), v, np.float32) for v in (0.5, 0.0, 0.25)])
+    image[1, 3, 3] = 0.7                             # green is 0 in the region only
+    out, = outputs(tmp_path, "WhiteBalance", {"INPUT": image}, "OUTPUT", x0=0, x1=2, y0=0,
+                   y1=2, red_target=1, green_target=1, blue_target=1)
+    assert np.allclose(out[0], 1) and np.allclose(out[2], 1) and not out[1].any()
+    with pytest.raises(ikaros.ModelError, match="no pixel"):
+        run(tmp_path, "WhiteBalance", {"INPUT": image})   # Ikaros 2's defaults: empty
+
+
+def test_white_balance_in_an_ikaros3_file_has_ikaros3_defaults(tmp_path, monkeypatch):
+    monkeypatch.setattr(Module, "dialect", property(lambda self: "3", lambda self, v: None))
+    out, = outputs(tmp_path, "WhiteBalance", {"INPUT": COLOUR}, "OUTPUT", x1=3)
+    # targets 1, region row 0 (y0 = 0, y1 = 1), columns 0..2 (x0 = 0 by default, x1 set)
+    means = COLOUR[:, 0:1, 0:3].mean(axis=(1, 2))[:, None, None]
+    assert np.allclose(out, COLOUR / means, rtol=1e-5)
 
 
 def test_white_balance_needs_one_kind_of_input(tmp_path):

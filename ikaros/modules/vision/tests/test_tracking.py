@@ -23,26 +23,75 @@ def centre(x, y, rows, cols):
     return [(x + 0.5) / cols, (y + 0.5) / rows]
 
 
-def test_clusters_are_at_the_disc_centres_largest_first(tmp_path):
+def raster_clusters(image, threshold, radius, limit):
+    """The issue's clustering, written out: pixels above threshold in raster order join the
+    nearest cluster whose running centroid is within ``radius`` pixels, or start one."""
+    clusters = []                                     # lists of (col, row)
+    for r in range(image.shape[0]):
+        for c in range(image.shape[1]):
+            if image[r, c] <= threshold:
+                continue
+            near = [(np.hypot(*(np.mean(k, axis=0) - (c, r))), i)
+                    for i, k in enumerate(clusters)]
+            near = [d_i for d_i in near if d_i[0] <= radius]
+            if near:
+                clusters[min(near)[1]].append((c, r))
+            elif len(clusters) < limit:
+                clusters.append([(c, r)])
+    return clusters
+
+
+def test_clusters_by_raster_order_and_area_of_the_image(tmp_path):
     image = disc_map(60, 80, [(15, 20, 6, 1.0), (60, 40, 4, 1.0), (40, 10, 1, 0.5)])
     with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters="3",
-             cluster_radius="0.1") as net:
+             cluster_radius="0.1", min_cluster_area="0.005") as net:
         out, conf = net.output("M.OUTPUT"), net.output("M.CONFIDENCE")
+    # r = 0.1 * 80 = 8 pixels; kept when more than 0.005 * 4800 = 24 pixels
+    clusters = raster_clusters(image, 0.1, 8.0, 3)
+    assert [len(k) for k in clusters] == [5, 113, 49]   # speck first: it is highest
     assert out.shape == (3, 2) and conf.shape == (3,)
-    assert np.allclose(out[0], centre(15, 20, 60, 80), atol=1e-6)
-    assert np.allclose(out[1], centre(60, 40, 60, 80), atol=1e-6)
-    big = disc_map(60, 80, [(15, 20, 6, 1.0)]).sum()
-    small = disc_map(60, 80, [(60, 40, 4, 1.0)]).sum()
-    assert np.allclose(conf[:2], [big / (big + small), small / (big + small)], atol=1e-6)
-    assert conf[2] == 0 and np.array_equal(out[2], [0, 0])     # the speck is too small
+    for row, k in zip(out, clusters[1:]):
+        c, r = np.mean(k, axis=0)
+        assert np.allclose(row, [(c + 0.5) / 80, (r + 0.5) / 60], atol=1e-6)
+    assert np.allclose(out[0], centre(15, 20, 60, 80), atol=1e-6)   # the disc's centre
+    area = 2 * np.pi * 8 ** 2
+    assert np.allclose(conf, [113 / area, 49 / area, 0], atol=1e-6)
+    assert np.array_equal(out[2], [0, 0])             # the speck is too small
 
 
-def test_threshold_and_value_weighting(tmp_path):
-    image = disc_map(40, 40, [(20, 20, 5, 0.05)])
+def test_running_centroid_and_capped_confidence(tmp_path):
+    # a row of pixels 0..4 and 8, radius 0.2 * 10 = 2 pixels. The centroid runs 0, 0.5, 1:
+    # pixel 3 is 2 from it and joins (centroid 1.5); pixel 4 is 2.5 away and starts a
+    # second cluster, pixel 8 (4 from that one) a third
+    image = np.zeros((3, 10), np.float32)
+    image[1, 0:5] = 1
+    image[1, 8] = 1
+    with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters="3",
+             cluster_radius="0.2", min_cluster_area="0") as net:
+        out, conf = net.output("M.OUTPUT"), net.output("M.CONFIDENCE")
+    assert np.allclose(out, [[2 / 10, 0.5], [4.5 / 10, 0.5], [8.5 / 10, 0.5]], atol=1e-6)
+    assert np.allclose(conf, np.array([4, 1, 1]) / (2 * np.pi * 4), atol=1e-6)
+    with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters="3",
+             cluster_radius="0", min_cluster_area="0") as net:   # 1 / 0 pixels: capped
+        assert np.array_equal(net.output("M.CONFIDENCE"), [1, 1, 1])
+        assert np.allclose(net.output("M.OUTPUT")[:, 0], [0.05, 0.15, 0.25])
+
+
+def test_threshold_is_strict(tmp_path):
+    image = disc_map(40, 40, [(20, 20, 5, 0.1)])
     image[10, 30] = 1.0
-    with run(tmp_path, "SpatialClustering", {"INPUT": image}, threshold="0.1") as net:
+    with run(tmp_path, "SpatialClustering", {"INPUT": image}, threshold="0.1",
+             min_cluster_area="0") as net:
         assert np.allclose(net.output("M.OUTPUT")[0], centre(30, 10, 40, 40))
-        assert net.output("M.CONFIDENCE")[0] == 1
+
+
+def test_unused_rows_have_confidence_0_every_tick(tmp_path):
+    frames = np.array([disc_map(30, 40, [(10, 10, 3, 1.0), (30, 20, 3, 1.0)]),
+                       disc_map(30, 40, [(10, 10, 3, 1.0)])])
+    out = run_sequence(tmp_path, frames, '<module class="SpatialClustering" name="M" '
+                       'no_of_clusters="2" min_cluster_area="0.001"/>', "CONFIDENCE")
+    assert (out[0][0] > 0).all()
+    assert out[1][0][0] > 0 and out[1][0][1] == 0
 
 
 def test_clusters_keep_their_rows_while_they_move(tmp_path):
@@ -51,7 +100,8 @@ def test_clusters_keep_their_rows_while_they_move(tmp_path):
         frames.append(disc_map(50, 100, [(20 + 15 * k, 15, 4, 1.0),
                                          (80 - 15 * k, 35, 5, 1.0)]))
     out = run_sequence(tmp_path, np.array(frames), '<module class="SpatialClustering" '
-                       'name="M" no_of_clusters="2" cluster_radius="0.08"/>', "OUTPUT")
+                       'name="M" no_of_clusters="2" cluster_radius="0.08" '
+                       'min_cluster_area="0.005"/>', "OUTPUT")
     first = out[0][0]
     a_row = int(np.argmin(first[:, 0]))
     for k, (positions,) in enumerate(out):
@@ -62,7 +112,7 @@ def test_clusters_keep_their_rows_while_they_move(tmp_path):
 def test_sorting_orders_by_confidence(tmp_path):
     image = disc_map(40, 80, [(10, 20, 3, 1.0), (60, 20, 6, 1.0)])
     with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters="2",
-             sorting="yes", min_cluster_area="0") as net:
+             sorting="yes", min_cluster_area="0.001") as net:
         assert np.allclose(net.output("M.OUTPUT"), [centre(60, 20, 40, 80),
                                                    centre(10, 20, 40, 80)], atol=1e-6)
 
@@ -70,7 +120,8 @@ def test_sorting_orders_by_confidence(tmp_path):
 def test_synthetic_camera_discs_are_found(tmp_path):
     net = load_body(tmp_path, '''
         <module class="SyntheticCamera" name="C" blobs="1" size_x="320" size_y="240"/>
-        <module class="SpatialClustering" name="S" threshold="0.8" cluster_radius="0.05"/>
+        <module class="SpatialClustering" name="S" threshold="0.8" cluster_radius="0.05"
+                min_cluster_area="0.001"/>
         <connection source="C.RED" target="S.INPUT" delay="0"/>''')
     with net:
         for _ in range(4):
@@ -209,7 +260,8 @@ def test_dtracker_starts_at_a_box_input(tmp_path):
 
 def test_a_large_cluster_radius_counts_in_floats(tmp_path):
     image = disc_map(60, 600, [(300, 30, 20, 1.0)])          # radius 0.5: a 601-pixel square
-    with run(tmp_path, "SpatialClustering", {"INPUT": image}, cluster_radius="0.5") as net:
+    with run(tmp_path, "SpatialClustering", {"INPUT": image}, cluster_radius="0.5",
+             min_cluster_area="0.01") as net:
         assert np.allclose(net.output("M.OUTPUT")[0], centre(300, 30, 60, 600), atol=1e-6)
 
 
