@@ -36,6 +36,9 @@ class ROS2Publisher(Module):
     VELOCITY = Input("JointState: the joint velocities", optional=True)
     EFFORT = Input("JointState: the joint efforts", optional=True)
 
+    def configure(self):
+        connect(self, self.type)        # a missing extra or a bad topic fails the load
+
     def init(self):
         dds, self._kind, domain = connect(self, self.type)
         self._names = [n.strip() for n in str(self.names).split(",") if n.strip()]

@@ -64,6 +64,9 @@ class ROS2Subscriber(Module):
         self.set_output_shape("VELOCITY", (joints,))
         self.set_output_shape("EFFORT", (joints,))
 
+    def configure(self):
+        connect(self, self.type)        # a missing extra or a bad topic fails the load
+
     def init(self):
         dds, self._kind, domain = connect(self, self.type)
         self._names = [n.strip() for n in str(self.names).split(",") if n.strip()]
