@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 
-from ..hardware.ros2.messages import TYPES, layout_of
+from ..hardware.ros2.messages import float32_array_encoder
 from ..hardware.ros2.msgdefs import DEFINITIONS
 from ..module import require
 from .mcap_recording import MESSAGE, topic_of
@@ -40,8 +40,7 @@ class FoxgloveView:
         self.channels = [foxglove.Channel(topic_of(s.name), schema=schema,
                                           message_encoding="cdr", context=self._context)
                          for s in self.signals]
-        self._layouts = [layout_of(s.shape) for s in self.signals]
-        self._encode = TYPES[MESSAGE].encode
+        self._encoders = [float32_array_encoder(s.shape) for s in self.signals]
         self.server = foxglove.start_server(name=f"ikaros {net.filename or ''}".strip(),
                                             host=host, port=port, context=self._context)
         self.port = self.server.port
@@ -58,10 +57,8 @@ class FoxgloveView:
         self._sent = now
         values = np.take(self.net.arena.block, self._index)
         stamp = self._wall + int(self.net.clock.time * 1e9)
-        for signal, channel, layout in zip(self.signals, self.channels, self._layouts):
-            channel.log(self._encode({"layout": layout,
-                                      "data": values[signal.start:signal.stop]}),
-                        log_time=stamp)
+        for signal, channel, encode in zip(self.signals, self.channels, self._encoders):
+            channel.log(encode(values[signal.start:signal.stop]), log_time=stamp)
 
     def close(self) -> None:
         """Stop serving."""

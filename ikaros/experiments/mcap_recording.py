@@ -21,7 +21,7 @@ import time
 import numpy as np
 
 from ..hardware import priority
-from ..hardware.ros2.messages import TYPES, layout_of
+from ..hardware.ros2.messages import float32_array_encoder
 from ..hardware.ros2.msgdefs import DEFINITIONS
 from ..kernel.taps import ROW, SIGNAL
 from ..module import require
@@ -78,7 +78,7 @@ class McapRecorder:
         schema = w.register_schema(MESSAGE, "ros2msg", DEFINITIONS[MESSAGE].encode())
         self._channels = [w.register_channel(topic_of(s.name), "cdr", schema)
                           for s in self.signals]
-        self._layouts = [layout_of(s.shape) for s in self.signals]
+        self._encoders = [float32_array_encoder(s.shape) for s in self.signals]
         self._wall = time.time_ns()
         w.add_attachment(self._wall, self._wall, "model.ikg", "application/xml",
                          _model_text(net).encode("utf-8"))
@@ -103,7 +103,6 @@ class McapRecorder:
 
     def _write_loop(self) -> None:
         priority.background_thread()
-        encode = TYPES[MESSAGE].encode
         due = time.monotonic() + self.flush_seconds
         dt_ns = self.net.clock.tick_duration * 1e9
         while True:
@@ -121,11 +120,11 @@ class McapRecorder:
             try:
                 for values, tick in zip(rows, ticks):
                     stamp = self._wall + int(round(int(tick) * dt_ns))
-                    for signal, channel, layout in zip(self.signals, self._channels,
-                                                       self._layouts):
-                        data = encode({"layout": layout,
-                                       "data": values[signal.start:signal.stop]})
-                        self._writer.add_message(channel, stamp, data, stamp, int(tick))
+                    for signal, channel, encode in zip(self.signals, self._channels,
+                                                       self._encoders):
+                        self._writer.add_message(channel, stamp,
+                                                 encode(values[signal.start:signal.stop]),
+                                                 stamp, int(tick))
                     self.ticks_recorded += 1
             except Exception as e:      # noqa: BLE001  (a full disk: reported at close)
                 self._error = e

@@ -190,6 +190,8 @@ class Subscription:
                                   listener=Listener(on_data_available=self._arrived))
 
     def _arrived(self, reader) -> None:
+        if reader is None:          # a sample that arrived as the reader was deleted
+            return
         now = time.monotonic()
         samples = ddspy_take(reader._ref, _ANY, 64)
         if isinstance(samples, int):

@@ -91,6 +91,20 @@ def layout_of(shape: tuple[int, ...], labels: tuple[str, ...] = ()) -> dict:
     return {"dim": dims, "data_offset": 0}
 
 
+def float32_array_encoder(shape: tuple[int, ...]) -> Callable[[np.ndarray], bytes]:
+    """A fast encoder of the std_msgs/Float32MultiArray messages of arrays of ``shape``:
+    their bytes up to the values are the same every time (the data is 4-aligned after
+    them), so a message is that prefix and the values' bytes."""
+    count = int(np.prod(shape, dtype=np.int64)) if shape else 1
+    empty = TYPES["std_msgs/msg/Float32MultiArray"].encode({"layout": layout_of(shape),
+                                                            "data": []})
+    prefix = empty[:-4] + count.to_bytes(4, "little")
+
+    def encode(values: np.ndarray) -> bytes:
+        return prefix + np.ascontiguousarray(values, "<f4").tobytes()
+    return encode
+
+
 def _encode_twist(m: dict) -> bytes:
     e = Encoder()
     for part in ("linear", "angular"):

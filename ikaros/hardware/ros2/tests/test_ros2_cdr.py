@@ -5,7 +5,8 @@ import pytest
 import rosbags.typesys as rosbags        # an independent implementation of ROS 2 CDR
 
 from ikaros.hardware.ros2.cdr import CdrError
-from ikaros.hardware.ros2.messages import TYPES, layout_of, message_type, stamp
+from ikaros.hardware.ros2.messages import (TYPES, float32_array_encoder, layout_of,
+                                           message_type, stamp)
 
 STORE = rosbags.get_typestore(rosbags.Stores.ROS2_HUMBLE)
 T = STORE.types
@@ -141,3 +142,11 @@ def test_truncated_bytes_are_an_error_not_garbage():
         TYPES["std_msgs/msg/Float64"].decode(data[:8])
     with pytest.raises(CdrError, match="not little-endian CDR"):
         TYPES["std_msgs/msg/Float64"].decode(b"\x00\x00\x00\x00" + data[4:])
+
+
+@pytest.mark.parametrize("shape", [(1,), (16,), (2, 3), (3, 4, 5), (0,)])
+def test_the_fast_array_encoder_writes_what_the_message_encoder_writes(shape):
+    values = (np.arange(int(np.prod(shape))) * 0.5 - 1).astype(np.float32).reshape(shape)
+    full = TYPES["std_msgs/msg/Float32MultiArray"].encode({"layout": layout_of(shape),
+                                                           "data": values})
+    assert float32_array_encoder(shape)(values) == full
