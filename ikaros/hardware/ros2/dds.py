@@ -140,6 +140,7 @@ def domain_id(text: str | None = None) -> int:
 
 
 _participants: dict[int, DomainParticipant] = {}
+_listeners: list = []
 _lock = threading.Lock()
 
 
@@ -185,9 +186,12 @@ class Subscription:
         self._latest: "tuple[bytes, float] | None" = None
         self._guard = threading.Lock()
         self.received = 0
+        listener = Listener(on_data_available=self._arrived)
+        # Cyclone DDS may call a listener from its own threads until a reader is deleted,
+        # later than Python drops it: the listener (a C callback) lives as long as the process
+        _listeners.append(listener)
         self._reader = DataReader(participant(domain), _topic(domain, ros_topic, kind),
-                                  qos=QOS_PROFILES[qos],
-                                  listener=Listener(on_data_available=self._arrived))
+                                  qos=QOS_PROFILES[qos], listener=listener)
 
     def _arrived(self, reader) -> None:
         if reader is None:          # a sample that arrived as the reader was deleted
@@ -208,4 +212,7 @@ class Subscription:
             return self._latest
 
     def close(self) -> None:
-        self._reader = None
+        """No more samples: the reader stops listening before it goes."""
+        if self._reader is not None:
+            self._reader.set_listener(None)
+            self._reader = None
