@@ -445,6 +445,14 @@ def main(argv: list[str] | None = None) -> int:
                 sock.close()
             print(f"ikaros: error: --record: {e}", file=sys.stderr)
             return EXIT_ERROR
+        try:
+            experiment_options.start_live_view(net, opts)
+        except (ImportError, OSError, RuntimeError) as e:
+            net.close()
+            if sock is not None:
+                sock.close()
+            print(f"ikaros: error: --foxglove: {e}", file=sys.stderr)
+            return EXIT_ERROR
         if not opts.batch:
             return _serve(net, opts, failure, sock)
         try:

@@ -17,12 +17,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("experiments")
     g.add_argument("--record", metavar="FILE.h5",
                    help="record outputs into an HDF5 file while running (needs "
-                        "ikaros[record]); read it with ikaros.open_recording")
+                        "ikaros[record]); read it with ikaros.open_recording. A FILE.mcap "
+                        "is an MCAP file of ROS 2 messages for Foxglove and ros2 bag (needs "
+                        "ikaros[ros2])")
     g.add_argument("--record-only", action="append", metavar="PATTERN",
                    help="record only the outputs whose address matches this glob pattern, "
                         "e.g. 'Arm.*.OUTPUT' (repeatable; default: every output)")
     g.add_argument("--record-every", type=_every, default=1, metavar="K",
                    help="record every K-th tick (default 1: every tick)")
+    g.add_argument("--foxglove", nargs="?", type=int, const=8765, metavar="PORT",
+                   help="serve the outputs live to Foxglove on 127.0.0.1:PORT (default "
+                        "8765) as ROS 2 messages (needs ikaros[foxglove])")
     g.add_argument("--replay", metavar="FILE.h5",
                    help="show a recording in the web UI: its model's views, stepping "
                         "through the recorded ticks")
@@ -34,13 +39,25 @@ def check_arguments(p: argparse.ArgumentParser, opts) -> None:
         p.error("--record-only and --record-every need --record FILE.h5")
 
 
+def start_live_view(net, opts):
+    """The Foxglove view of --foxglove (None without it); it ends when the network closes.
+    Raises ImportError or OSError with a message for the user."""
+    if opts.foxglove is None:
+        return None
+    from .foxglove_live import FoxgloveView
+    view = FoxgloveView(net, port=opts.foxglove)
+    print(f"ikaros: Foxglove: ws://127.0.0.1:{view.port} ({len(view.channels)} outputs)",
+          file=sys.stderr)
+    return view
+
+
 def start_recording(net, opts, argv: list[str]):
     """The Recorder of --record (None without it); it ends when the network closes.
     Raises ValueError, ImportError or OSError with a message for the user."""
     if not opts.record:
         return None
-    from .recording import Recorder
-    return Recorder(net, opts.record, only=opts.record_only, every=opts.record_every,
+    from .recorders import open_recorder
+    return open_recorder(net, opts.record, only=opts.record_only, every=opts.record_every,
                     command_line=["ikaros"] + list(argv))
 
 

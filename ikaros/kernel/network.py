@@ -615,9 +615,10 @@ class Network:
     def record(self, filename: str, only: list[str] | str | None = None, every: int = 1):
         """Record outputs (all, or those matching the glob patterns ``only``) every
         ``every``-th tick into the HDF5 file ``filename``, from the next tick until the
-        returned Recorder's ``close()`` or this network's ``close()``."""
-        from ..experiments.recording import Recorder
-        return Recorder(self, filename, only=only, every=every)
+        returned Recorder's ``close()`` or this network's ``close()``. A ``.mcap`` file
+        holds the outputs as ROS 2 messages (experiments/mcap_recording.py)."""
+        from ..experiments.recorders import open_recorder
+        return open_recorder(self, filename, only=only, every=every)
 
     @property
     def controller(self) -> Controller:

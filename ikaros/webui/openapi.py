@@ -227,7 +227,9 @@ def openapi() -> dict:
                                 "models folder (on: true), or end the recording (on: false)",
                                 {"type": "object", "required": ["on"],
                                  "additionalProperties": False,
-                                 "properties": {"on": {"type": "boolean"}}}, _RECORDING,
+                                 "properties": {"on": {"type": "boolean"},
+                                                "format": {"enum": ["h5", "mcap"]}}},
+                                _RECORDING,
                                 **{"409": "no models folder to record into, or the run has "
                                           "ended"})},
         "/api/replay": {**_get("Whether a recording is replayed (ikaros --replay), its rows "

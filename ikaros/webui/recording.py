@@ -1,6 +1,7 @@
 """Recordings in the web UI. The record button's endpoint: ``GET /api/record`` says whether
 the running network is being recorded; ``POST /api/record {"on": true|false}`` starts a
-recording of every output into a new HDF5 file in the models folder, or ends it. A
+recording of every output into a new HDF5 file in the models folder (an MCAP file of ROS 2
+messages with ``"format": "mcap"``), or ends it. A
 recording also ends when its network does (the editor's apply, open and new build a new
 one). And the replay bar's endpoint, ``/api/replay``, for ``ikaros --replay``."""
 from __future__ import annotations
@@ -11,8 +12,12 @@ import time
 from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
 
+from ..experiments.recorders import open_recorder
 from .server import ApiError, Json, _body, _query
 from .snapshot import between_ticks
+
+
+FORMATS = ("h5", "mcap")
 
 
 class RecordButton:
@@ -36,20 +41,22 @@ class RecordButton:
         if request.method == "GET":
             _query(request)
             return self._answer()
-        body = await _body(request, ("on",))
+        body = await _body(request, ("on",), ("format",))
         if not isinstance(body["on"], bool):
             raise ApiError(400, '"on" must be true or false')
+        kind = body.get("format", "h5")
+        if kind not in FORMATS:
+            raise ApiError(400, f'"format" must be {" or ".join(FORMATS)}')
         current = self.recorder
         if current is not None and not current.closed:
             # between its network's ticks (that network may be another one now)
             await run_in_threadpool(between_ticks, current.net, current.close)
         self.recorder = None
         if body["on"]:
-            self.recorder = await run_in_threadpool(self._start)
+            self.recorder = await run_in_threadpool(self._start, "." + kind)
         return self._answer()
 
-    def _start(self):
-        from ..experiments.recording import Recorder
+    def _start(self, extension: str):
         folder = self._folder()
         if not folder:
             raise ApiError(409, "no models folder to record into (start ikaros with "
@@ -59,12 +66,12 @@ class RecordButton:
             raise ApiError(409, "the run has ended; restart ikaros to record")
         stem = os.path.splitext(os.path.basename(net.filename or "model"))[0]
         name = f"{stem}-{time.strftime('%Y%m%d-%H%M%S')}"
-        path, k = os.path.join(folder, name + ".h5"), 1
+        path, k = os.path.join(folder, name + extension), 1
         while os.path.exists(path):         # never over an earlier recording
             k += 1
-            path = os.path.join(folder, f"{name}-{k}.h5")
+            path = os.path.join(folder, f"{name}-{k}{extension}")
         try:
-            return between_ticks(net, Recorder, net, path, command_line=["web UI"])
+            return between_ticks(net, open_recorder, net, path, command_line=["web UI"])
         except ImportError as e:
             raise ApiError(501, str(e)) from None
         except OSError as e:

@@ -1,0 +1,158 @@
+"""Recording a run into an MCAP file as ROS 2 messages, for Foxglove, ``ros2 bag play`` and
+rosbags (``ikaros --record run.mcap``; needs ``pip install 'ikaros[ros2]'``).
+
+Each recorded output is a topic ``/ikaros/<its address with / for .>`` of
+std_msgs/msg/Float32MultiArray messages (schema encoding ``ros2msg``, message encoding
+``cdr``) whose layout gives the output's shape. A message's ``sequence`` is its tick and its
+log and publish times are the model's time (tick × tick_duration) after the wall-clock time
+the recording started. The model file's text is an attachment (``model.ikg``) and the
+parameters' values are metadata (``parameters``). The outputs are taken by an output tap as
+for HDF5 recordings (recording.py); a writer thread encodes and writes them. The HDF5
+recording stays the one to analyse runs with (``ikaros.open_recording``).
+"""
+from __future__ import annotations
+
+import atexit
+import os
+import queue
+import threading
+import time
+
+import numpy as np
+
+from ..hardware import priority
+from ..hardware.ros2.messages import float32_array_encoder
+from ..hardware.ros2.msgdefs import DEFINITIONS
+from ..kernel.taps import ROW, SIGNAL
+from ..module import require
+from .recording import FLUSH_SECONDS, _model_text
+from .signals import module_parameters, select_outputs
+
+MESSAGE = "std_msgs/msg/Float32MultiArray"
+BLOCK_ROWS = 1024
+
+
+def topic_of(address: str) -> str:
+    """The topic of an output: ``Arm.Joint.OUTPUT`` -> ``/ikaros/Arm/Joint/OUTPUT``."""
+    return "/ikaros/" + address.replace(".", "/")
+
+
+class McapRecorder:
+    """Records outputs of a network into an MCAP file, every ``every``-th tick from the next
+    tick on, until ``close()`` (or the network's ``close()``); ``only`` as for Recorder."""
+
+    def __init__(self, net, filename: str, only: list[str] | str | None = None,
+                 every: int = 1, command_line: list[str] | None = None,
+                 flush_seconds: float = FLUSH_SECONDS):
+        mcap_writer = require("mcap.writer", "mcap", extra="ros2")
+        if int(every) < 1:
+            raise ValueError(f"every must be a whole number >= 1, not {every}")
+        self.net = net
+        self.filename = os.path.abspath(filename)
+        self.every = int(every)
+        self.flush_seconds = flush_seconds
+        self.signals, index = select_outputs(net, only)
+        try:
+            self._file = open(self.filename, "wb")
+        except OSError as e:
+            raise OSError(f"cannot write the recording {filename}: {e.strerror}") from None
+        self._writer = mcap_writer.Writer(self._file)
+        self._start(net, command_line)
+        self._rows = np.zeros((BLOCK_ROWS, max(index.size, 1)), np.float32)[:, :index.size]
+        self._rows = np.ascontiguousarray(self._rows)
+        self._queue: queue.Queue = queue.Queue()
+        self._error: BaseException | None = None
+        self._closed = False
+        self.ticks_recorded = 0
+        self._thread = threading.Thread(target=self._write_loop, name="ikaros-mcap",
+                                        daemon=True)
+        self._thread.start()
+        self._tap = net.add_tap(index, self._rows, self.every, self._signalled)
+        self._tap.give(0, BLOCK_ROWS)
+        net.close_hooks.append(self.close)
+        atexit.register(self.close)
+
+    def _start(self, net, command_line) -> None:
+        w = self._writer
+        w.start(profile="ros2", library="ikaros")
+        schema = w.register_schema(MESSAGE, "ros2msg", DEFINITIONS[MESSAGE].encode())
+        self._channels = [w.register_channel(topic_of(s.name), "cdr", schema)
+                          for s in self.signals]
+        self._encoders = [float32_array_encoder(s.shape) for s in self.signals]
+        self._wall = time.time_ns()
+        w.add_attachment(self._wall, self._wall, "model.ikg", "application/xml",
+                         _model_text(net).encode("utf-8"))
+        w.add_metadata("parameters", module_parameters(net))
+        w.add_metadata("ikaros", {"file": net.filename or "", "tick_duration":
+                                  repr(net.clock.tick_duration),
+                                  "command_line": " ".join(command_line or [])})
+
+    @property
+    def closed(self) -> bool:
+        return self._closed
+
+    def _signalled(self) -> None:
+        """The tap's call back (at the start of a tick): hand the rows kept to the writer
+        and give the block again."""
+        tap = self._tap
+        tap.state[SIGNAL] = 0
+        row = int(tap.state[ROW])
+        if row:
+            self._queue.put((self._rows[:row].copy(), tap.ticks[:row].copy()))
+        tap.give(0, BLOCK_ROWS)
+
+    def _write_loop(self) -> None:
+        priority.background_thread()
+        due = time.monotonic() + self.flush_seconds
+        dt_ns = self.net.clock.tick_duration * 1e9
+        while True:
+            try:
+                item = self._queue.get(timeout=max(0.01, due - time.monotonic()))
+            except queue.Empty:
+                self._tap.request()
+                due = time.monotonic() + self.flush_seconds
+                continue
+            if item is None:
+                return
+            if self._error is not None:
+                continue
+            rows, ticks = item
+            try:
+                for values, tick in zip(rows, ticks):
+                    stamp = self._wall + int(round(int(tick) * dt_ns))
+                    for signal, channel, encode in zip(self.signals, self._channels,
+                                                       self._encoders):
+                        self._writer.add_message(channel, stamp,
+                                                 encode(values[signal.start:signal.stop]),
+                                                 stamp, int(tick))
+                    self.ticks_recorded += 1
+            except Exception as e:      # noqa: BLE001  (a full disk: reported at close)
+                self._error = e
+
+    def close(self) -> None:
+        """Write what is left and end the file. Call it between ticks."""
+        if self._closed:
+            return
+        self._closed = True
+        atexit.unregister(self.close)
+        if self.close in self.net.close_hooks:
+            self.net.close_hooks.remove(self.close)
+        self._tap.settle()
+        self._signalled()
+        self.net.remove_tap(self._tap)
+        self._queue.put(None)
+        self._thread.join()
+        try:
+            if self._error is None:
+                self._writer.finish()
+        finally:
+            self._file.close()
+        if self._error is not None:
+            raise OSError(f"writing the recording {self.filename} failed after "
+                          f"{self.ticks_recorded} ticks: {self._error}")
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()

@@ -1,0 +1,63 @@
+"""The live Foxglove view: its channel list and one message per channel, read with a
+WebSocket client speaking Foxglove's protocol."""
+import asyncio
+import json
+import struct
+
+import numpy as np
+import websockets
+from rosbags.typesys import Stores, get_typestore
+
+import ikaros
+from ikaros.experiments.foxglove_live import FoxgloveView
+
+MODEL = """<group tick_duration="0.01">
+  <module class="Constant" name="A" data="1, 2, 3"/>
+  <module class="Constant" name="B" data="4; 5"/>
+</group>"""
+STORE = get_typestore(Stores.ROS2_HUMBLE)
+
+
+async def _listen(port, channels_wanted, ticking):
+    async with websockets.connect(f"ws://127.0.0.1:{port}",
+                                  subprotocols=["foxglove.sdk.v1"]) as ws:
+        channels = {}
+        while len(channels) < channels_wanted:
+            message = json.loads(await ws.recv())
+            if message["op"] == "advertise":
+                channels.update({c["id"]: c for c in message["channels"]})
+        await ws.send(json.dumps({"op": "subscribe", "subscriptions": [
+            {"id": k, "channelId": cid} for k, cid in enumerate(channels)]}))
+        ids = list(channels)
+        got = {}
+        while len(got) < len(ids):
+            ticking()
+            try:
+                data = await asyncio.wait_for(ws.recv(), 0.2)
+            except asyncio.TimeoutError:
+                continue
+            if isinstance(data, bytes) and data[0] == 1:      # a message: op, sub, time
+                subscription, _ = struct.unpack_from("<IQ", data, 1)
+                got[channels[ids[subscription]]["topic"]] = bytes(data[13:])
+        return channels, got
+
+
+def test_the_outputs_are_channels_of_ros_2_messages(tmp_path):
+    path = tmp_path / "m.ikg"
+    path.write_text(MODEL)
+    with ikaros.load(str(path)) as net:
+        view = FoxgloveView(net, port=0, interval=0.0)
+        try:
+            channels, got = asyncio.run(asyncio.wait_for(
+                _listen(view.port, 2, lambda: net.run(ticks=1)), 30))
+        finally:
+            view.close()
+    assert sorted((c["topic"], c["encoding"], c["schemaName"], c["schemaEncoding"])
+                  for c in channels.values()) == [
+        ("/ikaros/A/OUTPUT", "cdr", "std_msgs/msg/Float32MultiArray", "ros2msg"),
+        ("/ikaros/B/OUTPUT", "cdr", "std_msgs/msg/Float32MultiArray", "ros2msg")]
+    a = STORE.deserialize_cdr(got["/ikaros/A/OUTPUT"], "std_msgs/msg/Float32MultiArray")
+    b = STORE.deserialize_cdr(got["/ikaros/B/OUTPUT"], "std_msgs/msg/Float32MultiArray")
+    np.testing.assert_array_equal(a.data, [1, 2, 3])
+    np.testing.assert_array_equal(b.data, [4, 5])
+    assert [(d.size, d.stride) for d in b.layout.dim] == [(2, 2), (1, 1)]
