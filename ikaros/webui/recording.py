@@ -11,7 +11,7 @@ import time
 from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
 
-from .server import ApiError, Json, _body, _query
+from .requests import ApiError, Json, _body, _query
 from .snapshot import between_ticks
 
 
