@@ -16,6 +16,22 @@ from .module import DEBUG, FATAL_ERROR, PRINT
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
 
 
+def replay_network(p: argparse.ArgumentParser, opts, model: str | None):
+    """The network of --replay (its recorded model, every recorded module a Replay), or
+    None after printing why there is none."""
+    if model is not None or opts.batch:
+        p.error("--replay shows a recording in the web UI: give no model file and no -b")
+    if opts.record:
+        p.error("--replay and --record can not be used together")
+    from . import webui
+    from .experiments.replay import replay_network as build
+    try:
+        webui._check()
+        return build(opts.replay, quiet=opts.quiet)
+    except (webui.MissingWebDependencies, ImportError, OSError, ValueError) as e:
+        print(f"ikaros: error: --replay: {e}", file=sys.stderr)
+        return None
+
 
 def _ticks(text: str) -> int:
     if not text.lstrip("+").isdigit():
@@ -385,7 +401,7 @@ def main(argv: list[str] | None = None) -> int:
             print(found.to_text())
             return EXIT_OK
         if opts.replay:
-            net = experiment_options.replay_network(p, opts, model)
+            net = replay_network(p, opts, model)
             return EXIT_ERROR if net is None else _serve(net, opts)
         if model is None:
             p.error("no model file given")

@@ -30,6 +30,10 @@ from .description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec
                           SIZE_RULE_KEYS, STATE_TYPES, StateSpec, canonical_type,
                           alias_rule, dynamic_rule)
 from .dynamic import DynamicArray  # noqa: F401  (part of the module API)
+from .errors import ModelError  # noqa: F401  (part of the module API: a build error)
+# part of the module API: call it first thing in a thread that talks to a device, so that it
+# runs at the priority a real-time run asks for (see ikaros/priority.py)
+from .priority import device_thread  # noqa: F401
 
 # Notification levels (lower is more severe), as in Ikaros.
 EXCEPTION, END_OF_FILE, TERMINATE, FATAL_ERROR, WARNING, PRINT, DEBUG, TRACE = range(1, 9)

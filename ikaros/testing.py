@@ -8,6 +8,7 @@ from typing import Callable, Iterable
 import numpy as np
 
 from .kernel.network import Network
+from .network import load
 
 
 def load_body(folder, body: str, /, **overrides) -> Network:
@@ -16,7 +17,6 @@ def load_body(folder, body: str, /, **overrides) -> Network:
 
         net = load_body(tmp_path, '<module class="Constant" name="C" data="1 2"/>')
     """
-    from . import load
     path = os.path.join(str(folder), "model.ikg")
     with open(path, "w", encoding="utf-8") as f:
         f.write(f'<group name="Test">\n{body}\n</group>\n')

@@ -1,6 +1,6 @@
 """Experiments: recording runs into HDF5, reading them as xarray Datasets, plots, replay,
-progress and parameter sweeps. Depends on the kernel only (the kernel does not import it,
-but for ``Network.record`` and ``Network.run(record=...)``, which call in here).
+progress and parameter sweeps. Depends on the kernel only (the kernel does not import it:
+``ikaros.Network``'s ``record`` and ``run(record=...)``, above both, call in here).
 
 The names below are imported when first used, so that the ``ikaros`` command starts fast."""
 import importlib

@@ -77,20 +77,3 @@ def batch_session(net, opts, recording=None):
     finally:
         if recording is not None:
             recording.close()
-
-
-def replay_network(p: argparse.ArgumentParser, opts, model: str | None):
-    """The network of --replay (its recorded model, every recorded module a Replay), or
-    None after printing why there is none."""
-    if model is not None or opts.batch:
-        p.error("--replay shows a recording in the web UI: give no model file and no -b")
-    if opts.record:
-        p.error("--replay and --record can not be used together")
-    from .. import webui
-    from .replay import replay_network as build
-    try:
-        webui._check()
-        return build(opts.replay, quiet=opts.quiet)
-    except (webui.MissingWebDependencies, ImportError, OSError, ValueError) as e:
-        print(f"ikaros: error: --replay: {e}", file=sys.stderr)
-        return None

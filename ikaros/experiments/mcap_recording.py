@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from ..hardware import priority
+from .. import priority
 from ..hardware.ros2.messages import float32_array_encoder
 from ..hardware.ros2.msgdefs import DEFINITIONS
 from ..kernel.taps import ROW, SIGNAL

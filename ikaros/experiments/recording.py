@@ -28,10 +28,11 @@ from datetime import datetime, timezone
 
 import numpy as np
 
-from ..hardware import priority
+from .. import priority
 from ..kernel import switching
 from ..kernel.taps import ROW, SIGNAL
 from ..module import WARNING
+from ..version import __version__
 from .chunks import COMPRESSION_LEVEL, shuffled, shuffled_deflate
 from .signals import module_parameters, seeds, select_outputs
 
@@ -125,7 +126,7 @@ class Recorder:
         parameters = module_parameters(net)
         f.attrs.update({
             "format": FORMAT, "format_version": FORMAT_VERSION,
-            "ikaros_version": _version(), "model_file": net.filename or "",
+            "ikaros_version": __version__, "model_file": net.filename or "",
             "top_group": net.top.name,
             "command_line": json.dumps(command_line if command_line is not None
                                        else sys.argv),
@@ -347,7 +348,3 @@ def _model_text(net) -> str:
         from ..language.writer import to_text
         return to_text(net.model)
 
-
-def _version() -> str:
-    from .. import __version__
-    return __version__

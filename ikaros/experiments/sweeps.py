@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .recording import Recorder
 from .signals import select_outputs
 
 MAX_METRIC_ELEMENTS = 16       # a recorded output this small has its final values in the table
@@ -159,7 +160,7 @@ def _run(net, spec: RunSpec) -> dict:
         return {}
     signals, index = select_outputs(net, spec.record)
     if spec.recording:
-        with net.record(spec.recording, only=spec.record, every=spec.every):
+        with Recorder(net, spec.recording, only=spec.record, every=spec.every):
             net.run(ticks=spec.ticks)
     else:
         net.run(ticks=spec.ticks)

@@ -12,7 +12,7 @@ import socket
 import threading
 import time
 
-from . import priority
+from .. import priority
 
 PORT = 6555
 HEARTBEAT_SECONDS = 0.25

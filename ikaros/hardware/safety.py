@@ -19,7 +19,7 @@ import threading
 import time
 from typing import Callable
 
-from . import priority
+from .. import priority
 
 log = logging.getLogger(__name__)
 

@@ -21,6 +21,7 @@ from ..module import Clock, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
 from .layout import layout, runs_into
+from .network import Network
 from .ranges import check_parameter, fit_shape
 from .schedule import schedule
 from .startup import StartupSteps
@@ -75,6 +76,11 @@ class Builder:
     """Builds one model: a file, the text of one (``text``), or a model tree already read
     (``model``, as the editor holds it). ``diagnostics`` collects the load-time warnings
     (and says whether the load is strict or lenient)."""
+
+    #: what a build makes when no ``network_factory`` is given. Importing ``ikaros`` sets it to
+    #: ``ikaros.Network``, the kernel's network plus what joins it to notebooks and recording
+    #: (the kernel does not know them).
+    network_class: type = Network
 
     def __init__(self, filename: str, overrides: dict | None = None, text: str | None = None,
                  notify=None, registry: ClassRegistry | None = None,
@@ -776,7 +782,6 @@ class Builder:
             return net
 
     def _build(self):
-        from .network import Network
         self._confined = access_now() is not None   # file parameters checked only then
         step = self.startup.step
         with step("groups and modules"):
@@ -795,7 +800,7 @@ class Builder:
         with step("delays and schedule"):
             order, runs, edges = self._schedule()
             self._start_gating(runs)
-        return (self.network_factory or Network)(self, top, order, runs, edges)
+        return (self.network_factory or self.network_class)(self, top, order, runs, edges)
 
     def _start_gating(self, runs) -> None:
         """Each module's start-up steps, and the first tick of those that wait for them or

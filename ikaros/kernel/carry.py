@@ -10,9 +10,12 @@ The run goes on from the tick it had reached. Every other module starts afresh, 
 load."""
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from ..module import attribute_name, parameter_attribute
+from .codeclasses import CodeClassRegistry
 from .tree import ModuleInstance
 
 _KERNEL_ATTRIBUTES = {"name", "path", "element", "clock", "description"}
@@ -110,16 +113,14 @@ def take_over(old, new) -> list[str]:
 def rebuild(old, tree, classes: dict | None = None):
     """Build ``tree`` (the model tree of ``old``, edited) with the settings ``old`` was
     loaded with, and make it take over from ``old``, which is closed. When the tree does not
-    build, ModelError is raised and ``old`` runs on unchanged."""
-    from .builder import Builder
+    build, ModelError is raised and ``old`` runs on unchanged. The new network is made by
+    the builder class that made ``old``."""
     registry = None
     if classes:
-        import os
-        from .codeclasses import CodeClassRegistry
         registry = CodeClassRegistry([os.path.dirname(old.filename)], classes)
-    new = Builder(old.filename, old._overrides, model=tree, registry=registry,
-                  diagnostics=old.diagnostics.fresh(), limits=old.limits,
-                  user_data=getattr(old, "user_data", None)).build()
+    new = old.builder_class(old.filename, old._overrides, model=tree, registry=registry,
+                            diagnostics=old.diagnostics.fresh(), limits=old.limits,
+                            user_data=getattr(old, "user_data", None)).build()
     old.controller.stop()
     old.controller.join(30)
     take_over(old, new)

@@ -8,7 +8,7 @@ import threading
 import time
 from concurrent.futures import Future
 
-from ..hardware import priority
+from .. import priority
 from ..module import PRINT, WARNING
 from .timing import Waiter
 

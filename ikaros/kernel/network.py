@@ -15,12 +15,13 @@ from ..errors import ModelError, RunError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.values import ValueError_, format_number, value_text
 from ..language.writer import write_file
-from ..hardware import priority
-from ..hardware.priority import PriorityError, PriorityRequest
+from .. import priority
+from ..priority import PriorityError, PriorityRequest
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
                       WARNING, attribute_name, parameter_attribute)
 from . import compiled
 from .buffers import Run, alias_view
+from .carry import rebuild
 from .compiled.background import BackgroundPlan
 from .compiled.plan import CompiledRun, compiled_gather, compiled_plan
 from .control import PLAY, REALTIME, Controller
@@ -59,7 +60,8 @@ def _live_array(buf) -> np.ndarray:
 
 
 class Network:
-    """A runnable model. Build one with ``ikaros.load``.
+    """A runnable model: the kernel's network. ``ikaros.load`` gives an ``ikaros.Network``,
+    which adds what joins it to notebooks and recording.
 
     ``tick`` is the number of ticks completed; the first tick is tick 0.
     """
@@ -73,6 +75,7 @@ class Network:
         self._overrides = builder.overrides
         self.user_data = builder.user_data      # kept when the model is built again
         self.limits = builder.limits
+        self.builder_class = type(builder)      # what apply() builds the edited model with
         self.top = top
         self.clock = builder.clock
         self.schedule = order
@@ -583,42 +586,13 @@ class Network:
             for hook in self._controller.tick_hooks:
                 hook()
 
-    def run(self, ticks: int | None = None, real_time: bool = False,
-            record: list[str] | str | None = None, every: int = 1):
+    def run(self, ticks: int | None = None, real_time: bool = False):
         """Run ``ticks`` more ticks (as fast as possible, or on the tick_duration time base
         with ``real_time``). Without ``ticks``, run until the model's ``stop`` tick, end of
-        file or an error. Returns ``tick``, the ticks completed so far.
-
-        With ``record`` (glob patterns of output addresses; ``"*"`` for all) the outputs
-        that match are kept every ``every``-th tick and returned as an xarray Dataset
-        instead (see ``ikaros.experiments``)."""
+        file or an error. Returns ``tick``, the ticks completed so far. (``ikaros.Network``
+        adds recording and a progress bar in a notebook.)"""
         self._check_running()
-        if record is not None:
-            from ..experiments.memory import run_recorded
-            return run_recorded(self, ticks, record, every, real_time)
-        mode = REALTIME if real_time else PLAY
-        from ..notebook import in_notebook, run_with_progress
-        if ticks is not None and ticks > 1 and in_notebook():   # a progress bar in the cell
-            return run_with_progress(self, lambda: self.controller.run(mode, ticks), ticks)
-        return self.controller.run(mode, ticks)
-
-    def show(self, width: int | str = "100%", height: int = 600):
-        """Show the web UI's views of this network in a notebook cell (served on 127.0.0.1
-        by a background thread that stops with the kernel)."""
-        from ..notebook import show
-        return show(self, width, height)
-
-    def _repr_html_(self) -> str:
-        from ..notebook import network_html
-        return network_html(self)
-
-    def record(self, filename: str, only: list[str] | str | None = None, every: int = 1):
-        """Record outputs (all, or those matching the glob patterns ``only``) every
-        ``every``-th tick into the HDF5 file ``filename``, from the next tick until the
-        returned Recorder's ``close()`` or this network's ``close()``. A ``.mcap`` file
-        holds the outputs as ROS 2 messages (experiments/mcap_recording.py)."""
-        from ..experiments.recorders import open_recorder
-        return open_recorder(self, filename, only=only, every=every)
+        return self.controller.run(REALTIME if real_time else PLAY, ticks)
 
     @property
     def controller(self) -> Controller:
@@ -799,7 +773,6 @@ class Network:
         this one, as the editor's Apply does: modules that did not change keep their state
         and the run goes on from this tick; this network is closed. When ``model`` does not
         build, ModelError is raised and this network is unchanged. Returns the new network."""
-        from .carry import rebuild
         tree, classes = model.model_tree() if hasattr(model, "model_tree") else (model, None)
         return rebuild(self, tree, classes)
 

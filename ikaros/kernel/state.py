@@ -38,6 +38,8 @@ import os
 
 import numpy as np
 
+from ..version import __version__
+
 FORMAT = "ikaros-state-v1"
 SCALARS = {bool: "bool", int: "int", float: "float", str: "string"}
 
@@ -258,7 +260,7 @@ def save(net, filename: str, scope: str | None = None) -> dict:
     data = {"format": FORMAT, "tick": net.tick, "time": net.tick * net.clock.tick_duration,
             "saved_at_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(
                 timespec="seconds"),
-            "ikaros_version": _version(),
+            "ikaros_version": __version__,
             "model_filename": os.path.basename(net.filename or ""),
             "model_name": net.top.name, "scope": scope or "network",
             "item_count": len(items), "items": items}
@@ -376,7 +378,3 @@ def reset(net, scope: str | None = None) -> None:
         net.clock.tick = 0
         net.clock.time = 0.0
 
-
-def _version() -> str:
-    from .. import __version__
-    return __version__

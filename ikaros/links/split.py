@@ -27,13 +27,13 @@ from typing import Any
 import numpy as np
 
 from ..errors import RunError
+from ..hardware.link.endpoint import KEY_VARIABLE, check_key, link_key, split_address, tcp
+from ..hardware.link.peer import HEARTBEAT_MS, HEARTBEAT_TIMEOUT_MS, zmq_module
+from ..hardware.link.wire import LinkError, decode, encode
 from ..kernel.network import Network
 from ..kernel.scope import VariableError, substitute
 from ..kernel.tree import Group, find_component
 from ..module import EXCEPTION, FATAL_ERROR
-from .endpoint import KEY_VARIABLE, check_key, link_key, split_address, tcp
-from .peer import HEARTBEAT_MS, HEARTBEAT_TIMEOUT_MS, zmq_module
-from .wire import LinkError, decode, encode
 
 WORKER_PORT = 9200          # the default port of ``ikaros worker``
 START_SECONDS = 60.0        # for a worker to start, build the model and initialise
@@ -54,12 +54,14 @@ def process_groups(top: Group) -> dict[Group, str]:
     return groups
 
 
-def make_network(builder, top, order, runs, edges) -> Network:
-    """A Network, or a SplitNetwork when some group has a ``process`` attribute."""
+def make_network(builder, top, order, runs, edges, *, single: type | None = None,
+                 split: type | None = None) -> Network:
+    """A Network (of the class ``single``), or a SplitNetwork (of the class ``split``, a
+    subclass of it) when some group has a ``process`` attribute."""
     groups = process_groups(top)
     if not groups:
-        return Network(builder, top, order, runs, edges)
-    return SplitNetwork(builder, top, order, runs, edges, groups)
+        return (single or Network)(builder, top, order, runs, edges)
+    return (split or SplitNetwork)(builder, top, order, runs, edges, groups)
 
 
 def process_group(inst, groups) -> Group | None:
@@ -272,8 +274,8 @@ class WorkerLink:
 
     def _spawn(self) -> int:
         """Start ``ikaros worker`` on this machine for one session; returns its port."""
-        import ikaros
-        package_root = os.path.dirname(os.path.dirname(os.path.abspath(ikaros.__file__)))
+        package_root = os.path.dirname(os.path.dirname(os.path.dirname(
+            os.path.abspath(__file__))))     # the folder that holds ikaros/
         env = dict(os.environ, **{KEY_VARIABLE: self.key.decode()})
         env["PYTHONPATH"] = os.pathsep.join(
             p for p in (package_root, os.environ.get("PYTHONPATH")) if p)

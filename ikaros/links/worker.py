@@ -12,10 +12,10 @@ import os
 import sys
 
 from ..errors import ModelError, RunError
-from .endpoint import check_key, link_key, tcp
-from .peer import HEARTBEAT_MS, HEARTBEAT_TIMEOUT_MS, zmq_module
+from ..hardware.link.endpoint import check_key, link_key, tcp
+from ..hardware.link.peer import HEARTBEAT_MS, HEARTBEAT_TIMEOUT_MS, zmq_module
+from ..hardware.link.wire import LinkError, decode, encode
 from .split import POLL_SECONDS, WORKER_PORT, worker_network
-from .wire import LinkError, decode, encode
 
 
 def parser() -> argparse.ArgumentParser:

@@ -14,6 +14,8 @@ from ..errors import ModelError
 from ..language.node import Node
 from ..language.values import value_text
 from ..module import Module
+from ..network import build_tree
+from ..notebook import model_html
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -443,7 +445,6 @@ class Group(_Ports, Element):
               max_memory: int | str | None = None, **overrides: Any):
         """Build the network, as ``ikaros.load`` builds a file (same checks, same errors;
         an error names the line of the code that made the element)."""
-        from .. import build_tree
         tree, classes = self.model_tree()
         return build_tree(tree, self._top().filename, strict=strict, lenient=lenient,
                           quiet=quiet, max_memory=max_memory, classes=classes, **overrides)
@@ -455,7 +456,6 @@ class Group(_Ports, Element):
         return top.node.copy(), dict(top._classes)
 
     def _repr_html_(self) -> str:
-        from ..notebook import model_html
         return model_html(self)
 
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 from starlette.responses import Response
 
+from .requests import ApiError, Json, _query
 from .snapshot import plain
 
 
@@ -28,7 +29,6 @@ def _path(ui, request) -> str:
 
 def _read(ui, path: str):
     """The value at path: a buffer, else a parameter (raises ApiError 404)."""
-    from .server import ApiError
     net = ui.net
     try:
         return net.output(path)
@@ -42,7 +42,6 @@ def _read(ui, path: str):
 
 
 async def json_value(ui, request):
-    from .server import Json, _query
     _query(request)
     path = _path(ui, request)
     value = await ui._call(_read, ui, path)
@@ -51,7 +50,6 @@ async def json_value(ui, request):
 
 
 async def csv_value(ui, request):
-    from .server import ApiError, _query
     _query(request)
     path = _path(ui, request)
     value = await ui._call(_read, ui, path)

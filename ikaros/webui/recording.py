@@ -13,7 +13,7 @@ from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
 
 from ..experiments.recorders import open_recorder
-from .server import ApiError, Json, _body, _query
+from .requests import ApiError, Json, _body, _query
 from .snapshot import between_ticks
 
 

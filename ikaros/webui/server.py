@@ -26,16 +26,18 @@ from starlette.applications import Starlette
 from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException
 from starlette.requests import Request
-from starlette.responses import FileResponse, JSONResponse
+from starlette.responses import FileResponse
 from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from .. import access, limits
 from ..errors import ModelError, RunError
-from ..hardware import priority
-from ..kernel.control import PAUSE, STATES, STEP, STOP
+from .. import priority
+from ..kernel.builder import Builder
 from ..kernel.carry import take_over
+from ..kernel.classes import classes as find_classes
+from ..kernel.control import PAUSE, STATES, STEP, STOP
 from ..language.writer import write_file
 from ..module import Module
 from . import compat, editing, settings
@@ -45,9 +47,11 @@ from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
 from .history import MAX_POINTS
 from .rates import RUNNING, TickRate
-from .guards import (DEFAULT_MAX_BODY, MAX_JSON_DEPTH, BodyLimit, BodyTooLarge, Framing,
-                     json_depth, quiet_refused_websockets)
+from .recording import RecordButton, ReplayBar
+from .guards import (DEFAULT_MAX_BODY, BodyLimit, BodyTooLarge, Framing,
+                     quiet_refused_websockets)
 from .openapi import openapi
+from .requests import ApiError, Json, _body, _error, _loads, _query
 from .snapshot import (DEFAULT_BUDGET, DEFAULT_MAX_RATE, STATUS_INTERVAL, Client, Hub,
                        LogBook, between_ticks, kernel_thread_alive, plain)
 from .views import module_detail, network_json
@@ -66,36 +70,6 @@ class ImageFiles(StaticFiles):
         if not path.lower().endswith(FILE_TYPES):
             return "", None
         return super().lookup_path(path)
-
-
-class ApiError(Exception):
-    """A request that can not be served: answered with ``{"error": message}``."""
-
-    def __init__(self, status: int, message: str):
-        super().__init__(message)
-        self.status = status
-        self.message = message
-
-
-class Json(JSONResponse):
-    def render(self, content) -> bytes:
-        # a lone surrogate sent by a client and quoted back stays a JSON escape (\ud800)
-        return json.dumps(plain(content), ensure_ascii=False, allow_nan=False,
-                          separators=(",", ":")).encode("utf-8", "backslashreplace")
-
-
-def _error(status: int, message: str, headers: dict | None = None) -> Json:
-    return Json({"error": message}, status_code=status, headers=headers)
-
-
-def _reject_constant(name):
-    raise ValueError(f"{name} is not a JSON number")
-
-
-def _loads(text):
-    if json_depth(text) > MAX_JSON_DEPTH:       # before the decoder's recursion can overflow
-        raise ValueError(f"arrays and objects nest deeper than {MAX_JSON_DEPTH} levels")
-    return json.loads(text, parse_constant=_reject_constant)
 
 
 # --- access ------------------------------------------------------------------------------
@@ -203,43 +177,6 @@ def _same_origin(scope) -> bool:
 
 
 # --- validation helpers ------------------------------------------------------------------
-
-def _query(request: Request, allowed: tuple = ()) -> dict:
-    params = {}
-    for key, value in request.query_params.multi_items():
-        if key == "token":
-            continue
-        if key not in allowed:
-            raise ApiError(400, f'unknown query parameter "{key}"' +
-                           (f" (expected: {', '.join(allowed)})" if allowed else
-                            " (this endpoint takes none)"))
-        if key in params:
-            raise ApiError(400, f'query parameter "{key}" given more than once')
-        params[key] = value
-    return params
-
-
-async def _body(request: Request, required: tuple, optional: tuple = ()) -> dict:
-    _query(request)
-    ctype = request.headers.get("content-type", "").split(";")[0].strip().lower()
-    if ctype != "application/json":
-        raise ApiError(415, "the body must be JSON (Content-Type: application/json)")
-    raw = await request.body()
-    try:
-        body = _loads(raw.decode("utf-8"))
-    except (ValueError, UnicodeDecodeError) as e:
-        raise ApiError(400, f"the body is not valid JSON: {e}") from None
-    if not isinstance(body, dict):
-        raise ApiError(400, "the body must be a JSON object")
-    for key in body:
-        if key not in required and key not in optional:
-            raise ApiError(400, f'unknown field "{key}" (expected: '
-                                f'{", ".join(required + optional)})')
-    for key in required:
-        if key not in body:
-            raise ApiError(400, f'missing field "{key}"')
-    return body
-
 
 def _is_number(v) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
@@ -404,9 +341,8 @@ class WebUI:
     async def classes(self, request: Request):
         _query(request)
         if self._classes is None:
-            from .. import classes
             folders = [self.model_dir] if self.model_dir else []
-            found = await run_in_threadpool(classes, *folders)
+            found = await run_in_threadpool(find_classes, folders)
             self._classes = {name: desc.to_dict() for name, desc in found.items()}
         return Json(self._classes)
 
@@ -683,7 +619,6 @@ class WebUI:
         """Build a network in a thread of its own, confined to the editor's folders (unless
         it is the command line's model built again), within the build time limit
         (BuildTimeout)."""
-        from ..kernel.builder import Builder
         log_level = self.net.log_level
         diagnostics = self.net.diagnostics.fresh()
 
@@ -897,7 +832,6 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
         Mount("/static", app=StaticFiles(directory=ui.static_dir, check_dir=False),
               name="static"),
     ]
-    from .recording import RecordButton, ReplayBar
     routes[-2:-2] = [Route("/api/record", RecordButton(ui).endpoint, methods=["GET", "POST"]),
                      Route("/api/replay", ReplayBar(ui).endpoint, methods=["GET", "POST"])]
     if ui.model_dir:

@@ -12,6 +12,7 @@ import re
 from starlette.concurrency import run_in_threadpool
 
 from ..kernel import state as kernel_state
+from .requests import ApiError, Json, _body, _query
 from .snapshot import between_ticks
 
 # a plain name in the models folder: no separators, not hidden, ending in .state
@@ -26,7 +27,6 @@ def default_state_file(net) -> str:
 
 
 def _state_path(ui, name: str) -> str:
-    from .server import ApiError
     if not isinstance(name, str) or not STATE_FILE.match(name) or ".." in name:
         raise ApiError(403, f'"{str(name)[:80]}" is not a plain state file name in the models '
                             f'folder (letters, digits, spaces and _ - . & = + , ( ), ending in '
@@ -35,7 +35,6 @@ def _state_path(ui, name: str) -> str:
 
 
 def _scope(ui, scope) -> str | None:
-    from .server import ApiError
     if scope is None or scope == "":
         return None
     if not isinstance(scope, str):
@@ -48,7 +47,6 @@ def _scope(ui, scope) -> str | None:
 
 async def state(ui, request):
     """POST /api/state {"action": "save" | "load" | "reset", "filename", "scope"}."""
-    from .server import ApiError, Json, _body
     body = await _body(request, ("action",), ("filename", "scope"))
     action = body["action"]
     if action not in STATE_ACTIONS:
@@ -97,7 +95,6 @@ def _profile(net) -> dict:
 async def profiling(ui, request):
     """GET /api/profiling: per-module time, most time first. POST {"on": bool} switches
     the measuring on or off."""
-    from .server import ApiError, Json, _body, _query
     if request.method == "POST":
         body = await _body(request, ("on",))
         if not isinstance(body["on"], bool):
@@ -114,7 +111,6 @@ async def profiling(ui, request):
 
 async def startup(ui, request):
     """GET /api/startup: the build steps of the running network and their times."""
-    from .server import Json, _query
     _query(request)
     steps = ui.net.startup.as_list()
     return Json({"steps": steps, "total": sum(s["seconds"] for s in steps)})
@@ -122,7 +118,6 @@ async def startup(ui, request):
 
 async def quit_(ui, request):
     """POST /api/quit {}: stop the run (every module's stop is called) and end the server."""
-    from .server import ApiError, Json, _body
     await _body(request, ())
     if ui.on_quit is None:
         raise ApiError(409, "this server was not started by ikaros and does not quit")

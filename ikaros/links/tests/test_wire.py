@@ -2,8 +2,8 @@
 import numpy as np
 import pytest
 
-from ikaros.links.endpoint import check_key, is_loopback, split_address
-from ikaros.links.wire import BadMessage, LinkError, WrongKey, decode, encode
+from ikaros.hardware.link.endpoint import check_key, is_loopback, split_address
+from ikaros.hardware.link.wire import BadMessage, LinkError, WrongKey, decode, encode
 
 
 def test_arrays_of_any_shape_rank_and_type_round_trip_with_tick_and_time():

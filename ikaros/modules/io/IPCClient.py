@@ -55,15 +55,15 @@ class IPCClient(Module):
         self.set_output_shape("OUTPUT", shape)
 
     def init(self):
-        from ikaros.links.endpoint import link_key
-        from ikaros.links.peer import Subscriber
+        from ikaros.hardware.link.endpoint import link_key
+        from ikaros.hardware.link.peer import Subscriber
         self._link = Subscriber(self.host, int(self.port), link_key(self.key))
         self._reported: set[str] = set()
         self._was_connected = False
         self.TICK[0] = -1
 
     def tick(self):
-        from ikaros.links.wire import LinkError
+        from ikaros.hardware.link.wire import LinkError
         self._report_connection()
         try:
             message = self._link.receive(max(0.0, self.time_out_in_ms) / 1000,

@@ -21,8 +21,8 @@ class IPCServer(Module):
     INPUT = Input("the array to publish")
 
     def init(self):
-        from ikaros.links.endpoint import link_key
-        from ikaros.links.peer import Publisher
+        from ikaros.hardware.link.endpoint import link_key
+        from ikaros.hardware.link.peer import Publisher
         self._publisher = Publisher(self.bind, int(self.port), link_key(self.key))
 
     def tick(self):

@@ -5,8 +5,7 @@ import re
 
 import numpy as np
 
-from ikaros.errors import ModelError
-from ikaros.module import Module, Parameter, attribute_name
+from ikaros.module import ModelError, Module, Parameter, attribute_name
 
 from ._csvnames import csv_delimiter
 from ._tables import RowPlayer, read_csv, read_json

@@ -3,8 +3,7 @@ import threading
 
 import numpy as np
 
-from ikaros.hardware import priority
-from ikaros.module import Input, MissingDependency, Module, Output, Parameter
+from ikaros.module import Input, MissingDependency, device_thread, Module, Output, Parameter
 
 from ._files import resolve
 from ikaros.hardware.rgbd_recording import mm_to_raw, raw_to_mm
@@ -129,7 +128,7 @@ class DeviceReader:
         raise NotImplementedError
 
     def _run(self):
-        priority.device_thread()
+        device_thread()
         while not self._stop.is_set():
             frames = self.grab()
             if frames is None:

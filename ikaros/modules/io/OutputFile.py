@@ -6,8 +6,7 @@ import os
 
 import numpy as np
 
-from ikaros.errors import ModelError
-from ikaros.module import Input, Parameter, attribute_name
+from ikaros.module import Input, ModelError, Parameter, attribute_name
 
 from ._columns import ColumnWriter
 from ._csvnames import column_names

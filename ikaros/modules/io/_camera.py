@@ -8,8 +8,7 @@ from typing import Callable
 
 import numpy as np
 
-from ikaros.hardware import priority
-from ikaros.module import Module, Output, Parameter, require
+from ikaros.module import Module, Output, Parameter, device_thread, require
 
 
 class CaptureReader:
@@ -99,7 +98,7 @@ class FrameGrabber:
         return planes
 
     def _run(self):
-        priority.device_thread()
+        device_thread()
         try:
             self._grab()
         finally:

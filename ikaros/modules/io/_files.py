@@ -2,7 +2,7 @@
 import os
 import re
 
-from ikaros.errors import ModelError
+from ikaros.module import ModelError
 
 _COUNTER = re.compile(r"%(0?\d*)d|#+")
 

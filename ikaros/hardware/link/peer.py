@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import time
 
-from ..module import require
+from ...module import require
 from .endpoint import check_key, tcp
 from .wire import BadMessage, LinkError, WrongKey, decode, encode
 

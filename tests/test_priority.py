@@ -12,8 +12,8 @@ import threading
 import pytest
 
 import ikaros
-from ikaros.hardware import priority
-from ikaros.hardware.priority import PriorityError, PriorityRequest
+from ikaros import priority
+from ikaros.priority import PriorityError, PriorityRequest
 
 MODEL = """<group tick_duration="0.001"{settings}>
   <module class="Constant" name="C" data="1, 2"/>
