@@ -83,12 +83,14 @@ class Parameter:
     ``directory`` and the like are taken as file names in any case).
     ``fixed=True`` marks a parameter the module uses once, when it is built or started (a
     buffer's capacity, a file to read): a change while the model runs is refused.
+    ``default_v3`` is the default in a model file of dialect 3, for a parameter whose default
+    Ikaros 3 changed (Constant's data).
     """
 
     def __init__(self, default: Any = None, description: str = "", *, type: str | None = None,
                  options: list[str] | str | None = None, control: str | None = None,
                  name: str | None = None, range: tuple | None = None, finite: bool = True,
-                 file: bool = False, fixed: bool = False):
+                 file: bool = False, fixed: bool = False, default_v3: Any = None):
         if isinstance(options, str):
             options = [o.strip() for o in re.split(r"[,/]", options) if o.strip()]
         self.options = list(options or [])
@@ -103,6 +105,7 @@ class Parameter:
         self.finite = finite
         self.file = file
         self.fixed = fixed
+        self.default_v3 = default_v3
 
     def __set_name__(self, owner, name):
         self.name = self.name or name
@@ -110,7 +113,7 @@ class Parameter:
     def spec(self) -> ParameterSpec:
         return ParameterSpec(self.name, self.type, self.default, self.description,
                              self.options, self.control, self.range, self.finite, self.file,
-                             fixed=self.fixed)
+                             fixed=self.fixed, default_v3=self.default_v3)
 
 
 class Input:

@@ -16,27 +16,37 @@ class FunctionGenerator(Module):
     wrote only the first); the output is 0 in init. ``type`` may be given by its label
     (``type="triangle"``, as Ikaros 3 files do) or by its index (``type="1"``, the Ikaros 2
     list value). A ``basetime`` below 1 gives f = 0 and a
-    warning. An inverted ramp comes from offset = 1 and amplitude = -1."""
+    warning. An inverted ramp comes from offset = 1 and amplitude = -1.
+
+    In an Ikaros 3 file (dialect 3) the function is of the time in seconds (``tick *
+    tick_duration``, tick counted as Ikaros 3 counts it) instead of the tick, ticksquare
+    counts whole seconds (the time truncated to an integer), the phase within a period is
+    taken with trunc as Ikaros 3 does (a negative p mirrors the wave), and the defaults are
+    Ikaros 3's (frequency 440, basetime 100, tickduty 50). ``sine`` is Ikaros 3's label for
+    ``sin``."""
 
     size = Parameter(1, "number of elements of the output (all get the same value)",
                      type="int", range=(1, None))
-    type = Parameter("sin", "the function", options="sin/triangle/ramp/square/ticksquare")
+    type = Parameter("sin", "the function", options="sin/triangle/ramp/square/ticksquare/sine")
     offset = Parameter(0.0, "a constant added to the output")
     amplitude = Parameter(1.0, "the factor f is multiplied by")
     frequency = Parameter(0.15707963267949, "radians per tick; the period is 2 pi / frequency "
-                          "ticks (the default gives 40 ticks)")
+                          "ticks (the default gives 40 ticks); Ikaros 3: radians per second",
+                          default_v3=440.0)
     shift = Parameter(0.0, "a shift of the time, in ticks, added before multiplying by the "
                       "frequency")
     duty = Parameter(0.5, "the fraction of each period the square wave is 1", range=(0, 1))
-    basetime = Parameter(2, "the period of ticksquare, in ticks", type="int")
-    tickduty = Parameter(1, "the number of ticks of each period ticksquare is 1", type="int")
+    basetime = Parameter(2, "the period of ticksquare, in ticks (Ikaros 3: seconds)",
+                         type="int", default_v3=100)
+    tickduty = Parameter(1, "the number of ticks of each period ticksquare is 1 (Ikaros 3: "
+                         "seconds)", type="int", default_v3=50)
     OUTPUT = Output("the value of the function, in every element", size_param="size")
 
     def init(self):
         self._warned = False
         self.OUTPUT.fill(0)
 
-    def _value(self, t):
+    def _value(self, t, fraction):
         kind = self.type
         if kind == "ticksquare":
             if self.basetime < 1:
@@ -47,10 +57,10 @@ class FunctionGenerator(Module):
                 return 0.0
             return 1.0 if t % self.basetime < self.tickduty else 0.0
         p = self.frequency * (t + self.shift)
-        if kind == "sin":
+        if kind in ("sin", "sine"):
             return math.sin(p)
         phase = p / (2 * math.pi)
-        phase -= math.floor(phase)          # 0 <= phase < 1
+        phase -= fraction(phase)            # Ikaros 2 here: 0 <= phase < 1
         if kind == "triangle":
             v = 2 * phase
             return v if v < 1 else 2 - v
@@ -59,4 +69,9 @@ class FunctionGenerator(Module):
         return 1.0 if phase < self.duty else 0.0      # square
 
     def tick(self):
-        self.OUTPUT.fill(self.offset + self.amplitude * self._value(self.clock.tick))
+        if self.dialect == "3":
+            t = self.clock.time
+            value = self._value(int(t) if self.type == "ticksquare" else t, math.trunc)
+        else:
+            value = self._value(self.clock.tick, math.floor)
+        self.OUTPUT.fill(self.offset + self.amplitude * value)
