@@ -191,3 +191,55 @@ def test_v3_input_of_wrong_size_is_an_error(tmp_path):
     with pytest.raises(ModelError, match="GATED has 3 elements"):
         run_v3(tmp_path, {"GATED": [[1, 1, 1]]})
 
+
+
+def reference_v3(inputs, setpoint, dt, Kb=0.0, Kp=0.1, Ki=0.0, Kd=0.0, Fs=0.0, Fm=0.0,
+                 Fp=0.0, Fi=0.0, Fd=0.0, Fc=0.0, limit=0.0, mode="measurement",
+                 Cmin=-1000.0, Cmax=1000.0):
+    """The Ikaros 3 controller of one element, written from docs of the class (rate filters,
+    integral and derivative per second, rate-limited output)."""
+    def w(rate):
+        return 1.0 if rate == 0 else 1 - np.exp(-rate * dt)
+    fs = fm = p = i = d = integral = out = previous = 0.0
+    outputs = []
+    for x in inputs:
+        fs += w(Fs) * (setpoint - fs)
+        fm += w(Fm) * (x - fm)
+        delta = fs - fm
+        p += w(Fp) * (delta - p)
+        i += w(Fi) * (delta - i)
+        signal = delta if mode == "error" else -fm
+        d += w(Fd) * ((signal - previous) / dt - d)
+        previous = signal
+        integral += i * dt
+        c = Kb + Kp * p + Ki * integral + Kd * d
+        if not Cmin <= c <= Cmax:
+            integral -= i * dt
+            c = min(max(c, Cmin), Cmax)
+        new = out + w(Fc) * (c - out)
+        out = new if limit == 0 else min(max(new, out - limit * dt), out + limit * dt)
+        outputs.append(out)
+    return outputs
+
+
+def test_ikaros_3_rates_error_derivative_and_rate_limit(tmp_path):
+    inputs = [0.0, 0.5, 1.0, 1.2, 1.1, 0.9, 1.0, 1.0]
+    (tmp_path / "x.txt").write_text("X/1\n" + "".join(f"{v}\n" for v in inputs))
+    gains = dict(Kp=1.2, Ki=0.8, Kd=0.1, Fs=2, Fm=5, Fp=3, Fi=1, Fd=4, Fc=6, Cmax=1.5)
+    text = " ".join(f'{k}="{v}"' for k, v in gains.items())
+    net = load(tmp_path, '<module class="InputFile" name="F" filename="x.txt"/>'
+                         '<module class="Constant" name="S" data="1"/>'
+                         f'<module class="PIDController" name="P" {text} '
+                         'output_rate_limit="4" derivative_mode="error"/>'
+                         '<connection source="F.X" target="P.INPUT" delay="0"/>'
+                         '<connection source="S.OUTPUT" target="P.SETPOINT" delay="0"/>',
+               dialect="3", tick_duration="0.05")
+    try:
+        got = []
+        for _ in inputs:
+            net.step()
+            got.append(float(net.output("P.OUTPUT")[0]))
+    finally:
+        net.close()
+    expected = reference_v3(inputs, 1.0, 0.05, limit=4, mode="error", **gains)
+    np.testing.assert_allclose(got, expected, rtol=1e-5, atol=1e-6)
