@@ -316,18 +316,21 @@ class Module:
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         params, inputs, outputs, states = {}, {}, {}, {}
-        for klass in reversed(cls.__mro__):
-            for value in vars(klass).values():
+        renamed = set()     # reserved parameter names held in NAME_ (``init_ = Parameter(
+        for klass in reversed(cls.__mro__):     # name="init")``), as for .ikc classes
+            for key, value in vars(klass).items():
                 if isinstance(value, Parameter):
                     params[value.name] = value.spec()
+                    if key == parameter_attribute(value.name) != value.name:
+                        renamed.add(value.name)
                 elif isinstance(value, Input):
                     inputs[value.spec().name] = value.spec()
                 elif isinstance(value, Output):
                     outputs[value.spec().name] = value.spec()
                 elif isinstance(value, State):
                     states[value.spec().name] = value.spec()
-        for name in list(params) + list(states) + [_python_name(n) for n in
-                                                   list(inputs) + list(outputs)]:
+        for name in [p for p in params if p not in renamed] + list(states) + \
+                [_python_name(n) for n in list(inputs) + list(outputs)]:
             if name in RESERVED:
                 raise TypeError(f"{cls.__name__}: '{name}' is a reserved name in the module API")
         state = getattr(cls, "state", ())
