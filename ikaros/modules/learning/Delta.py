@@ -19,8 +19,8 @@ class Delta(Module):
     they are kept so models that set them load unchanged. ``output="error"`` (this
     project's addition) outputs the prediction error sum(US) - CR instead of the
     prediction: the US signal once the learned response has inhibited it, as in the
-    cerebellum. The command ``reset`` sets the weights to zero; the weights are state, kept by save, load and reset of the
-    state (as ``weights``)."""
+    cerebellum. The command ``reset`` sets the weights to zero; the weights are state, kept
+    by save, load and reset of the state (as ``weights``)."""
 
     state = ("weights",)
 

@@ -5,6 +5,7 @@ from ._functions import ElementFunction
 
 
 class Negate(ElementFunction):
-    """Outputs minus every element of the input. The output has the shape of the input. New in Ikaros 3."""
+    """Outputs minus every element of the input. The output has the shape of the input. New in
+    Ikaros 3."""
 
     function = staticmethod(np.negative)
