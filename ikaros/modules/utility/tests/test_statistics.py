@@ -71,7 +71,7 @@ def test_descriptive_statistics_and_box_plot(tmp_path):
 def test_anova_welch_and_holm(tmp_path):
     out = _run(tmp_path)
     x = np.array(ROWS).T
-    n, G, N = 8, 3, 24
+    n = 8
     grand = x.mean()
     ssb = sum(n * (g.mean() - grand) ** 2 for g in x)
     ssw = sum(((g - g.mean()) ** 2).sum() for g in x)
