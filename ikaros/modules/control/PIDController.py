@@ -17,9 +17,12 @@ class PIDController(Module):
     tick). The control value ``Kb + Kp·P + Ki·INTEGRAL + Kd·D`` is clipped to
     ``Cmin``..``Cmax``; while it is clipped the error of that tick is not integrated
     (anti-windup). OUTPUT is the clipped value smoothed with ``Fc``. Gains are per tick,
-    not per second. Unlike the Ikaros 2 class, whose derivative term was the change of the
-    filtered input with a sign that pushed the output the wrong way and left ``Fd`` unused,
-    the derivative here is that of the D-filtered error.
+    not per second. The derivative term is chosen by ``derivative_mode``: ``input`` (the
+    default in an Ikaros 2 file, as the Ikaros 2 class computes it) is the change of the
+    filtered input since the previous tick, a sign that pushes the output the wrong way,
+    with ``Fd`` unused; ``measurement`` is minus that change (the corrected sign; Ikaros 3's
+    default); ``error`` (this project's) is the change of the D-filtered error. The
+    derivative is 0 on the first tick.
 
     The Ikaros 3 interface adds three optional inputs (each of one element, for all
     controllers, or of the size of INPUT); left unconnected, the controller works as above
@@ -61,9 +64,11 @@ class PIDController(Module):
                    "Ikaros 3: a rate)", range=(0, None))
     output_rate_limit = Parameter(0.0, "Ikaros 3: the largest change of OUTPUT per second "
                                   "(0: no limit)", range=(0, None))
-    derivative_mode = Parameter("measurement", "Ikaros 3: the derivative of minus the "
-                                "filtered input (measurement) or of DELTA (error)",
-                                options="measurement/error")
+    derivative_mode = Parameter("input", "what the derivative term differentiates: the "
+                                "filtered input (input, Ikaros 2), minus it (measurement, "
+                                "Ikaros 3) or the error (error: the D-filtered error; in an "
+                                "Ikaros 3 file DELTA)", options="input/measurement/error",
+                                default_v3="measurement")
     Cmin = Parameter(-1000.0, "the smallest control value; below it the output is clipped "
                      "and integration stops")
     Cmax = Parameter(1000.0, "the largest control value; above it the output is clipped "
@@ -166,7 +171,9 @@ class PIDController(Module):
         self._smooth(self.FILTERED_ERROR_P, self.DELTA, self.Fp)
         self._smooth(self.FILTERED_ERROR_I, self.DELTA, self.Fi)
         self._smooth(self.FILTERED_ERROR_D, self.DELTA, self.Fd)
-        np.copyto(self._last_d, self.FILTERED_ERROR_D, where=self._fresh)
+        mode = self.derivative_mode
+        signal = self.FILTERED_ERROR_D if mode == "error" else self.FILTERED_INPUT
+        np.copyto(self._last_d, signal, where=self._fresh)
         self._fresh[...] = False
         self.INTEGRAL += self.FILTERED_ERROR_I
 
@@ -175,10 +182,10 @@ class PIDController(Module):
         c += self.Kb
         np.multiply(self.INTEGRAL, self.Ki, out=self._work)
         c += self._work
-        np.subtract(self.FILTERED_ERROR_D, self._last_d, out=self._work)
-        self._work *= self.Kd
+        np.subtract(signal, self._last_d, out=self._work)
+        self._work *= -self.Kd if mode == "measurement" else self.Kd
         c += self._work
-        self._last_d[...] = self.FILTERED_ERROR_D
+        self._last_d[...] = signal
 
         lo, hi = min(self.Cmin, self.Cmax), max(self.Cmin, self.Cmax)
         np.logical_or(c > hi, c < lo, out=self._clipped)

@@ -46,7 +46,9 @@ class PID3:
         if m.derivative_mode == "error":
             signal, sign = m.DELTA, 1.0
         else:                                   # measurement: no kick when the set point moves
-            signal, sign = m.FILTERED_INPUT, -1.0
+            signal, sign = m.FILTERED_INPUT, -1.0   # (input, Ikaros 2's sign, is +1)
+        if m.derivative_mode == "input":
+            sign = 1.0
         raw = np.float32(sign / dt) * (signal - self.previous)
         self.previous[...] = signal
         smooth(m.FILTERED_ERROR_D, raw, smoothing(m.Fd, dt))

@@ -54,7 +54,7 @@ ROWS = [[0, 0], [0.5, -1], [1, -1.5], [2, 0], [1.5, -3], [0, 0], [1, 1], [-1, 2]
 
 def run_and_compare(tmp_path, params, setpoint=(1, -2), rows=ROWS):
     write_inputs(tmp_path, rows)
-    attrs = " ".join(f'{k}="{v}"' for k, v in params.items())
+    attrs = " ".join(f'{k}="{v}"' for k, v in params.items()) + ' derivative_mode="error"'
     net = load(tmp_path, body(attrs, " ".join(map(str, setpoint))))
     try:
         expected = reference(rows, [setpoint] * len(rows), **params)
@@ -109,7 +109,7 @@ def test_clipping_stops_integration(tmp_path):
 def test_derivative_is_zero_on_the_first_tick(tmp_path):
     rows = [[0, 0], [0.5, 0], [0.5, 0]]
     write_inputs(tmp_path, rows)
-    net = load(tmp_path, body('Kp="0" Kd="2"'))
+    net = load(tmp_path, body('Kp="0" Kd="2" derivative_mode="error"'))
     try:
         net.step()
         assert np.allclose(net.output("P.OUTPUT"), [0, 0])
@@ -243,3 +243,25 @@ def test_ikaros_3_rates_error_derivative_and_rate_limit(tmp_path):
         net.close()
     expected = reference_v3(inputs, 1.0, 0.05, limit=4, mode="error", **gains)
     np.testing.assert_allclose(got, expected, rtol=1e-5, atol=1e-6)
+
+
+@pytest.mark.parametrize("mode, sign", [("input", 1), ("measurement", -1)])
+def test_ikaros_2_derivative_of_the_filtered_input(tmp_path, mode, sign):
+    # the default (input) is Ikaros 2's: Kd times the change of the filtered input, which
+    # pushes the output the wrong way; measurement corrects the sign. Fd is not used.
+    rows = [[0, 0], [0.5, 0], [1.5, -1], [1.5, -1]]
+    write_inputs(tmp_path, rows)
+    attrs = 'Kp="0" Kd="2" Fm="0.5" Fd="0.9"' + ("" if mode == "input" else
+                                                  f' derivative_mode="{mode}"')
+    net = load(tmp_path, body(attrs, data=""))
+    try:
+        fm, last, got, expected = np.zeros(2), None, [], []
+        for row in rows:
+            fm = 0.5 * fm + 0.5 * np.array(row)
+            expected.append(sign * 2 * (fm - (fm if last is None else last)))
+            last = fm.copy()
+            net.step()
+            got.append(net.output("P.OUTPUT").copy())
+        assert np.allclose(got, expected, atol=1e-6)
+    finally:
+        net.close()
