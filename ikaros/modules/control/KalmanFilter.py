@@ -7,22 +7,23 @@ from ._kalman3 import Kalman3
 
 
 class KalmanFilter(Module):
-    """A standard linear Kalman filter for the process x(t+1) = A·x(t) + B·u(t) observed
-    as z = H·x. Every tick it predicts x' = A·x + B·u (u is INPUT; no term when INPUT is
-    not connected) and P' = A·P·Aᵀ + Q, then corrects with the OBSERVATION z: INNOVATION
-    y = z − H·x', S = H·P'·Hᵀ + R, KALMAN_GAIN K = P'·Hᵀ·S⁻¹, STATE x = x' + K·y and
-    P = (I − K·H)·P'. Q is ``process_noise`` times the identity and R is
-    ``observation_noise`` times the identity; the state starts at 0 with P = I. A is
-    ``state_size`` × ``state_size``, B is ``state_size`` × (elements of INPUT) and H is
-    ``observation_size`` × ``state_size``; a matrix given as one row of the right number of
-    elements is read row by row. An empty A or H is the identity (H: ones on its diagonal)
-    and an empty B is zero, where the Ikaros 2 class used all-zero matrices, which keep the
-    state at 0. OBSERVATION must have ``observation_size`` elements (the Ikaros 2 class read
-    past it otherwise). If S cannot be inverted the correction is skipped for that tick and
-    a warning is given once.
+    """A standard linear Kalman filter for the process x(t+1) = A·x(t) + B·u(t) observed as z =
+    H·x. Every tick it predicts x' = A·x + B·u (u is INPUT; no term when INPUT is not connected)
+    and P' = A·P·Aᵀ + Q, then corrects with the OBSERVATION z: INNOVATION y = z − H·x', S =
+    H·P'·Hᵀ + R, KALMAN_GAIN K = P'·Hᵀ·S⁻¹, STATE x = x' + K·y and P = (I − K·H)·P'. Q is
+    ``process_noise`` times the identity and R is ``observation_noise`` times the identity; the
+    state starts at 0 with P = I. A is ``state_size`` × ``state_size``, B is ``state_size`` ×
+    (elements of INPUT) and H is ``observation_size`` × ``state_size``; a matrix given as one
+    row of the right number of elements is read row by row. An empty B is zero, and so are an
+    empty A and H, as in Ikaros 2 and 3, which keeps the state at 0;
+    ``default_matrices="identity"`` (this project's) makes an empty A the identity and an empty
+    H ones on its diagonal. OBSERVATION must have ``observation_size`` elements (the Ikaros 2
+    class read past it otherwise). If S cannot be inverted the correction is skipped for that
+    tick and a warning is given once.
 
-    The Ikaros 3 interface adds four optional inputs; left unconnected, the filter works as
-    above (the Ikaros 2 interface). RESET: on a tick when its first element is above 0, the
+    In an Ikaros 2 file four optional inputs are added (this project's, after an early
+    reading of Ikaros 3; an Ikaros 3 file gets Ikaros 3's own interface, below); left
+    unconnected, the filter works as above. RESET: on a tick when its first element is above 0, the
     state restarts (x = 0, P = I) before that tick. GATED: on a tick when its first element
     is 0 or below, the filter does nothing (state and outputs are held). INPUT_VALID: on a
     tick when its first element is 0 or below, the control input is left out of the
@@ -44,12 +45,15 @@ class KalmanFilter(Module):
     previous state. Ikaros 3 rejects a matrix of the wrong shape; here one with the right
     number of elements is read row by row (so ``A="1"`` is the 1 × 1 matrix 1)."""
 
-    A = Parameter(None, "the state transition matrix, state_size × state_size; empty: the "
-                  "identity", type="matrix")
+    A = Parameter(None, "the state transition matrix, state_size × state_size; empty: zero "
+                  "(see default_matrices)", type="matrix")
     B = Parameter(None, "the control input matrix, state_size × (elements of INPUT); empty: "
                   "zero", type="matrix")
-    H = Parameter(None, "the observation matrix, observation_size × state_size; empty: ones "
-                  "on the diagonal", type="matrix")
+    H = Parameter(None, "the observation matrix, observation_size × state_size; empty: zero "
+                  "(see default_matrices)", type="matrix")
+    default_matrices = Parameter("zero", "what an empty (or, in an Ikaros 3 file, 0) A and H "
+                                 "are: zero (the original) or identity",
+                                 options="zero/identity")
     state_size = Parameter(1, "number of elements of the state", type="int", range=(1, None))
     observation_size = Parameter(1, "number of elements of the observation", type="int",
                                  range=(1, None))
@@ -144,9 +148,10 @@ class KalmanFilter(Module):
 
     def _matrices(self):
         n, m, u = self.state_size, self.observation_size, self._u
-        return (self._matrix("A", n, n, np.eye(n)),
+        identity = self.default_matrices == "identity"
+        return (self._matrix("A", n, n, np.eye(n) if identity else np.zeros((n, n))),
                 self._matrix("B", n, u, np.zeros((n, u))) if u else None,
-                self._matrix("H", m, n, np.eye(m, n)))
+                self._matrix("H", m, n, np.eye(m, n) if identity else np.zeros((m, n))))
 
     @staticmethod
     def _on(x) -> bool:

@@ -42,6 +42,9 @@ class Kalman3:
     def matrices(self):
         n, k, m = self.n, self.k, self.module_rates()
         A, H = self.matrix("A", (n, n)), self.matrix("H", (k, n))
+        if self.m.default_matrices == "identity":
+            A = A if A.any() else np.eye(n)
+            H = H if H.any() else np.eye(k, n)
         B = self.matrix("B", (n, self.u)) if self.u else None
         Q, R = self.matrix("Q", (n, n)), self.matrix("R", (k, k))
         if not Q.any():

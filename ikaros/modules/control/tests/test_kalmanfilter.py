@@ -33,7 +33,7 @@ def data_file(tmp_path, columns, rows):
 def test_scalar_defaults_hand_worked(tmp_path):
     data_file(tmp_path, [("Z", 1)], [[3], [3]])
     net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
-                         '<module class="KalmanFilter" name="K"/>\n'
+                         '<module class="KalmanFilter" name="K" default_matrices="identity"/>\n'
                          '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
     try:
         assert net.output("K.STATE").shape == (1,)
@@ -102,7 +102,7 @@ def test_singular_innovation_covariance_keeps_the_prediction(tmp_path):
     data_file(tmp_path, [("Z", 1)], [[1], [2], [3]])
     net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
                          '<module class="Constant" name="U" data="1"/>\n'
-                         '<module class="KalmanFilter" name="K" H="0" B="1" '
+                         '<module class="KalmanFilter" name="K" H="0" B="1" A="1" '
                          'observation_noise="0"/>\n'
                          '<connection source="U.OUTPUT" target="K.INPUT" delay="0"/>\n'
                          '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
@@ -142,7 +142,7 @@ def run_v3(tmp_path, columns, rows, attrs="", links=()):
     """Steps through the rows; returns (STATE, INNOVATION, KALMAN_GAIN) after each tick."""
     data_file(tmp_path, columns, rows)
     body = ('<module class="InputFile" name="D" filename="d.txt"/>\n'
-            f'<module class="KalmanFilter" name="K" {attrs}/>\n'
+            f'<module class="KalmanFilter" name="K" default_matrices="identity" {attrs}/>\n'
             '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>\n' +
             "".join(f'<connection source="D.{a}" target="K.{b}" delay="0"/>\n'
                     for a, b in links))
@@ -266,5 +266,20 @@ def test_v3_default_matrices_keep_the_state_at_zero(tmp_path):
         net.step()
         assert net.output("K.STATE")[0] == 0 and net.output("K.KALMAN_GAIN")[0, 0] == 0
         assert net.output("K.NORMALIZED_INNOVATION")[0] == 4
+    finally:
+        net.close()
+
+
+def test_empty_a_and_h_are_zero_as_in_the_original(tmp_path):
+    # Ikaros 2 and 3 use all-zero matrices: the state stays 0 and the gain is 0
+    data_file(tmp_path, [("Z", 1)], [[3], [3]])
+    net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                         '<module class="KalmanFilter" name="K"/>\n'
+                         '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
+    try:
+        for _ in range(2):
+            net.step()
+            assert net.output("K.STATE")[0] == 0 and net.output("K.KALMAN_GAIN")[0, 0] == 0
+            assert net.output("K.INNOVATION")[0] == 3
     finally:
         net.close()
