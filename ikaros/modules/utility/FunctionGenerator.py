@@ -5,26 +5,27 @@ from ikaros.module import Module, Output, Parameter
 
 
 class FunctionGenerator(Module):
-    """Outputs a function of the tick t (0 on the first tick): offset + amplitude * f(p) with
-    p = frequency * (t + shift), where f is ``sin`` (sin p), ``triangle`` (rises from 0 to 1
-    and falls back to 0 over each period of 2 pi), ``ramp`` (rises from 0 towards 1 over each
+    """Outputs a function of the tick t (0 on the first tick): offset + amplitude * f(p) with p
+    = frequency * (t + shift), where f is ``sin`` (sin p), ``triangle`` (rises from 0 to 1 and
+    falls back to 0 over each period of 2 pi), ``ramp`` (rises from 0 towards 1 over each
     period, then drops to 0), ``square`` (1 for the first ``duty`` fraction of each period,
     otherwise 0) or ``ticksquare`` (1 on the first ``tickduty`` ticks of every ``basetime``
-    ticks, otherwise 0; it ignores frequency and shift). The phase within a period is taken
-    with floor, so a negative t + shift continues the same periodic wave (Ikaros 2 truncated
-    towards zero, which mirrored it). Every element of the output has the value (Ikaros 2
-    wrote only the first); the output is 0 in init. ``type`` may be given by its label
-    (``type="triangle"``, as Ikaros 3 files do) or by its index (``type="1"``, the Ikaros 2
-    list value). A ``basetime`` below 1 gives f = 0 and a
-    warning. An inverted ramp comes from offset = 1 and amplitude = -1.
+    ticks, otherwise 0; it ignores frequency and shift). The phase within a period is taken with
+    trunc as Ikaros 2 and 3 do, so a negative t + shift mirrors the wave; ``fraction="floor"``
+    (this project's) continues the same periodic wave instead. Every element of the output has
+    the value (Ikaros 2 wrote only the first); the output is 0 in init. ``type`` may be given by
+    its label (``type="triangle"``, as Ikaros 3 files do) or by its index (``type="1"``, the
+    Ikaros 2 list value). A ``basetime`` below 1 gives f = 0 and a warning. An inverted ramp
+    comes from offset = 1 and amplitude = -1.
 
     In an Ikaros 3 file (dialect 3) the function is of the time in seconds (``tick *
     tick_duration``, tick counted as Ikaros 3 counts it) instead of the tick, ticksquare
-    counts whole seconds (the time truncated to an integer), the phase within a period is
-    taken with trunc as Ikaros 3 does (a negative p mirrors the wave), and the defaults are
-    Ikaros 3's (frequency 440, basetime 100, tickduty 50). ``sine`` is Ikaros 3's label for
+    counts whole seconds (the time truncated to an integer), and the defaults are Ikaros 3's (frequency 440, basetime 100, tickduty 50). ``sine`` is Ikaros 3's label for
     ``sin``."""
 
+    fraction = Parameter("trunc", "how the phase within a period is taken: trunc (the original; "
+                      "a negative time mirrors the wave) or floor (the wave continues)",
+                      options="trunc/floor")
     size = Parameter(1, "number of elements of the output (all get the same value)",
                      type="int", range=(1, None))
     type = Parameter("sin", "the function", options="sin/triangle/ramp/square/ticksquare/sine")
@@ -60,7 +61,7 @@ class FunctionGenerator(Module):
         if kind in ("sin", "sine"):
             return math.sin(p)
         phase = p / (2 * math.pi)
-        phase -= fraction(phase)            # Ikaros 2 here: 0 <= phase < 1
+        phase -= fraction(phase)            # floor: 0 <= phase < 1
         if kind == "triangle":
             v = 2 * phase
             return v if v < 1 else 2 - v
@@ -71,7 +72,8 @@ class FunctionGenerator(Module):
     def tick(self):
         if self.dialect == "3":
             t = self.clock.time
-            value = self._value(int(t) if self.type == "ticksquare" else t, math.trunc)
+            t = int(t) if self.type == "ticksquare" else t
         else:
-            value = self._value(self.clock.tick, math.floor)
+            t = self.clock.tick
+        value = self._value(t, math.floor if self.fraction == "floor" else math.trunc)
         self.OUTPUT.fill(self.offset + self.amplitude * value)

@@ -47,9 +47,16 @@ def test_triangle_ramp_square_hand_worked(tmp_path):
     assert np.array_equal(sq, [1, 1, 1, -1] * 2)
 
 
-def test_negative_shift_continues_the_wave(tmp_path):
+def test_negative_shift_mirrors_the_wave_as_in_the_original(tmp_path):
     f = math.pi / 2
     ramp, _ = run(tmp_path, f'type="ramp" frequency="{f!r}" shift="-3"', ticks=4)
+    assert np.allclose(ramp, [-0.75, -0.5, -0.25, 0], atol=1e-6)   # trunc of (t - 3)/4
+
+
+def test_fraction_floor_continues_the_wave(tmp_path):
+    f = math.pi / 2
+    ramp, _ = run(tmp_path, f'type="ramp" frequency="{f!r}" shift="-3" fraction="floor"',
+                  ticks=4)
     assert np.allclose(ramp, [0.25, 0.5, 0.75, 0], atol=1e-6)      # phase of t - 3
 
 
