@@ -12,8 +12,9 @@ class FunctionGenerator(Module):
     otherwise 0) or ``ticksquare`` (1 on the first ``tickduty`` ticks of every ``basetime``
     ticks, otherwise 0; it ignores frequency and shift). The phase within a period is taken with
     trunc as Ikaros 2 and 3 do, so a negative t + shift mirrors the wave; ``fraction="floor"``
-    (this project's) continues the same periodic wave instead. Every element of the output has
-    the value (Ikaros 2 wrote only the first); the output is 0 in init. ``type`` may be given by
+    (this project's) continues the same periodic wave instead. As in Ikaros 2 only the first
+    element of the output gets the value and the others stay 0; ``elements="all"`` (this
+    project's) writes it to every element. The output is 0 in init. ``type`` may be given by
     its label (``type="triangle"``, as Ikaros 3 files do) or by its index (``type="1"``, the
     Ikaros 2 list value). A ``basetime`` below 1 gives f = 0 and a warning. An inverted ramp
     comes from offset = 1 and amplitude = -1.
@@ -26,7 +27,9 @@ class FunctionGenerator(Module):
     fraction = Parameter("trunc", "how the phase within a period is taken: trunc (the original; "
                       "a negative time mirrors the wave) or floor (the wave continues)",
                       options="trunc/floor")
-    size = Parameter(1, "number of elements of the output (all get the same value)",
+    elements = Parameter("first", "which elements of the output get the value: first (the "
+                         "original) or all", options="first/all")
+    size = Parameter(1, "number of elements of the output",
                      type="int", range=(1, None))
     type = Parameter("sin", "the function", options="sin/triangle/ramp/square/ticksquare/sine")
     offset = Parameter(0.0, "a constant added to the output")
@@ -76,4 +79,8 @@ class FunctionGenerator(Module):
         else:
             t = self.clock.tick
         value = self._value(t, math.floor if self.fraction == "floor" else math.trunc)
-        self.OUTPUT.fill(self.offset + self.amplitude * value)
+        value = self.offset + self.amplitude * value
+        if self.elements == "all":
+            self.OUTPUT.fill(value)
+        else:
+            self.OUTPUT.flat[0] = value
