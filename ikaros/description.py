@@ -43,6 +43,7 @@ class ParameterSpec:
     file: bool = False           # whether the value names a file or folder
     shape: str | None = None     # a matrix's fixed shape expression (Ikaros 3 ``shape``)
     fixed: bool = False          # whether a change while the model runs is refused
+    default_v3: Any = None       # the default in a file of dialect 3, where Ikaros 3 changed it
 
     def to_dict(self) -> dict:
         d = {"name": self.name, "type": self.type, "default": _plain(self.default),
@@ -61,6 +62,8 @@ class ParameterSpec:
             d["shape"] = self.shape
         if self.fixed:
             d["fixed"] = True
+        if self.default_v3 is not None:
+            d["default_v3"] = _plain(self.default_v3)
         return d
 
 

@@ -105,7 +105,10 @@ def _default(value) -> str:
 def _parameter_row(p: ParameterSpec) -> str:
     options = ", ".join(_code(o) for o in p.options)
     fixed = " (fixed while the model runs)" if p.fixed else ""
-    return (f"| {_code(p.name)} | {_cell(p.type)} | {_default(p.default)} | {options} | "
+    default = _default(p.default)
+    if p.default_v3 is not None:
+        default += f" (Ikaros 3: {_default(p.default_v3)})"
+    return (f"| {_code(p.name)} | {_cell(p.type)} | {default} | {options} | "
             f"{_cell(p.description + fixed)} |")
 
 

@@ -87,12 +87,14 @@ class Parameter:
     ``directory`` and the like are taken as file names in any case).
     ``fixed=True`` marks a parameter the module uses once, when it is built or started (a
     buffer's capacity, a file to read): a change while the model runs is refused.
+    ``default_v3`` is the default in a model file of dialect 3, for a parameter whose default
+    Ikaros 3 changed (Constant's data).
     """
 
     def __init__(self, default: Any = None, description: str = "", *, type: str | None = None,
                  options: list[str] | str | None = None, control: str | None = None,
                  name: str | None = None, range: tuple | None = None, finite: bool = True,
-                 file: bool = False, fixed: bool = False):
+                 file: bool = False, fixed: bool = False, default_v3: Any = None):
         if isinstance(options, str):
             options = [o.strip() for o in re.split(r"[,/]", options) if o.strip()]
         self.options = list(options or [])
@@ -107,6 +109,7 @@ class Parameter:
         self.finite = finite
         self.file = file
         self.fixed = fixed
+        self.default_v3 = default_v3
 
     def __set_name__(self, owner, name):
         self.name = self.name or name
@@ -114,7 +117,7 @@ class Parameter:
     def spec(self) -> ParameterSpec:
         return ParameterSpec(self.name, self.type, self.default, self.description,
                              self.options, self.control, self.range, self.finite, self.file,
-                             fixed=self.fixed)
+                             fixed=self.fixed, default_v3=self.default_v3)
 
 
 class Input:
@@ -317,18 +320,21 @@ class Module:
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         params, inputs, outputs, states = {}, {}, {}, {}
-        for klass in reversed(cls.__mro__):
-            for value in vars(klass).values():
+        renamed = set()     # reserved parameter names held in NAME_ (``init_ = Parameter(
+        for klass in reversed(cls.__mro__):     # name="init")``), as for .ikc classes
+            for key, value in vars(klass).items():
                 if isinstance(value, Parameter):
                     params[value.name] = value.spec()
+                    if key == parameter_attribute(value.name) != value.name:
+                        renamed.add(value.name)
                 elif isinstance(value, Input):
                     inputs[value.spec().name] = value.spec()
                 elif isinstance(value, Output):
                     outputs[value.spec().name] = value.spec()
                 elif isinstance(value, State):
                     states[value.spec().name] = value.spec()
-        for name in list(params) + list(states) + [_python_name(n) for n in
-                                                   list(inputs) + list(outputs)]:
+        for name in [p for p in params if p not in renamed] + list(states) + \
+                [_python_name(n) for n in list(inputs) + list(outputs)]:
             if name in RESERVED:
                 raise TypeError(f"{cls.__name__}: '{name}' is a reserved name in the module API")
         state = getattr(cls, "state", ())

@@ -339,6 +339,12 @@ class Builder:
         except (SizeError, ValueError_) as e:
             raise inst.node.error(f'parameter "{spec.name}" of {inst.path}: {e}') from None
 
+    def _default(self, spec):
+        """A parameter's default in this file: Ikaros 3's where it changed it (dialect 3)."""
+        if self.dialect == "3" and spec.default_v3 is not None:
+            return spec.default_v3
+        return spec.default
+
     def _parameter(self, inst: ModuleInstance, spec) -> tuple[object, bool]:
         try:
             found = lookup_parameter(inst, spec.name)
@@ -360,11 +366,12 @@ class Builder:
                         found = None
             if found is not None:
                 value = convert(text, spec, where, own=spec.name)
-            elif spec.default is not None and spec.default != "":
-                if isinstance(spec.default, str):
-                    value = convert(spec.default, spec, inst)
+            elif self._default(spec) is not None and self._default(spec) != "":
+                default = self._default(spec)
+                if isinstance(default, str):
+                    value = convert(default, spec, inst)
                 else:
-                    value = from_python(spec.default, spec)
+                    value = from_python(default, spec)
             else:
                 return from_python(None, spec), False
             check_parameter(value, spec)

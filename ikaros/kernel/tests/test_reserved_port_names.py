@@ -32,3 +32,16 @@ def test_ports_with_reserved_names_work_and_keep_their_names(tmp_path):
         assert net.output("R.stop").tolist() == [2, 4]
     finally:
         net.close()
+
+
+def test_a_python_class_may_declare_a_reserved_parameter_name_in_name_underscore():
+    import pytest
+    from ikaros.module import Module, Parameter
+
+    class Napper(Module):
+        init_ = Parameter(1.5, "seconds", name="init")
+
+    assert [p.name for p in Napper.description.parameters] == ["init"]
+    with pytest.raises(TypeError, match="'init' is a reserved name"):
+        class Wrong(Module):
+            init_seconds = Parameter(1.5, "seconds", name="init")

@@ -3,48 +3,82 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
+from ._kalman3 import Kalman3
+
 
 class KalmanFilter(Module):
-    """A standard linear Kalman filter for the process x(t+1) = A·x(t) + B·u(t) observed
-    as z = H·x. Every tick it predicts x' = A·x + B·u (u is INPUT; no term when INPUT is
-    not connected) and P' = A·P·Aᵀ + Q, then corrects with the OBSERVATION z: INNOVATION
-    y = z − H·x', S = H·P'·Hᵀ + R, KALMAN_GAIN K = P'·Hᵀ·S⁻¹, STATE x = x' + K·y and
-    P = (I − K·H)·P'. Q is ``process_noise`` times the identity and R is
-    ``observation_noise`` times the identity; the state starts at 0 with P = I. A is
-    ``state_size`` × ``state_size``, B is ``state_size`` × (elements of INPUT) and H is
-    ``observation_size`` × ``state_size``; a matrix given as one row of the right number of
-    elements is read row by row. An empty A or H is the identity (H: ones on its diagonal)
-    and an empty B is zero, where the Ikaros 2 class used all-zero matrices, which keep the
-    state at 0. OBSERVATION must have ``observation_size`` elements (the Ikaros 2 class read
-    past it otherwise). If S cannot be inverted the correction is skipped for that tick and
-    a warning is given once.
+    """A standard linear Kalman filter for the process x(t+1) = A·x(t) + B·u(t) observed as z =
+    H·x. Every tick it predicts x' = A·x + B·u (u is INPUT; no term when INPUT is not connected)
+    and P' = A·P·Aᵀ + Q, then corrects with the OBSERVATION z: INNOVATION y = z − H·x', S =
+    H·P'·Hᵀ + R, KALMAN_GAIN K = P'·Hᵀ·S⁻¹, STATE x = x' + K·y and P = (I − K·H)·P'. Q is
+    ``process_noise`` times the identity and R is ``observation_noise`` times the identity; the
+    state starts at 0 with P = I. A is ``state_size`` × ``state_size``, B is ``state_size`` ×
+    (elements of INPUT) and H is ``observation_size`` × ``state_size``; a matrix given as one
+    row of the right number of elements is read row by row. An empty B is zero, and so are an
+    empty A and H, as in Ikaros 2 and 3, which keeps the state at 0;
+    ``default_matrices="identity"`` (this project's) makes an empty A the identity and an empty
+    H ones on its diagonal. OBSERVATION must have ``observation_size`` elements (the Ikaros 2
+    class read past it otherwise). If S cannot be inverted the correction is skipped for that
+    tick and a warning is given once.
 
-    The Ikaros 3 interface adds four optional inputs; left unconnected, the filter works as
-    above (the Ikaros 2 interface). RESET: on a tick when its first element is above 0, the
+    In an Ikaros 2 file four optional inputs are added (this project's, after an early
+    reading of Ikaros 3; an Ikaros 3 file gets Ikaros 3's own interface, below); left
+    unconnected, the filter works as above. RESET: on a tick when its first element is above 0, the
     state restarts (x = 0, P = I) before that tick. GATED: on a tick when its first element
     is 0 or below, the filter does nothing (state and outputs are held). INPUT_VALID: on a
     tick when its first element is 0 or below, the control input is left out of the
     prediction. OBSERVATION_VALID (one element for all, or observation_size elements): only
     the observation elements above 0 correct the state; the others have INNOVATION 0 and a
-    KALMAN_GAIN column of 0, and with none valid the tick is a prediction only."""
+    KALMAN_GAIN column of 0, and with none valid the tick is a prediction only.
 
-    A = Parameter(None, "the state transition matrix, state_size × state_size; empty: the "
-                  "identity", type="matrix")
+    In an Ikaros 3 file (dialect 3) the class is Ikaros 3's: k = OBSERVATION's size
+    (observation_size is not used), GATED is an output (1 when ``innovation_gate`` > 0 and
+    the normalized innovation yᵀS⁻¹y, output as NORMALIZED_INNOVATION, exceeds it: the
+    observation is rejected and the tick is a prediction), INPUT_VALID and
+    OBSERVATION_VALID act on the whole vector (inactive when connected and all 0), and
+    RESET (any element not 0) sets STATE to INITIAL_STATE and P to INITIAL_P for the tick.
+    A matrix parameter left at 0 is a zero matrix every tick (so the defaults keep the
+    state at 0, as in Ikaros 3); Q and R left at 0 are process_noise·tick_duration·I and
+    observation_noise·I; P starts at the ``P`` parameter, else INITIAL_P, else I. The
+    covariance update is the Joseph form, symmetrized. If S cannot be inverted (after a
+    retry with ``inversion_jitter`` on its diagonal when that is > 0) the tick keeps the
+    previous state. Ikaros 3 rejects a matrix of the wrong shape; here one with the right
+    number of elements is read row by row (so ``A="1"`` is the 1 × 1 matrix 1)."""
+
+    A = Parameter(None, "the state transition matrix, state_size × state_size; empty: zero "
+                  "(see default_matrices)", type="matrix")
     B = Parameter(None, "the control input matrix, state_size × (elements of INPUT); empty: "
                   "zero", type="matrix")
-    H = Parameter(None, "the observation matrix, observation_size × state_size; empty: ones "
-                  "on the diagonal", type="matrix")
+    H = Parameter(None, "the observation matrix, observation_size × state_size; empty: zero "
+                  "(see default_matrices)", type="matrix")
+    default_matrices = Parameter("zero", "what an empty (or, in an Ikaros 3 file, 0) A and H "
+                                 "are: zero (the original) or identity",
+                                 options="zero/identity")
     state_size = Parameter(1, "number of elements of the state", type="int", range=(1, None))
     observation_size = Parameter(1, "number of elements of the observation", type="int",
                                  range=(1, None))
-    process_noise = Parameter(1.0, "the variance of the process noise (Q = process_noise·I)")
+    process_noise = Parameter(1.0, "the variance of the process noise (Q = process_noise·I; "
+                              "Ikaros 3: per second, times tick_duration)")
     observation_noise = Parameter(1.0, "the variance of the observation noise "
                                   "(R = observation_noise·I)")
+    input_size = Parameter(1, "Ikaros 3: the columns of B when INPUT is not connected",
+                           type="int", range=(0, None))
+    innovation_gate = Parameter(0.0, "Ikaros 3: the largest normalized innovation yᵀS⁻¹y "
+                                "accepted (0: no gate)")
+    inversion_jitter = Parameter(0.0, "Ikaros 3: added to S's diagonal on a retry when S "
+                                 "cannot be inverted")
+    Q = Parameter(None, "Ikaros 3: the process noise covariance, state_size × state_size; "
+                  "0: process_noise·tick_duration·I", type="matrix")
+    R = Parameter(None, "Ikaros 3: the observation noise covariance, k × k; 0: "
+                  "observation_noise·I", type="matrix")
+    INITIAL_STATE = Parameter(None, "Ikaros 3: the state after RESET", type="matrix")
+    INITIAL_P = Parameter(None, "Ikaros 3: the covariance after RESET (0: the starting P)",
+                          type="matrix")
+    P = Parameter(None, "Ikaros 3: the starting covariance (0: INITIAL_P, or I)",
+                  type="matrix")
 
     INPUT = Input("the control input u", optional=True)
     OBSERVATION = Input("the observation z, of observation_size elements")
-    GATED = Input("Ikaros 3: a first element of 0 or below holds the filter for the tick",
-                  optional=True)
     INPUT_VALID = Input("Ikaros 3: a first element of 0 or below leaves INPUT out",
                         optional=True)
     OBSERVATION_VALID = Input("Ikaros 3: which observation elements are used (above 0)",
@@ -54,10 +88,33 @@ class KalmanFilter(Module):
     STATE = Output("the state estimate x", size_param="state_size")
     INNOVATION = Output("the observation minus the predicted observation, z − H·x'",
                         size_set="OBSERVATION")
-    KALMAN_GAIN = Output("the Kalman gain K, state_size × observation_size",
-                         size_param_x="observation_size", size_param_y="state_size")
+    KALMAN_GAIN = Output("the Kalman gain K, state_size × observation_size (Ikaros 3: "
+                         "state_size × OBSERVATION's size)")
+
+    def configure(self):
+        if self.dialect == "3":
+            self.add_output("GATED", (1,), "1 when the innovation gate rejected the "
+                            "observation")
+            self.add_output("NORMALIZED_INNOVATION", (1,), "yᵀS⁻¹y")
+        else:
+            self.add_input("GATED", optional=True, description="a first element of 0 or "
+                           "below holds the filter for the tick")
+
+    def set_sizes(self):
+        k = self.observation_size
+        if self.dialect == "3":
+            shape = self.input_shape("OBSERVATION")
+            if shape is None:
+                return
+            k = int(np.prod(shape))
+        self.set_output_shape("KALMAN_GAIN", (self.state_size, k))
 
     def init(self):
+        if self.dialect == "3":
+            self._v3 = Kalman3(self)
+            self.STATE.fill(0)
+            return
+        self._v3 = None
         n, m = self.state_size, self.observation_size
         if n < 1 or m < 1:
             raise ValueError("state_size and observation_size must be at least 1")
@@ -91,9 +148,10 @@ class KalmanFilter(Module):
 
     def _matrices(self):
         n, m, u = self.state_size, self.observation_size, self._u
-        return (self._matrix("A", n, n, np.eye(n)),
+        identity = self.default_matrices == "identity"
+        return (self._matrix("A", n, n, np.eye(n) if identity else np.zeros((n, n))),
                 self._matrix("B", n, u, np.zeros((n, u))) if u else None,
-                self._matrix("H", m, n, np.eye(m, n)))
+                self._matrix("H", m, n, np.eye(m, n) if identity else np.zeros((m, n))))
 
     @staticmethod
     def _on(x) -> bool:
@@ -101,6 +159,9 @@ class KalmanFilter(Module):
         return bool(x.size and x.flat[0] > 0)
 
     def tick(self):
+        if self._v3 is not None:
+            self._v3.tick()
+            return
         if self.RESET is not None and self._on(self.RESET):
             self._x = np.zeros(self.state_size)
             self._P = np.eye(self.state_size)

@@ -3,6 +3,8 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
+from ._pid3 import PID3
+
 
 class PIDController(Module):
     """Applies PID control to each element of INPUT (the measured value) against the same
@@ -15,9 +17,12 @@ class PIDController(Module):
     tick). The control value ``Kb + Kp·P + Ki·INTEGRAL + Kd·D`` is clipped to
     ``Cmin``..``Cmax``; while it is clipped the error of that tick is not integrated
     (anti-windup). OUTPUT is the clipped value smoothed with ``Fc``. Gains are per tick,
-    not per second. Unlike the Ikaros 2 class, whose derivative term was the change of the
-    filtered input with a sign that pushed the output the wrong way and left ``Fd`` unused,
-    the derivative here is that of the D-filtered error.
+    not per second. The derivative term is chosen by ``derivative_mode``: ``input`` (the
+    default in an Ikaros 2 file, as the Ikaros 2 class computes it) is the change of the
+    filtered input since the previous tick, a sign that pushes the output the wrong way,
+    with ``Fd`` unused; ``measurement`` is minus that change (the corrected sign; Ikaros 3's
+    default); ``error`` (this project's) is the change of the D-filtered error. The
+    derivative is 0 on the first tick.
 
     The Ikaros 3 interface adds three optional inputs (each of one element, for all
     controllers, or of the size of INPUT); left unconnected, the controller works as above
@@ -26,24 +31,44 @@ class PIDController(Module):
     tick is computed. INPUT_VALID: an element whose value is 0 or below is held for the tick
     (all its outputs and its integral keep their values), for a measurement that is missing.
     GATED: an element whose value is 0 or below is switched off: its OUTPUT and every signal
-    and memory of it are 0, so it starts afresh when the gate opens again."""
+    and memory of it are 0, so it starts afresh when the gate opens again.
+
+    In an Ikaros 3 file (dialect 3) the class computes as Ikaros 3 does: the filter
+    constants ``Fs`` ... ``Fc`` are rates (1/s; 0 is no filter): each filter moves the
+    fraction 1 − e^(−F·tick_duration) of the way to its input per tick. The integral adds
+    the I-filtered error times tick_duration. The derivative (FILTERED_ERROR_D, filtered
+    with ``Fd``) is per second: with ``derivative_mode="measurement"`` (the default) minus
+    the change of the filtered input, with ``"error"`` the change of DELTA, from 0 before
+    the first tick. The clipped control value is smoothed with ``Fc`` and then changes by at
+    most ``output_rate_limit`` per second (0: no limit). RESET computes the filtered set
+    point, input and DELTA but sets OUTPUT, the error filters, the integral and the
+    derivative memory to 0 for that tick. ``output_rate_limit`` and ``derivative_mode``
+    are used only in dialect 3."""
     state = ("_last_d", "_fresh")     # the derivative's memory (saved with the outputs)
 
     Kb = Parameter(0.0, "the bias: a constant added to the control value")
     Kp = Parameter(0.1, "the proportional gain")
     Ki = Parameter(0.0, "the integral gain")
     Kd = Parameter(0.0, "the derivative gain")
-    Fs = Parameter(0.0, "set-point filter constant, 0..1 (0: no smoothing)", range=(0, 1))
-    Fm = Parameter(0.0, "measurement (INPUT) filter constant, 0..1 (0: no smoothing)",
-                   range=(0, 1))
-    Fp = Parameter(0.0, "filter constant of the error used by the proportional term, 0..1",
-                   range=(0, 1))
-    Fi = Parameter(0.0, "filter constant of the error used by the integral term, 0..1",
-                   range=(0, 1))
-    Fd = Parameter(0.0, "filter constant of the error used by the derivative term, 0..1",
-                   range=(0, 1))
-    Fc = Parameter(0.0, "filter constant of the control output, 0..1 (0: no smoothing)",
-                   range=(0, 1))
+    Fs = Parameter(0.0, "set-point filter constant, 0..1 (0: no smoothing; Ikaros 3: a rate "
+                   "in 1/s)", range=(0, None))
+    Fm = Parameter(0.0, "measurement (INPUT) filter constant, 0..1 (0: no smoothing; "
+                   "Ikaros 3: a rate)", range=(0, None))
+    Fp = Parameter(0.0, "filter constant of the error used by the proportional term, 0..1 "
+                   "(Ikaros 3: a rate)", range=(0, None))
+    Fi = Parameter(0.0, "filter constant of the error used by the integral term, 0..1 "
+                   "(Ikaros 3: a rate)", range=(0, None))
+    Fd = Parameter(0.0, "filter constant of the error used by the derivative term, 0..1 "
+                   "(Ikaros 3: a rate)", range=(0, None))
+    Fc = Parameter(0.0, "filter constant of the control output, 0..1 (0: no smoothing; "
+                   "Ikaros 3: a rate)", range=(0, None))
+    output_rate_limit = Parameter(0.0, "Ikaros 3: the largest change of OUTPUT per second "
+                                  "(0: no limit)", range=(0, None))
+    derivative_mode = Parameter("input", "what the derivative term differentiates: the "
+                                "filtered input (input, Ikaros 2), minus it (measurement, "
+                                "Ikaros 3) or the error (error: the D-filtered error; in an "
+                                "Ikaros 3 file DELTA)", options="input/measurement/error",
+                                default_v3="measurement")
     Cmin = Parameter(-1000.0, "the smallest control value; below it the output is clipped "
                      "and integration stops")
     Cmax = Parameter(1000.0, "the largest control value; above it the output is clipped "
@@ -72,6 +97,11 @@ class PIDController(Module):
 
     def init(self):
         shape = self.OUTPUT.shape
+        if self.dialect != "3":
+            above = [n for n in ("Fs", "Fm", "Fp", "Fi", "Fd", "Fc") if getattr(self, n) > 1]
+            if above:
+                raise ValueError(f"the filter constants {', '.join(above)} must be at most 1 "
+                                 f"(in an Ikaros 3 file they are rates)")
         if 1 != self.INPUT.size != self.SETPOINT.size != 1:
             raise ValueError(f"INPUT has {self.INPUT.size} elements and SETPOINT "
                              f"{self.SETPOINT.size}: they must be equal, or one of them 1")
@@ -89,6 +119,7 @@ class PIDController(Module):
         self._state = (self.OUTPUT, self.DELTA, self.FILTERED_SETPOINT, self.FILTERED_INPUT,
                        self.FILTERED_ERROR_P, self.FILTERED_ERROR_I, self.FILTERED_ERROR_D,
                        self.INTEGRAL, self._last_d)
+        self._pid3 = PID3(self) if self.dialect == "3" else None
 
     def _mask(self, name):
         """A function giving the elements where the input ``name`` is above 0 (None when
@@ -112,15 +143,21 @@ class PIDController(Module):
         for a in self._state:
             a[where] = 0
         self._fresh[where] = True
+        if self._pid3 is not None:
+            self._pid3.clear(where)
 
     def tick(self):
-        if self.RESET is not None and self.RESET.size and self.RESET.flat[0] > 0:
+        reset = self.RESET is not None and self.RESET.size and self.RESET.flat[0] > 0
+        if reset and self._pid3 is None:
             self._clear(Ellipsis)
         held = None
         if self._valid is not None:
             held = ~self._valid()
             kept = [a[held] for a in self._state] if held.any() else None
-        self._compute()
+        if self._pid3 is not None:
+            self._pid3.tick(bool(reset))
+        else:
+            self._compute()
         if held is not None and kept is not None:
             for a, k in zip(self._state, kept):
                 a[held] = k
@@ -134,7 +171,9 @@ class PIDController(Module):
         self._smooth(self.FILTERED_ERROR_P, self.DELTA, self.Fp)
         self._smooth(self.FILTERED_ERROR_I, self.DELTA, self.Fi)
         self._smooth(self.FILTERED_ERROR_D, self.DELTA, self.Fd)
-        np.copyto(self._last_d, self.FILTERED_ERROR_D, where=self._fresh)
+        mode = self.derivative_mode
+        signal = self.FILTERED_ERROR_D if mode == "error" else self.FILTERED_INPUT
+        np.copyto(self._last_d, signal, where=self._fresh)
         self._fresh[...] = False
         self.INTEGRAL += self.FILTERED_ERROR_I
 
@@ -143,10 +182,10 @@ class PIDController(Module):
         c += self.Kb
         np.multiply(self.INTEGRAL, self.Ki, out=self._work)
         c += self._work
-        np.subtract(self.FILTERED_ERROR_D, self._last_d, out=self._work)
-        self._work *= self.Kd
+        np.subtract(signal, self._last_d, out=self._work)
+        self._work *= -self.Kd if mode == "measurement" else self.Kd
         c += self._work
-        self._last_d[...] = self.FILTERED_ERROR_D
+        self._last_d[...] = signal
 
         lo, hi = min(self.Cmin, self.Cmax), max(self.Cmin, self.Cmax)
         np.logical_or(c > hi, c < lo, out=self._clipped)

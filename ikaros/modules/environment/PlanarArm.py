@@ -5,6 +5,8 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
+from ._arm3 import Arm3, parameters as arm3_parameters
+
 _LIMITS_LOW = np.array([-math.pi / 1.5, 0.0, 0.0])
 _LIMITS_HIGH = np.array([math.pi / 1.5, math.pi, math.pi])
 _RANDOM_INTERVAL = 100          # ticks between new random targets
@@ -51,7 +53,25 @@ class PlanarArm(Module):
     (the same meaning; a model connects one of them). The Ikaros 3 GRIPPER input, when
     connected, decides grasps: the hand grasps the target on a tick when GRIPPER's first
     element is above 0 (closed) and the hand touches the target (CONTACT); ``grasp_limit``
-    is then not used."""
+    is then not used.
+
+    In an Ikaros 3 file (dialect 3) the class is Ikaros 3's, a different simulation: a
+    serial arm of ``link_lengths`` fixed at ``base_position`` in a world of world_width ×
+    world_height units, its angles relative and counter-clockwise from +x, with a palm and
+    two fingers (GRIPPER: 0 closed, 1 open) that push one movable circle
+    (``movable_object``: x, y, radius) among fixed circles and lines. JOINT_COMMAND is
+    reached in one tick unless a sub-step (at most ``max_joint_step``) hits the fixed world
+    or leaves the object no place (``solver_iterations`` pushes), which stops the motion
+    there and sets BLOCKED. RESET above 0.5 restarts from the initial pose. The outputs are
+    Ikaros 3's (added in dialect 3): JOINT_ANGLES, JOINT_POSITIONS, END_EFFECTOR (x, y, sum
+    of the angles), MOVABLE_OBJECT (x, y, r, enclosed), LINK_CONTACTS, GRIPPER_CONTACTS
+    (palm, left, right), OBJECT_CONTACTS (arm, circles, lines, world edge), BLOCKED,
+    ENCLOSED (two or more gripper parts touch the object) and the World2D-style tables
+    ARM_LINES, OBJECTS and WALLS; the Ikaros 2 outputs stay 0. Computed in float64 (Ikaros
+    3 uses float32), so values may differ in the last digits; no run of the original was
+    compared. Read this way, the reference's default scene puts the open right finger
+    inside the lower fixed circle, so with every default the arm starts (and stays)
+    BLOCKED; the reference does not settle whether the original does the same."""
 
     target_behavior = Parameter("random", "how the target moves",
                                 options="random/linear/circular/lisajous/square")
@@ -66,6 +86,37 @@ class PlanarArm(Module):
                                type="array")
     seed = Parameter(None, "seed of the random generator; unset (or 0) gives a different "
                      "run every time", type="int")
+    base_position = Parameter("60, 150", "Ikaros 3: where the arm is fixed", type="array")
+    link_lengths = Parameter("65, 55, 45", "Ikaros 3: the length of each link", type="array")
+    link_width = Parameter(6.0, "Ikaros 3: the width of the links")
+    initial_joint_angles = Parameter("0, -0.5, 0.8", "Ikaros 3: the angles at the start and "
+                                     "on RESET", type="array")
+    joint_min = Parameter("-3.141593, -3.141593, -3.141593", "Ikaros 3: the lowest angles",
+                          type="array")
+    joint_max = Parameter("3.141593, 3.141593, 3.141593", "Ikaros 3: the highest angles",
+                          type="array")
+    max_joint_step = Parameter(0.01, "Ikaros 3: the largest change of a sub-step (radians)")
+    initial_gripper = Parameter(1.0, "Ikaros 3: the gripper at the start (0 closed, 1 open)")
+    palm_length = Parameter(34.0, "Ikaros 3: the length of the palm")
+    finger_length = Parameter(32.0, "Ikaros 3: the length of the fingers")
+    gripper_width = Parameter(5.0, "Ikaros 3: the width of the palm and fingers")
+    finger_open_angle = Parameter(0.45, "Ikaros 3: the fingers' outward angle when open")
+    finger_closed_angle = Parameter(0.65, "Ikaros 3: the fingers' inward angle when closed")
+    movable_object = Parameter("205, 150, 12", "Ikaros 3: the movable circle: x, y, radius",
+                               type="array")
+    circle_obstacle_count = Parameter(2, "Ikaros 3: the number of fixed circles used",
+                                      type="int", range=(0, None))
+    circle_obstacles = Parameter("245, 105, 18; 245, 205, 18", "Ikaros 3: fixed circles, rows "
+                                 "of x, y, radius", type="matrix")
+    line_obstacle_count = Parameter(4, "Ikaros 3: the number of fixed lines used", type="int",
+                                    range=(0, None))
+    line_obstacles = Parameter("20, 20, 280, 20, 5; 280, 20, 280, 280, 5; 280, 280, 20, 280, "
+                               "5; 20, 280, 20, 20, 5", "Ikaros 3: fixed lines, rows of x1, "
+                               "y1, x2, y2, width", type="matrix")
+    world_width = Parameter(300.0, "Ikaros 3: the width of the world")
+    world_height = Parameter(300.0, "Ikaros 3: the height of the world")
+    solver_iterations = Parameter(64, "Ikaros 3: the passes placing the movable object",
+                                  type="int", range=(1, None))
 
     DESIRED_ANGLES = Input("Ikaros 2: the three joint angles the arm moves towards",
                            optional=True)
@@ -83,7 +134,27 @@ class PlanarArm(Module):
     CONTACT = Output("1 when the hand touches the target (DISTANCE < target_size)",
                      size="1")
 
+    def configure(self):
+        if self.dialect != "3":
+            return
+        self.add_input("RESET", optional=True, description="above 0.5 restarts the arm")
+        p = arm3_parameters(self)
+        L, circles, lines = len(p.link_lengths), len(p.circles), len(p.lines)
+        for name, shape in (("JOINT_ANGLES", (L,)), ("JOINT_POSITIONS", (L + 1, 2)),
+                            ("END_EFFECTOR", (3,)), ("MOVABLE_OBJECT", (4,)),
+                            ("LINK_CONTACTS", (L,)), ("GRIPPER_CONTACTS", (3,)),
+                            ("OBJECT_CONTACTS", (4,)), ("BLOCKED", (1,)), ("ENCLOSED", (1,)),
+                            ("ARM_LINES", (L + 3, 11)), ("OBJECTS", (circles + 1, 18)),
+                            ("WALLS", (L + 3 + lines, 11))):
+            self.add_output(name, shape, "Ikaros 3 (see the description)")
+
     def init(self):
+        self._arm3 = None
+        if self.dialect == "3":
+            self._arm3 = Arm3(arm3_parameters(self))
+            self._arm3.sense()
+            self._arm3.write(self)
+            return
         if self.segment_length.size != 3:
             raise ValueError("segment_length needs three values")
         if self.DESIRED_ANGLES is not None and self.JOINT_COMMAND is not None:
@@ -116,7 +187,25 @@ class PlanarArm(Module):
             self._target = self._rng.uniform(0.1, 0.9, 2)
         self._since_new = 0
 
+    def _tick3(self):
+        arm = self._arm3
+        if self.RESET is not None and self.RESET.size and self.RESET.flat[0] > 0.5:
+            for flags in arm.flags:
+                flags[...] = 0
+            arm.reset()
+        else:
+            command = None if self.JOINT_COMMAND is None else \
+                self.JOINT_COMMAND.reshape(-1).astype(float)
+            grip = None if self.GRIPPER is None or not self.GRIPPER.size else \
+                float(self.GRIPPER.flat[0])
+            arm.move(command, grip)
+        arm.sense()
+        arm.write(self)
+
     def tick(self):
+        if self._arm3 is not None:
+            self._tick3()
+            return
         if self._command is not None:
             self._move_arm()
         distance = float(np.hypot(*(self.HAND_POSITION - self.TARGET)))

@@ -11,13 +11,16 @@ class Delta(Module):
     alpha * CS[i] * e. The weights start at zero and never shrink, so the module learns the
     strength of each stimulus alone (or any map whose inputs do not overlap) but not
     extinction. CS may have any shape (it is read flat); all elements of US are summed. While
-    CS or US is unconnected nothing is learned and CR is 0. With ``inverse`` the output is the
-    prediction error sum(US) - CR instead of the prediction: the US signal once the
-    learned response has inhibited it, as in the cerebellum (Ikaros 2 declared this
-    parameter but ignored it). ``beta``, ``gamma``, ``delta`` and ``epsilon`` are unused, as
-    in Ikaros 2; they are kept so models that set them load unchanged. The command ``reset``
-    sets the weights to zero; the weights are state, kept by save, load and reset of the
-    state (as ``weights``)."""
+    CS or US is unconnected nothing is learned and CR is 0. With ``inverse`` the error's
+    sign is reversed (e = CR - sum(US)), so the weights grow only while the prediction
+    exceeds the US: the reference does not describe ``inverse``; this is the simplest rule
+    that gives what the original computed on its one recorded case (CS 1, US 0.5, inverse:
+    CR stays 0). ``beta``, ``gamma``, ``delta`` and ``epsilon`` are unused, as in Ikaros 2;
+    they are kept so models that set them load unchanged. ``output="error"`` (this
+    project's addition) outputs the prediction error sum(US) - CR instead of the
+    prediction: the US signal once the learned response has inhibited it, as in the
+    cerebellum. The command ``reset`` sets the weights to zero; the weights are state, kept
+    by save, load and reset of the state (as ``weights``)."""
 
     state = ("weights",)
 
@@ -26,12 +29,16 @@ class Delta(Module):
     gamma = Parameter(1.0, "unused (kept for Ikaros 2 models)")
     delta = Parameter(1.0, "unused (kept for Ikaros 2 models)")
     epsilon = Parameter(1.0, "unused (kept for Ikaros 2 models)")
-    inverse = Parameter(False, "output the prediction error sum(US) - CR instead of CR, as the "
-                        "cerebellum's learned response inhibits the US pathway")
+    inverse = Parameter(False, "reverse the error's sign: learn only while CR exceeds "
+                        "sum(US) (see the description)")
+    output = Parameter("prediction", "prediction: CR = sum(CS * w) (the original); error: the "
+                       "prediction error sum(US) - CR, as the cerebellum's learned response "
+                       "inhibits the US pathway", options="prediction/error")
     CS = Input("the conditioned stimulus: one element per stimulus", optional=True)
     US = Input("the unconditioned stimulus; its elements are summed into the target",
                optional=True)
-    CR = Output("the conditioned response, sum(CS * w), or the prediction error with inverse",
+    CR = Output("the conditioned response, sum(CS * w), or the prediction error with "
+                "output=error",
                 size="1")
 
     def init(self):
@@ -51,6 +58,8 @@ class Delta(Module):
         target = np.float32(np.sum(self.US, dtype=np.float64))
         prediction = np.float32(np.dot(cs, self.weights))
         error = target - prediction
+        if self.inverse:
+            error = -error
         if error > 0:
             self.weights += np.float32(self.alpha) * error * cs
-        self.CR[0] = error if self.inverse else prediction
+        self.CR[0] = target - prediction if self.output == "error" else prediction

@@ -27,7 +27,14 @@ class Arbiter(Module):
     one stacked INPUT, where each connection is one input, in connection order (n is the
     number of connections and ``no_of_inputs`` is not used). A model uses one or the other.
     With INPUT the amplitudes are the norms (the VALUE_k inputs belong to the Ikaros 2
-    interface)."""
+    interface).
+
+    In an Ikaros 3 file (dialect 3) the class is Ikaros 3's: there are no INPUT_k / VALUE_k
+    ports; VALUE is an input with one value per candidate (connections stacked with
+    ``stack_values``, else concatenated), and there is no VALUE output. Softmax raises the
+    amplitudes themselves to the exponent (a negative amplitude with a fractional exponent
+    gives NaN), NORMALIZED divides SMOOTHED by its sum (not the sum of absolute values; all
+    0 when that sum is at most float32 epsilon), and by_row is not used."""
 
     no_of_inputs = Parameter(2, "the number of inputs (INPUT_1, INPUT_2, ...)", type="int")
     metric = Parameter("1", "the norm used as amplitude when the VALUE inputs are not "
@@ -43,6 +50,10 @@ class Arbiter(Module):
     alpha = Parameter(1.0, "the smoothing constant: the weight of the new arbitration state; "
                       "1 means no smoothing")
     debug = Parameter(False, "print the state on every tick")
+    stack_inputs = Parameter(True, "Ikaros 3: each connection to INPUT is one candidate "
+                             "(always so here)")
+    stack_values = Parameter(False, "Ikaros 3: each connection to VALUE is one candidate's "
+                             "value (stacked); without it the connections are concatenated")
 
     INPUT = Input("Ikaros 3: all the inputs, one connection each, stacked", optional=True,
                   stack=True)
@@ -51,9 +62,15 @@ class Arbiter(Module):
     SMOOTHED = Output("the arbitration state smoothed over time")
     NORMALIZED = Output("the smoothed state divided by its sum: the weights of the inputs")
     OUTPUT = Output("the weighted combination of the inputs")
-    VALUE = Output("the strength of the output: the sum of the absolute smoothed state")
 
     def configure(self):
+        if self.dialect == "3":
+            self.add_input("VALUE", optional=True, stack=bool(self.stack_values),
+                           description="one value per candidate; without it the "
+                           "candidates' norms are used")
+            return
+        self.add_output("VALUE", description="the strength of the output: the sum of the "
+                        "absolute smoothed state")
         if self.no_of_inputs < 1:
             raise ValueError(f"no_of_inputs must be at least 1, not {self.no_of_inputs}")
         for k in range(1, self.no_of_inputs + 1):
@@ -68,9 +85,12 @@ class Arbiter(Module):
         return [f"{name}_{k}" for k in range(1, self.no_of_inputs + 1)]
 
     def set_sizes(self):
+        if self.dialect == "3" and not self.connected("INPUT"):
+            raise ValueError("INPUT is not connected (an Ikaros 3 Arbiter takes every "
+                             "candidate on INPUT)")
         if self.connected("INPUT"):
             both = [p for p in self._numbered("INPUT") + self._numbered("VALUE")
-                    if self.connected(p)]
+                    if self.dialect != "3" and self.connected(p)]
             if both:
                 raise ValueError(f"connect the inputs either to INPUT (Ikaros 3) or to "
                                  f"INPUT_1 ... (Ikaros 2), not both: {', '.join(both)} "
@@ -92,18 +112,28 @@ class Arbiter(Module):
         if len(set(sizes)) != 1:
             raise ValueError(f"the inputs must have the same size; their shapes are {shapes}")
         shape = shapes[0]
-        rows = (int(np.prod(shape[:-1])) if len(shape) >= 2 else 1) if self.by_row else None
+        rows = (int(np.prod(shape[:-1])) if len(shape) >= 2 else 1) \
+            if self.by_row and self.dialect != "3" else None
         self.set_output_shape("OUTPUT", shape)
         for name in ("AMPLITUDES", "ARBITRATION", "SMOOTHED", "NORMALIZED"):
             self.set_output_shape(name, (rows, n) if rows is not None else (n,))
-        self.set_output_shape("VALUE", (rows,) if rows is not None else (1,))
+        if self.dialect != "3":
+            self.set_output_shape("VALUE", (rows,) if rows is not None else (1,))
 
     def init(self):
         self._n = n = self.AMPLITUDES.shape[-1]
-        self._rows = self.VALUE.size
-        rows = self._rows
+        self._v3 = self.dialect == "3"
+        self._rows = rows = 1 if self._v3 else self.VALUE.size
         cols = self.OUTPUT.size // rows
-        if self.INPUT is not None:
+        if self._v3:
+            self._inputs = [self.INPUT[k].reshape(rows, cols) for k in range(n)]
+            values = [None] * n if self.VALUE is None else \
+                [self.VALUE.reshape(-1)[k:k + 1] for k in range(n)]
+            if self.VALUE is not None and self.VALUE.size != n:
+                self.fatal_error(f"VALUE has {self.VALUE.size} elements; it needs one per "
+                                 f"candidate ({n})")
+                return
+        elif self.INPUT is not None:
             self._inputs = [self.INPUT[k].reshape(rows, cols) for k in range(n)]
             values = [None] * n
         else:
@@ -159,7 +189,9 @@ class Arbiter(Module):
         else:
             self._winner[...] = 0
             if method == "softmax":
-                np.power(np.maximum(self._amp, 0), self.softmax_exponent, out=self._arb)
+                with np.errstate(invalid="ignore"):
+                    np.power(self._amp if self._v3 else np.maximum(self._amp, 0),
+                             self.softmax_exponent, out=self._arb)
             elif method == "hierarchy":
                 positive = self._amp > 0
                 last = n - 1 - np.argmax(positive[:, ::-1], axis=1)
@@ -174,11 +206,17 @@ class Arbiter(Module):
         else:
             self._smooth[...] = self._arb
         # normalization and the convex combination
-        total = np.sum(np.abs(self._smooth), axis=1, keepdims=True)
-        np.divide(self._smooth, total, out=self._norm, where=total != 0)
-        self._norm[(total == 0)[:, 0]] = 0
+        if self._v3:
+            total = np.sum(self._smooth, axis=1, keepdims=True)
+            empty = total <= np.finfo(np.float32).eps
+        else:
+            total = np.sum(np.abs(self._smooth), axis=1, keepdims=True)
+            empty = total == 0
+        np.divide(self._smooth, total, out=self._norm, where=~empty)
+        self._norm[empty[:, 0]] = 0
         np.einsum("rk,krc->rc", self._norm, self._x, out=self._out)
-        self.VALUE[...] = total[:, 0]
+        if not self._v3:
+            self.VALUE[...] = total[:, 0]
         if self.debug:
             self.print(f"amplitudes {self.AMPLITUDES.tolist()} normalized "
                        f"{self.NORMALIZED.tolist()} output {self.OUTPUT.tolist()}")

@@ -13,7 +13,9 @@ class Average(Module):
     abs or a square to the input first, and ``sqrt`` takes the square root of the absolute
     average, so operation=sqr with sqrt=yes gives a root mean square. When the absolute value
     of output element ``select`` falls below ``termination_criterion`` the module stops the
-    run (the default 0 never does)."""
+    run (the default 0 never does). Ikaros 3 changed the class: in a file of dialect 3 it
+    outputs one value, the mean of all elements of the input at this tick (summed in
+    float32; 0 for an empty input), and the parameters are not used."""
 
     type = Parameter("CMA", "the kind of average", options="CMA/SMA/EMA")
     operation = Parameter("none", "what is applied to the input before averaging",
@@ -26,9 +28,16 @@ class Average(Module):
     select = Parameter(0, "the output element checked against termination_criterion",
                        type="int")
     INPUT = Input("the signal to average")
-    OUTPUT = Output("the average over time", size_set="INPUT")
+    OUTPUT = Output("the average over time (Ikaros 3: the mean of all input elements, one "
+                    "value)", size_set="INPUT")
+
+    def configure(self):
+        if self.dialect == "3":
+            self.set_output_shape("OUTPUT", 1)
 
     def init(self):
+        if self.dialect == "3":
+            return
         if not 0 <= self.select < max(1, self.OUTPUT.size):
             self.fatal_error(f"select ({self.select}) is outside the output, which has "
                              f"{self.OUTPUT.size} elements")
@@ -62,6 +71,10 @@ class Average(Module):
         return self._wsum / self._wcount
 
     def tick(self):
+        if self.dialect == "3":
+            n = self.INPUT.size
+            self.OUTPUT[0] = np.sum(self.INPUT, dtype=np.float32) / np.float32(n) if n else 0
+            return
         x = self._x
         if self.operation == "abs":
             np.abs(self.INPUT, out=x)

@@ -6,10 +6,12 @@ class Constant(Module):
     """Outputs the array given by ``data`` (``;`` separates rows, nested brackets give higher
     ranks). The size comes from the data, or from ``outputsize`` / ``outputsize_x`` and
     ``outputsize_y``, in which case the data fill the output row by row (missing elements are
-    0). The value is written in init and on every tick, so edits to ``data`` take effect."""
+    0). The value is written in init and on every tick, so edits to ``data`` take effect.
+    The default data is 0 in an Ikaros 2 file and ``1, 2, 3, 4, 5, 6`` in an Ikaros 3 file
+    (dialect 3), as in each version."""
 
     data = Parameter("0", "the values to output (nan and inf allowed)", type="matrix",
-                     finite=False)
+                     finite=False, default_v3="1, 2, 3, 4, 5, 6")
     outputsize = Parameter(None, "number of elements of a 1-D output", type="int")
     outputsize_x = Parameter(None, "columns of a 2-D output", type="int")
     outputsize_y = Parameter(None, "rows of a 2-D output", type="int")

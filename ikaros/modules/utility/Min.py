@@ -1,21 +1,35 @@
-"""Min: element-wise minimum of two inputs."""
+"""Min: element-wise minimum of two inputs (Ikaros 2), or the smallest element of one
+input (Ikaros 3)."""
+import warnings
+
 import numpy as np
 
 from ikaros.module import Input, Output
 
-from ._elementwise import ElementWise
+from ._extremum import Extremum
 
 
-class Min(ElementWise):
-    """Outputs the element-wise minimum of INPUT1 and INPUT2. The inputs must have the same
-    number of elements; the output has their shape."""
+def _nanmin(x):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)     # all NaN
+        return np.nanmin(x)
 
-    INPUT1 = Input("the first input")
-    INPUT2 = Input("the second input")
-    OUTPUT = Output("the smaller of the two inputs, element by element",
-                    size_set="INPUT1,INPUT2")
 
-    compiled_op = "minimum"   # an instruction of the compiled tick (ikaros/kernel/compiled/)
+class Min(Extremum):
+    """Ikaros 2: outputs the element-wise minimum of INPUT1 and INPUT2 (same number of
+    elements; the output has their shape). Ikaros 3: outputs the smallest element of INPUT
+    (one value; NaNs are skipped, an all-NaN input gives inf, an empty one is an error);
+    Ikaros 3's element-wise class is Maximum/Minimum. The version is chosen by what is
+    connected (INPUT, or INPUT1 and INPUT2), so a file of either version works whatever its
+    dialect."""
 
-    def tick(self):
-        np.minimum(self._a, self._b, out=self.OUTPUT)
+    INPUT = Input("Ikaros 3: the values to reduce, of any shape", optional=True)
+    INPUT1 = Input("Ikaros 2: the first input", optional=True)
+    INPUT2 = Input("Ikaros 2: the second input", optional=True)
+    OUTPUT = Output("Ikaros 2: the smaller of the two inputs, element by element; Ikaros 3: "
+                    "the smallest element of INPUT (one value)")
+
+    compiled_op = "minimum"   # an instruction of the compiled tick (Ikaros 2 interface)
+    reduce = staticmethod(_nanmin)
+    pairwise = staticmethod(np.minimum)
+    _empty_value = np.float32("inf")

@@ -6,7 +6,8 @@ from ikaros.module import Input, Module, Output, Parameter
 
 _FORMATS = "xyz/xyzaxayaz/axayaz/matrix/quaternion"
 _WIDTH = {"xyz": 3, "xyzaxayaz": 6, "axayaz": 3, "matrix": 16, "quaternion": 4}
-_TO_RADIANS = {"degrees": np.pi / 180.0, "radians": 1.0, "tau": 2.0 * np.pi}
+_TO_RADIANS = {"degrees": np.pi / 180.0, "radians": 1.0, "tau": 2.0 * np.pi,
+               "turns": 2.0 * np.pi}
 
 
 def euler_to_matrices(ax, ay, az):
@@ -97,12 +98,23 @@ class RotationConverter(Module):
     output; a matrix input holds one pose per row and gives one output row per pose (a 4x4
     input in matrix form is one pose). Parts the output form has but the input lacks are
     neutral: no rotation, position 0. Ikaros 2 left quaternions unimplemented; here they
-    work."""
+    work (``quaternions="computed"``).
+
+    In an Ikaros 3 file (dialect 3) the output has Ikaros 3's shapes: a pose is a row (one
+    pose gives a 1 x width output) and a matrix is 4 x 4 (several poses: n x 4 x 4, a shape
+    the reference does not settle); and, as in Ikaros 3, a quaternion input or output is
+    not implemented and the output stays all zero (``quaternions="zero"``, the default
+    there; ``quaternions="computed"`` converts them). ``turns`` is Ikaros 3's name for
+    ``tau``."""
 
     input_format = Parameter("xyz", "the form of each input pose", options=_FORMATS)
     output_format = Parameter("xyz", "the form of each output pose", options=_FORMATS)
     angle_unit = Parameter("degrees", "the unit of Euler angles: degrees, radians or tau "
-                           "(1 = 360 degrees)", options="degrees/radians/tau")
+                           "(1 = 360 degrees; turns is the same)",
+                           options="degrees/radians/tau/turns")
+    quaternions = Parameter("computed", "computed: convert quaternions; zero: a quaternion "
+                            "input or output gives all zeros (Ikaros 3, where they are not "
+                            "implemented)", options="computed/zero", default_v3="zero")
     INPUT = Input("one pose, or one pose per row, in input_format")
     OUTPUT = Output("the poses in output_format: 1-D for one pose, else one row per pose")
 
@@ -130,7 +142,12 @@ class RotationConverter(Module):
         if isinstance(poses, str):
             raise ValueError(poses)
         width = _WIDTH[self.output_format]
-        self.set_output_shape("OUTPUT", (width,) if poses == 0 else (poses, width))
+        if self.dialect == "3":
+            rows = max(poses, 1)
+            self.set_output_shape("OUTPUT", ((4, 4) if rows == 1 else (rows, 4, 4))
+                                  if width == 16 else (rows, width))
+        else:
+            self.set_output_shape("OUTPUT", (width,) if poses == 0 else (poses, width))
 
     def init(self):
         self._in = self.INPUT.reshape(-1, _WIDTH[self.input_format])
@@ -138,6 +155,10 @@ class RotationConverter(Module):
         self._warned = False
 
     def tick(self):
+        if self.quaternions == "zero" and "quaternion" in (self.input_format,
+                                                           self.output_format):
+            self.OUTPUT[...] = 0
+            return
         x = self._in.astype(np.float64)
         n = x.shape[0]
         unit = _TO_RADIANS[self.angle_unit]

@@ -33,7 +33,7 @@ def data_file(tmp_path, columns, rows):
 def test_scalar_defaults_hand_worked(tmp_path):
     data_file(tmp_path, [("Z", 1)], [[3], [3]])
     net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
-                         '<module class="KalmanFilter" name="K"/>\n'
+                         '<module class="KalmanFilter" name="K" default_matrices="identity"/>\n'
                          '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
     try:
         assert net.output("K.STATE").shape == (1,)
@@ -102,7 +102,7 @@ def test_singular_innovation_covariance_keeps_the_prediction(tmp_path):
     data_file(tmp_path, [("Z", 1)], [[1], [2], [3]])
     net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
                          '<module class="Constant" name="U" data="1"/>\n'
-                         '<module class="KalmanFilter" name="K" H="0" B="1" '
+                         '<module class="KalmanFilter" name="K" H="0" B="1" A="1" '
                          'observation_noise="0"/>\n'
                          '<connection source="U.OUTPUT" target="K.INPUT" delay="0"/>\n'
                          '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
@@ -142,7 +142,7 @@ def run_v3(tmp_path, columns, rows, attrs="", links=()):
     """Steps through the rows; returns (STATE, INNOVATION, KALMAN_GAIN) after each tick."""
     data_file(tmp_path, columns, rows)
     body = ('<module class="InputFile" name="D" filename="d.txt"/>\n'
-            f'<module class="KalmanFilter" name="K" {attrs}/>\n'
+            f'<module class="KalmanFilter" name="K" default_matrices="identity" {attrs}/>\n'
             '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>\n' +
             "".join(f'<connection source="D.{a}" target="K.{b}" delay="0"/>\n'
                     for a, b in links))
@@ -202,3 +202,84 @@ def test_v3_observation_valid_of_wrong_size_is_an_error(tmp_path):
     with pytest.raises(ModelError, match="OBSERVATION_VALID has 3 elements"):
         run_v3(tmp_path, [("Z", 1), ("V", 3)], [[3, 1, 1, 1]],
                links=[("V", "OBSERVATION_VALID")])
+
+
+# --- Ikaros 3 files (dialect 3): MODULES-V3 §25 -------------------------------------------
+
+
+def reference_v3(A, H, Q, R, zs, gate=0.0):
+    """Ikaros 3's filter, from the reference: Joseph form, an innovation gate, P starts at I."""
+    n = A.shape[0]
+    x, P = np.zeros(n), np.eye(n)
+    out = []
+    for z in zs:
+        xp, Pp = A @ x, A @ P @ A.T + Q
+        y = z - H @ xp
+        S = H @ Pp @ H.T + R
+        nis = float(y @ np.linalg.inv(S) @ y)
+        if gate > 0 and nis > gate:
+            x, P, K, gated = xp, Pp, np.zeros((n, len(z))), 1
+        else:
+            K = Pp @ H.T @ np.linalg.inv(S)
+            x = xp + K @ y
+            J = np.eye(n) - K @ H
+            P = J @ Pp @ J.T + K @ R @ K.T
+            gated = 0
+        out.append((x, y, K, gated, nis))
+    return out
+
+
+def test_v3_gate_joseph_form_and_process_noise_per_second(tmp_path):
+    zs = [[1.0], [1.5], [9.0], [2.4], [3.1]]
+    data_file(tmp_path, [("Z", 1)], zs)
+    net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                         '<module class="KalmanFilter" name="K" state_size="2" '
+                         'A="1, 0.5; 0, 1" H="1, 0" process_noise="0.4" '
+                         'observation_noise="0.3" innovation_gate="6"/>\n'
+                         '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>',
+               dialect="3", tick_duration="0.5")
+    expected = reference_v3(np.array([[1, 0.5], [0, 1]]), np.array([[1.0, 0]]),
+                            0.4 * 0.5 * np.eye(2), 0.3 * np.eye(1), np.array(zs), gate=6)
+    try:
+        assert net.output("K.KALMAN_GAIN").shape == (2, 1)
+        gates = []
+        for x, y, K, gated, nis in expected:
+            net.step()
+            assert np.allclose(net.output("K.STATE"), x, rtol=1e-5, atol=1e-6)
+            assert np.allclose(net.output("K.INNOVATION"), y, rtol=1e-5, atol=1e-6)
+            assert np.allclose(net.output("K.KALMAN_GAIN"), K, rtol=1e-5, atol=1e-6)
+            assert net.output("K.NORMALIZED_INNOVATION")[0] == pytest.approx(nis, rel=1e-5)
+            gates.append(float(net.output("K.GATED")[0]))
+        assert gates == [g for *_, g, _ in expected] and 1.0 in gates
+    finally:
+        net.close()
+
+
+def test_v3_default_matrices_keep_the_state_at_zero(tmp_path):
+    # MODULES-V3 §25: a zero A or H acts as zero in every tick; y = z, S = R = 1, y'S⁻¹y = 4
+    data_file(tmp_path, [("Z", 1)], [[2], [2]])
+    net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                         '<module class="KalmanFilter" name="K"/>\n'
+                         '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>',
+               dialect="3")
+    try:
+        net.step()
+        assert net.output("K.STATE")[0] == 0 and net.output("K.KALMAN_GAIN")[0, 0] == 0
+        assert net.output("K.NORMALIZED_INNOVATION")[0] == 4
+    finally:
+        net.close()
+
+
+def test_empty_a_and_h_are_zero_as_in_the_original(tmp_path):
+    # Ikaros 2 and 3 use all-zero matrices: the state stays 0 and the gain is 0
+    data_file(tmp_path, [("Z", 1)], [[3], [3]])
+    net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                         '<module class="KalmanFilter" name="K"/>\n'
+                         '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
+    try:
+        for _ in range(2):
+            net.step()
+            assert net.output("K.STATE")[0] == 0 and net.output("K.KALMAN_GAIN")[0, 0] == 0
+            assert net.output("K.INNOVATION")[0] == 3
+    finally:
+        net.close()

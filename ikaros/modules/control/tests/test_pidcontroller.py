@@ -54,7 +54,7 @@ ROWS = [[0, 0], [0.5, -1], [1, -1.5], [2, 0], [1.5, -3], [0, 0], [1, 1], [-1, 2]
 
 def run_and_compare(tmp_path, params, setpoint=(1, -2), rows=ROWS):
     write_inputs(tmp_path, rows)
-    attrs = " ".join(f'{k}="{v}"' for k, v in params.items())
+    attrs = " ".join(f'{k}="{v}"' for k, v in params.items()) + ' derivative_mode="error"'
     net = load(tmp_path, body(attrs, " ".join(map(str, setpoint))))
     try:
         expected = reference(rows, [setpoint] * len(rows), **params)
@@ -109,7 +109,7 @@ def test_clipping_stops_integration(tmp_path):
 def test_derivative_is_zero_on_the_first_tick(tmp_path):
     rows = [[0, 0], [0.5, 0], [0.5, 0]]
     write_inputs(tmp_path, rows)
-    net = load(tmp_path, body('Kp="0" Kd="2"'))
+    net = load(tmp_path, body('Kp="0" Kd="2" derivative_mode="error"'))
     try:
         net.step()
         assert np.allclose(net.output("P.OUTPUT"), [0, 0])
@@ -191,3 +191,77 @@ def test_v3_input_of_wrong_size_is_an_error(tmp_path):
     with pytest.raises(ModelError, match="GATED has 3 elements"):
         run_v3(tmp_path, {"GATED": [[1, 1, 1]]})
 
+
+
+def reference_v3(inputs, setpoint, dt, Kb=0.0, Kp=0.1, Ki=0.0, Kd=0.0, Fs=0.0, Fm=0.0,
+                 Fp=0.0, Fi=0.0, Fd=0.0, Fc=0.0, limit=0.0, mode="measurement",
+                 Cmin=-1000.0, Cmax=1000.0):
+    """The Ikaros 3 controller of one element, written from docs of the class (rate filters,
+    integral and derivative per second, rate-limited output)."""
+    def w(rate):
+        return 1.0 if rate == 0 else 1 - np.exp(-rate * dt)
+    fs = fm = p = i = d = integral = out = previous = 0.0
+    outputs = []
+    for x in inputs:
+        fs += w(Fs) * (setpoint - fs)
+        fm += w(Fm) * (x - fm)
+        delta = fs - fm
+        p += w(Fp) * (delta - p)
+        i += w(Fi) * (delta - i)
+        signal = delta if mode == "error" else -fm
+        d += w(Fd) * ((signal - previous) / dt - d)
+        previous = signal
+        integral += i * dt
+        c = Kb + Kp * p + Ki * integral + Kd * d
+        if not Cmin <= c <= Cmax:
+            integral -= i * dt
+            c = min(max(c, Cmin), Cmax)
+        new = out + w(Fc) * (c - out)
+        out = new if limit == 0 else min(max(new, out - limit * dt), out + limit * dt)
+        outputs.append(out)
+    return outputs
+
+
+def test_ikaros_3_rates_error_derivative_and_rate_limit(tmp_path):
+    inputs = [0.0, 0.5, 1.0, 1.2, 1.1, 0.9, 1.0, 1.0]
+    (tmp_path / "x.txt").write_text("X/1\n" + "".join(f"{v}\n" for v in inputs))
+    gains = dict(Kp=1.2, Ki=0.8, Kd=0.1, Fs=2, Fm=5, Fp=3, Fi=1, Fd=4, Fc=6, Cmax=1.5)
+    text = " ".join(f'{k}="{v}"' for k, v in gains.items())
+    net = load(tmp_path, '<module class="InputFile" name="F" filename="x.txt"/>'
+                         '<module class="Constant" name="S" data="1"/>'
+                         f'<module class="PIDController" name="P" {text} '
+                         'output_rate_limit="4" derivative_mode="error"/>'
+                         '<connection source="F.X" target="P.INPUT" delay="0"/>'
+                         '<connection source="S.OUTPUT" target="P.SETPOINT" delay="0"/>',
+               dialect="3", tick_duration="0.05")
+    try:
+        got = []
+        for _ in inputs:
+            net.step()
+            got.append(float(net.output("P.OUTPUT")[0]))
+    finally:
+        net.close()
+    expected = reference_v3(inputs, 1.0, 0.05, limit=4, mode="error", **gains)
+    np.testing.assert_allclose(got, expected, rtol=1e-5, atol=1e-6)
+
+
+@pytest.mark.parametrize("mode, sign", [("input", 1), ("measurement", -1)])
+def test_ikaros_2_derivative_of_the_filtered_input(tmp_path, mode, sign):
+    # the default (input) is Ikaros 2's: Kd times the change of the filtered input, which
+    # pushes the output the wrong way; measurement corrects the sign. Fd is not used.
+    rows = [[0, 0], [0.5, 0], [1.5, -1], [1.5, -1]]
+    write_inputs(tmp_path, rows)
+    attrs = 'Kp="0" Kd="2" Fm="0.5" Fd="0.9"' + ("" if mode == "input" else
+                                                  f' derivative_mode="{mode}"')
+    net = load(tmp_path, body(attrs, data=""))
+    try:
+        fm, last, got, expected = np.zeros(2), None, [], []
+        for row in rows:
+            fm = 0.5 * fm + 0.5 * np.array(row)
+            expected.append(sign * 2 * (fm - (fm if last is None else last)))
+            last = fm.copy()
+            net.step()
+            got.append(net.output("P.OUTPUT").copy())
+        assert np.allclose(got, expected, atol=1e-6)
+    finally:
+        net.close()

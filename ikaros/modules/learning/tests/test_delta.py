@@ -56,12 +56,12 @@ def test_learns_a_linear_map_and_predicts_held_out_compounds(tmp_path):
 
 
 def test_acquisition_only_and_inverse_output(tmp_path):
-    # US = 1 for 40 ticks, then 0: the weights never shrink; inverse gives US - CR
+    # US = 1 for 40 ticks, then 0: the weights never shrink; output=error gives US - CR
     rows = [[1, 1]] * 40 + [[1, 0]] * 10
     data_file(tmp_path, "CS/1 US/1", rows)
     net = load_body(tmp_path, '<module class="InputFile" name="F" filename="data.txt"/>'
                     '<module class="Delta" name="D" alpha="0.5"/>'
-                    '<module class="Delta" name="I" alpha="0.5" inverse="yes"/>'
+                    '<module class="Delta" name="I" alpha="0.5" output="error"/>'
                     '<connection source="F.CS" target="D.CS" delay="0"/>'
                     '<connection source="F.US" target="D.US" delay="0"/>'
                     '<connection source="F.CS" target="I.CS" delay="0"/>'
@@ -89,5 +89,22 @@ def test_unconnected_us_learns_nothing(tmp_path):
     try:
         assert np.array_equal(run(net, 5, "D.CR"), np.zeros((5, 1)))
         assert np.array_equal(run(net, 2, "E.CR"), np.zeros((2, 1)))
+    finally:
+        net.close()
+
+
+def test_inverse_learns_nothing_while_the_us_exceeds_the_prediction(tmp_path):
+    # golden Delta.json case "inverse": with inverse="yes" CR stays 0
+    net = load_body(tmp_path, '<module class="Constant" name="CS" data="1"/>'
+                    '<module class="Constant" name="US" data="0.5"/>'
+                    '<module class="Delta" name="D" alpha="0.5" inverse="yes"/>'
+                    '<connection source="CS.OUTPUT" target="D.CS" delay="0"/>'
+                    '<connection source="US.OUTPUT" target="D.US" delay="0"/>')
+    try:
+        got = []
+        for _ in range(3):
+            net.step()
+            got.append(float(net.output("D.CR")[0]))
+        assert got == [0, 0, 0]
     finally:
         net.close()

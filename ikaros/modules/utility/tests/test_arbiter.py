@@ -230,3 +230,41 @@ def test_v2_numbered_input_left_unconnected_is_an_error(tmp_path):
     body = _body(["1", "2"]).replace('target="A.INPUT_2"', 'target="A.VALUE_2"')
     with pytest.raises(ikaros.ModelError, match='input "INPUT_2" is not connected'):
         load(tmp_path, body)
+
+
+def _v3(tmp_path, attrs, values=None):
+    body = ('<module class="Constant" name="A" data="1, 2"/>'
+            '<module class="Constant" name="B" data="3, -0.5"/>'
+            f'<module class="Arbiter" name="R" {attrs}/>'
+            '<connection source="A.OUTPUT" target="R.INPUT" delay="0"/>'
+            '<connection source="B.OUTPUT" target="R.INPUT" delay="0"/>')
+    if values is not None:
+        body += (f'<module class="Constant" name="V" data="{values}"/>'
+                 '<connection source="V.OUTPUT" target="R.VALUE" delay="0"/>')
+    net = load(tmp_path, body, dialect="3")
+    try:
+        net.step()
+        return {k: net.output(f"R.{k}").copy() for k in
+                ("AMPLITUDES", "ARBITRATION", "SMOOTHED", "NORMALIZED", "OUTPUT")}
+    finally:
+        net.close()
+
+
+def test_ikaros_3_values_in_one_connection_are_concatenated(tmp_path):
+    # MODULES-V3 §24: without stack_values one VALUE connection holds every candidate's value
+    out = _v3(tmp_path, "", values="5, 1")
+    assert out["AMPLITUDES"].tolist() == [5, 1] and out["ARBITRATION"].tolist() == [5, 0]
+    assert out["OUTPUT"].tolist() == [1, 2]
+
+
+def test_ikaros_3_softmax_of_signed_values_normalizes_by_the_signed_sum(tmp_path):
+    # softmax_exponent 3: (-1)^3 = -1, 2^3 = 8; NORMALIZED = SMOOTHED / 7 (not / 9)
+    out = _v3(tmp_path, 'arbitration="softmax" softmax_exponent="3"', values="-1, 2")
+    assert out["ARBITRATION"].tolist() == [-1, 8]
+    assert np.allclose(out["NORMALIZED"], [-1 / 7, 8 / 7])
+    assert np.allclose(out["OUTPUT"], np.array([-1, 8]) @ np.array([[1, 2], [3, -0.5]]) / 7)
+
+
+def test_ikaros_3_a_value_per_candidate_is_required(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="one per candidate"):
+        _v3(tmp_path, "", values="1, 2, 3")

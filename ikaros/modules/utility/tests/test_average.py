@@ -105,3 +105,18 @@ def test_default_criterion_never_stops(tmp_path):
         assert net.run(ticks=10) == 10 and not net.stopped
     finally:
         net.close()
+
+
+def test_ikaros_3_average_is_the_mean_of_all_elements(tmp_path):
+    # dialect 3 (MODULES-V3 §5): one value, the mean of this tick's elements, not over time
+    net = load(tmp_path, '<module class="Constant" name="C" data="3 1; 4 -2"/>'
+                         '<module class="Average" name="A"/>'
+                         '<connection source="C.OUTPUT" target="A.INPUT" delay="0"/>',
+               dialect="3")
+    try:
+        for _ in range(3):
+            net.step()
+            out = net.output("A.OUTPUT")
+            assert out.shape == (1,) and out[0] == 1.5
+    finally:
+        net.close()

@@ -44,3 +44,42 @@ def test_inputs_of_different_sizes_are_an_error(tmp_path):
                        '<module class="Max" name="M"/>'
                        '<connection source="A.OUTPUT" target="M.INPUT1" delay="0"/>'
                        '<connection source="B.OUTPUT" target="M.INPUT2" delay="0"/>')
+
+
+def _reduce(tmp_path, cls, data):
+    net = load(tmp_path, f'<module class="Constant" name="C" data="{data}"/>'
+                         f'<module class="{cls}" name="M"/>'
+                         '<connection source="C.OUTPUT" target="M.INPUT" delay="0"/>')
+    try:
+        net.step()
+        return net.output("M.OUTPUT").copy()
+    finally:
+        net.close()
+
+
+@pytest.mark.parametrize("cls, expected", [("Max", 4), ("Min", -7)])
+def test_ikaros_3_input_is_a_reduction(tmp_path, cls, expected):
+    # the Ikaros 3 interface: one INPUT, one value out (MODULES-V3 §5); NaN is skipped
+    out = _reduce(tmp_path, cls, "3 nan; 4 -7")
+    assert out.shape == (1,) and out[0] == expected
+
+
+@pytest.mark.parametrize("cls, expected", [("Max", -np.inf), ("Min", np.inf)])
+def test_an_all_nan_input_gives_the_starting_value(tmp_path, cls, expected):
+    assert _reduce(tmp_path, cls, "nan nan")[0] == expected
+
+
+def test_both_interfaces_at_once_is_an_error(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="not both"):
+        load(tmp_path, '<module class="Constant" name="A" data="1 2"/>'
+                       '<module class="Max" name="M"/>'
+                       '<connection source="A.OUTPUT" target="M.INPUT" delay="0"/>'
+                       '<connection source="A.OUTPUT" target="M.INPUT1" delay="0"/>'
+                       '<connection source="A.OUTPUT" target="M.INPUT2" delay="0"/>')
+
+
+def test_one_ikaros_2_input_alone_is_an_error(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="INPUT1 and INPUT2 must both be connected"):
+        load(tmp_path, '<module class="Constant" name="A" data="1 2"/>'
+                       '<module class="Max" name="M"/>'
+                       '<connection source="A.OUTPUT" target="M.INPUT1" delay="0"/>')

@@ -21,10 +21,35 @@ def run(tmp_path, index, attrs="", extra="", ticks=1):
 
 
 @pytest.mark.parametrize("index, expected", [
+    ("0", [1, 0, 0, 0]), ("2", [0, 0, 1, 0]), ("1.6", [0, 1, 0, 0]), ("12", [0, 0, 0, 1]),
+    ("-0.5", [0, 0, 0, 0]), ("-3", [0, 0, 0, 0]), ("inf", [0, 0, 0, 1]),
+    ("-inf", [0, 0, 0, 0])])
+def test_the_index_is_truncated_as_in_ikaros_3(tmp_path, index, expected):
+    # golden/README.md: a fraction is truncated (2.6 -> 2), a negative index gives all zeros
+    assert run(tmp_path, index) == (expected, [])
+
+
+@pytest.mark.parametrize("index, expected", [
     ("0", [1, 0, 0, 0]), ("2", [0, 0, 1, 0]), ("1.6", [0, 0, 1, 0]), ("12", [0, 0, 0, 1]),
     ("-3", [1, 0, 0, 0]), ("inf", [0, 0, 0, 1]), ("-inf", [1, 0, 0, 0])])
-def test_the_index_is_rounded_and_clamped(tmp_path, index, expected):
-    assert run(tmp_path, index) == (expected, [])
+def test_index_round_rounds_and_clamps(tmp_path, index, expected):
+    assert run(tmp_path, index, 'index="round"') == (expected, [])
+
+
+def test_an_index_input_of_more_than_one_element_is_refused(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="INPUT must have one element"):
+        run(tmp_path, "1 2")
+
+
+def test_the_default_output_size_is_ten(tmp_path):
+    net = load(tmp_path, '<module class="Constant" name="I" data="9"/>'
+                         '<module class="OneHotVector" name="H"/>'
+                         '<connection source="I.OUTPUT" target="H.INPUT" delay="0"/>')
+    try:
+        net.step()
+        assert net.output("H.OUTPUT").tolist() == [0] * 9 + [1]
+    finally:
+        net.close()
 
 
 def test_the_value_comes_from_the_parameter_or_the_value_input(tmp_path):

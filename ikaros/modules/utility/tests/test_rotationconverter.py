@@ -157,3 +157,36 @@ def test_zero_quaternion_is_no_rotation_with_one_warning(tmp_path):
 def test_wrong_input_size_is_an_error(tmp_path):
     with pytest.raises(ikaros.ModelError, match="needs 6 values"):
         convert(tmp_path, "1 2 3", input_format="xyzaxayaz")
+
+
+def _convert_v3(tmp_path, data, **attrs):
+    text = " ".join(f'{k}="{v}"' for k, v in attrs.items())
+    net = load(tmp_path, f'<module class="Constant" name="C" data="{data}"/>'
+                         f'<module class="RotationConverter" name="R" {text}/>'
+                         '<connection source="C.OUTPUT" target="R.INPUT" delay="0"/>',
+               dialect="3")
+    try:
+        net.step()
+        return net.output("R.OUTPUT").copy()
+    finally:
+        net.close()
+
+
+def test_ikaros_3_shapes_a_matrix_is_4x4_and_a_pose_a_row(tmp_path):
+    # golden/README.md: a matrix output has shape [4, 4]; a pose is one row
+    out = _convert_v3(tmp_path, "0.25 0 0.125", input_format="axayaz",
+                      output_format="matrix", angle_unit="turns")
+    expected = np.eye(4)
+    expected[:3, :3] = rz(np.pi / 4) @ rx(np.pi / 2)
+    assert out.shape == (4, 4) and np.allclose(out, expected, atol=1e-6)
+    out = _convert_v3(tmp_path, "0 -1 0 1; 1 0 0 2; 0 0 1 3; 0 0 0 1",
+                      input_format="matrix", output_format="xyzaxayaz")
+    assert out.shape == (1, 6) and np.allclose(out, [[1, 2, 3, 0, 0, 90]], atol=1e-5)
+
+
+def test_ikaros_3_quaternions_are_zero_unless_computed(tmp_path):
+    out = _convert_v3(tmp_path, "0 0 90", input_format="axayaz", output_format="quaternion")
+    assert out.shape == (1, 4) and not out.any()
+    out = _convert_v3(tmp_path, "0 0 90", input_format="axayaz", output_format="quaternion",
+                      quaternions="computed")
+    assert np.allclose(out, [[0, 0, np.sqrt(0.5), np.sqrt(0.5)]], atol=1e-6)
