@@ -20,8 +20,14 @@ class Dynamixel(Module):
     dynamixel-sdk: AX-12/AX-18, MX-28/64/106 (Protocol 1.0 or 2.0), XL-320 and the X-430 and
     X-540 series. The servos are ``servo_id`` or, when it is empty, those that answer a scan
     of ids 0..``max_servo_id`` with Protocol 1.0 and then 2.0 (``protocol`` can fix one; a bus
-    that mixes the two is refused). With ``index_mode=direct`` element i of every input and
-    output is the i-th servo (in id order); with ``indirect`` element i is the servo with id i.
+    that mixes the two is refused). With ``index_mode=direct`` (the default, as in Ikaros 2)
+    element i of every input and output is the servo whose id is i: the arrays have max id + 1
+    elements, and those with no servo are unused (outputs read 0). With ``indirect`` element i
+    is the i-th servo of ``servo_id`` in the order listed (or of the scan, in id order), and
+    the arrays have one element per servo (a listed servo that is left out keeps its element,
+    unused). ``size`` above 0 forces the number of elements; a servo whose element would lie
+    outside it is an error at load (the reference describes ``size`` only as forcing the array
+    size, so this refusal is this project's choice).
     Positions are absolute angles in ``angle_unit`` with 180° (π, 0.5 tau) at a servo's centre:
     raw 512 of the 300° series, raw 2048 of the 4096-step series. MOVING_SPEED and
     TORQUE_LIMIT are fractions of the full scale (speed 1 is about 114 rpm; 0 means the
@@ -54,8 +60,10 @@ class Dynamixel(Module):
     servo_id = Parameter("", "the ids of the servos (empty: scan 0..max_servo_id)", type="array")
     strict_servo_id = Parameter(False, "stop with an error when a servo of servo_id does not answer "
                                 "(otherwise it is left out with a warning)")
-    index_mode = Parameter("direct", "direct: element i is the i-th servo; indirect: element i is servo id i",
-                           options="direct/indirect")
+    index_mode = Parameter("direct", "direct: element i is the servo with id i; indirect: element i is the "
+                           "i-th servo of servo_id (or of the scan)", options="direct/indirect")
+    size = Parameter(0, "the number of elements of every input and output (0: max id + 1 with direct, "
+                     "the number of servos with indirect)", type="int")
     angle_unit = Parameter("degrees", "unit of positions", options="degrees/radians/tau")
     max_servo_id = Parameter(32, "the highest id a scan pings")
     protocol = Parameter("auto", "protocol version (auto: ping with 1.0, then 2.0)", options="auto/1/2")
@@ -127,12 +135,28 @@ class Dynamixel(Module):
             if missing:
                 self.warning(f"servo {', '.join(map(str, missing))} on {described} does not answer; left out")
         self._tables = dict(sorted(tables.items()))
-        ids = list(self._tables)
-        self._ids = ids
-        size = max(ids) + 1 if self.index_mode == "indirect" else len(ids)
-        self._index = np.array(ids if self.index_mode == "indirect" else range(len(ids)), dtype=int)
+        self._ids = list(self._tables)
+        size, self._index = self._elements(wanted or self._ids)
         for name in self._ik_outputs:
             self.set_output_shape(name, (size, ERROR_BITS) if name == "ERRORS" else size)
+
+    def _elements(self, order: list[int]) -> tuple[int, np.ndarray]:
+        """The array size and the element of each servo (in id order) for ``index_mode``:
+        its id (direct), or its place in ``order``, the listed or scanned ids (indirect)."""
+        if self.index_mode == "direct":
+            element = {ident: ident for ident in self._ids}
+            natural = max(self._ids) + 1
+        else:
+            element = {ident: order.index(ident) for ident in self._ids}
+            natural = len(order)
+        size = int(self.size) if int(self.size) > 0 else natural
+        outside = [ident for ident in self._ids if element[ident] >= size]
+        if outside:
+            self._close_simulator()
+            raise ValueError(f"size=\"{int(self.size)}\" leaves no element for servo "
+                             f"{', '.join(map(str, outside))} (index_mode=\"{self.index_mode}\" "
+                             f"needs at least {natural})")
+        return size, np.array([element[ident] for ident in self._ids], dtype=int)
 
     def _describe(self, bus, tables) -> str:
         models = {}

@@ -17,6 +17,9 @@ XM = "XM430-W350"
 
 
 def model(tmp_path, device, goals="200 0 90", params="", extra=""):
+    """Goals in the order of the servos (index_mode indirect) unless ``params`` sets the mode."""
+    if "index_mode" not in params:
+        params += ' index_mode="indirect"'
     body = (f'<module class="Constant" name="G" data="{goals}"/>\n'
             f'<module class="Dynamixel" name="D" device="{device}" print_info="none" {params}/>\n'
             '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n' + extra)
@@ -66,12 +69,14 @@ def test_angle_units(tmp_path, unit, goal, factor):
             net.close()
 
 
-def test_indirect_index_mode_speed_and_torque_enable(tmp_path, bus):
+def test_direct_index_mode_speed_and_torque_enable(tmp_path, bus):
+    """Ikaros 2's default: element i is the servo with id i, arrays of max id + 1 elements."""
     extra = ('<module class="Constant" name="T" data="0 0 1 0 0"/>\n'
              '<module class="Constant" name="S" data="0 0.25 0.25 0 0.5"/>\n'
              '<connection source="T.OUTPUT" target="D.TORQUE_ENABLE"/>\n'
              '<connection source="S.OUTPUT" target="D.MOVING_SPEED"/>')
-    net = model(tmp_path, bus.path, goals="0 200 200 0 200", params='index_mode="indirect" servo_id="1 2 4"',
+    net = model(tmp_path, bus.path, goals="0 200 200 0 200",
+                params='servo_id="1 2 4" index_mode="direct"',
                 extra=extra)
     try:
         assert net.output("D.FEEDBACK_PRESENT_POSITION").shape == (5,)
@@ -84,6 +89,37 @@ def test_indirect_index_mode_speed_and_torque_enable(tmp_path, bus):
         assert net.output("D.FEEDBACK_PRESENT_SPEED")[2] == pytest.approx(0.25, abs=0.01)   # moving
     finally:
         net.close()
+
+
+def test_by_default_element_i_is_the_servo_with_id_i_as_in_ikaros_2(tmp_path):
+    """An Ikaros 2 model for servos 1, 2, 3 (no index_mode): element 0 unused, reads 0."""
+    with VirtualDynamixelBus({1: XM, 2: XM, 3: XM}, 2) as sim:
+        body = (f'<module class="Constant" name="G" data="0 150 200 210"/>\n'
+                f'<module class="Dynamixel" name="D" device="{sim.path}" print_info="none" servo_id="1 2 3"/>\n'
+                '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n')
+        net = load_body(tmp_path, body)
+        try:
+            assert net.output("D.FEEDBACK_PRESENT_POSITION").tolist() == [0, 180, 180, 180]
+            assert net.output("D.ERRORS").shape == (4, 8)
+            net.step()
+            assert [sim.servo(i).value("GOAL_POSITION") for i in (1, 2, 3)] == pytest.approx([150, 200, 210],
+                                                                                             abs=0.1)
+            assert net.output("D.FEEDBACK_GOAL_POSITION") == pytest.approx([0, 150, 200, 210], abs=0.1)
+        finally:
+            net.close()
+
+
+def test_indirect_follows_the_listed_order_and_size_forces_the_array_size(tmp_path, bus):
+    net = model(tmp_path, bus.path, goals="150 200 210 0 0 0", params='servo_id="4 1 2" index_mode="indirect" size="6"')
+    try:
+        assert net.output("D.FEEDBACK_PRESENT_POSITION").tolist() == [180, 180, 180, 0, 0, 0]
+        net.step()
+        assert [bus.servo(i).value("GOAL_POSITION") for i in (4, 1, 2)] == pytest.approx([150, 200, 210], abs=0.1)
+    finally:
+        net.close()
+    with pytest.raises(ModelError, match=r'size="3" leaves no element for servo 4 \(index_mode="direct" needs at '
+                                         r'least 5\)'):
+        model(tmp_path, bus.path, params='servo_id="1 2 4" index_mode="direct" size="3"')
 
 
 def test_goals_are_clipped_to_the_angle_limits_and_overload_is_reported(tmp_path):
@@ -187,7 +223,7 @@ def test_ctrl_c_of_an_ikaros_process_makes_the_servos_safe(tmp_path, bus, how):
     path = tmp_path / "arm.ikg"
     path.write_text(f'<group name="Arm" tick_duration="0.01">\n'
                     f'<module class="Constant" name="G" data="250 100"/>\n'
-                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1 2"/>\n'
+                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1 2" index_mode="indirect"/>\n'
                     '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
     process = subprocess.Popen([sys.executable, "-m", "ikaros", "-b", "-r", str(path)], env=env,
@@ -205,7 +241,7 @@ def test_ctrl_c_of_an_ikaros_process_makes_the_servos_safe(tmp_path, bus, how):
 def test_a_script_that_never_closes_its_network_leaves_the_servos_safe(tmp_path, bus):
     path = tmp_path / "arm.ikg"
     path.write_text(f'<group name="Arm">\n<module class="Constant" name="G" data="250"/>\n'
-                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1"/>\n'
+                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1" index_mode="indirect"/>\n'
                     '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
     script = f"import ikaros\nnet = ikaros.load({str(path)!r})\nnet.run(ticks=3)\nprint(net.output('D.FEEDBACK_TORQUE_ENABLE')[0])\n"
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
@@ -239,7 +275,7 @@ def test_two_networks_share_one_bus(tmp_path, bus):
 def test_the_end_of_a_batch_run_leaves_the_servos_safe(tmp_path, bus):
     path = tmp_path / "arm.ikg"
     path.write_text(f'<group name="Arm">\n<module class="Constant" name="G" data="250"/>\n'
-                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1" print_info="none"/>\n'
+                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1" print_info="none" index_mode="indirect"/>\n'
                     '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
     result = subprocess.run([sys.executable, "-m", "ikaros", "-b", "-s", "20", str(path)], env=env,
