@@ -37,7 +37,8 @@ class Dynamixel(Module):
     are written (GOAL_POSITION in one sync write, the other inputs only when they change) and
     the present values read back (one sync read in Protocol 2.0, one bulk read for MX servos in 1.0,
     else one read per servo; ``feedback`` chooses all of them, the
-    position only, or none). Nothing moves at start-up:
+    position only, or none). Nothing moves at start-up: an input element that has not yet
+    received a value from its source (``Module.input_ready``) is not written, and
     a servo's goal is first written on the first tick its GOAL_POSITION element is not 0, and
     its torque is switched on then (or by TORQUE_ENABLE when that is connected); goals are
     clipped to each servo's angle limits. ERRORS has one row per servo with the bits of its
@@ -209,10 +210,11 @@ class Dynamixel(Module):
         if array is None:
             return None
         flat = array.reshape(-1)
+        ready = self.input_ready(name)
         out = {}
         for position, ident in enumerate(self._ids):
             element = self._index[position]
-            if element < flat.size:
+            if element < flat.size and ready[element]:
                 out[ident] = float(flat[element])
         return out
 

@@ -22,7 +22,7 @@ def model(tmp_path, device, goals="200 0 90", params="", extra=""):
         params += ' index_mode="indirect"'
     body = (f'<module class="Constant" name="G" data="{goals}"/>\n'
             f'<module class="Dynamixel" name="D" device="{device}" print_info="none" {params}/>\n'
-            '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n' + extra)
+            '<connection source="G.OUTPUT" target="D.GOAL_POSITION" delay="0"/>\n' + extra)
     return load_body(tmp_path, body)
 
 
@@ -73,8 +73,8 @@ def test_direct_index_mode_speed_and_torque_enable(tmp_path, bus):
     """Ikaros 2's default: element i is the servo with id i, arrays of max id + 1 elements."""
     extra = ('<module class="Constant" name="T" data="0 0 1 0 0"/>\n'
              '<module class="Constant" name="S" data="0 0.25 0.25 0 0.5"/>\n'
-             '<connection source="T.OUTPUT" target="D.TORQUE_ENABLE"/>\n'
-             '<connection source="S.OUTPUT" target="D.MOVING_SPEED"/>')
+             '<connection source="T.OUTPUT" target="D.TORQUE_ENABLE" delay="0"/>\n'
+             '<connection source="S.OUTPUT" target="D.MOVING_SPEED" delay="0"/>')
     net = model(tmp_path, bus.path, goals="0 200 200 0 200",
                 params='servo_id="1 2 4" index_mode="direct"',
                 extra=extra)
@@ -96,7 +96,7 @@ def test_by_default_element_i_is_the_servo_with_id_i_as_in_ikaros_2(tmp_path):
     with VirtualDynamixelBus({1: XM, 2: XM, 3: XM}, 2) as sim:
         body = (f'<module class="Constant" name="G" data="0 150 200 210"/>\n'
                 f'<module class="Dynamixel" name="D" device="{sim.path}" print_info="none" servo_id="1 2 3"/>\n'
-                '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n')
+                '<connection source="G.OUTPUT" target="D.GOAL_POSITION" delay="0"/>\n')
         net = load_body(tmp_path, body)
         try:
             assert net.output("D.FEEDBACK_PRESENT_POSITION").tolist() == [0, 180, 180, 180]
@@ -120,6 +120,24 @@ def test_indirect_follows_the_listed_order_and_size_forces_the_array_size(tmp_pa
     with pytest.raises(ModelError, match=r'size="3" leaves no element for servo 4 \(index_mode="direct" needs at '
                                          r'least 5\)'):
         model(tmp_path, bus.path, params='servo_id="1 2 4" index_mode="direct" size="3"')
+
+
+def test_an_input_that_has_no_value_from_its_source_yet_is_not_written(tmp_path):
+    """TORQUE_LIMIT through a Scale (delays 1) arrives on tick 2: the zeros before it must not
+    be written as a torque limit of 0."""
+    with VirtualDynamixelBus({1: "AX-12A"}, 1) as sim:
+        extra = ('<module class="Constant" name="L" data="0.5"/>\n<module class="Scale" name="S" factor="1"/>\n'
+                 '<connection source="L.OUTPUT" target="S.INPUT"/>\n'
+                 '<connection source="S.OUTPUT" target="D.TORQUE_LIMIT"/>')
+        net = model(tmp_path, sim.path, goals="200", params='protocol="1" servo_id="1"', extra=extra)
+        try:
+            net.step()
+            net.step()
+            assert sim.servo(1).raw("TORQUE_LIMIT") == 1023                    # the factory value
+            net.step()
+            assert sim.servo(1).raw("TORQUE_LIMIT") == 512
+        finally:
+            net.close()
 
 
 def test_goals_are_clipped_to_the_angle_limits_and_overload_is_reported(tmp_path):

@@ -22,12 +22,34 @@ SIM = "sim:epuck?step=0.1&amp;obstacles=none"          # an empty 1 m x 1 m aren
 def model(tmp_path, params, velocity="0.5 0.5", extra=""):
     body = (f'<module class="Constant" name="V" data="{velocity}"/>\n'
             f'<module class="Epuck" name="R" {params}/>\n'
-            '<connection source="V.OUTPUT" target="R.VELOCITY"/>\n' + extra)
+            '<connection source="V.OUTPUT" target="R.VELOCITY" delay="0"/>\n' + extra)
     return load_body(tmp_path, body)
 
 
 def simulator(net):
     return net.modules["R"].module._simulator
+
+
+def test_a_velocity_that_has_no_value_from_its_source_yet_moves_nothing(tmp_path):
+    """Constant -> Scale -> VELOCITY (delays 1) arrives on tick 2; the zeros before it are
+    not sent (a D,0,0 would stop a robot someone else drives; a non-zero offset would move)."""
+    extra = ('<module class="Constant" name="On" data="1"/>\n<module class="Scale" name="S" factor="1"/>\n'
+             '<connection source="On.OUTPUT" target="S.INPUT"/>\n'
+             '<connection source="S.OUTPUT" target="R.LIGHT"/>')
+    net = load_body(tmp_path, f'<module class="Constant" name="V" data="0.5 0.5"/>\n'
+                              f'<module class="Epuck" name="R" port="{SIM}" calibrate="no"/>\n'
+                              '<module class="Scale" name="S2" factor="1"/>\n'
+                              '<connection source="V.OUTPUT" target="S2.INPUT"/>\n'
+                              '<connection source="S2.OUTPUT" target="R.VELOCITY"/>\n' + extra)
+    robot = simulator(net)
+    try:
+        net.step()
+        net.step()
+        assert robot.commands == []
+        net.step()
+        assert robot.commands == ["D,500,500", "F,1"]
+    finally:
+        net.close()
 
 
 def test_wheels_sensors_and_pose(tmp_path):
@@ -142,7 +164,7 @@ def test_the_obstacle_example_avoids_every_obstacle():
 
 def test_the_watchdog_stops_an_idle_robot_and_ticks_resume(tmp_path):
     extra = ('<module class="Constant" name="L" data="1 1 1 1 1 1 1 1"/>\n'
-             '<connection source="L.OUTPUT" target="R.LED"/>\n')
+             '<connection source="L.OUTPUT" target="R.LED" delay="0"/>\n')
     net = model(tmp_path, f'port="{SIM}" watchdog="0.2"', "0.5 0.5", extra)
     robot = simulator(net)
     try:
