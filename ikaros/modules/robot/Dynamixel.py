@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from ikaros.hardware import DeviceError
 from ikaros.module import Input, Module, Output, Parameter
 
 SETTINGS = ["TORQUE_ENABLE", "LED", "D_GAIN", "I_GAIN", "P_GAIN", "GOAL_POSITION", "MOVING_SPEED",
@@ -45,14 +46,17 @@ class Dynamixel(Module):
     last status packet (Protocol 1.0 error bits; in 2.0 the error number's bits and bit 7 the
     hardware alert). When the run ends for any reason, and when no tick has come for
     ``watchdog`` seconds (paused, stopped, hung), every servo that answers is put in
-    ``safe_state``: torque off, or hold (goal = present position). A servo that stops answering
-    stops the run with an error naming the servo and the bus. The command ``safe_state`` goes to the
+    ``safe_state``: torque off, or hold (goal = present position). Real buses lose packets: a
+    status packet that does not come is asked for again, a servo whose reply is still missing
+    keeps its last feedback for that tick and counts in MISSED_REPLIES, and only a servo
+    silent for ``silent_ticks`` ticks in a row stops the run, with an error naming the servo,
+    the bus and the register ("Present Position, address 132"); the others are made safe. The command ``safe_state`` goes to the
     safe state at once and keeps the servos there (feedback is still read) until the command
     ``resume``; then the next goal takes them back as at start-up. ``device="sim:dynamixel?ids=1-3"``
     runs the simulator in this process (docs/robots.md). Differences from Ikaros 2: the safe
     state is torque off rather than a torque-limit ramp that left torque enabled; ERRORS has
-    8 columns (one per bit); protocol, max_servo_id, safe_state, watchdog, feedback and
-    serial_latency are additions."""
+    8 columns (one per bit); protocol, max_servo_id, safe_state, watchdog, feedback,
+    serial_latency, silent_ticks and MISSED_REPLIES are additions."""
 
     device = Parameter("/dev/cu.usbserial-A7005Lxn", "the serial device of the bus (e.g. /dev/ttyUSB0), "
                        "or sim:dynamixel?ids=...&protocol=... for the simulator")
@@ -75,6 +79,8 @@ class Dynamixel(Module):
                          "voltage, temperature, current), only the position, or none", options="all/position/none")
     serial_latency = Parameter(-1.0, "milliseconds the adapter may hold a packet (-1: 16, or 20 on a "
                                "pseudo-terminal)")
+    silent_ticks = Parameter(10, "ticks in a row a servo may miss its status packet before the run "
+                             "stops (a lost packet is asked for again first)", type="int", range=(1, None))
 
     TORQUE_ENABLE = Input("1: torque on, 0: off (unconnected: on with the first goal)", optional=True)
     LED = Input("LED on (1) or off (0); XL-320: colour 0..7", optional=True)
@@ -104,6 +110,7 @@ class Dynamixel(Module):
     FEEDBACK_GOAL_TORQUE = Output("goal torque as last written")
     FEEDBACK_GOAL_ACCELERATION = Output("goal acceleration as last written")
     ERRORS = Output("the error bits of each servo's last status packet, one row per servo")
+    MISSED_REPLIES = Output("how many status packets of each servo never came (after a retry), since the start")
 
     # --- build ------------------------------------------------------------------------------
     def configure(self):
@@ -193,6 +200,7 @@ class Dynamixel(Module):
         limits = group.read(["MIN_POSITION", "MAX_POSITION"])
         self._limits = {i: (limits["MIN_POSITION"].get(i), limits["MAX_POSITION"].get(i)) for i in self._ids}
         self._errors: dict[int, int] = {}
+        self._silent = {ident: 0 for ident in self._ids}       # ticks in a row without a reply
         self._halted = False
         self._start_again()                    # torque is written explicitly, whatever it was
         self._read_feedback()
@@ -272,16 +280,30 @@ class Dynamixel(Module):
         if role == "TORQUE_ENABLE":
             turning_on = [i for i, v in changed.items() if v and not self._commanded[i]]
             if turning_on:                              # hold where it is: no jump to an old goal
-                present = self._group.read(["PRESENT_POSITION"], turning_on)["PRESENT_POSITION"]
+                present = self._group.read_available(["PRESENT_POSITION"], turning_on)[0]["PRESENT_POSITION"]
                 self._group.write("GOAL_POSITION", present)
+                changed = {i: v for i, v in changed.items() if i in present or i not in turning_on}
         self._group.write(role, changed)
         written.update(changed)
         self._publish("FEEDBACK_" + role, changed)
 
     def _read_feedback(self, roles: list[str] = PRESENT) -> None:
-        values = self._group.read(roles)
+        """Read the present values back. A servo whose reply is lost keeps its last values and
+        counts in MISSED_REPLIES; one silent for ``silent_ticks`` ticks in a row stops the run."""
+        values, missing = self._group.read_available(roles)
         for role in roles:
             self._publish("FEEDBACK_" + role, values[role], self._angle if role == "PRESENT_POSITION" else 1.0)
+        for position, ident in enumerate(self._ids):
+            if ident in missing:
+                self._silent[ident] += 1
+                self.MISSED_REPLIES[self._index[position]] += 1
+            else:
+                self._silent[ident] = 0
+        gone = [ident for ident in missing if self._silent[ident] >= self.silent_ticks]
+        if gone:
+            ident = gone[0]
+            raise DeviceError(f"servo {ident} on {self._group.bus} does not answer (reading {missing[ident]}) "
+                              f"for {self._silent[ident]} ticks in a row")
 
     def _report_errors(self) -> None:
         errors = self._group.bus.errors

@@ -2,6 +2,7 @@
 the safe state on every way a run ends."""
 import math
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -158,15 +159,45 @@ def test_goals_are_clipped_to_the_angle_limits_and_overload_is_reported(tmp_path
             net.close()
 
 
-def test_a_servo_that_stops_answering_stops_the_run_and_the_rest_is_made_safe(tmp_path, bus):
-    net = model(tmp_path, bus.path, goals="200 190 90", params='servo_id="1 2 4"')
+def test_a_lost_status_packet_is_asked_for_again_and_a_missed_one_is_counted(tmp_path, bus):
+    net = model(tmp_path, bus.path, goals="200 190 90", params='servo_id="1 2 4" feedback="position"')
+    try:
+        net.step()
+        bus.lose(1)                     # servo 1's reply to the sync read: read again on its own
+        net.step()
+        assert net.output("D.MISSED_REPLIES").tolist() == [0, 0, 0]
+        bus.lose(5)                     # the sync read's three and both of servo 1's own: missed this tick
+        net.step()
+        assert net.output("D.MISSED_REPLIES").tolist() == [1, 0, 0]
+        net.step()
+        assert net.output("D.MISSED_REPLIES").tolist() == [1, 0, 0]
+        assert bus.packets > 0 and not any("does not answer" in m for _, _, _, m in net.log)
+    finally:
+        net.close()
+
+
+def test_a_servo_silent_for_silent_ticks_stops_the_run_and_the_rest_is_made_safe(tmp_path, bus):
+    net = model(tmp_path, bus.path, goals="200 190 90", params='servo_id="1 2 4" silent_ticks="3"')
     net.step()
     bus.silence(2)
-    with pytest.raises(RunError, match=rf"servo 2 on {bus.path} \(Protocol 2.0, 1000000 baud\) does not answer"):
+    net.step()
+    net.step()
+    assert net.output("D.MISSED_REPLIES").tolist() == [0, 2, 0]
+    with pytest.raises(RunError, match=rf"servo 2 on {bus.path} \(Protocol 2.0, 1000000 baud\) does not answer "
+                                       r"\(reading Present Current to Present Temperature, addresses 126..146\) "
+                                       r"for 3 ticks in a row"):
         net.step()
     assert net.stopped
     assert [bus.servo(i).torque for i in (1, 2, 4)] == [False, True, False]
-    assert any("servo 2 on" in m and "did not answer" in m for _, _, _, m in net.log)
+    named = {int(n) for _, _, _, m in net.log for n in re.findall(r"servo (\d+)", m)}
+    assert named == {2}                                       # one servo, named consistently
+
+
+def test_a_register_is_named_by_name_and_address(tmp_path, bus):
+    net = model(tmp_path, bus.path, goals="200", params='servo_id="1" feedback="position" silent_ticks="1"')
+    bus.silence(1)
+    with pytest.raises(RunError, match=r"servo 1 on .* does not answer \(reading Present Position, address 132\)"):
+        net.step()
 
 
 def test_a_lost_bus_stops_the_run(tmp_path, bus):
