@@ -21,10 +21,10 @@ the robot answers with the same letter in lower case and the values, ended by ``
 
 The camera image is binary: the bytes 0xB7 0x00 (the negative of "I", then the end of the
 binary commands) return the mode, width and height bytes and then the pixels: one grey byte
-each, or two bytes of RGB565 (big-endian) each in colour mode. The robot keeps the image in a
-buffer of 52·39·2 + 3 + 80 = 4139 bytes (e-puck2), header included: a J command asking for
-an image that does not fit is answered ``j`` all the same, and the firmware sends another
-format (80 x 60 grey comes back as 40 x 40 RGB565).
+each, or two bytes of RGB565 (big-endian) each in colour mode. The pixels may take at most
+52·39·2 = 4056 bytes (GCtronic, "Advanced sercom protocol", command J; the e-puck2's buffer
+is 4056 + 3 + 80 = 4139 bytes): a J command asking for more is answered ``j`` all the same,
+and the firmware sends another format (80 x 60 grey comes back as 40 x 40 RGB565).
 
 The wheels are stepper motors of 1000 steps a turn on wheels of 20.5 mm radius, 53 mm apart,
 so 1000 steps/s is about 12.9 cm/s.
@@ -52,18 +52,19 @@ RING_LEDS = 8
 _MODES = {0: "grey", 1: "colour"}
 IMAGE_COMMAND = bytes([256 - ord("I"), 0])
 IMAGE_HEADER = 3                 # mode, width, height
-IMAGE_BUFFER = 52 * 39 * 2 + IMAGE_HEADER + 80   # bytes the robot holds an image in (e-puck2)
+IMAGE_PIXEL_BYTES = 52 * 39 * 2  # "The total image size must not exceed 4056 bytes" (command J)
+IMAGE_BUFFER = IMAGE_PIXEL_BYTES + IMAGE_HEADER + 80   # the robot's image buffer (e-puck2)
 CALIBRATION_SECONDS = 10.0       # the firmware's K answers its second line when it is done
 
 
 def image_bytes(colour: bool, width: int, height: int) -> int:
-    """Bytes of a camera image with its header: one a grey pixel, two a colour one."""
-    return IMAGE_HEADER + width * height * (2 if colour else 1)
+    """Bytes of a camera image's pixels: one a grey pixel, two a colour one."""
+    return width * height * (2 if colour else 1)
 
 
 def image_fits(colour: bool, width: int, height: int) -> bool:
-    """Whether the robot's image buffer (``IMAGE_BUFFER``) holds such an image."""
-    return width > 0 and height > 0 and image_bytes(colour, width, height) <= IMAGE_BUFFER
+    """Whether the robot can send such an image (at most ``IMAGE_PIXEL_BYTES`` of pixels)."""
+    return width > 0 and height > 0 and image_bytes(colour, width, height) <= IMAGE_PIXEL_BYTES
 
 
 class NotAnswering(DeviceError):
@@ -218,8 +219,8 @@ class Epuck(SerialDevice):
         refused here (the firmware would send another format)."""
         if not image_fits(colour, width, height):
             raise DeviceError(f"a {width} x {height} {'colour' if colour else 'grey'} image "
-                              f"({image_bytes(colour, width, height)} bytes with its header) does "
-                              f"not fit the e-puck's camera buffer of {IMAGE_BUFFER} bytes")
+                              f"({image_bytes(colour, width, height)} bytes) does not fit the "
+                              f"e-puck's camera buffer: {IMAGE_PIXEL_BYTES} bytes at most")
         self.ask("J", 1 if colour else 0, width, height, zoom)
         self.camera = (1 if colour else 0, width, height)
 
@@ -238,8 +239,8 @@ class Epuck(SerialDevice):
             asked = self.camera
             raise DeviceError(f"the e-puck at '{self.device}' sent a {width} x {height} "
                               f"{_MODES[mode]} image, not the {asked[1]} x {asked[2]} "
-                              f"{_MODES[asked[0]]} one asked for (its camera buffer holds "
-                              f"{IMAGE_BUFFER} bytes)")
+                              f"{_MODES[asked[0]]} one asked for (images of more than "
+                              f"{IMAGE_PIXEL_BYTES} bytes do not fit its buffer)")
         return decode_image(data, mode, width, height)
 
     def safe_state(self) -> None:

@@ -10,7 +10,7 @@ about 1700 at 1 cm, 370 at 3 cm, 60 beyond 7 cm), minus the values stored by cal
 (K), plus optional Gaussian noise. The camera sees the arena through a simple ray caster
 (walls grey, obstacles red, floor light, above the walls dark). As the firmware does, it
 answers K with two lines (calibration started, finished) and takes a J asking for an image
-that does not fit the robot's buffer (``epuck.IMAGE_BUFFER``) without complaint, sending
+that does not fit the robot's buffer (``epuck.IMAGE_PIXEL_BYTES``) without complaint, sending
 40 x 40 colour images instead.
 
 Time: with ``step`` > 0 every wheel-speed command (D) first advances the world by ``step``

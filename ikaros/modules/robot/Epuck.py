@@ -21,9 +21,9 @@ class Epuck(Module):
     ACCELERATION_PLAIN raw x, y, z; ACCELERATION in g; ORIENTATION and INCLINATION in degrees),
     MICROPHONE_VOLUME (``microphone_on``: the three microphones' amplitudes) and the camera
     (``camera`` grey or colour, ``width`` x ``height`` pixels at ``zoom``: IMAGE grey, RED,
-    GREEN and BLUE in 0..1; the image and its 3-byte header must fit the robot's buffer of
-    52·39·2 + 3 + 80 = 4139 bytes (e-puck2), or the load fails naming the limit, and an image
-    of another format than asked for stops the run with an error naming the port). POSE is (x, y, heading in radians): the simulator's true pose with
+    GREEN and BLUE in 0..1; the pixels must fit the robot's buffer, at most 52·39·2 = 4056
+    bytes (of its 4139-byte buffer, e-puck2), or the load fails naming the limit, and an
+    image of another format than asked for stops the run with an error naming the port). POSE is (x, y, heading in radians): the simulator's true pose with
     ``sim:epuck``, otherwise odometry from the encoders (starting at 0, 0, 0; needs
     ``encoder_on``). Nothing is sent before the first tick, nor from an input element that has
     not yet received a value from its source (``Module.input_ready``); when the run ends the wheels are
@@ -79,7 +79,7 @@ class Epuck(Module):
 
     def init(self):
         from ikaros.hardware import safety
-        from ikaros.hardware.epuck import IMAGE_BUFFER, image_bytes, image_fits
+        from ikaros.hardware.epuck import IMAGE_PIXEL_BYTES, image_bytes, image_fits
         from ikaros.hardware.epuck import Epuck as Robot
         from ikaros.hardware.simulators import open_device_string
         self._simulator = self._robot = self._watchdog = self._exit_key = None
@@ -87,9 +87,9 @@ class Epuck(Module):
         colour = self.camera == "color"
         if self.camera != "none" and not image_fits(colour, int(self.width), int(self.height)):
             raise ValueError(f"a {self.width} x {self.height} {self.camera} image "
-                             f"({image_bytes(colour, int(self.width), int(self.height))} bytes "
-                             f"with its 3-byte header) does not fit the e-puck's camera buffer "
-                             f"of {IMAGE_BUFFER} bytes (grey 1 byte a pixel, colour 2)")
+                             f"({image_bytes(colour, int(self.width), int(self.height))} bytes) "
+                             f"does not fit the e-puck's camera buffer: {IMAGE_PIXEL_BYTES} bytes "
+                             f"at most (grey 1 byte a pixel, colour 2)")
         self._sent = {}
         self._last_encoders = None
         try:

@@ -139,8 +139,8 @@ def test_a_faulty_robot_stops_the_run_naming_its_port(tmp_path, fault, message):
 
 
 def test_bad_settings_are_named(tmp_path):
-    with pytest.raises(ModelError, match=r"a 80 x 60 gray image \(4803 bytes with its 3-byte header\) does not "
-                                         r"fit the e-puck's camera buffer of 4139 bytes"):
+    with pytest.raises(ModelError, match=r"a 80 x 60 gray image \(4800 bytes\) does not fit the e-puck's "
+                                         r"camera buffer: 4056 bytes at most"):
         model(tmp_path, f'port="{SIM}" camera="gray" width="80" height="60"')
     with pytest.raises(ModelError, match="cannot open the e-puck at '/dev/no-epuck'"):
         model(tmp_path, 'port="/dev/no-epuck"')
