@@ -60,6 +60,22 @@ def test_a_channel_whose_inputs_have_no_value_from_their_source_yet_is_not_sent(
             net.close()
 
 
+def test_the_documented_channel_0_lights_the_board_and_channel_1_does_not(tmp_path):
+    """fcserver's built-in map takes OPC channel 0 only (pixels 0..511 on the eight outputs;
+    Fadecandy examples/config/default.json): the docs' example uses channel 0."""
+    with VirtualOPCServer() as server:
+        for number in (1, 0):
+            net = model(tmp_path, server.path, channels=f'<channel name="EYES" channel="{number}" size="3"/>'
+                                                        '<channel name="MOUTH" channel="9" size="2"/>')
+            try:
+                net.step()
+                assert wait_for(lambda: any(c == number for c, _, _ in server.messages))
+                lit = [[255, 0, 0], [128, 0, 0], [0, 0, 0]] if number == 0 else [[0, 0, 0]] * 3
+                assert server.board_pixels(3).tolist() == lit
+            finally:
+                net.close()
+
+
 def test_the_simulated_server_from_the_address(tmp_path):
     net = model(tmp_path, "sim:opc")
     try:
