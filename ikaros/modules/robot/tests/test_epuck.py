@@ -113,6 +113,19 @@ def test_accelerometer_microphones_and_camera(tmp_path):
         net.close()
 
 
+def test_an_image_of_another_format_than_asked_for_is_an_error_naming_the_port(tmp_path):
+    net = model(tmp_path, f'port="{SIM}" camera="gray" width="20" height="12"')
+    robot = simulator(net)
+    try:
+        net.step()
+        robot.camera = (1, 40, 40, 8)                  # as the firmware does with an image too big
+        with pytest.raises(RunError, match=f"the e-puck at '{robot.path}' sent a 40 x 40 colour image, "
+                                           f"not the 20 x 12 grey one asked for"):
+            net.step()
+    finally:
+        net.close()
+
+
 def test_odometry_of_a_real_port_follows_the_robot(tmp_path):
     with VirtualEpuck(Arena(1, 1, []), x=0.5, y=0.5, step=0.1) as robot:
         net = model(tmp_path, f'port="{robot.path}" encoder_on="yes"', "0.3 0.5")
