@@ -74,7 +74,7 @@ def _find_servos(bus, device, baud_rate, protocols, ids, force_model, named) -> 
     for version in protocols:
         bus.set_protocol(version)
         found[version] = bus.scan(ids)
-        if named and found[version]:            # a servo the model names gets a second chance
+        if named:                               # a servo the model names gets a second chance
             found[version].update(bus.scan([i for i in ids if i not in found[version]]))
     answered = {v: f for v, f in found.items() if f}
     if len(answered) > 1:

@@ -18,9 +18,12 @@ XM = "XM430-W350"
 
 
 def model(tmp_path, device, goals="200 0 90", params="", extra=""):
-    """Goals in the order of the servos (index_mode indirect) unless ``params`` sets the mode."""
+    """Goals in the order of the servos (index_mode indirect) unless ``params`` sets the mode;
+    answers are waited for generously (the simulator may wait for a CPU on a busy machine)."""
     if "index_mode" not in params:
         params += ' index_mode="indirect"'
+    if "serial_latency" not in params:
+        params += ' serial_latency="100"'
     body = (f'<module class="Constant" name="G" data="{goals}"/>\n'
             f'<module class="Dynamixel" name="D" device="{device}" print_info="none" {params}/>\n'
             '<connection source="G.OUTPUT" target="D.GOAL_POSITION" delay="0"/>\n' + extra)
@@ -160,7 +163,7 @@ def test_goals_are_clipped_to_the_angle_limits_and_overload_is_reported(tmp_path
 
 
 def test_a_lost_status_packet_is_asked_for_again_and_a_missed_one_is_counted(tmp_path, bus):
-    net = model(tmp_path, bus.path, goals="200 190 90", params='servo_id="1 2 4" feedback="position"')
+    net = model(tmp_path, bus.path, goals="200 190 90", params='servo_id="1 2 4" feedback="position" serial_latency="100"')
     try:
         net.step()
         bus.lose(1)                     # servo 1's reply to the sync read: read again on its own
@@ -177,7 +180,7 @@ def test_a_lost_status_packet_is_asked_for_again_and_a_missed_one_is_counted(tmp
 
 
 def test_a_servo_silent_for_silent_ticks_stops_the_run_and_the_rest_is_made_safe(tmp_path, bus):
-    net = model(tmp_path, bus.path, goals="200 190 90", params='servo_id="1 2 4" silent_ticks="3"')
+    net = model(tmp_path, bus.path, goals="200 190 90", params='servo_id="1 2 4" silent_ticks="3" serial_latency="100"')
     net.step()
     bus.silence(2)
     net.step()
@@ -194,7 +197,7 @@ def test_a_servo_silent_for_silent_ticks_stops_the_run_and_the_rest_is_made_safe
 
 
 def test_a_register_is_named_by_name_and_address(tmp_path, bus):
-    net = model(tmp_path, bus.path, goals="200", params='servo_id="1" feedback="position" silent_ticks="1"')
+    net = model(tmp_path, bus.path, goals="200", params='servo_id="1" feedback="position" silent_ticks="1" serial_latency="100"')
     bus.silence(1)
     with pytest.raises(RunError, match=r"servo 1 on .* does not answer \(reading Present Position, address 132\)"):
         net.step()
@@ -226,7 +229,7 @@ def test_another_modules_exception_makes_the_servos_safe(tmp_path, bus):
 def test_hold_keeps_torque_and_stops_where_the_servo_is(tmp_path, bus):
     net = model(tmp_path, bus.path, goals="300", params='servo_id="1" safe_state="hold"')
     net.step()
-    time.sleep(0.05)
+    assert wait_for(lambda: bus.servo(1).value("PRESENT_POSITION") > 190)       # on its way to 300
     net.close()
     servo = bus.servo(1)
     assert servo.torque
