@@ -23,7 +23,8 @@ class Dynamixel(Module):
     of ids 0..``max_servo_id`` with Protocol 1.0 and then 2.0 (``protocol`` can fix one; a bus
     that mixes the two is refused). With ``index_mode=direct`` (the default, as in Ikaros 2)
     element i of every input and output is the servo whose id is i: the arrays have max id + 1
-    elements, and those with no servo are unused (outputs read 0). With ``indirect`` element i
+    elements (of ``servo_id``, or of the servos found), and those with no servo are unused
+    (outputs read 0). With ``indirect`` element i
     is the i-th servo of ``servo_id`` in the order listed (or of the scan, in id order), and
     the arrays have one element per servo (a listed servo that is left out keeps its element,
     unused). ``size`` above 0 forces the number of elements; a servo whose element would lie
@@ -153,7 +154,7 @@ class Dynamixel(Module):
         its id (direct), or its place in ``order``, the listed or scanned ids (indirect)."""
         if self.index_mode == "direct":
             element = {ident: ident for ident in self._ids}
-            natural = max(self._ids) + 1
+            natural = max(order) + 1
         else:
             element = {ident: order.index(ident) for ident in self._ids}
             natural = len(order)
