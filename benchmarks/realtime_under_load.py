@@ -77,7 +77,7 @@ def epi_bus_model(folder: str, device: str) -> str:
     with open(path, "w") as f:
         f.write(f'<group name="EpiBus" tick_duration="0.01">\n'
                 f'<module class="Constant" name="Goals" data="{goals}"/>\n'
-                f'<module class="Dynamixel" name="Servos" device="{device}" servo_id="{ids}" '
+                f'<module class="Dynamixel" name="Servos" device="{device}" servo_id="{ids}" index_mode="indirect" '
                 f'protocol="2" feedback="position" print_info="none" '
                 f'serial_latency="{LATENCY_MS}"/>\n'
                 f'<connection source="Goals.OUTPUT" target="Servos.GOAL_POSITION"/>\n'

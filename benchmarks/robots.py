@@ -76,7 +76,7 @@ def module_run(path: str, ticks: int) -> dict:
     model = (f'<group name="EpiBus" tick_duration="0.01">\n'
              f'<module class="Constant" name="Goals" data="{goals}"/>\n'
              f'<module class="Dynamixel" name="Servos" device="{path}" servo_id="{" ".join(map(str, range(1, SERVOS + 1)))}" '
-             f'protocol="2" feedback="position" print_info="none" serial_latency="{LATENCY_MS}"/>\n'
+             f'index_mode="indirect" protocol="2" feedback="position" print_info="none" serial_latency="{LATENCY_MS}"/>\n'
              '<connection source="Goals.OUTPUT" target="Servos.GOAL_POSITION"/>\n</group>\n')
     with tempfile.TemporaryDirectory() as folder:
         file = os.path.join(folder, "epibus.ikg")

@@ -248,11 +248,14 @@ class InputPart:
     ``label`` attribute, None without one), its ``source`` (the path of the output or group
     port it reads, as ``"C.OUTPUT"``), the ``shape`` of its values (a delay window adds a
     leading axis, one row per delay, in the order listed) and ``index``, the flat positions
-    in the input that hold them. ``name`` is the label, or the source without one."""
+    in the input that hold them. ``name`` is the label, or the source without one.
+    ``arrives`` is the first tick on which it brings data from its source (see
+    ``Module.input_ready``)."""
     label: str | None
     source: str
     shape: tuple
     index: Any
+    arrives: int = 0
 
     @property
     def name(self) -> str:
@@ -283,7 +286,7 @@ RESERVED = {"name", "path", "clock", "element", "init", "tick", "command", "stop
             "set_sizes", "add_input", "add_output", "input_shape", "output_shape",
             "set_output_shape", "connected", "input_parts", "input_label", "notify", "print",
             "warning", "error", "fatal_error", "end_of_file", "description", "parameter_names",
-            "state", "start_steps", "dialect"}
+            "state", "start_steps", "dialect", "input_ready"}
 
 
 def parameter_attribute(name: str) -> str:
@@ -382,6 +385,7 @@ class Module:
         self._ik_output_shapes: dict[str, tuple | None] = {}
         self._ik_connected: frozenset[str] = _NONE_CONNECTED   # set by the kernel
         self._ik_start_steps = None     # the network's kernel.gating.StartSteps
+        self._ik_arrivals: dict[str, np.ndarray] = {}    # input_ready's first ticks
 
     # --- life cycle: override these ------------------------------------------------------
     def configure(self) -> None:
@@ -473,6 +477,23 @@ class Module:
         an unconnected input."""
         buffer = self._ik_input_buffers.get(name)
         return buffer.parts() if buffer is not None else []
+
+    def input_ready(self, name: str) -> np.ndarray:
+        """Which elements of an input (flat, as booleans) hold data from their source on this
+        tick: an element's connection has delivered what its source computed from data that
+        began at modules without inputs (the source's start-up step, ``start_steps``, plus
+        the connection's delay; a source that a loop feeds counts from its first step). Before
+        that an element holds the zeros of the start, not a value the model asked for; an
+        unconnected element is never ready. Drivers use it so that nothing moves at start-up."""
+        arrives = self._ik_arrivals.get(name)
+        if arrives is None:
+            buffer = self._ik_input_buffers.get(name)
+            size = buffer.size if buffer is not None else 0
+            arrives = np.full(size, np.iinfo(np.int64).max, dtype=np.int64)
+            for part in self.input_parts(name):
+                arrives[np.asarray(part.index).reshape(-1)] = part.arrives
+            self._ik_arrivals[name] = arrives
+        return self.clock.tick >= arrives
 
     def input_label(self, name: str) -> str | None:
         """The label an input takes when it ``use_label``s (the class declares it, or the

@@ -1,15 +1,28 @@
 """The robot examples run headless against the simulators: the Epi head follows its target,
-the LUCS arm follows its guarded sines, and the recorded arm motion is played back."""
+the LUCS arm follows its guarded sines, and the recorded arm motion is played back; every
+example with a robot driver runs to its end in a batch run, also on a machine whose cores are
+busy."""
+import glob
 import os
+import re
 import shutil
+import subprocess
+import sys
 import time
 
 import numpy as np
+import pytest
 
 import ikaros
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLES = os.path.join(ROOT, "examples")
+
+
+DRIVERS = ("Dynamixel", "SSC32", "Epuck", "FadeCandy", "Phidgets")
+# each robot example and the files it needs beside it
+ROBOT_EXAMPLES = {"epi.ikg": ["EpiHeadPose.py"], "lucs_arm.ikg": [], "arm_playback.ikg": ["arm_motion.00.dat"],
+                  "epuck_obstacles.ikg": []}
 
 
 def copy(tmp_path, *names):
@@ -75,3 +88,43 @@ def test_the_recorded_arm_motion_is_played_back(tmp_path):
         assert pan[first_dip] < 158 and 85 <= first_dip <= 115             # keyframe 150 at 2 s (tick 100)
     finally:
         net.close()
+
+
+def test_every_example_with_a_robot_driver_is_run_here():
+    pattern = re.compile(r'class="(' + "|".join(DRIVERS) + ')"')
+    with_drivers = {os.path.basename(p) for p in glob.glob(os.path.join(EXAMPLES, "*.ikg"))
+                    if pattern.search(open(p, encoding="utf-8").read())}
+    assert with_drivers == set(ROBOT_EXAMPLES)
+
+
+def run_batch(tmp_path, name: str, ticks: int) -> subprocess.CompletedProcess:
+    """``ikaros -b -s TICKS`` on a copy of the example (and its files) in ``tmp_path``."""
+    path = copy(tmp_path, name, *ROBOT_EXAMPLES[name])
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [ROOT, os.environ.get("PYTHONPATH")] if p))
+    return subprocess.run([sys.executable, "-m", "ikaros", "-b", "-s", str(ticks), path], cwd=tmp_path, env=env,
+                          capture_output=True, text=True, timeout=180)
+
+
+@pytest.mark.parametrize("name", sorted(ROBOT_EXAMPLES))
+def test_each_robot_example_runs_headless_to_its_end(tmp_path, name):
+    result = run_batch(tmp_path, name, 50)
+    assert result.returncode == 0, result.stderr
+    assert "error" not in result.stderr.lower(), result.stderr
+
+
+@pytest.mark.slow
+def test_the_robot_examples_run_to_the_end_while_both_cores_are_busy(tmp_path):
+    """Two busy loops (one a core on the 2-core test machine) while each example runs 50
+    ticks: lost or late status packets are asked for again and counted, not fatal."""
+    hogs = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(2)]
+    try:
+        for name in sorted(ROBOT_EXAMPLES):
+            folder = tmp_path / name.split(".")[0]
+            folder.mkdir()
+            result = run_batch(folder, name, 50)
+            assert result.returncode == 0, f"{name}: {result.stderr}"
+            assert "error" not in result.stderr.lower(), f"{name}: {result.stderr}"
+    finally:
+        for hog in hogs:
+            hog.kill()
+            hog.wait()

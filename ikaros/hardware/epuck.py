@@ -13,13 +13,18 @@ the robot answers with the same letter in lower case and the values, ended by ``
     B,1\\r / F,1\\r  ->  b\\r\\n / f\\r\\n         body LED / front LED
     T,2\\r          ->  t\\r\\n                 play sound 2 (0 stops)
     S\\r            ->  s\\r\\n                 stop the motors
-    K\\r            ->  k\\r\\n                 calibrate the proximity sensors
+    K\\r            ->  k, Starting calibration - Remove any object in sensors range\\r\\n
+                      k, Calibration finished\\r\\n   (seconds later) calibrate the
+                                              proximity sensors
     V\\r            ->  v,Version ...\\r\\n      the firmware version
     J,1,32,32,8\\r  ->  j\\r\\n                 camera mode (0 grey, 1 colour), width, height, zoom
 
 The camera image is binary: the bytes 0xB7 0x00 (the negative of "I", then the end of the
 binary commands) return the mode, width and height bytes and then the pixels: one grey byte
-each, or two bytes of RGB565 (big-endian) each in colour mode.
+each, or two bytes of RGB565 (big-endian) each in colour mode. The pixels may take at most
+52·39·2 = 4056 bytes (GCtronic, "Advanced sercom protocol", command J; the e-puck2's buffer
+is 4056 + 3 + 80 = 4139 bytes): a J command asking for more is answered ``j`` all the same,
+and the firmware sends another format (80 x 60 grey comes back as 40 x 40 RGB565).
 
 The wheels are stepper motors of 1000 steps a turn on wheels of 20.5 mm radius, 53 mm apart,
 so 1000 steps/s is about 12.9 cm/s.
@@ -44,7 +49,22 @@ PROXIMITY_ANGLES = np.radians([-10, -45, -90, -150, 150, 90, 45, 10])   # IR0..I
 ACCELEROMETER_ZERO = 2048        # raw counts at 0 g
 ACCELEROMETER_PER_G = 800        # raw counts per g
 RING_LEDS = 8
+_MODES = {0: "grey", 1: "colour"}
 IMAGE_COMMAND = bytes([256 - ord("I"), 0])
+IMAGE_HEADER = 3                 # mode, width, height
+IMAGE_PIXEL_BYTES = 52 * 39 * 2  # "The total image size must not exceed 4056 bytes" (command J)
+IMAGE_BUFFER = IMAGE_PIXEL_BYTES + IMAGE_HEADER + 80   # the robot's image buffer (e-puck2)
+CALIBRATION_SECONDS = 10.0       # the firmware's K answers its second line when it is done
+
+
+def image_bytes(colour: bool, width: int, height: int) -> int:
+    """Bytes of a camera image's pixels: one a grey pixel, two a colour one."""
+    return width * height * (2 if colour else 1)
+
+
+def image_fits(colour: bool, width: int, height: int) -> bool:
+    """Whether the robot can send such an image (at most ``IMAGE_PIXEL_BYTES`` of pixels)."""
+    return width > 0 and height > 0 and image_bytes(colour, width, height) <= IMAGE_PIXEL_BYTES
 
 
 class NotAnswering(DeviceError):
@@ -105,6 +125,7 @@ class Epuck(SerialDevice):
 
     def __init__(self, device: str, baud_rate: int = DEFAULT_BAUD_RATE, timeout: float = 0.5):
         super().__init__(device, baud_rate, timeout)
+        self.camera: tuple[int, int, int] | None = None      # the mode, width, height asked for
 
     def ask(self, letter: str, *args: int) -> list[int]:
         """Send a command and return the values of its reply. A reply left over from an
@@ -175,28 +196,51 @@ class Epuck(SerialDevice):
     def play_sound(self, number: int) -> None:
         self.ask("T", number)
 
-    def calibrate(self, seconds: float = 5.0) -> None:
-        """Calibrate the proximity sensors (the robot takes a while: up to ``seconds``)."""
+    def calibrate(self, seconds: float = CALIBRATION_SECONDS) -> None:
+        """Calibrate the proximity sensors. The firmware answers ``k, Starting calibration -
+        Remove any object in sensors range`` at once and ``k, Calibration finished`` when it
+        is done (waited for up to ``seconds``)."""
+        self._discard_input()
+        self._write(command_line("K"))
         normal = self.port.timeout
-        self.port.timeout, self.timeout = seconds, seconds
         try:
-            self.ask("K")
+            for step, waited in (("start", normal), ("end", seconds)):
+                self.port.timeout, self.timeout = waited, waited
+                text = self._read_line("K").decode("ascii", "replace").strip()
+                if not text.startswith("k,"):
+                    self._discard_input()
+                    raise DeviceError(f"the e-puck at '{self.device}' gave a corrupted reply to "
+                                      f"command K (calibration {step}): '{text[:60]}'")
         finally:
             self.port.timeout, self.timeout = normal, normal
 
     def set_camera(self, colour: bool, width: int, height: int, zoom: int) -> None:
+        """Ask for ``width`` x ``height`` images; one that does not fit the robot's buffer is
+        refused here (the firmware would send another format)."""
+        if not image_fits(colour, width, height):
+            raise DeviceError(f"a {width} x {height} {'colour' if colour else 'grey'} image "
+                              f"({image_bytes(colour, width, height)} bytes) does not fit the "
+                              f"e-puck's camera buffer: {IMAGE_PIXEL_BYTES} bytes at most")
         self.ask("J", 1 if colour else 0, width, height, zoom)
+        self.camera = (1 if colour else 0, width, height)
 
     def image(self) -> np.ndarray:
-        """One camera image in 0..1 (see :func:`decode_image`)."""
+        """One camera image in 0..1 (see :func:`decode_image`), of the format asked for with
+        :meth:`set_camera` (another format is an error naming the robot)."""
         self.port.reset_input_buffer()
         self._write(IMAGE_COMMAND)
-        header = self._read(3, "camera image header")
+        header = self._read(IMAGE_HEADER, "camera image header")
         mode, width, height = header
         if mode not in (0, 1) or not width or not height:
             raise DeviceError(f"the e-puck at '{self.device}' gave a corrupted camera header "
                               f"{list(header)}")
         data = self._read(width * height * (1 + mode), "camera image")
+        if self.camera is not None and (mode, width, height) != self.camera:
+            asked = self.camera
+            raise DeviceError(f"the e-puck at '{self.device}' sent a {width} x {height} "
+                              f"{_MODES[mode]} image, not the {asked[1]} x {asked[2]} "
+                              f"{_MODES[asked[0]]} one asked for (images of more than "
+                              f"{IMAGE_PIXEL_BYTES} bytes do not fit its buffer)")
         return decode_image(data, mode, width, height)
 
     def safe_state(self) -> None:

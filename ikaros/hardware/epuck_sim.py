@@ -8,7 +8,10 @@ rim in the e-puck's eight sensor directions and report ``60 + 3700 exp(-d / 12 m
 distance d to the nearest surface within 10 cm (an approximation of the real sensors' curve;
 about 1700 at 1 cm, 370 at 3 cm, 60 beyond 7 cm), minus the values stored by calibration
 (K), plus optional Gaussian noise. The camera sees the arena through a simple ray caster
-(walls grey, obstacles red, floor light, above the walls dark).
+(walls grey, obstacles red, floor light, above the walls dark). As the firmware does, it
+answers K with two lines (calibration started, finished) and takes a J asking for an image
+that does not fit the robot's buffer (``epuck.IMAGE_PIXEL_BYTES``) without complaint, sending
+40 x 40 colour images instead.
 
 Time: with ``step`` > 0 every wheel-speed command (D) first advances the world by ``step``
 seconds at the old speeds (lock step with a model that sends one per tick: deterministic);
@@ -27,7 +30,8 @@ import numpy as np
 from ikaros.hardware import DeviceError
 from ikaros.hardware.epuck import (ACCELEROMETER_PER_G, ACCELEROMETER_ZERO, AXLE_LENGTH,
                                    IMAGE_COMMAND, MAX_STEPS_PER_SECOND, METRES_PER_STEP,
-                                   PROXIMITY_ANGLES, RING_LEDS, ROBOT_RADIUS, encode_image)
+                                   PROXIMITY_ANGLES, RING_LEDS, ROBOT_RADIUS, encode_image,
+                                   image_fits)
 from ikaros.hardware.pty_device import PtyDevice
 
 HELP = "an e-puck mobile robot in a 2-D arena with obstacles"
@@ -41,6 +45,7 @@ CAMERA_FIELD = math.radians(56)
 WALL_HEIGHT = 0.05               # metres; the camera sits at half of it
 DEFAULT_OBSTACLES = "0.25,0.6,0.4,0.75;0.6,0.2,0.75,0.35"
 _SUBSTEP = 0.005                 # seconds
+FALLBACK_IMAGE = (40, 40)        # the colour image the firmware sends when one asked for does not fit
 
 
 class Arena:
@@ -252,14 +257,17 @@ class VirtualEpuck(PtyDevice):
         if letter == "T" and len(values) == 1:
             self.sound = values[0]
             return "t"
-        if letter == "K":
+        if letter == "K":                       # two lines, as the firmware answers
             self.calibration = self.raw_proximity()
-            return "k"
+            return "k, Starting calibration - Remove any object in sensors range\r\n" \
+                   "k, Calibration finished"
         if letter == "V":
             return "v," + VERSION
         if letter == "J" and len(values) == 4 and values[0] in (0, 1) and \
-                0 < values[1] * values[2] * (1 + values[0]) <= 4800:
-            self.camera = tuple(values)
+                values[1] > 0 and values[2] > 0:
+            # an image that does not fit the buffer: the firmware switches format silently
+            fits = image_fits(values[0] == 1, values[1], values[2])
+            self.camera = tuple(values) if fits else (1, *FALLBACK_IMAGE, values[3])
             return "j"
         return "z"
 

@@ -3,7 +3,9 @@
 The client asks the server to push frames (``{"category": "tracker", "request": "set",
 "values": {"push": true, "version": 1}}``), sends a heartbeat (``{"category": "heartbeat"}``)
 every 250 ms, and keeps the newest frame it received. Frames are JSON objects sent one after
-the other, not necessarily one per line.
+the other, not necessarily one per line (The Eye Tribe "API Reference", "Protocol" and
+"Tracker" categories). Text that is no JSON object is skipped and kept for a warning, and
+reading resumes at the next message.
 """
 from __future__ import annotations
 
@@ -21,22 +23,69 @@ PUSH_REQUEST = {"category": "tracker", "request": "set", "values": {"push": True
 HEARTBEAT = {"category": "heartbeat"}
 
 
-def messages(buffer: str) -> tuple[list[dict], str]:
-    """The whole JSON objects at the start of ``buffer``, and what is left after them."""
+MAX_PENDING = 65536              # characters of an unfinished message kept (a frame is < 1000)
+
+
+def messages(buffer: str) -> tuple[list[dict], str, list[str]]:
+    """The whole JSON objects at the start of ``buffer``, what is left after them (the start
+    of an unfinished message), and the pieces of text skipped because they are no JSON
+    object: text before a ``{``, or a ``{...}`` whose braces balance but that does not parse.
+    Parsing resumes at the next ``{``; an unfinished message longer than ``MAX_PENDING`` is
+    skipped too, so the buffer stays bounded."""
     decoder = json.JSONDecoder()
-    found, i = [], 0
+    found: list[dict] = []
+    skipped: list[str] = []
+    i = 0
     while True:
-        while i < len(buffer) and buffer[i].isspace():
-            i += 1
-        if i >= len(buffer):
-            return found, ""
+        start = buffer.find("{", i)
+        if start < 0:
+            start = len(buffer)
+        if buffer[i:start].strip():
+            skipped.append(buffer[i:start].strip())
+        if start >= len(buffer):
+            return found, "", skipped
+        end = _closing_brace(buffer, start)
+        if end is None:                              # unfinished: wait for the rest
+            if len(buffer) - start > MAX_PENDING:
+                skipped.append(buffer[start:])
+                return found, "", skipped
+            return found, buffer[start:], skipped
         try:
-            obj, end = decoder.raw_decode(buffer, i)
+            obj, _ = decoder.raw_decode(buffer[start:end])
         except json.JSONDecodeError:
-            return found, buffer[i:]
+            obj = None
         if isinstance(obj, dict):
             found.append(obj)
-        i = end
+            i = end
+        else:                                        # not JSON: resynchronise after its '{'
+            following = buffer.find("{", start + 1)
+            stop = end if following < 0 or following >= end else following
+            skipped.append(buffer[start:stop])
+            i = stop
+
+
+def _closing_brace(text: str, start: int) -> int | None:
+    """The index after the ``}`` that closes the ``{`` at ``start`` (braces in JSON strings
+    do not count), or None when the text ends first."""
+    depth, in_string, escaped = 0, False, False
+    for k in range(start, len(text)):
+        c = text[k]
+        if in_string:
+            if escaped:
+                escaped = False
+            elif c == "\\":
+                escaped = True
+            elif c == '"':
+                in_string = False
+        elif c == '"':
+            in_string = True
+        elif c == "{":
+            depth += 1
+        elif c == "}":
+            depth -= 1
+            if depth == 0:
+                return k + 1
+    return None
 
 
 def frame_of(message: dict) -> dict | None:
@@ -57,6 +106,7 @@ class EyeTribeClient:
         self.frame: dict | None = None
         self.frames = 0
         self.error: str | None = None
+        self.skipped: list[str] = []            # text that was no message (see take_skipped)
         self.lock = threading.Lock()
         self._stop = threading.Event()
         self._socket = self._connect()          # the first attempt fails at once
@@ -88,7 +138,10 @@ class EyeTribeClient:
                     continue
                 if not data:
                     raise ConnectionError("the tracker server closed the connection")
-                found, buffer = messages(buffer + data.decode("utf-8", "replace"))
+                found, buffer, skipped = messages(buffer + data.decode("utf-8", "replace"))
+                if skipped:
+                    with self.lock:
+                        self.skipped.extend(skipped)
                 for message in found:
                     frame = frame_of(message)
                     if frame is not None:
@@ -103,6 +156,12 @@ class EyeTribeClient:
                 self._stop.wait(1.0)
         if s is not None:
             s.close()
+
+    def take_skipped(self) -> list[str]:
+        """The pieces of text skipped since the last call (they were no JSON message)."""
+        with self.lock:
+            skipped, self.skipped = self.skipped, []
+        return skipped
 
     def newest(self) -> tuple[dict | None, int]:
         with self.lock:

@@ -54,7 +54,7 @@ class SimulatedEyeTribe:
                     break
                 if not data:
                     break
-                found, buffer = messages(buffer + data.decode())
+                found, buffer, _ = messages(buffer + data.decode())
                 for request in found:
                     self.requests.append(request)
                     self._answer(client, request)
@@ -76,6 +76,11 @@ class SimulatedEyeTribe:
         message = {"category": "tracker", "request": "get", "statuscode": 200,
                    "values": {"frame": gaze}}
         self.client.sendall(json.dumps(message).encode())
+
+    def send_text(self, text: str) -> None:
+        """Send raw text to the client (a fault: a message that is no JSON)."""
+        self.pushing.wait(5)
+        self.client.sendall(text.encode())
 
     def drop(self) -> None:
         if self.client is not None:

@@ -1,6 +1,8 @@
 """An Open Pixel Control server on 127.0.0.1 that keeps the pixels it is sent (a virtual
-FadeCandy): ``pixels[channel]`` is an (n, 3) uint8 array of the last colours of that channel,
-``messages`` every (channel, command, data) received. Faults: ``disconnect()`` drops every
+fcserver with one FadeCandy board): ``pixels[channel]`` is an (n, 3) uint8 array of the last
+colours sent to that channel, ``messages`` every (channel, command, data) received, and
+``board`` the (512, 3) colours of the board's eight outputs of 64 LEDs as fcserver's built-in
+map drives them: OPC channel 0, pixels 0..511; messages to other channels light nothing. Faults: ``disconnect()`` drops every
 connection and stops listening (a server that goes away); ``stall()`` keeps the connections
 but reads nothing more (a server that hangs).
 """
@@ -16,6 +18,8 @@ import numpy as np
 from ikaros.hardware.opc import SET_PIXELS, parse_messages
 
 HELP = "an Open Pixel Control server for FadeCandy LED strips (on 127.0.0.1)"
+BOARD_PIXELS = 512               # eight outputs of 64 pixels
+MAPPED_CHANNEL = 0               # the only channel fcserver's default map takes
 
 _POLL_SECONDS = 0.05
 
@@ -26,6 +30,7 @@ class VirtualOPCServer:
     def __init__(self, port: int = 0):
         self.port = port
         self.pixels: dict[int, np.ndarray] = {}
+        self.board = np.zeros((BOARD_PIXELS, 3), np.uint8)
         self.messages: list[tuple[int, int, bytes]] = []
         self._listener: socket.socket | None = None
         self._clients: dict[socket.socket, bytearray] = {}
@@ -68,6 +73,11 @@ class VirtualOPCServer:
     def __exit__(self, *exc_info):
         self.stop()
 
+    def board_pixels(self, count: int) -> np.ndarray:
+        """The colours of the board's first ``count`` LEDs (output 0 holds 0..63)."""
+        with self._lock:
+            return self.board[:count].copy()
+
     def pixels_of(self, channel: int) -> np.ndarray:
         with self._lock:
             return self.pixels.get(channel, np.zeros((0, 3), np.uint8)).copy()
@@ -103,6 +113,9 @@ class VirtualOPCServer:
             if command == SET_PIXELS:
                 rgb = np.frombuffer(payload[:len(payload) // 3 * 3], np.uint8).reshape(-1, 3)
                 self.pixels[channel] = rgb.copy()
+                if channel == MAPPED_CHANNEL:
+                    count = min(len(rgb), BOARD_PIXELS)
+                    self.board[:count] = rgb[:count]
 
     def _close_all(self) -> None:
         for sock in [*self._clients, self._listener]:

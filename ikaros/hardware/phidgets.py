@@ -102,13 +102,14 @@ class InterfaceKit:
     def digital_inputs(self) -> list[bool]:
         return [bool(self._call(c.getState)) for c in self.digital_in]
 
-    def set_outputs(self, states) -> None:
-        for channel, state in zip(self.digital_out, states):
-            self._call(channel.setState, bool(state))
+    def set_outputs(self, states: dict[int, bool]) -> None:
+        """Set the digital outputs ``states`` names (index -> on)."""
+        for index, state in states.items():
+            self._call(self.digital_out[index].setState, bool(state))
 
     def safe_state(self) -> None:
         """Every digital output off."""
-        self.set_outputs([False] * len(self.digital_out))
+        self.set_outputs({index: False for index in range(len(self.digital_out))})
 
     def close(self) -> None:
         for channel in self.analog + self.digital_in + self.digital_out:

@@ -100,16 +100,21 @@ class PtyDevice:
 
     def stop(self) -> None:
         """Stop answering and close the pseudo-terminal (bounded: about 0.1 s)."""
-        self._stopping.set()
-        if self._thread is not None and self._thread is not threading.current_thread():
-            self._thread.join(timeout=2.0)
+        self._end_reading()
         self._thread = None
         self._close()
 
     def disconnect(self) -> None:
-        """Fault: the device disappears; the driver's reads and writes fail from now on."""
-        self._stopping.set()
+        """Fault: the device disappears; the driver's reads and writes fail from now on (when
+        this returns: the reader thread has ended before the terminal is closed, so no read
+        of it races the close)."""
+        self._end_reading()
         self._close()
+
+    def _end_reading(self) -> None:
+        self._stopping.set()
+        if self._thread is not None and self._thread is not threading.current_thread():
+            self._thread.join(timeout=2.0)
 
     def __enter__(self) -> "PtyDevice":
         return self.start()

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..language.node import Node
 from ..module import InputPart
+from .gating import arrival_tick
 
 
 class Buffer:
@@ -74,7 +75,8 @@ class Buffer:
         """What each connection into this laid-out input brings, in declaration order
         (``Module.input_parts``)."""
         links = sorted(self.incoming, key=lambda lk: lk.order)
-        return [InputPart(_label(lk), lk.source.path, tuple(lk.piece_shape), lk.dst_index)
+        return [InputPart(_label(lk), lk.source.path, tuple(lk.piece_shape), lk.dst_index,
+                          arrival_tick(lk.source.owner, lk.delays))
                 for lk in links]
 
     def label(self) -> str | None:

@@ -83,6 +83,18 @@ def _longest(modules, feeds, fed) -> dict:
     return {m: s for m, s in step.items() if not waiting[m]}
 
 
+def arrival_tick(source, delays) -> int:
+    """The first tick on which a connection from ``source`` (a module instance or a group
+    port) with ``delays`` brings data that began at modules without inputs: the source's
+    ``all`` step (or its ``first`` when a loop feeds it; 0 when nothing does) plus the
+    connection's largest delay."""
+    module = getattr(source, "module", None)
+    steps = getattr(module, "_ik_start_steps", None)
+    first, every = steps.of(module) if steps is not None else (0, 0)
+    base = every if every is not None else first if first is not None else 0
+    return base + max(delays, default=0)
+
+
 def first_tick(inst, steps: StartSteps) -> int | None:
     """The first tick a module runs: ``start_tick``, or later its start-up step for
     ``first_data`` and ``all_data``; None for never."""

@@ -1,8 +1,11 @@
 """A Dynamixel bus through ROBOTIS ``dynamixel-sdk``: ping, scan, read, write, sync and bulk.
 
 Every failure raises :class:`ikaros.hardware.DeviceError` naming the servo and the bus, e.g.
-``servo 7 on /dev/ttyUSB0 (Protocol 2.0, 1000000 baud) does not answer``. The status error
-byte of the last packet from each servo is kept in :attr:`DynamixelBus.errors`.
+``servo 7 on /dev/ttyUSB0 (Protocol 2.0, 1000000 baud) does not answer (reading Present
+Position, address 132)``; a missing or corrupt status packet raises its subclass
+:class:`NoReply`. Sync and bulk reads give what came back: a servo whose reply is lost is
+asked again on its own (with a retry), and left out when it still does not answer. The
+status error byte of the last packet from each servo is kept in :attr:`DynamixelBus.errors`.
 """
 from __future__ import annotations
 
@@ -15,6 +18,10 @@ from ikaros.hardware.serial_port import describe_error, require
 
 _SDK_HINT = "the Dynamixel bus"
 RETRIES = 1                     # a packet lost to noise is asked for once more
+
+
+class NoReply(DeviceError):
+    """A servo does not answer, or its answer is corrupt (a lost or broken status packet)."""
 
 
 def _sdk():
@@ -99,13 +106,14 @@ class DynamixelBus:
             code = result if isinstance(result, int) else result[-2]   # (.., result, error)
             if code == sdk.COMM_SUCCESS:
                 return result
-            if code not in (sdk.COMM_RX_TIMEOUT, sdk.COMM_RX_CORRUPT, sdk.COMM_RX_FAIL):
+            lost = code in (sdk.COMM_RX_TIMEOUT, sdk.COMM_RX_CORRUPT, sdk.COMM_RX_FAIL)
+            if not lost:
                 break
         reason = {sdk.COMM_RX_TIMEOUT: "does not answer", sdk.COMM_RX_CORRUPT: "answered with a corrupt packet",
                   sdk.COMM_RX_FAIL: "does not answer", sdk.COMM_TX_FAIL: "could not be sent to",
                   sdk.COMM_PORT_BUSY: "is busy"}.get(code, self._handler.getTxRxResult(code))
         who = f"servo {ident}" if ident is not None else "the servos"
-        raise DeviceError(f"{who} on {self} {reason} ({what})")
+        raise (NoReply if lost else DeviceError)(f"{who} on {self} {reason} ({what})")
 
     def _clear(self) -> int:
         self._port.clearPort()
@@ -139,15 +147,17 @@ class DynamixelBus:
                 found[ident] = number
         return found
 
-    def read(self, ident: int, address: int, length: int) -> bytes:
-        data, code, error = self._call(ident, f"reading {length} bytes at {address}", self._handler.readTxRx,
-                                       self._port, ident, address, length)
+    def read(self, ident: int, address: int, length: int, register: str | None = None) -> bytes:
+        """``length`` bytes at ``address`` (``register`` names them in messages)."""
+        what = f"reading {register or f'{length} bytes at address {address}'}"
+        data, code, error = self._call(ident, what, self._handler.readTxRx, self._port, ident, address, length)
         self._keep_error(ident, error)
         return bytes(data)
 
-    def write(self, ident: int, address: int, data: bytes) -> int:
+    def write(self, ident: int, address: int, data: bytes, register: str | None = None) -> int:
         """Write and wait for the status; returns its error byte."""
-        code, error = self._call(ident, f"writing {len(data)} bytes at {address}", self._handler.writeTxRx,
+        what = f"writing {register or f'{len(data)} bytes at address {address}'}"
+        code, error = self._call(ident, what, self._handler.writeTxRx,
                                  self._port, ident, address, len(data), list(data))
         self._keep_error(ident, error)
         return error
@@ -176,35 +186,44 @@ class DynamixelBus:
         self._call(None, f"sync write at {address}", self._handler.syncWriteTxOnly, self._port,
                    address, length, params, len(params))
 
-    def sync_read(self, address: int, length: int, ids) -> dict[int, bytes]:
-        """``length`` bytes at ``address`` from each servo: one sync read packet in Protocol 2.0,
-        one read per servo in Protocol 1.0 (which has no sync read)."""
+    def sync_read(self, address: int, length: int, ids, register: str | None = None) -> dict[int, bytes]:
+        """``length`` bytes at ``address`` from each servo that answers: one sync read packet in
+        Protocol 2.0, one read per servo in Protocol 1.0 (which has no sync read). A servo whose
+        reply is lost is asked again on its own; one that still does not answer is left out."""
         ids = list(ids)
+        what = f"sync read of {register or f'{length} bytes at address {address}'}"
         if self.protocol == 1:
-            return {ident: self.read(ident, address, length) for ident in ids}
-        for attempt in range(RETRIES + 1):
-            self._call(None, f"sync read at {address}", self._handler.syncReadTx, self._port, address,
-                       length, ids, len(ids), False)
-            try:
-                return self._collect([(ident, length) for ident in ids], f"sync read at {address}")
-            except DeviceError:
-                if attempt == RETRIES:
-                    raise
-                self._call(None, "clearing the port", self._clear)
-        raise AssertionError("unreachable")
+            return self._ask_each([(ident, address, length) for ident in ids], {}, register)
+        self._call(None, what, self._handler.syncReadTx, self._port, address, length, ids, len(ids), False)
+        got = self._collect([(ident, length) for ident in ids], what)
+        return self._ask_each([(i, address, length) for i in ids if i not in got], got, register)
 
-    def bulk_read(self, requests: list[tuple[int, int, int]]) -> dict[int, bytes]:
-        """(id, address, length) per servo, in one bulk read packet (Protocol 1.0: MX series only)."""
+    def bulk_read(self, requests: list[tuple[int, int, int]], register: str | None = None) -> dict[int, bytes]:
+        """(id, address, length) per servo, in one bulk read packet (Protocol 1.0: MX series
+        only); a servo whose reply is lost is asked again on its own, and left out when it
+        still does not answer."""
         params = []
+        what = f"bulk read of {register or 'several registers'}"
         if self.protocol == 1:                  # the SDK adds the leading 0x00
             for ident, address, length in requests:
                 params += [length, ident, address]
-            self._call(None, "bulk read", self._handler.bulkReadTx, self._port, params, len(params))
+            self._call(None, what, self._handler.bulkReadTx, self._port, params, len(params))
         else:
             for ident, address, length in requests:
                 params += [ident, address & 0xFF, address >> 8, length & 0xFF, length >> 8]
-            self._call(None, "bulk read", self._handler.bulkReadTx, self._port, params, len(params), False)
-        return self._collect([(ident, length) for ident, _, length in requests], "bulk read")
+            self._call(None, what, self._handler.bulkReadTx, self._port, params, len(params), False)
+        got = self._collect([(ident, length) for ident, _, length in requests], what)
+        return self._ask_each([r for r in requests if r[0] not in got], got, register)
+
+    def _ask_each(self, requests: list[tuple[int, int, int]], got: dict[int, bytes],
+                  register: str | None) -> dict[int, bytes]:
+        """Read each (id, address, length) on its own into ``got``; leave out who does not answer."""
+        for ident, address, length in requests:
+            try:
+                got[ident] = self.read(ident, address, length, register)
+            except NoReply:
+                pass
+        return got
 
     def bulk_write(self, requests: list[tuple[int, int, bytes]]) -> None:
         """(id, address, data) per servo, in one bulk write packet (Protocol 2.0)."""
@@ -218,10 +237,16 @@ class DynamixelBus:
         self._call(None, "bulk write", self._handler.bulkWriteTxOnly, self._port, params, len(params))
 
     def _collect(self, expected: list[tuple[int, int]], what: str) -> dict[int, bytes]:
+        """The status packets of a sync or bulk read, in order, up to the first that does not
+        come (the servos after it wait for it: on a real bus as in the simulator)."""
         out = {}
         for ident, length in expected:
-            data, code, error = self._call(ident, what, self._handler.readRx, self._port, ident, length,
-                                           retries=0)
+            try:
+                data, code, error = self._call(ident, what, self._handler.readRx, self._port, ident, length,
+                                               retries=0)
+            except NoReply:
+                self._call(None, "clearing the port", self._clear)
+                break
             self._keep_error(ident, error)
             out[ident] = bytes(data)
         return out

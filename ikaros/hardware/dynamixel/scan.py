@@ -17,11 +17,13 @@ from ikaros.hardware.dynamixel.control_table import table_for_number
 COMMON_BAUD_RATES = [57600, 1000000, 115200, 2000000, 3000000, 9600]
 
 
-def scan(device: str, baud_rates=COMMON_BAUD_RATES, max_id: int = 32, protocols=(1, 2)) -> list[tuple]:
-    """(id, model name, protocol, baud rate) of every servo that answers."""
+def scan(device: str, baud_rates=COMMON_BAUD_RATES, max_id: int = 32, protocols=(1, 2),
+         latency_ms: float | None = None) -> list[tuple]:
+    """(id, model name, protocol, baud rate) of every servo that answers (``latency_ms``: how
+    long the adapter may hold a packet, which sets how long an answer is waited for)."""
     found = []
     for baud in baud_rates:
-        bus = DynamixelBus(device, baud, protocols[0])
+        bus = DynamixelBus(device, baud, protocols[0], latency_ms)
         try:
             for protocol in protocols:
                 bus.set_protocol(protocol)
@@ -39,10 +41,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--baud", type=int, nargs="+", default=COMMON_BAUD_RATES, help="baud rates to try")
     parser.add_argument("--max-id", type=int, default=32, help="the highest id to ping (default 32)")
     parser.add_argument("--protocol", type=int, choices=(1, 2), help="only this protocol version")
+    parser.add_argument("--latency", type=float, default=None, metavar="MS",
+                        help="milliseconds the adapter may hold a packet (default 16; more on a busy machine)")
     options = parser.parse_args(argv)
     try:
         found = scan(options.device, options.baud, options.max_id,
-                     (options.protocol,) if options.protocol else (1, 2))
+                     (options.protocol,) if options.protocol else (1, 2), options.latency)
     except DeviceError as error:
         print(f"scan: {error}", file=sys.stderr)
         return 1

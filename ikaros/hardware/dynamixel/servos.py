@@ -12,7 +12,7 @@ import threading
 
 from ikaros.hardware import DeviceError
 from ikaros.hardware.dynamixel import protocol as p
-from ikaros.hardware.dynamixel.bus import DynamixelBus
+from ikaros.hardware.dynamixel.bus import DynamixelBus, NoReply
 from ikaros.hardware.dynamixel.control_table import ControlTable, table_for_number
 
 
@@ -74,7 +74,7 @@ def _find_servos(bus, device, baud_rate, protocols, ids, force_model, named) -> 
     for version in protocols:
         bus.set_protocol(version)
         found[version] = bus.scan(ids)
-        if named and found[version]:            # a servo the model names gets a second chance
+        if named:                               # a servo the model names gets a second chance
             found[version].update(bus.scan([i for i in ids if i not in found[version]]))
     answered = {v: f for v, f in found.items() if f}
     if len(answered) > 1:
@@ -117,17 +117,32 @@ class ServoGroup:
 
     def read(self, roles: list[str], ids=None) -> dict[str, dict[int, float]]:
         """Values of ``roles`` for each servo (those a model lacks are left out), with one
-        sync read per group of servos that share a layout (Protocol 2.0)."""
+        sync read per group of servos that share a layout (Protocol 2.0). A servo that does
+        not answer (after a retry) raises :class:`NoReply` naming it and the register."""
+        values, missing = self.read_available(roles, ids)
+        if missing:
+            ident, register = next(iter(missing.items()))
+            raise NoReply(f"servo {ident} on {self.bus} does not answer (reading {register})")
+        return values
+
+    def read_available(self, roles: list[str], ids=None) -> tuple[dict[str, dict[int, float]], dict[int, str]]:
+        """As :meth:`read`, but a servo that does not answer is left out: the values of those
+        that answered, and id -> the register (name and address) of each that did not."""
         ids = self.ids if ids is None else list(ids)
         out: dict[str, dict[int, float]] = {role: {} for role in roles}
+        missing: dict[int, str] = {}
         for (start, length), members in self._blocks(roles, ids).items():
+            register = self.register(members[0], start, length)
             with self.lock:
                 if self.bus.protocol == 1 and len(members) > 1 and all(
                         self.tables[i].series.startswith("MX") for i in members):
-                    data = self.bus.bulk_read([(i, start, length) for i in members])   # one packet
+                    data = self.bus.bulk_read([(i, start, length) for i in members], register)   # one packet
                 else:
-                    data = self.bus.sync_read(start, length, members)
+                    data = self.bus.sync_read(start, length, members, register)
             for ident in members:
+                if ident not in data:
+                    missing[ident] = register
+                    continue
                 table = self.tables[ident]
                 for role in roles:
                     entry = table.role(role)
@@ -136,7 +151,20 @@ class ServoGroup:
                     at = entry.field.address - start
                     raw = int.from_bytes(data[ident][at:at + entry.field.size], "little")
                     out[role][ident] = entry.to_value(raw)
-        return out
+        return out, dict(sorted(missing.items()))
+
+    def register(self, ident: int, start: int, length: int) -> str:
+        """The control-table fields of servo ``ident`` in bytes start..start+length, by name and
+        address: ``Present Position, address 132``, or ``Present Current to Present
+        Temperature, addresses 126..146``."""
+        fields = sorted((f for f in self.tables[ident].fields.values()
+                         if start <= f.address and f.address + f.size <= start + length),
+                        key=lambda f: f.address)
+        if not fields:
+            return f"{length} bytes at address {start}"
+        if len(fields) == 1:
+            return f"{fields[0].name}, address {fields[0].address}"
+        return f"{fields[0].name} to {fields[-1].name}, addresses {start}..{fields[-1].address}"
 
     def _blocks(self, roles, ids) -> dict[tuple[int, int], list[int]]:
         blocks: dict[tuple[int, int], list[int]] = {}
@@ -170,9 +198,11 @@ class ServoGroup:
             entry = self.tables[ident].role(role)
             if entry is None:
                 continue
+            f = entry.field
             try:
                 with self.lock:
-                    self.bus.write(ident, entry.field.address, entry.to_raw(value).to_bytes(entry.field.size, "little"))
+                    self.bus.write(ident, f.address, entry.to_raw(value).to_bytes(f.size, "little"),
+                                   f"{f.name}, address {f.address}")
             except DeviceError as error:
                 failures[ident] = error
         return failures

@@ -12,8 +12,8 @@ terminal settings the driver made), so a wrong baud rate looks as it does on a r
 With ``line_time=True`` every packet takes the time it would take on the wire at that rate,
 and each status packet comes after the servo's Return Delay Time.
 
-Faults for tests: :meth:`silence` (a servo stops answering), :meth:`corrupt` (the next status
-packets have a broken checksum or CRC), :meth:`answer_as` (a servo answers with a wrong id),
+Faults for tests: :meth:`silence` (a servo stops answering), :meth:`lose` (the next status
+packets are lost), :meth:`corrupt` (the next status packets have a broken checksum or CRC), :meth:`answer_as` (a servo answers with a wrong id),
 and ``disconnect()`` (the bus disappears).
 """
 from __future__ import annotations
@@ -216,6 +216,7 @@ class VirtualDynamixelBus(PtyDevice):
         self._reader = p.PacketReader(protocol)
         self._silent: set[int] = set()
         self._corrupt = 0
+        self._lost = 0
         self._aliases: dict[int, int] = {}
         self._last_update = time.perf_counter()
         self._bus_free_at = 0.0
@@ -226,6 +227,11 @@ class VirtualDynamixelBus(PtyDevice):
         """Servos stop answering (or, with ``silent=False``, answer again)."""
         with self.lock:
             (self._silent.update if silent else self._silent.difference_update)(idents)
+
+    def lose(self, count: int = 1) -> None:
+        """The next ``count`` status packets are lost on the wire (noise): they never arrive."""
+        with self.lock:
+            self._lost = count
 
     def corrupt(self, count: int = 1) -> None:
         """The next ``count`` status packets have a wrong checksum or CRC."""
@@ -337,6 +343,9 @@ class VirtualDynamixelBus(PtyDevice):
             packet = p.packet1(ident, error, data)
         else:
             packet = p.packet2(ident, p.STATUS, bytes([error]) + data)
+        if self._lost > 0:
+            self._lost -= 1
+            return None
         if self._corrupt > 0:
             self._corrupt -= 1
             packet = packet[:-1] + bytes([packet[-1] ^ 0x5A])

@@ -8,7 +8,9 @@ import numpy as np
 import pytest
 
 from ikaros.hardware import DeviceError
-from ikaros.hardware.epuck import (AXLE_LENGTH, METRES_PER_STEP, ROBOT_RADIUS, Epuck,
+from ikaros.hardware.epuck import (AXLE_LENGTH, IMAGE_BUFFER, IMAGE_COMMAND, IMAGE_PIXEL_BYTES,
+                                   METRES_PER_STEP,
+                                   ROBOT_RADIUS, Epuck,
                                    acceleration_figures, command_line, decode_image,
                                    encode_image, parse_reply)
 from ikaros.hardware.epuck_sim import Arena, VirtualEpuck, parse_boxes
@@ -147,6 +149,48 @@ def test_camera_sees_the_obstacle_ahead(epuck):
     assert middle[0] > 0.7 and middle[1] < 0.35          # the red obstacle straight ahead
     driver.set_camera(False, 8, 6, 8)
     assert driver.image().shape == (6, 8)
+
+
+def test_calibration_is_answered_with_the_firmwares_two_lines(epuck):
+    """The e-puck firmware answers K with 'k, Starting calibration - Remove any object in
+    sensors range' and, when done, 'k, Calibration finished' (as the issue quotes them)."""
+    robot, driver = epuck
+    port = open_serial(robot.path, 115200, timeout=1.0, what="e-puck")
+    try:
+        port.write(b"K\r")
+        assert port.read_until(b"\n") == b"k, Starting calibration - Remove any object in sensors range\r\n"
+        assert port.read_until(b"\n") == b"k, Calibration finished\r\n"
+    finally:
+        port.close()
+    driver.calibrate()
+    assert driver.proximity() == [0] * 8
+
+
+def test_an_image_that_does_not_fit_the_buffer(epuck):
+    """GCtronic, "Advanced sercom protocol", command J: "The total image size must not exceed
+    4056 bytes" (52*39*2; the e-puck2's buffer is 4056 + 3 + 80 = 4139 bytes). The firmware
+    answers j to 80 x 60 grey and sends 40 x 40 RGB565. The driver refuses such a request, and
+    names the robot when a header disagrees with the request."""
+    robot, driver = epuck
+    assert IMAGE_PIXEL_BYTES == 52 * 39 * 2 == 4056 and IMAGE_BUFFER == 4139
+    port = open_serial(robot.path, 115200, timeout=1.0, what="e-puck")
+    try:
+        port.write(b"J,0,80,60,8\r")
+        assert port.read_until(b"\n") == b"j\r\n"
+        port.write(IMAGE_COMMAND)
+        assert port.read(3) == bytes([1, 40, 40])
+        assert len(port.read(40 * 40 * 2)) == 3200
+    finally:
+        port.close()
+    with pytest.raises(DeviceError, match="a 64 x 64 grey image \\(4096 bytes\\) does not fit the e-puck's "
+                                          "camera buffer: 4056 bytes at most"):
+        driver.set_camera(False, 64, 64, 8)
+    driver.set_camera(False, 63, 64, 8)                  # 4032 bytes: fits
+    assert driver.image().shape == (64, 63)
+    robot.camera = (1, 40, 40, 8)                        # the robot switched format on its own
+    with pytest.raises(DeviceError, match=f"the e-puck at '{robot.path}' sent a 40 x 40 colour image, not "
+                                          f"the 63 x 64 grey one asked for"):
+        driver.image()
 
 
 @pytest.mark.parametrize("fault, message", [("silent", "does not answer \\(command N"),

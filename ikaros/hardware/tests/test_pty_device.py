@@ -54,6 +54,7 @@ def test_disconnect_makes_the_driver_fail():
     with EchoUpper() as device:
         port = open_serial(device.path, 115200, timeout=0.2)
         device.disconnect()
+        assert not device.running           # the reader has ended: nothing reads the closed terminal
         with pytest.raises((serial.SerialException, OSError)):
             port.write(b"x\r")
             port.read(2)

@@ -138,3 +138,40 @@ def test_the_compiled_tick_leaves_gated_modules_to_python(tmp_path):
         net.close()
         traces[compiled] = trace
     assert traces["no"] == traces["yes"] == [[0, 0, 0], [0, 0, 0], [6, 12, 18], [6, 12, 18]]
+
+
+READY = '''
+from ikaros.module import Input, Module, Output
+
+
+class Ready(Module):
+    """Keeps input_ready("INPUT") of every tick."""
+    INPUT = Input("anything")
+    OUTPUT = Output("nothing", shape="1")
+
+    def init(self):
+        self.seen = []
+
+    def tick(self):
+        self.seen.append(self.input_ready("INPUT").tolist())
+'''
+
+
+def test_input_ready_says_which_elements_hold_data_from_their_source(tmp_path):
+    """A chain S -> C (delay 1) -> R (delay 1) and S -> R (delay 0): the first element of R's
+    input (from C, two elements) holds data from tick 2 (C's step 1 + 1), the rest (from S)
+    from tick 0;
+    a delay window counts its largest delay (S -> W with delays 0:2: ready from tick 2)."""
+    (tmp_path / "Ready.py").write_text(READY)
+    net = _model(tmp_path, '''<module class="Counter" name="S"/>
+        <module class="Counter" name="C"/>
+        <module class="Ready" name="R"/><module class="Ready" name="W"/>
+        <connection source="S.OUTPUT" target="C.INPUT"/>
+        <connection source="C.OUTPUT" target="R.INPUT"/>
+        <connection source="S.OUTPUT" target="R.INPUT" delay="0"/>
+        <connection source="S.OUTPUT" target="W.INPUT" delay="0:2"/>''')
+    net.run(3)
+    f, t = False, True
+    assert net.modules["R"].module.seen == [[f, f, t, t], [f, f, t, t], [t, t, t, t]]
+    assert net.modules["W"].module.seen == [[f] * 6, [f] * 6, [t] * 6]
+    net.close()

@@ -79,9 +79,11 @@ def test_values_set_while_running_are_checked_and_change_nothing(folder):
 
 
 def test_a_standard_class_declares_its_range():
-    desc = ikaros.classes()["PIDController"]
-    assert desc.parameter("Fs").range == (0, 1)
-    assert "  Fs (number, default 0.0, range 0..1): " in desc.to_text()
+    desc = ikaros.classes()["FunctionGenerator"]
+    assert desc.parameter("duty").range == (0, 1)
+    assert "  duty (number, default 0.5, range 0..1): " in desc.to_text()
+    # a filter constant of Ikaros 3's PIDController is a rate (1/s): no upper bound
+    assert ikaros.classes()["PIDController"].parameter("Fs").range == (0, None)
     assert ikaros.classes()["Histogram"].parameter("size").range == (1, None)
 
 

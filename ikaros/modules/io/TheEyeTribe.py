@@ -14,7 +14,8 @@ class TheEyeTribe(Module):
     comes). Gaze points are in screen pixels; pupil centres are 0..1 of the camera image;
     TIME_STAMP is the frame's ``time`` (milliseconds). A server that cannot be reached at
     load is a load error; one lost later is reported as a warning and retried every second
-    while the run goes on. Unlike Ikaros 2, which linked the tracker's C++ SDK, no SDK is
+    while the run goes on. A message that is not JSON is skipped with a warning naming it, and
+    reading goes on with the next one. Unlike Ikaros 2, which linked the tracker's C++ SDK, no SDK is
     needed, and the server may be on another machine (``host``)."""
 
     host = Parameter("127.0.0.1", "the address of the Eye Tribe server")
@@ -52,6 +53,9 @@ class TheEyeTribe(Module):
             else:
                 self.print(f"the Eye Tribe server at {self.host}:{self.port} is back")
             self._error = error
+        for text in self._client.take_skipped():
+            self.warning(f"skipped a message from the Eye Tribe server at {self.host}:{self.port} "
+                         f"that is not JSON: {text[:80]!r}")
         frame, count = self._client.newest()
         if frame is None or count == self._seen:
             return

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from ikaros.hardware import DeviceError
 from ikaros.module import Input, Module, Output, Parameter
 
 SETTINGS = ["TORQUE_ENABLE", "LED", "D_GAIN", "I_GAIN", "P_GAIN", "GOAL_POSITION", "MOVING_SPEED",
@@ -20,8 +21,15 @@ class Dynamixel(Module):
     dynamixel-sdk: AX-12/AX-18, MX-28/64/106 (Protocol 1.0 or 2.0), XL-320 and the X-430 and
     X-540 series. The servos are ``servo_id`` or, when it is empty, those that answer a scan
     of ids 0..``max_servo_id`` with Protocol 1.0 and then 2.0 (``protocol`` can fix one; a bus
-    that mixes the two is refused). With ``index_mode=direct`` element i of every input and
-    output is the i-th servo (in id order); with ``indirect`` element i is the servo with id i.
+    that mixes the two is refused). With ``index_mode=direct`` (the default, as in Ikaros 2)
+    element i of every input and output is the servo whose id is i: the arrays have max id + 1
+    elements (of ``servo_id``, or of the servos found), and those with no servo are unused
+    (outputs read 0). With ``indirect`` element i
+    is the i-th servo of ``servo_id`` in the order listed (or of the scan, in id order), and
+    the arrays have one element per servo (a listed servo that is left out keeps its element,
+    unused). ``size`` above 0 forces the number of elements; a servo whose element would lie
+    outside it is an error at load (the reference describes ``size`` only as forcing the array
+    size, so this refusal is this project's choice).
     Positions are absolute angles in ``angle_unit`` with 180° (π, 0.5 tau) at a servo's centre:
     raw 512 of the 300° series, raw 2048 of the 4096-step series. MOVING_SPEED and
     TORQUE_LIMIT are fractions of the full scale (speed 1 is about 114 rpm; 0 means the
@@ -31,21 +39,25 @@ class Dynamixel(Module):
     are written (GOAL_POSITION in one sync write, the other inputs only when they change) and
     the present values read back (one sync read in Protocol 2.0, one bulk read for MX servos in 1.0,
     else one read per servo; ``feedback`` chooses all of them, the
-    position only, or none). Nothing moves at start-up:
+    position only, or none). Nothing moves at start-up: an input element that has not yet
+    received a value from its source (``Module.input_ready``) is not written, and
     a servo's goal is first written on the first tick its GOAL_POSITION element is not 0, and
     its torque is switched on then (or by TORQUE_ENABLE when that is connected); goals are
     clipped to each servo's angle limits. ERRORS has one row per servo with the bits of its
     last status packet (Protocol 1.0 error bits; in 2.0 the error number's bits and bit 7 the
     hardware alert). When the run ends for any reason, and when no tick has come for
     ``watchdog`` seconds (paused, stopped, hung), every servo that answers is put in
-    ``safe_state``: torque off, or hold (goal = present position). A servo that stops answering
-    stops the run with an error naming the servo and the bus. The command ``safe_state`` goes to the
+    ``safe_state``: torque off, or hold (goal = present position). Real buses lose packets: a
+    status packet that does not come is asked for again, a servo whose reply is still missing
+    keeps its last feedback for that tick and counts in MISSED_REPLIES, and only a servo
+    silent for ``silent_ticks`` ticks in a row stops the run, with an error naming the servo,
+    the bus and the register ("Present Position, address 132"); the others are made safe. The command ``safe_state`` goes to the
     safe state at once and keeps the servos there (feedback is still read) until the command
     ``resume``; then the next goal takes them back as at start-up. ``device="sim:dynamixel?ids=1-3"``
     runs the simulator in this process (docs/robots.md). Differences from Ikaros 2: the safe
     state is torque off rather than a torque-limit ramp that left torque enabled; ERRORS has
-    8 columns (one per bit); protocol, max_servo_id, safe_state, watchdog, feedback and
-    serial_latency are additions."""
+    8 columns (one per bit); protocol, max_servo_id, safe_state, watchdog, feedback,
+    serial_latency, silent_ticks and MISSED_REPLIES are additions."""
 
     device = Parameter("/dev/cu.usbserial-A7005Lxn", "the serial device of the bus (e.g. /dev/ttyUSB0), "
                        "or sim:dynamixel?ids=...&protocol=... for the simulator")
@@ -54,8 +66,10 @@ class Dynamixel(Module):
     servo_id = Parameter("", "the ids of the servos (empty: scan 0..max_servo_id)", type="array")
     strict_servo_id = Parameter(False, "stop with an error when a servo of servo_id does not answer "
                                 "(otherwise it is left out with a warning)")
-    index_mode = Parameter("direct", "direct: element i is the i-th servo; indirect: element i is servo id i",
-                           options="direct/indirect")
+    index_mode = Parameter("direct", "direct: element i is the servo with id i; indirect: element i is the "
+                           "i-th servo of servo_id (or of the scan)", options="direct/indirect")
+    size = Parameter(0, "the number of elements of every input and output (0: max id + 1 with direct, "
+                     "the number of servos with indirect)", type="int")
     angle_unit = Parameter("degrees", "unit of positions", options="degrees/radians/tau")
     max_servo_id = Parameter(32, "the highest id a scan pings")
     protocol = Parameter("auto", "protocol version (auto: ping with 1.0, then 2.0)", options="auto/1/2")
@@ -66,6 +80,8 @@ class Dynamixel(Module):
                          "voltage, temperature, current), only the position, or none", options="all/position/none")
     serial_latency = Parameter(-1.0, "milliseconds the adapter may hold a packet (-1: 16, or 20 on a "
                                "pseudo-terminal)")
+    silent_ticks = Parameter(10, "ticks in a row a servo may miss its status packet before the run "
+                             "stops (a lost packet is asked for again first)", type="int", range=(1, None))
 
     TORQUE_ENABLE = Input("1: torque on, 0: off (unconnected: on with the first goal)", optional=True)
     LED = Input("LED on (1) or off (0); XL-320: colour 0..7", optional=True)
@@ -95,6 +111,7 @@ class Dynamixel(Module):
     FEEDBACK_GOAL_TORQUE = Output("goal torque as last written")
     FEEDBACK_GOAL_ACCELERATION = Output("goal acceleration as last written")
     ERRORS = Output("the error bits of each servo's last status packet, one row per servo")
+    MISSED_REPLIES = Output("how many status packets of each servo never came (after a retry), since the start")
 
     # --- build ------------------------------------------------------------------------------
     def configure(self):
@@ -127,12 +144,28 @@ class Dynamixel(Module):
             if missing:
                 self.warning(f"servo {', '.join(map(str, missing))} on {described} does not answer; left out")
         self._tables = dict(sorted(tables.items()))
-        ids = list(self._tables)
-        self._ids = ids
-        size = max(ids) + 1 if self.index_mode == "indirect" else len(ids)
-        self._index = np.array(ids if self.index_mode == "indirect" else range(len(ids)), dtype=int)
+        self._ids = list(self._tables)
+        size, self._index = self._elements(wanted or self._ids)
         for name in self._ik_outputs:
             self.set_output_shape(name, (size, ERROR_BITS) if name == "ERRORS" else size)
+
+    def _elements(self, order: list[int]) -> tuple[int, np.ndarray]:
+        """The array size and the element of each servo (in id order) for ``index_mode``:
+        its id (direct), or its place in ``order``, the listed or scanned ids (indirect)."""
+        if self.index_mode == "direct":
+            element = {ident: ident for ident in self._ids}
+            natural = max(order) + 1
+        else:
+            element = {ident: order.index(ident) for ident in self._ids}
+            natural = len(order)
+        size = int(self.size) if int(self.size) > 0 else natural
+        outside = [ident for ident in self._ids if element[ident] >= size]
+        if outside:
+            self._close_simulator()
+            raise ValueError(f"size=\"{int(self.size)}\" leaves no element for servo "
+                             f"{', '.join(map(str, outside))} (index_mode=\"{self.index_mode}\" "
+                             f"needs at least {natural})")
+        return size, np.array([element[ident] for ident in self._ids], dtype=int)
 
     def _describe(self, bus, tables) -> str:
         models = {}
@@ -168,6 +201,7 @@ class Dynamixel(Module):
         limits = group.read(["MIN_POSITION", "MAX_POSITION"])
         self._limits = {i: (limits["MIN_POSITION"].get(i), limits["MAX_POSITION"].get(i)) for i in self._ids}
         self._errors: dict[int, int] = {}
+        self._silent = {ident: 0 for ident in self._ids}       # ticks in a row without a reply
         self._halted = False
         self._start_again()                    # torque is written explicitly, whatever it was
         self._read_feedback()
@@ -185,10 +219,11 @@ class Dynamixel(Module):
         if array is None:
             return None
         flat = array.reshape(-1)
+        ready = self.input_ready(name)
         out = {}
         for position, ident in enumerate(self._ids):
             element = self._index[position]
-            if element < flat.size:
+            if element < flat.size and ready[element]:
                 out[ident] = float(flat[element])
         return out
 
@@ -246,16 +281,30 @@ class Dynamixel(Module):
         if role == "TORQUE_ENABLE":
             turning_on = [i for i, v in changed.items() if v and not self._commanded[i]]
             if turning_on:                              # hold where it is: no jump to an old goal
-                present = self._group.read(["PRESENT_POSITION"], turning_on)["PRESENT_POSITION"]
+                present = self._group.read_available(["PRESENT_POSITION"], turning_on)[0]["PRESENT_POSITION"]
                 self._group.write("GOAL_POSITION", present)
+                changed = {i: v for i, v in changed.items() if i in present or i not in turning_on}
         self._group.write(role, changed)
         written.update(changed)
         self._publish("FEEDBACK_" + role, changed)
 
     def _read_feedback(self, roles: list[str] = PRESENT) -> None:
-        values = self._group.read(roles)
+        """Read the present values back. A servo whose reply is lost keeps its last values and
+        counts in MISSED_REPLIES; one silent for ``silent_ticks`` ticks in a row stops the run."""
+        values, missing = self._group.read_available(roles)
         for role in roles:
             self._publish("FEEDBACK_" + role, values[role], self._angle if role == "PRESENT_POSITION" else 1.0)
+        for position, ident in enumerate(self._ids):
+            if ident in missing:
+                self._silent[ident] += 1
+                self.MISSED_REPLIES[self._index[position]] += 1
+            else:
+                self._silent[ident] = 0
+        gone = [ident for ident in missing if self._silent[ident] >= self.silent_ticks]
+        if gone:
+            ident = gone[0]
+            raise DeviceError(f"servo {ident} on {self._group.bus} does not answer (reading {missing[ident]}) "
+                              f"for {self._silent[ident]} ticks in a row")
 
     def _report_errors(self) -> None:
         errors = self._group.bus.errors

@@ -21,9 +21,12 @@ class Epuck(Module):
     ACCELERATION_PLAIN raw x, y, z; ACCELERATION in g; ORIENTATION and INCLINATION in degrees),
     MICROPHONE_VOLUME (``microphone_on``: the three microphones' amplitudes) and the camera
     (``camera`` grey or colour, ``width`` x ``height`` pixels at ``zoom``: IMAGE grey, RED,
-    GREEN and BLUE in 0..1). POSE is (x, y, heading in radians): the simulator's true pose with
+    GREEN and BLUE in 0..1; the pixels must fit the robot's buffer, at most 52·39·2 = 4056
+    bytes (of its 4139-byte buffer, e-puck2), or the load fails naming the limit, and an
+    image of another format than asked for stops the run with an error naming the port). POSE is (x, y, heading in radians): the simulator's true pose with
     ``sim:epuck``, otherwise odometry from the encoders (starting at 0, 0, 0; needs
-    ``encoder_on``). Nothing is sent before the first tick; when the run ends the wheels are
+    ``encoder_on``). Nothing is sent before the first tick, nor from an input element that has
+    not yet received a value from its source (``Module.input_ready``); when the run ends the wheels are
     stopped, every LED is switched off and the sound stops; the same happens after ``watchdog``
     seconds without a tick (the model's commands are sent again when ticks resume), at
     interpreter exit, and on the ``safe_state`` command. A robot that stops answering, or
@@ -76,15 +79,17 @@ class Epuck(Module):
 
     def init(self):
         from ikaros.hardware import safety
+        from ikaros.hardware.epuck import IMAGE_PIXEL_BYTES, image_bytes, image_fits
         from ikaros.hardware.epuck import Epuck as Robot
         from ikaros.hardware.simulators import open_device_string
         self._simulator = self._robot = self._watchdog = self._exit_key = None
         self._lock = threading.Lock()
-        if self.camera != "none" and not 0 < self.width * self.height * \
-                (2 if self.camera == "color" else 1) <= 4800:
-            raise ValueError(f"a {self.width} x {self.height} {self.camera} image does not "
-                             "fit the e-puck's camera buffer (4800 bytes; grey 1 byte a "
-                             "pixel, colour 2)")
+        colour = self.camera == "color"
+        if self.camera != "none" and not image_fits(colour, int(self.width), int(self.height)):
+            raise ValueError(f"a {self.width} x {self.height} {self.camera} image "
+                             f"({image_bytes(colour, int(self.width), int(self.height))} bytes) "
+                             f"does not fit the e-puck's camera buffer: {IMAGE_PIXEL_BYTES} bytes "
+                             f"at most (grey 1 byte a pixel, colour 2)")
         self._sent = {}
         self._last_encoders = None
         try:
@@ -121,20 +126,26 @@ class Epuck(Module):
                 self._sent.clear()
             self._tick()
 
+    def _given(self, name: str, count: int = 1) -> bool:
+        """Whether input ``name`` is connected and its first ``count`` elements hold values
+        from their source (before that nothing is sent: nothing moves at start-up)."""
+        return getattr(self, name) is not None and bool(self.input_ready(name)[:count].all())
+
     def _tick(self):
         robot = self._robot
-        if self.VELOCITY is not None:
+        if self._given("VELOCITY", 2):
             left, right = (float(v) * self.velocity_scale for v in self.VELOCITY.reshape(-1)[:2])
             robot.set_speed(int(round(left)), int(round(right)))
         if self.LED is not None:
+            ready = self.input_ready("LED")
             for n in range(min(8, self.LED.size)):
-                if self._changed(("led", n), self._on(self.LED, n)):
+                if ready[n] and self._changed(("led", n), self._on(self.LED, n)):
                     robot.set_led(n, self._sent[("led", n)])
-        if self.LIGHT is not None and self._changed("light", self._on(self.LIGHT)):
+        if self._given("LIGHT") and self._changed("light", self._on(self.LIGHT)):
             robot.set_front_led(self._sent["light"])
-        if self.BODY is not None and self._changed("body", self._on(self.BODY)):
+        if self._given("BODY") and self._changed("body", self._on(self.BODY)):
             robot.set_body_led(self._sent["body"])
-        if self.SOUND is not None and self._changed("sound", int(round(float(self.SOUND.flat[0])))):
+        if self._given("SOUND") and self._changed("sound", int(round(float(self.SOUND.flat[0])))):
             robot.play_sound(self._sent["sound"])
         self._read_sensors(robot)
         self._write_pose()

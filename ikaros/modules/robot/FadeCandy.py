@@ -13,16 +13,18 @@ _SERVER_START_SECONDS = 3.0
 
 class FadeCandy(Module):
     """Sends LED colours to a FadeCandy board through its server (fcserver) with the Open Pixel
-    Control protocol over TCP. Each child element ``<channel name="EYES" channel="1"
+    Control protocol over TCP. Each child element ``<channel name="EYES" channel="0"
     size="12"/>`` gives the inputs EYES_RED, EYES_GREEN and EYES_BLUE (optional, 0 when
     unconnected), each with at least ``size`` values in 0..1, one per pixel; every tick one OPC
     message per channel sets its pixels (colours clipped to 0..1 and scaled to 0..255). Nothing
-    is sent before the first tick; when the run ends every channel is set to black (LEDs off),
+    is sent before the first tick, nor to a channel before its connected inputs have received
+    values from their sources (``Module.input_ready``); when the run ends every channel is set to black (LEDs off),
     as at interpreter exit. With ``start_server`` the program ``server`` is started (and stopped
     at the end) when it is installed; otherwise, or when it is not found, a server already
     running at ``address`` is used. ``address="sim:opc"`` runs a simulated OPC server in this
     process (see docs/robots.md). A server that cannot be reached, or that goes away, stops the
-    run with an error naming its address. Differences from Ikaros 2: ``address`` is new (Ikaros
+    run with an error naming its address. fcserver's built-in map takes OPC channel 0 only
+    (pixels 0..511, 64 a strip): use channel 0 unless its configuration maps others. Differences from Ikaros 2: ``address`` is new (Ikaros
     2 always used 127.0.0.1:7890); the program is the parameter ``server``, default fcserver
     (``command`` is a reserved name in this module API; a ``command`` attribute in a model is
     still read; Ikaros 2's default was fcserver-osx)."""
@@ -67,7 +69,8 @@ class FadeCandy(Module):
                     raise ValueError(f"{name}_{colour} has {value.size} values; channel {name} "
                                      f"has {size} pixels")
                 colours.append(value)
-            self._inputs.append((number, size, colours))
+            connected = [f"{name}_{c}" for c, v in zip(("RED", "GREEN", "BLUE"), colours) if v is not None]
+            self._inputs.append((number, size, colours, connected))
         try:
             address = self._start_server()
             self._client = OPCClient(address)
@@ -96,7 +99,9 @@ class FadeCandy(Module):
         return self.address
 
     def tick(self):
-        for number, size, colours in self._inputs:
+        for number, size, colours, connected in self._inputs:
+            if not all(self.input_ready(name)[:size].all() for name in connected):
+                continue                        # no value from the source yet: leave it as it is
             rgb = np.zeros((size, 3), np.float32)
             for k, value in enumerate(colours):
                 if value is not None:
@@ -106,7 +111,7 @@ class FadeCandy(Module):
     def _lights_off(self):
         """Every pixel of every channel black (called by stop and at exit)."""
         if self._client is not None:
-            for number, size, _ in self._inputs:
+            for number, size, _, _ in self._inputs:
                 self._client.set_pixels(number, np.zeros((size, 3)))
 
     def stop(self):

@@ -12,8 +12,11 @@ class SSC32(Module):
     pulse width is min + INPUT * (max - min) µs, clipped to min..max (``min``, ``max`` and
     ``home`` give one value for all servos or one per servo). Every tick the channels whose
     position changed are sent in one group move (``#0P1500#1P900T20\\r``), taking ``move_time``
-    ms (0: as fast as the servos go) at most ``speed`` µs/s per servo (0: no limit); nothing is
-    sent before the first tick, so nothing moves until the model says so. OUTPUT is the present
+    ms (0: as fast as the servos go) at most ``speed`` µs/s per servo (0: no limit). Nothing
+    moves until the model says so: nothing is sent before the first tick, nor for an element
+    of INPUT that has not yet received a value from its source (``Module.input_ready``: with
+    the default delays, Constant -> Scale -> SSC32 sends its first move on tick 2, not the
+    zeros of the start as a move to ``min``). OUTPUT is the present
     position of each servo read back from the board (QP queries) in the same 0..1 units, NaN for
     a channel that has no pulses yet. When the run ends the servos are put in ``safe_state``:
     off (no pulses: RC servos go limp), hold (the last position is kept) or home (moved to the
@@ -101,11 +104,13 @@ class SSC32(Module):
     def _tick(self):
         position = np.clip(np.nan_to_num(self.INPUT.reshape(-1), nan=0.5), 0.0, 1.0)
         pulses = np.rint(self._min + position * (self._max - self._min)).astype(int)
-        changed = {self._channels[i]: int(p) for i, p in enumerate(pulses) if p != self._sent[i]}
+        ready = self.input_ready("INPUT")
+        changed = {self._channels[i]: int(p) for i, p in enumerate(pulses)
+                   if ready[i] and p != self._sent[i]}
         if changed:
             speeds = {c: self.speed for c in changed} if self.speed > 0 else None
             self._board.move(changed, self.move_time or None, speeds)
-            self._sent = pulses
+            self._sent = np.where(ready, pulses, self._sent)
         if self.feedback:
             present = np.asarray(self._board.pulse_widths(self._channels), np.float64)
             span = self._max - self._min

@@ -12,8 +12,17 @@ from ikaros.hardware import DeviceError
 from ikaros.hardware.dynamixel import protocol as p
 from ikaros.hardware.dynamixel.bus import DynamixelBus
 from ikaros.hardware.dynamixel.simulator import VirtualDynamixelBus, parse_ids
+from ikaros.testing import wait_for
 
 H = bytes.fromhex
+# How long the driver waits for an answer is 2 x the adapter latency + 2 ms. The simulator is a
+# thread of this process: on a busy machine it may wait for a CPU that long, so the tests wait
+# generously (a servo that is not there then costs about 0.2 s).
+LATENCY_MS = 100.0
+
+
+def open_bus(path: str, baud_rate: int = 1000000, protocol: int = 2) -> DynamixelBus:
+    return DynamixelBus(path, baud_rate, protocol, LATENCY_MS)
 
 
 @pytest.fixture(params=[1, 2])
@@ -21,7 +30,7 @@ def rig(request):
     protocol = request.param
     model = "AX-12A" if protocol == 1 else "XM430-W350"
     sim = VirtualDynamixelBus({i: model for i in (1, 2, 3)}, protocol).start()
-    bus = DynamixelBus(sim.path, 1000000, protocol)
+    bus = open_bus(sim.path, 1000000, protocol)
     yield sim, bus
     bus.close()
     sim.stop()
@@ -59,10 +68,12 @@ def test_goal_position_is_followed_at_the_moving_speed(rig):
     goal, speed, torque = (table.role(n) for n in ("GOAL_POSITION", "MOVING_SPEED", "TORQUE_ENABLE"))
     bus.write(1, speed.field.address, speed.to_raw(0.5).to_bytes(speed.field.size, "little"))
     bus.write(1, torque.field.address, b"\x01")
+    packets = sim.packets
+    started = time.perf_counter()
     bus.sync_write(goal.field.address, goal.field.size,
                    {1: goal.to_raw(200.0).to_bytes(goal.field.size, "little"),
                     2: goal.to_raw(100.0).to_bytes(goal.field.size, "little")})
-    started = time.perf_counter()
+    assert wait_for(lambda: sim.packets > packets)     # the servos have the goal (no answer comes)
     present = table.role("PRESENT_POSITION")
     # half of 114 rpm is 342 degrees/s: 20 degrees take about 58 ms
     time.sleep(0.02)
@@ -119,7 +130,7 @@ def test_faults_name_the_servo_and_the_bus(rig):
 
 def test_bulk_read_and_write_and_changing_an_id():
     with VirtualDynamixelBus({1: "XM430-W350", 2: "XL430-W250"}, 2) as sim:
-        bus = DynamixelBus(sim.path, 1000000, 2)
+        bus = open_bus(sim.path, 1000000, 2)
         bus.bulk_write([(1, 65, b"\x01"), (2, 112, (100).to_bytes(4, "little"))])
         assert bus.bulk_read([(1, 65, 1), (2, 112, 4)]) == {1: b"\x01", 2: (100).to_bytes(4, "little")}
         bus.write(2, 7, b"\x05")
@@ -129,13 +140,13 @@ def test_bulk_read_and_write_and_changing_an_id():
 
 def test_a_servo_at_another_baud_rate_does_not_answer():
     with VirtualDynamixelBus({1: "AX-12A"}, 1, baud_rate=57600) as sim:
-        assert DynamixelBus(sim.path, 1000000, 1).ping(1) is None
-        assert DynamixelBus(sim.path, 57600, 1).ping(1) == 12
+        assert open_bus(sim.path, 1000000, 1).ping(1) is None
+        assert open_bus(sim.path, 57600, 1).ping(1) == 12
 
 
 def test_line_time_makes_packets_take_their_wire_time():
     with VirtualDynamixelBus({i: "XM430-W350" for i in range(1, 11)}, 2, baud_rate=57600, line_time=True) as sim:
-        bus = DynamixelBus(sim.path, 57600, 2)
+        bus = open_bus(sim.path, 57600, 2)
         started = time.perf_counter()
         bus.sync_read(132, 4, range(1, 11))
         # 14 bytes out, 10 x 15 bytes back: 164 bytes of 10 bits at 57600 baud = 28.5 ms
@@ -155,7 +166,7 @@ def test_ikaros_sim_prints_the_device_path():
     try:
         path = process.stdout.readline().strip()
         assert path.startswith("/dev/pts/")
-        bus = DynamixelBus(path, 1000000, 2)
+        bus = open_bus(path, 1000000, 2)
         assert bus.scan(range(1, 20)) == {i: 1020 for i in range(1, 20)}
         bus.close()
     finally:
@@ -167,7 +178,7 @@ def test_protocol1_bulk_read_of_mx_servos_and_the_group_read():
     from ikaros.hardware.dynamixel.control_table import table_for_model
     from ikaros.hardware.dynamixel.servos import ServoGroup
     with VirtualDynamixelBus({1: "MX-28", 2: "MX-64"}, 1, positions={1: 90.0, 2: 270.0}) as sim:
-        bus = DynamixelBus(sim.path, 1000000, 1)
+        bus = open_bus(sim.path, 1000000, 1)
         assert bus.bulk_read([(1, 36, 2), (2, 0, 2)]) == {1: (1024).to_bytes(2, "little"),
                                                          2: (310).to_bytes(2, "little")}
         sent = sim.packets
@@ -181,14 +192,15 @@ def test_protocol1_bulk_read_of_mx_servos_and_the_group_read():
 def test_scan_finds_servos_at_any_baud_rate(capsys):
     from ikaros.hardware.dynamixel.scan import main
     with VirtualDynamixelBus({3: "XL430-W250", 4: "XL430-W250"}, 2, baud_rate=57600) as sim:
-        assert main([sim.path, "--baud", "1000000", "57600", "--max-id", "5", "--protocol", "2"]) == 0
+        assert main([sim.path, "--baud", "1000000", "57600", "--max-id", "5", "--protocol", "2",
+                     "--latency", str(LATENCY_MS)]) == 0
     assert capsys.readouterr().out.splitlines() == [
         "id   3  XL430-W250      Protocol 2.0  57600 baud", "id   4  XL430-W250      Protocol 2.0  57600 baud"]
 
 
 def test_byte_stuffing_end_to_end_through_the_sdk_and_the_simulator():
     with VirtualDynamixelBus({1: "XM430-W350"}, 2) as sim:
-        bus = DynamixelBus(sim.path, 1000000, 2)
+        bus = open_bus(sim.path, 1000000, 2)
         value = bytes.fromhex("FF FF FD 00")                 # Homing Offset: the header inside the data
         assert bus.write(1, 20, value) == 0
         assert bytes(sim.servo(1).memory[20:24]) == value
@@ -200,7 +212,7 @@ def test_faults_from_the_device_string():
     from ikaros.hardware.simulators import start_from_device_string
     sim = start_from_device_string("sim:dynamixel?ids=1-3&protocol=1&silent=2&load=3=0.5")
     try:
-        bus = DynamixelBus(sim.path, 1000000, 1)
+        bus = open_bus(sim.path, 1000000, 1)
         assert bus.scan([1, 2, 3]) == {1: 12, 3: 12}
         assert sim.servo(3).external_load == 0.5
         bus.close()

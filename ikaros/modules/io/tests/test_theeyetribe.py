@@ -5,7 +5,7 @@ import time
 import pytest
 
 from ikaros.errors import ModelError
-from ikaros.hardware.eyetribe import HEARTBEAT, PUSH_REQUEST, messages
+from ikaros.hardware.eyetribe import HEARTBEAT, MAX_PENDING, PUSH_REQUEST, messages
 from ikaros.hardware.eyetribe_sim import SimulatedEyeTribe, frame
 from ikaros.module import WARNING
 from ikaros.testing import load_body as load, step_until
@@ -70,7 +70,34 @@ def test_no_server_is_a_load_error(tmp_path):
 
 def test_messages_split_anywhere_are_put_together():
     text = '{"category": "heartbeat"}{"category":"tracker","values":{"frame":{"time":1}}}  {"ca'
-    found, rest = messages(text)
+    found, rest, skipped = messages(text)
     assert found == [{"category": "heartbeat"},
                      {"category": "tracker", "values": {"frame": {"time": 1}}}]
     assert rest == '{"ca'
+    assert skipped == []
+
+
+def test_text_that_is_no_json_is_skipped_and_reading_resumes_at_the_next_message():
+    text = 'oops{"category": "heartbeat"}{bad json}{"a": "}{"}{"category": "heartbeat", "x": {'
+    found, rest, skipped = messages(text)
+    assert found == [{"category": "heartbeat"}, {"a": "}{"}]
+    assert skipped == ["oops", "{bad json}"]
+    assert rest == '{"category": "heartbeat", "x": {'
+    found, rest, skipped = messages("{" * (MAX_PENDING + 10))         # the buffer is bounded
+    assert (found, rest, len(skipped)) == ([], "", 1)
+
+
+def test_a_bad_message_is_reported_and_later_frames_still_arrive(tmp_path, tracker):
+    net = load(tmp_path, f'<module class="TheEyeTribe" name="E" port="{tracker.port}"/>')
+    try:
+        net.step()
+        tracker.send_text("<html>502 Bad Gateway</html>\n{not: json}")
+        tracker.push(frame(42, 5, 6))
+        step_until(net, lambda: net.output("E.TIME_STAMP")[0] == 42)
+        assert net.output("E.RAW").tolist() == [5, 6]
+        warnings = [m for _, lv, _, m in net.log if lv == WARNING]
+        assert any(f"127.0.0.1:{tracker.port} that is not JSON: '<html>502 Bad Gateway</html>'" in m
+                   for m in warnings)
+        assert any("that is not JSON: '{not: json}'" in m for m in warnings)
+    finally:
+        net.close()

@@ -22,12 +22,34 @@ SIM = "sim:epuck?step=0.1&amp;obstacles=none"          # an empty 1 m x 1 m aren
 def model(tmp_path, params, velocity="0.5 0.5", extra=""):
     body = (f'<module class="Constant" name="V" data="{velocity}"/>\n'
             f'<module class="Epuck" name="R" {params}/>\n'
-            '<connection source="V.OUTPUT" target="R.VELOCITY"/>\n' + extra)
+            '<connection source="V.OUTPUT" target="R.VELOCITY" delay="0"/>\n' + extra)
     return load_body(tmp_path, body)
 
 
 def simulator(net):
     return net.modules["R"].module._simulator
+
+
+def test_a_velocity_that_has_no_value_from_its_source_yet_moves_nothing(tmp_path):
+    """Constant -> Scale -> VELOCITY (delays 1) arrives on tick 2; the zeros before it are
+    not sent (a D,0,0 would stop a robot someone else drives; a non-zero offset would move)."""
+    extra = ('<module class="Constant" name="On" data="1"/>\n<module class="Scale" name="S" factor="1"/>\n'
+             '<connection source="On.OUTPUT" target="S.INPUT"/>\n'
+             '<connection source="S.OUTPUT" target="R.LIGHT"/>')
+    net = load_body(tmp_path, f'<module class="Constant" name="V" data="0.5 0.5"/>\n'
+                              f'<module class="Epuck" name="R" port="{SIM}" calibrate="no"/>\n'
+                              '<module class="Scale" name="S2" factor="1"/>\n'
+                              '<connection source="V.OUTPUT" target="S2.INPUT"/>\n'
+                              '<connection source="S2.OUTPUT" target="R.VELOCITY"/>\n' + extra)
+    robot = simulator(net)
+    try:
+        net.step()
+        net.step()
+        assert robot.commands == []
+        net.step()
+        assert robot.commands == ["D,500,500", "F,1"]
+    finally:
+        net.close()
 
 
 def test_wheels_sensors_and_pose(tmp_path):
@@ -91,6 +113,19 @@ def test_accelerometer_microphones_and_camera(tmp_path):
         net.close()
 
 
+def test_an_image_of_another_format_than_asked_for_is_an_error_naming_the_port(tmp_path):
+    net = model(tmp_path, f'port="{SIM}" camera="gray" width="20" height="12"')
+    robot = simulator(net)
+    try:
+        net.step()
+        robot.camera = (1, 40, 40, 8)                  # as the firmware does with an image too big
+        with pytest.raises(RunError, match=f"the e-puck at '{robot.path}' sent a 40 x 40 colour image, "
+                                           f"not the 20 x 12 grey one asked for"):
+            net.step()
+    finally:
+        net.close()
+
+
 def test_odometry_of_a_real_port_follows_the_robot(tmp_path):
     with VirtualEpuck(Arena(1, 1, []), x=0.5, y=0.5, step=0.1) as robot:
         net = model(tmp_path, f'port="{robot.path}" encoder_on="yes"', "0.3 0.5")
@@ -117,8 +152,9 @@ def test_a_faulty_robot_stops_the_run_naming_its_port(tmp_path, fault, message):
 
 
 def test_bad_settings_are_named(tmp_path):
-    with pytest.raises(ModelError, match="does not fit the e-puck's camera buffer"):
-        model(tmp_path, f'port="{SIM}" camera="color" width="80" height="60"')
+    with pytest.raises(ModelError, match=r"a 80 x 60 gray image \(4800 bytes\) does not fit the e-puck's "
+                                         r"camera buffer: 4056 bytes at most"):
+        model(tmp_path, f'port="{SIM}" camera="gray" width="80" height="60"')
     with pytest.raises(ModelError, match="cannot open the e-puck at '/dev/no-epuck'"):
         model(tmp_path, 'port="/dev/no-epuck"')
     with pytest.raises(ModelError, match="inside a wall or an obstacle"):
@@ -142,7 +178,7 @@ def test_the_obstacle_example_avoids_every_obstacle():
 
 def test_the_watchdog_stops_an_idle_robot_and_ticks_resume(tmp_path):
     extra = ('<module class="Constant" name="L" data="1 1 1 1 1 1 1 1"/>\n'
-             '<connection source="L.OUTPUT" target="R.LED"/>\n')
+             '<connection source="L.OUTPUT" target="R.LED" delay="0"/>\n')
     net = model(tmp_path, f'port="{SIM}" watchdog="0.2"', "0.5 0.5", extra)
     robot = simulator(net)
     try:

@@ -42,6 +42,40 @@ def test_channels_become_inputs_and_pixels_arrive(tmp_path):
         assert server.pixels_of(2).tolist() == [[0, 0, 0]] * 2
 
 
+def test_a_channel_whose_inputs_have_no_value_from_their_source_yet_is_not_sent(tmp_path):
+    with VirtualOPCServer() as server:
+        body = ('<module class="Constant" name="R" data="1"/>\n<module class="Scale" name="S" factor="1"/>\n'
+                f'<module class="FadeCandy" name="LED" address="{server.path}" start_server="no">'
+                '<channel name="EYES" channel="0" size="1"/></module>\n'
+                '<connection source="R.OUTPUT" target="S.INPUT"/>\n'
+                '<connection source="S.OUTPUT" target="LED.EYES_RED"/>')
+        net = load_body(tmp_path, body)
+        try:
+            net.step()
+            net.step()
+            net.step()                                  # the value arrives on tick 2
+            assert wait_for(lambda: len(server.messages) >= 1)
+            assert server.messages == [(0, 0, bytes([255, 0, 0]))]
+        finally:
+            net.close()
+
+
+def test_the_documented_channel_0_lights_the_board_and_channel_1_does_not(tmp_path):
+    """fcserver's built-in map takes OPC channel 0 only (pixels 0..511 on the eight outputs;
+    Fadecandy examples/config/default.json): the docs' example uses channel 0."""
+    with VirtualOPCServer() as server:
+        for number in (1, 0):
+            net = model(tmp_path, server.path, channels=f'<channel name="EYES" channel="{number}" size="3"/>'
+                                                        '<channel name="MOUTH" channel="9" size="2"/>')
+            try:
+                net.step()
+                assert wait_for(lambda: any(c == number for c, _, _ in server.messages))
+                lit = [[255, 0, 0], [128, 0, 0], [0, 0, 0]] if number == 0 else [[0, 0, 0]] * 3
+                assert server.board_pixels(3).tolist() == lit
+            finally:
+                net.close()
+
+
 def test_the_simulated_server_from_the_address(tmp_path):
     net = model(tmp_path, "sim:opc")
     try:

@@ -7,7 +7,7 @@ import pytest
 
 from ikaros.errors import ModelError
 from ikaros.hardware import phidgets
-from ikaros.testing import load_body
+from ikaros.testing import load_body, wait_for
 
 
 class FakeError(Exception):
@@ -87,11 +87,11 @@ def fake_library(board):
                 PhidgetException=FakeError)
 
 
-def model(tmp_path, params, outputs="1 0 1 1"):
+def model(tmp_path, params, outputs="1 0 1 1", delay=0):
     body = (f'<module class="Constant" name="Out" data="{outputs}"/>\n'
             f'<module class="Phidgets" name="P" analog_inputs="4" digital_inputs="3" '
             f'digital_outputs="4" {params}/>\n'
-            '<connection source="Out.OUTPUT" target="P.DIGITAL_INPUTS"/>')
+            f'<connection source="Out.OUTPUT" target="P.DIGITAL_INPUTS" delay="{delay}"/>')
     return load_body(tmp_path, body)
 
 
@@ -118,6 +118,32 @@ def test_inputs_outputs_and_safe_state(tmp_path, board, capsys):
         net.close()
     assert board.outputs == {0: False, 1: False, 2: False, 3: False}
     assert board.closed == 4 + 3 + 4
+
+
+def test_outputs_that_have_no_value_from_their_source_yet_are_not_written(tmp_path, board):
+    net = model(tmp_path, 'serial="4242" info="no"', delay=2)          # the values arrive on tick 2
+    try:
+        net.step()
+        net.step()
+        assert board.outputs == {}
+        net.step()
+        assert board.outputs == {0: True, 1: False, 2: True, 3: True}
+    finally:
+        net.close()
+
+
+def test_the_watchdog_switches_the_outputs_off_when_ticks_stop_and_ticks_resume(tmp_path, board):
+    net = model(tmp_path, 'serial="4242" info="no" watchdog="0.2"')
+    try:
+        net.step()
+        assert board.outputs == {0: True, 1: False, 2: True, 3: True}
+        assert wait_for(lambda: not any(board.outputs.values()), 3.0)     # no tick for 0.2 s
+        net.step()
+        assert board.outputs == {0: True, 1: False, 2: True, 3: True}     # written again
+        net.command("P", "safe_state")
+        assert board.outputs == {0: False, 1: False, 2: False, 3: False}
+    finally:
+        net.close()
 
 
 def test_voltages_when_not_ratiometric(tmp_path, board):

@@ -81,7 +81,7 @@ def test_record_save_load_and_trig(tmp_path):
 
 def test_a_recording_made_by_hand_is_played_back_on_the_servos(tmp_path):
     with VirtualDynamixelBus({1: "AX-12A", 2: "AX-12A"}, 1) as sim:
-        body = (f'<module class="Dynamixel" name="Arm" device="{sim.path}" servo_id="1 2" print_info="none" '
+        body = (f'<module class="Dynamixel" name="Arm" device="{sim.path}" servo_id="1 2" index_mode="indirect" print_info="none" '
                 'watchdog="0"/>\n'
                 '<module class="MotionRecorder" name="R" mode_string="off" directory="m"/>\n'
                 '<connection source="Arm.FEEDBACK_PRESENT_POSITION" target="R.INPUT"/>\n'

@@ -57,6 +57,26 @@ def test_positions_reach_the_servos_and_come_back(tmp_path, board):
     assert [board.pulse(c) for c in range(3)] == [0, 0, 0]
 
 
+def test_an_input_that_has_no_value_from_its_source_yet_moves_nothing(tmp_path, board):
+    """Constant -> Scale -> SSC32 with the default delays (1): the position the model asks for
+    reaches the board on tick 2; before it the input holds the zeros of the start, which
+    must not be sent as a move to min (#0P500#1P500)."""
+    body = (f'<module class="Constant" name="In" data="0.5 0.5"/>\n'
+            '<module class="Scale" name="S" factor="1"/>\n'
+            f'<module class="SSC32" name="Servos" port="{board.path}"/>\n'
+            '<connection source="In.OUTPUT" target="S.INPUT"/>\n'
+            '<connection source="S.OUTPUT" target="Servos.INPUT"/>')
+    net = load_body(tmp_path, body)
+    try:
+        net.step()
+        net.step()
+        assert moves(board) == []
+        net.step()
+        assert moves(board) == ["#0P1500#1P1500"]
+    finally:
+        net.close()
+
+
 def test_channels_per_servo_ranges_move_time_and_speed(tmp_path, board):
     net = model(tmp_path, board.path, "0.5 1", 'channels="4 7" min="1000 600" max="2000 1400" '
                 'move_time="20" speed="3000"')
