@@ -585,7 +585,9 @@ class Builder:
         # A worklist: whenever a buffer gets its size, the owners of what it feeds are
         # looked at again, so sizing is linear in the size of the model.
         # When the worklist runs dry with outputs unsized (a loop through a delay), size_set
-        # rules take the inputs that are sized, and the worklist goes on.
+        # rules take the inputs that are sized, and the worklist goes on; this goes on until
+        # no rule can size anything more (an output sized so may feed nothing, and another
+        # loop elsewhere may still wait).
         queue = collections.deque(self.instances + list(self.ports.values()))
         queued = set(queue)
 
@@ -597,16 +599,19 @@ class Builder:
                         queue.append(owner)
                         queued.add(owner)
 
-        while queue:
+        progress = True
+        while progress:
             while queue:
                 item = queue.popleft()
                 queued.discard(item)
                 feed(self._advance(item))
+            progress = False
             for inst in self.instances:
                 if any(b.shape is None for b in self.buffers[inst][1].values()):
                     sized = self._size_outputs(inst, partial=True)
                     if sized:
                         feed(sized)
+                        progress = True
                         break
         pending = [b for inst in self.instances for b in self.buffers[inst][0].values()
                    if b.incoming and b.shape is None] + \
