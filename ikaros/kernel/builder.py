@@ -11,6 +11,7 @@ from ..access import AccessRefused, check_file_parameter, current as access_now
 from ..errors import ModelError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.diagnostics import Diagnostics, collecting, warn_at
+from ..language.dialect import DIALECTS, detect_dialect
 from ..language.node import INCLUDE, Node
 from ..limits import LimitError, Limits, applied, check_shape, current as current_limits
 from ..language.reader import read_file
@@ -113,8 +114,8 @@ class Builder:
                                 "choose where files are written); use ikaros -u DIR")
             del attrs["user_data"]
         attrs.update(self.overrides)
-        self.dialect = attrs.get("dialect", "2")
-        if self.dialect not in ("2", "3"):
+        self.dialect = attrs.get("dialect") or detect_dialect(self.model)
+        if self.dialect not in DIALECTS:
             raise self.model.error(f'dialect="{self.dialect}" must be "2" (Ikaros 2) or "3" '
                                    f'(Ikaros 3)')
         name = attrs.get("name") or "Main"
