@@ -132,3 +132,18 @@ class Both(Module):
     net.step()
     with pytest.raises(ikaros.RunError, match="broken"):
         net.step()
+
+
+def test_a_loop_with_nothing_from_outside_is_still_refused_after_another_loop_is_sized(tmp_path):
+    # The fallback goes on while rules make progress, and no further: a size nothing can
+    # give is refused, as the original refuses it (issue 26, parts 1 and 7).
+    text = TWO_LOOPS.replace('</group>', '''
+    <module class="Add" name="Closed" />
+    <module class="Scale" name="Back" />
+    <connection source="Back.OUTPUT" target="Closed.INPUT1" />
+    <connection source="Back.OUTPUT" target="Closed.INPUT2" />
+    <connection source="Closed.OUTPUT" target="Back.INPUT" delay="0" />
+</group>''')
+    with pytest.raises(ikaros.ModelError, match=r'm\.ikg:18: <module name="Closed">: the size of '
+                                                r'output "OUTPUT" of Closed could not be resolved'):
+        _load(tmp_path, text)
