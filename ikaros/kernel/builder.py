@@ -425,7 +425,7 @@ class Builder:
             else:
                 delay = self._connection_attr(node, group, "delay")
                 if delay:
-                    delays = parse_delays(delay)
+                    delays = parse_delays(delay, wrap_ranges=self.dialect == "3")
                 else:               # unset, as in Ikaros 2: the default delay
                     warn_at(node, "an empty delay means the default, 1")
                     if not attrs["delay"].strip():

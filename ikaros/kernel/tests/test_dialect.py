@@ -117,3 +117,14 @@ def test_an_ikaros_2_file_keeps_first_tick_0_and_init_values_on_it(tmp_path):
     assert [r[2] for r in rows] == [[1, 2]] * 5
     assert [r[3] for r in rows] == [[0], [1], [2], [3], [4]]
     assert [r[4] for r in rows] == [0.0, 0.5, 1.0, 1.5, 2.0]
+
+
+def test_a_range_without_brackets_is_half_open_in_an_ikaros_3_file(tmp_path):
+    # FORMATS §2.4: Ikaros 3 wraps "1:3" as [1:3] (delays 1 and 2); Ikaros 2 reads 1, 2, 3.
+    path = tmp_path / "m.ikg"
+    path.write_text('<group name="G"><module class="Constant" name="C" data="1, 2"/>'
+                    '<module class="Scale" name="S"/>'
+                    '<connection source="C.OUTPUT" target="S.INPUT" delay="1:3"/></group>')
+    for dialect, shape in (("2", (3, 2)), ("3", (2, 2))):
+        with ikaros.load(str(path), quiet=True, dialect=dialect) as net:
+            assert net.output("S.INPUT").shape == shape
