@@ -183,6 +183,10 @@ def parser() -> argparse.ArgumentParser:
                    help="the Python interpreter that runs the scripts of Python-scripted "
                         "classes (python_executable; also -p PATH, as in Ikaros 3, when PATH is an "
                         "executable file; default: this one)")
+    p.add_argument("--dialect", choices=("2", "3"),
+                   help="read the model as written for Ikaros 2 or Ikaros 3 (first tick 0 "
+                        "or 1, ...); default: the file's dialect attribute, else what the "
+                        "file contains (docs/language.md)")
     p.add_argument("-q", "--quiet", action="store_true",
                    help="print only errors: no warnings, no print messages")
     p.add_argument("--strict", action="store_true",
@@ -414,6 +418,8 @@ def main(argv: list[str] | None = None) -> int:
         for key in ("priority", "cpus", "blas_threads"):
             if getattr(opts, key) is not None:
                 overrides[key] = getattr(opts, key)
+        if opts.dialect is not None:
+            overrides["dialect"] = opts.dialect
         if opts.models is not None and not os.path.isdir(opts.models):
             p.error(f'--models "{opts.models}" is not a folder')
         if not opts.batch:

@@ -273,7 +273,7 @@ class Clock:
     __slots__ = ("tick", "tick_duration", "time", "real_time", "lag")
 
     def __init__(self, tick_duration: float = 0.0):
-        self.tick = -1                  # -1 during init; the first tick is 0
+        self.tick = -1                  # first tick 0 (Ikaros 3 file: 1); one less in init
         self.tick_duration = tick_duration
         self.time = 0.0                 # nominal time: tick * tick_duration
         self.real_time = 0.0            # seconds since the run started

@@ -159,3 +159,20 @@ def test_the_web_ui_listens_on_the_models_webui_port_unless_w_is_given(tmp_path)
             proc.send_signal(signal.SIGINT)
             proc.communicate(timeout=20)
         assert f" at http://127.0.0.1:{port}/" in line, line
+
+
+def test_dialect_option_gives_a_file_the_ikaros_3_ticks(tmp_path):
+    # golden/README.md: in Ikaros 3 a Constant reaches a delay-1 receiver on the second
+    # tick (zeros on the first), and the first tick is numbered 1.
+    path = tmp_path / "m.ikg"
+    path.write_text('<group name="G"><module class="Constant" name="C" data="4"/>'
+                    '<module class="Print" name="P"/>'
+                    '<connection source="C.OUTPUT" target="P.INPUT"/></group>')
+    assert ikaros("-b", "-s", "2", str(path)).stdout.splitlines() == ["P: 4", "P: 4"]
+    r = ikaros("-b", "-s", "2", "--dialect", "3", str(path))
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == ["P: 0", "P: 4"]
+    assert ikaros("-b", "-s", "2", str(path), "dialect=3").stdout.splitlines() == \
+        ["P: 0", "P: 4"]
+    r = ikaros("-b", "-s", "2", "--dialect", "4", str(path))
+    assert r.returncode == 2 and "--dialect" in r.stderr

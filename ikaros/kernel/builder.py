@@ -11,6 +11,7 @@ from ..access import AccessRefused, check_file_parameter, current as access_now
 from ..errors import ModelError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.diagnostics import Diagnostics, collecting, warn_at
+from ..language.dialect import DIALECTS, detect_dialect
 from ..language.node import INCLUDE, Node
 from ..limits import LimitError, Limits, applied, check_shape, current as current_limits
 from ..language.reader import read_file
@@ -119,8 +120,8 @@ class Builder:
                                 "choose where files are written); use ikaros -u DIR")
             del attrs["user_data"]
         attrs.update(self.overrides)
-        self.dialect = attrs.get("dialect", "2")
-        if self.dialect not in ("2", "3"):
+        self.dialect = attrs.get("dialect") or detect_dialect(self.model)
+        if self.dialect not in DIALECTS:
             raise self.model.error(f'dialect="{self.dialect}" must be "2" (Ikaros 2) or "3" '
                                    f'(Ikaros 3)')
         name = attrs.get("name") or "Main"
@@ -437,7 +438,7 @@ class Builder:
             else:
                 delay = self._connection_attr(node, group, "delay")
                 if delay:
-                    delays = parse_delays(delay)
+                    delays = parse_delays(delay, wrap_ranges=self.dialect == "3")
                 else:               # unset, as in Ikaros 2: the default delay
                     warn_at(node, "an empty delay means the default, 1")
                     if not attrs["delay"].strip():
@@ -598,7 +599,9 @@ class Builder:
         # A worklist: whenever a buffer gets its size, the owners of what it feeds are
         # looked at again, so sizing is linear in the size of the model.
         # When the worklist runs dry with outputs unsized (a loop through a delay), size_set
-        # rules take the inputs that are sized, and the worklist goes on.
+        # rules take the inputs that are sized, and the worklist goes on; this goes on until
+        # no rule can size anything more (an output sized so may feed nothing, and another
+        # loop elsewhere may still wait).
         queue = collections.deque(self.instances + list(self.ports.values()))
         queued = set(queue)
 
@@ -610,16 +613,19 @@ class Builder:
                         queue.append(owner)
                         queued.add(owner)
 
-        while queue:
+        progress = True
+        while progress:
             while queue:
                 item = queue.popleft()
                 queued.discard(item)
                 feed(self._advance(item))
+            progress = False
             for inst in self.instances:
                 if any(b.shape is None for b in self.buffers[inst][1].values()):
                     sized = self._size_outputs(inst, partial=True)
                     if sized:
                         feed(sized)
+                        progress = True
                         break
         pending = [b for inst in self.instances for b in self.buffers[inst][0].values()
                    if b.incoming and b.shape is None] + \

@@ -20,6 +20,9 @@ from ..module import Module
 from ..scripted import script_class, script_of
 
 STDLIB = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "modules")
+# The test-only classes of the original's kernel tests: found by name after every other
+# class (so any class of that name elsewhere wins), never listed.
+TESTSUPPORT = os.path.join(os.path.dirname(STDLIB), "testsupport")
 ENTRY_POINT_GROUP = "ikaros.modules"
 
 
@@ -265,20 +268,28 @@ class ClassRegistry:
 
     def _find(self, name: str, extra_folders, skip_files) -> ClassEntry | None:
         for folder in list(extra_folders) + self.folders:
-            entry = self._in_folder(folder).get(name)
-            if entry is None or (entry.is_group and entry.group in skip_files):
-                continue
-            if entry.python and not _defines_class(entry.python, entry.name):
-                entry.python = None         # a script beside the model, not a module
-            if entry.group and (entry.python or entry.ikc):
-                raise ModelError(f'class "{name}" is declared by two class files in one '
-                                 f'folder: {entry.python or entry.ikc} and {entry.group}; '
-                                 f'keep one', entry.group)
-            if entry.ikc and entry.python is None:
-                return self._implemented(entry)
-            if entry.python or entry.group:
+            entry = self._in_folder_found(folder, name, skip_files)
+            if entry is not None:
                 return entry
-        return entry_point_classes().get(name) or stdlib_classes().get(name)
+        return entry_point_classes().get(name) or stdlib_classes().get(name) or \
+            self._in_folder_found(TESTSUPPORT, name, skip_files)
+
+    def _in_folder_found(self, folder: str, name: str, skip_files) -> ClassEntry | None:
+        """The class ``name`` as the files of one folder declare it, or None."""
+        entry = self._in_folder(folder).get(name)
+        if entry is None or (entry.is_group and entry.group in skip_files):
+            return None
+        if entry.python and not _defines_class(entry.python, entry.name):
+            entry.python = None         # a script beside the model, not a module
+        if entry.group and (entry.python or entry.ikc):
+            raise ModelError(f'class "{name}" is declared by two class files in one '
+                             f'folder: {entry.python or entry.ikc} and {entry.group}; '
+                             f'keep one', entry.group)
+        if entry.ikc and entry.python is None:
+            return self._implemented(entry)
+        if entry.python or entry.group:
+            return entry
+        return None
 
     def _implemented(self, entry: ClassEntry) -> ClassEntry:
         """An .ikc alone declares an interface: a plugin or the standard library may

@@ -30,6 +30,7 @@ from .execution import AsyncModule, Plan, module_tick
 from .gating import gated
 from .fusion import fuse
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
+from .firsttick import FIRST_TICK, empty_history
 from .limits import check_memory as _check_memory
 from .ranges import check_parameter, fit_shape
 from .taps import OutputTap
@@ -41,7 +42,8 @@ from . import state as _state
 from .state import capture_initial
 from .tree import Group, ModuleInstance, find_component
 
-DEFAULT_TICK_DURATION = 0.01   # seconds, when a model sets none
+# seconds, when a model sets none: Ikaros 2 files get 0.01, Ikaros 3 files Ikaros 3's 1 s
+DEFAULT_TICK_DURATION = {"2": 0.01, "3": 1.0}
 
 
 def _bind_alias(buf) -> None:
@@ -63,7 +65,8 @@ class Network:
     """A runnable model: the kernel's network. ``ikaros.load`` gives an ``ikaros.Network``,
     which adds what joins it to notebooks and recording.
 
-    ``tick`` is the number of ticks completed; the first tick is tick 0.
+    ``tick`` is the number of ticks completed. Modules see the first tick as tick
+    ``first_tick``: 0 in an Ikaros 2 file, 1 in an Ikaros 3 file (``dialect``).
     """
 
     def __init__(self, builder, top: Group, order: list[ModuleInstance], runs: list[Run],
@@ -85,6 +88,9 @@ class Network:
         self.log.extend((0, WARNING, "", w.located()) for w in self.warnings)
         self.log_level = PRINT
         self.tick = 0
+        self.dialect = builder.dialect          # "2" or "3": the file's Ikaros version
+        self.first_tick = FIRST_TICK[self.dialect]     # what modules see on the first tick
+        self._empty_history = None      # Ikaros 3: what the first tick sets to zero
         self._started = time.perf_counter()
         self.timing = Timing()
         self._controller: Controller | None = None
@@ -129,7 +135,7 @@ class Network:
     def _tick_duration(self) -> float:
         text = self.top.attrs.get("tick_duration")
         if text in (None, ""):
-            return DEFAULT_TICK_DURATION
+            return DEFAULT_TICK_DURATION[self.dialect]
         try:
             value = float(text)
         except ValueError:
@@ -290,6 +296,8 @@ class Network:
                     async_rings.add(id(ring))
         self._ring_list = [ring for ring in list(self.rings.values()) +
                            list(self.dynamic_rings.values()) if id(ring) not in async_rings]
+        if self.first_tick:
+            self._empty_history = empty_history(self.runs, self._shared, self._ring_list)
         tick_of = {inst: module_tick(inst, self.clock) if inst not in self.async_modules
                    else gated(self.async_modules[inst], inst, self.clock)
                    for inst in self.schedule}
@@ -417,7 +425,7 @@ class Network:
     def _init_modules(self) -> None:
         """Run every init in schedule order. When one fails, the modules already initialised
         are stopped (in order) before the error is raised; the failing one is not."""
-        self.clock.tick = -1
+        self.clock.tick = self.first_tick - 1
         started = []
         try:
             for inst in self.schedule:
@@ -522,9 +530,11 @@ class Network:
             copy()
         for ring in self._ring_list:
             ring.push()
+        if not self.tick and self._empty_history is not None:
+            self._empty_history()       # Ikaros 3: init values do not travel
         clock = self.clock
-        clock.tick = self.tick
-        clock.time = self.tick * clock.tick_duration
+        clock.tick = number = self.tick + self.first_tick
+        clock.time = number * clock.tick_duration
         start = time.perf_counter()
         clock.real_time = start - self._started
         failure = self.plan.run()

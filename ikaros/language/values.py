@@ -176,13 +176,16 @@ def _parse_nested(s: str) -> np.ndarray:
 _BRACKET = re.compile(r"\[([^\[\]]*)\]")
 
 
-def parse_delays(text: str) -> list[int]:
+def parse_delays(text: str, wrap_ranges: bool = False) -> list[int]:
     """A delay attribute as the list of delays in listed order.
 
     ``n``; ``a:b`` inclusive; comma lists (``1,3,5:7``); ``[a:b]`` and ``[a:b:s]`` half-open
-    (Ikaros 3); ``[n]``.
+    (Ikaros 3); ``[n]``. With ``wrap_ranges`` (an Ikaros 3 file), a range without brackets
+    is read as Ikaros 3 reads it, in brackets: ``1:3`` is ``[1:3]``, half-open.
     """
     s = str(text).strip()
+    if wrap_ranges and ":" in s and "," not in s and not s.startswith("["):
+        s = f"[{s}]"
     if s.isdigit():
         return [_delay_int(s, text)]
     if s == "":

@@ -1,7 +1,7 @@
 """DelayFlatWindowSink: checks a flattened delay window of a DelayVectorSource."""
 from ikaros.module import Input, Parameter
 
-from ikaros.testsupport._internal import WindowCheck, vector
+from ikaros.testsupport._internal import WindowCheck, first_tick, vector
 
 
 class DelayFlatWindowSink(WindowCheck):
@@ -12,4 +12,5 @@ class DelayFlatWindowSink(WindowCheck):
     INPUT = Input("the flattened delay window", flatten=True)
 
     def expected(self, t):
-        return [v for d in self.delays for v in vector(t - int(d))]
+        first = first_tick(self)
+        return [v for d in self.delays for v in vector(t - int(d), first)]

@@ -1,7 +1,7 @@
 """DelayStackedWindowSink: checks stacked delay windows of several sequence sources."""
 from ikaros.module import Input, Parameter
 
-from ikaros.testsupport._internal import WindowCheck, sequence
+from ikaros.testsupport._internal import WindowCheck, first_tick, sequence
 
 
 class DelayStackedWindowSink(WindowCheck):
@@ -14,4 +14,5 @@ class DelayStackedWindowSink(WindowCheck):
     INPUT = Input("the stacked delay windows", stack=True)
 
     def expected(self, t):
-        return [[sequence(t - int(d), o) for d in self.delays] for o in self.offsets]
+        first = first_tick(self)
+        return [[sequence(t - int(d), o, first) for d in self.delays] for o in self.offsets]

@@ -5,7 +5,8 @@ from ikaros.testsupport._internal import InternalModule, vector
 
 
 class DelayVectorSource(InternalModule):
-    """OUTPUT is [t, t + 100] on tick t (the first tick is 0); [0, 0] in init."""
+    """OUTPUT is [t, t + 100] on tick t (the first tick is 0, or 1 in an
+    Ikaros 3 file); [0, 0] in init."""
 
     OUTPUT = Output("[tick, tick + 100]", shape="2")
 

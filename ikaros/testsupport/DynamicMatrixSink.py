@@ -4,7 +4,7 @@ import numpy as np
 from ikaros.dynamic import DynamicArray
 from ikaros.module import Input, Parameter
 
-from ikaros.testsupport._internal import InternalModule, grown, shape_text
+from ikaros.testsupport._internal import InternalModule, first_tick, grown, shape_text
 
 
 class DynamicMatrixSink(InternalModule):
@@ -28,7 +28,8 @@ class DynamicMatrixSink(InternalModule):
     def tick(self):
         t = self.clock.tick
         got = np.asarray(self.INPUT)
-        want = grown(t - int(self.delay), self.max_rows, self.columns)
+        want = grown(t - int(self.delay), self.max_rows, self.columns,
+                     first_tick(self))
         values = " ".join(f"{v:g}" for v in got.reshape(-1).tolist())
         self.print(f"DYNAMIC tick={t} shape={shape_text(got.shape)}: {values}".rstrip())
         self._ticks += 1

@@ -6,7 +6,7 @@ from ikaros.testsupport._internal import InternalModule, grown
 
 class DynamicMatrixSource(InternalModule):
     """OUTPUT is a dynamic output of capacity ``max_rows`` x ``columns``. On tick t (the
-    first tick is 0) it has ``t % max_rows + 1`` rows and element [r, c] is
+    first tick is 0, or 1 in an Ikaros 3 file) it has ``t % max_rows + 1`` rows and element [r, c] is
     100 t + 10 r + c; it has no rows in init."""
 
     max_rows = Parameter(4, "the capacity's rows")

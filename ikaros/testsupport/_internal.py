@@ -28,15 +28,22 @@ def _numbers(x):
     return int(x) if float(x).is_integer() else x
 
 
-def sequence(tick: int, offset: float = 0.0) -> float:
-    """What DelaySequenceSource output on ``tick``: tick + offset, and 0 before tick 0
-    (no history yet, or the value of init)."""
-    return tick + offset if tick >= 0 else 0.0
+def first_tick(module) -> int:
+    """The number of the first tick in the module's model file: 0 (Ikaros 2) or 1
+    (Ikaros 3)."""
+    return 1 if module.dialect == "3" else 0
 
 
-def vector(tick: int) -> list[float]:
-    """What DelayVectorSource output on ``tick``: [tick, tick + 100], [0, 0] before tick 0."""
-    return [tick, tick + 100.0] if tick >= 0 else [0.0, 0.0]
+def sequence(tick: int, offset: float = 0.0, first: int = 0) -> float:
+    """What DelaySequenceSource output on ``tick``: tick + offset, and 0 before the first
+    tick ``first`` (no history yet, or the value of init)."""
+    return tick + offset if tick >= first else 0.0
+
+
+def vector(tick: int, first: int = 0) -> list[float]:
+    """What DelayVectorSource output on ``tick``: [tick, tick + 100], [0, 0] before the
+    first tick ``first``."""
+    return [tick, tick + 100.0] if tick >= first else [0.0, 0.0]
 
 
 class WindowCheck(InternalModule):
@@ -66,11 +73,12 @@ class WindowCheck(InternalModule):
             self.print("WINDOW OK")
 
 
-def grown(tick: int, max_rows: int, columns: int):
+def grown(tick: int, max_rows: int, columns: int, first: int = 0):
     """What DynamicMatrixSource output on ``tick``: ``tick % max_rows + 1`` rows of
-    ``columns``, element [r, c] = 100 tick + 10 r + c; no rows before tick 0."""
+    ``columns``, element [r, c] = 100 tick + 10 r + c; no rows before the first tick
+    ``first``."""
     import numpy as np
-    if tick < 0:
+    if tick < first:
         return np.zeros((0, columns), dtype=np.float32)
     rows = tick % max_rows + 1
     r, c = np.mgrid[0:rows, 0:columns]

@@ -33,6 +33,39 @@ def test_a_size_loop_through_a_delay_takes_its_size_from_outside(tmp_path):
     assert net.output("Leaky.Decay.OUTPUT").shape == (2,)
 
 
+TWO_LOOPS = '''<group name="Two">
+    <module class="Constant" name="Kick1" data="1 1" />
+    <module class="Constant" name="Kick2" data="1 2 3" />
+    <module class="Add" name="Tail1" />
+    <module class="Add" name="Sum1" />
+    <module class="Scale" name="Decay1" factor="0.5" />
+    <connection source="Kick1.OUTPUT" target="Tail1.INPUT1" />
+    <connection source="Decay1.OUTPUT" target="Tail1.INPUT2" />
+    <connection source="Kick1.OUTPUT" target="Sum1.INPUT1" />
+    <connection source="Sum1.OUTPUT" target="Decay1.INPUT" delay="0" />
+    <connection source="Decay1.OUTPUT" target="Sum1.INPUT2" />
+    <module class="Add" name="Sum2" />
+    <module class="Scale" name="Decay2" factor="0.5" />
+    <connection source="Kick2.OUTPUT" target="Sum2.INPUT1" />
+    <connection source="Sum2.OUTPUT" target="Decay2.INPUT" delay="0" />
+    <connection source="Decay2.OUTPUT" target="Sum2.INPUT2" />
+</group>
+'''
+
+
+def test_sizing_through_delays_goes_on_after_an_output_that_feeds_nothing(tmp_path):
+    # Tail1 is the first module the fallback sizes, and its output feeds nothing; both
+    # loops (Sum1/Decay1 and Sum2/Decay2) must still be sized (issue 26, part 1).
+    net = _load(tmp_path, TWO_LOOPS)
+    net.run(ticks=3)
+    assert net.output("Tail1.OUTPUT").shape == (2,)
+    assert net.output("Sum1.OUTPUT").shape == (2,)
+    level = 0.0
+    for _ in range(3):           # s(k) = kick + 0.5 s(k-1), s(-1) = 0 (Ikaros 2 file)
+        level = 1 + 0.5 * level
+    assert net.output("Sum2.OUTPUT").tolist() == pytest.approx([level, 2 * level, 3 * level])
+
+
 def test_a_zero_delay_cycle_is_reported_before_sizes(tmp_path):
     text = '''<group name="C">
   <module class="Scale" name="A"/>
@@ -99,3 +132,18 @@ class Both(Module):
     net.step()
     with pytest.raises(ikaros.RunError, match="broken"):
         net.step()
+
+
+def test_a_loop_with_nothing_from_outside_is_still_refused_after_another_loop_is_sized(tmp_path):
+    # The fallback goes on while rules make progress, and no further: a size nothing can
+    # give is refused, as the original refuses it (issue 26, parts 1 and 7).
+    text = TWO_LOOPS.replace('</group>', '''
+    <module class="Add" name="Closed" />
+    <module class="Scale" name="Back" />
+    <connection source="Back.OUTPUT" target="Closed.INPUT1" />
+    <connection source="Back.OUTPUT" target="Closed.INPUT2" />
+    <connection source="Closed.OUTPUT" target="Back.INPUT" delay="0" />
+</group>''')
+    with pytest.raises(ikaros.ModelError, match=r'm\.ikg:18: <module name="Closed">: the size of '
+                                                r'output "OUTPUT" of Closed could not be resolved'):
+        _load(tmp_path, text)

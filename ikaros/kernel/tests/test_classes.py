@@ -251,3 +251,35 @@ def test_a_python_class_and_a_group_file_of_one_name_in_one_folder_are_an_error(
         ikaros.load(str(model))
     assert e.value.reason == (f'class "Twice" is declared by two class files in one folder: '
                               f'{tmp_path / "Twice.py"} and {tmp_path / "Twice.ikg"}; keep one')
+
+
+TEST_ONLY = ("KernelTestModule", "DelaySequenceSource", "FirstTickReporter",
+             "PersistentStateTestModule", "AsyncLifecycleTestModule",
+             "MatrixFunctionTestModule", "DynamicMatrixSource", "SumInput")
+
+
+def test_the_test_only_classes_are_found_by_name_without_a_path(tmp_path):
+    # The original's kernel-test files name them like any class (issue 26, part 2).
+    (tmp_path / "m.ikg").write_text(
+        '<group name="T"><module class="DelaySequenceSource" name="S" offset="5"/>'
+        '</group>')
+    with ikaros.load(str(tmp_path / "m.ikg"), quiet=True) as net:
+        net.run(ticks=3)
+        assert net.output("S.OUTPUT").tolist() == [2 + 5]     # tick 2 + offset
+    registry = class_finder.ClassRegistry([str(tmp_path)])
+    for name in TEST_ONLY:
+        assert registry.find(name) is not None, name
+
+
+def test_the_test_only_classes_are_listed_nowhere(tmp_path):
+    listed = set(class_finder.classes([str(tmp_path)]))      # --classes and /api/classes
+    from ikaros.docgen import standard_classes
+    documented = set(standard_classes())                     # docs/modules.md
+    for name in TEST_ONLY:
+        assert name not in listed and name not in documented, name
+
+
+def test_a_class_beside_the_model_wins_over_a_test_only_class_of_that_name(tmp_path):
+    (tmp_path / "FirstTickReporter.py").write_text(PY_CLASS.replace("Twice", "FirstTickReporter"))
+    entry = class_finder.ClassRegistry([str(tmp_path)]).find("FirstTickReporter")
+    assert entry.python == str(tmp_path / "FirstTickReporter.py")
