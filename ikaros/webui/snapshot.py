@@ -301,6 +301,17 @@ class Hub:
         self._update_plan()
         self.poke()
 
+    def use_network(self, net) -> None:
+        """Serve another network (an apply, open or new): the snapshot plan and the history
+        rings are made again over its buffers for the clients' subscriptions."""
+        self.net = net
+        self.snap.net = net
+        self.snap._job = None
+        self.snap.set_sources({})
+        self.history.use_network(net)
+        self.in_flight = False
+        self._update_plan()
+
     def set_ready(self, client: Client) -> None:
         client.ready = True
         self.poke()

@@ -42,6 +42,30 @@ def test_ring_keeps_the_last_rows_with_their_ticks():
     assert len(ticks) == ring.capacity and ticks[0] == 6
 
 
+class _Net:
+    tick = 0
+
+
+def test_a_dropped_ring_is_taken_up_again_while_nothing_ran_since():
+    """Issue 27, item 1: a page reloaded (or a view opened again) on a paused model gets
+    the rows recorded before; a ring that missed ticks since it was dropped is not reused."""
+    net, src = _Net(), np.zeros(1, np.float32)
+    rec = Recorder(net, budget=1.0)
+    rec.set_sources({"A.OUTPUT": src})
+    for t in range(1, 51):
+        net.tick = t
+        src[0] = t
+        rec.hook()
+    rec.set_sources({})                         # the page went away
+    rec.set_sources({"A.OUTPUT": src})          # and came back: nothing ran meanwhile
+    ticks, rows, _ = rec.read({"A.OUTPUT": -1})["A.OUTPUT"]
+    assert ticks.tolist() == list(range(1, 51)) and rows[:, 0].tolist() == list(range(1, 51))
+    rec.set_sources({})
+    net.tick = 51                               # a tick ran while nobody subscribed
+    rec.set_sources({"A.OUTPUT": src})
+    assert rec.read({"A.OUTPUT": -1})["A.OUTPUT"][0].tolist() == []
+
+
 def test_envelope_keeps_every_peak():
     ticks = np.arange(1, 1001)
     rows = np.zeros((1000, 1), np.float32)

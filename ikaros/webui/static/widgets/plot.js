@@ -145,7 +145,7 @@ export default class Plot extends Widget {
             width: w, height: h, legend: { show: false }, cursor: { show: true, drag: { x: false, y: false } },
             series, bands, pxAlign: 0,
             scales: {
-                x: { time: false, range: (u, lo, hi) => this.tickRange(lo, hi) },
+                x: { time: false, range: () => this.tickRange() },
                 y: fixed ? { range: [this.num(["min", "y_min"]), this.num(["max", "y_max"])] }
                     : { range: (u, lo, hi) => this.autoRange(lo, hi, includeZero) },
             },
@@ -153,10 +153,13 @@ export default class Plot extends Widget {
         };
     }
 
-    /** The last buffer_size ticks, or from the first sample while there are fewer. */
-    tickRange(lo, hi) {
-        const from = Math.max(lo ?? 0, (hi ?? 0) - this.window());
-        return [from, Math.max(hi ?? 1, from + 1)];
+    /** The last buffer_size ticks, or from the first sample while there are fewer; taken
+     *  from the ticks held (uPlot widens a single tick t to 0..2t before asking). */
+    tickRange() {
+        if (!this.xs.length) return [0, 1];
+        const last = this.xs[this.xs.length - 1];
+        if (this.xs.length === 1) return [last - 1, last + 1];
+        return [Math.max(this.xs[0], last - this.window()), last];
     }
 
     /** The data's range, widened a little; a flat signal gets a unit-wide range. */
