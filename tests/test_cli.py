@@ -159,3 +159,17 @@ def test_the_web_ui_listens_on_the_models_webui_port_unless_w_is_given(tmp_path)
             proc.send_signal(signal.SIGINT)
             proc.communicate(timeout=20)
         assert f" at http://127.0.0.1:{port}/" in line, line
+
+
+def test_a_closed_pipe_ends_every_printing_command_quietly():
+    """Issue 27, item 8: ``ikaros --classes | head`` (a reader that goes away) ends with no
+    BrokenPipeError traceback and status 141, as a Unix tool ended by SIGPIPE."""
+    for args in (["--classes"], ["--class", "Scale"], ["--modules-doc", "-"],
+                 ["-b", "-s", "50", "examples/hello.ikg"]):
+        read_end, write_end = os.pipe()
+        os.close(read_end)                  # the reader has gone before the first write
+        proc = subprocess.run([sys.executable, "-m", "ikaros", *args], stdout=write_end,
+                              stderr=subprocess.PIPE, text=True, timeout=60, cwd=ROOT)
+        os.close(write_end)
+        assert proc.stderr == "", (args, proc.stderr)
+        assert proc.returncode == 141, (args, proc.returncode)

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..dynamic import DynamicArray
+from ..closedpipe import print_line
 from ..errors import ModelError, RunError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.values import ValueError_, format_number, value_text
@@ -470,7 +471,8 @@ class Network:
             text = f"{where}: {message}" if where else message
             # one write per line, so that lines printed by other threads are not mixed in
             if level == PRINT:
-                print(text + "\n", end="", flush=True)
+                if not print_line(text) and self.stop_reason is None:
+                    self.stop_reason = (TERMINATE, "standard output closed")
             else:
                 print(f"{LEVEL_NAMES[level].replace('_', ' ')}: {text}\n", end="",
                       file=sys.stderr, flush=True)
