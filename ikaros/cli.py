@@ -9,6 +9,7 @@ import traceback
 
 from . import classes, load
 from .closedpipe import run_command
+from .description import plain_text
 from .experiments import commandline as experiment_options
 from .errors import ModelError, RunError
 from .language.reader import read_file
@@ -370,7 +371,7 @@ def _main(argv: list[str]) -> int:
             return EXIT_OK
         if opts.classes:
             for name, desc in classes(*folders).items():
-                first = desc.description.split(". ")[0]
+                first = plain_text(desc.description).split(". ")[0]
                 print(f"{name:24} {first}")
             return EXIT_OK
         if opts.class_name:

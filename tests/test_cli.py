@@ -80,6 +80,18 @@ def test_classes_and_class():
     assert ikaros("--class", "NoSuchClass").returncode == 1
 
 
+def test_classes_and_class_show_descriptions_without_their_markup():
+    """Issue 27, item 6: ``code`` in a description is printed as the bare word."""
+    listed = ikaros("--classes").stdout
+    assert "`" not in listed
+    scale = next(line for line in listed.splitlines() if line.split()[0] == "Scale")
+    assert scale.split(None, 1)[1] == ("Multiplies the input by factor, and by the first "
+                                       "element of SCALE when that input is connected.")
+    text = ikaros("--class", "Scale").stdout
+    assert "`" not in text
+    assert "Multiplies the input by factor, and by the first element of SCALE" in text
+
+
 def test_options_may_stand_between_overrides_and_the_model():
     r = ikaros("gain=3", "-b", "-s", "21", "examples/hello.ikg", "-q")
     assert r.returncode == 0, r.stderr

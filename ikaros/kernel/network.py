@@ -633,7 +633,8 @@ class Network:
                  f"{f['actual_tick_duration'] * ms:.3f} ms",
                  f"Lag: now {f['lag'] * ms:.3f} ms, max {f['lag_max'] * ms:.3f} ms, 99th "
                  f"percentile {f['lag_p99'] * ms:.3f} ms; resynchronised {f['resyncs']} times",
-                 f"CPU usage: {f['cpu_usage'] * 100:.1f} %; idle: {f['idle'] * 100:.1f} %",
+                 f"CPU usage: {f['cpu_usage'] * 100:.1f} % of {f['cpu_cores']} cores; idle: "
+                 f"{f['idle'] * 100:.1f} %",
                  ""]
         rows = sorted(self.module_figures(), key=lambda m: -m["mean"])
         wm = max([32] + [len(m["module"]) for m in rows])     # long names widen the column

@@ -98,3 +98,35 @@ def test_plots_show_a_paused_model_on_every_way_a_view_opens():
         shot(page, "plots-after-open")
 
     in_own_browser(REACHING, lambda s, p: None, check)
+
+
+def test_system_inspector_says_what_its_figures_are():
+    """Item 4: "actual duration" is the mean over the last second (the tick rate's inverse)
+    with the last tick's beside it, labelled; CPU usage says of how many cores."""
+    def check(server, page):
+        server.post("/api/control", {"state": "play"})
+        wait_for(lambda: server.tick() > 500, what="500 ticks")
+        time.sleep(1.5)                               # a whole window of playing
+        t0, n0 = time.monotonic(), server.tick()
+        time.sleep(1.0)
+        real = (time.monotonic() - t0) / (server.tick() - n0) * 1000   # ms per tick
+        page.wait_for_function("() => document.querySelector('#sys-actual_tick_duration_mean')"
+                               ".textContent.endsWith(' ms')")
+        labels = page.evaluate("""() => [...document.querySelectorAll('#system-inspector tr')]
+            .filter((r) => r.querySelector('#sys-actual_tick_duration, #sys-actual_tick_duration_mean'))
+            .map((r) => r.cells[0].textContent)""")
+        assert labels == ["actual duration (1 s mean)",
+                          "actual duration (last tick)"], labels
+        mean = float(page.inner_text("#sys-actual_tick_duration_mean").split()[0])
+        rate = float(page.inner_text("#sys-ticks_per_second"))
+        assert abs(mean - 1000 / rate) <= 0.01 + 0.002 * mean, (mean, rate)
+        assert 0.5 * real < mean < 2 * real, (mean, real)
+        usage = page.inner_text("#sys-cpu_usage")
+        cores = os.cpu_count()
+        assert f" of {cores} {'core' if cores == 1 else 'cores'} (" in usage, usage
+        share = float(usage.split()[0]) / 100
+        busy = float(usage.split("(")[1].split()[0])
+        assert abs(busy - share * cores) <= 0.01 + 0.001 * cores, usage
+        shot(page, "system-inspector")
+
+    in_own_browser(REACHING, lambda s, p: None, check)
