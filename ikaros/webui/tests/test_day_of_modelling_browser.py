@@ -4,6 +4,7 @@ canvases. Screenshots go to a temporary folder."""
 from __future__ import annotations
 
 import os
+import re
 import tempfile
 import time
 
@@ -81,6 +82,10 @@ def test_plots_show_a_paused_model_on_every_way_a_view_opens():
         plots_drawn(page, tick, "after-switching-views")
         page.click("#toggle-editor")
         page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        # item 7: after Fit the delay-1 feedback line (around every box) stays in the pane
+        page.click("#ed-fit")
+        time.sleep(0.3)
+        inside_pane(page, "the reaching model after Fit")
         page.click("#toggle-editor")
         page.wait_for_function("() => !document.querySelector('#editor-host[data-ready]')"
                                " || !window.ikaros.editor.active")
@@ -88,7 +93,9 @@ def test_plots_show_a_paused_model_on_every_way_a_view_opens():
 
         # another model opened (from the editor's Open): its plots follow its own ticks
         server.post("/api/open", {"filename": "demo.ikg"})
-        page.wait_for_function("() => window.ikaros.network && window.ikaros.network.name === 'Demo'")
+        page.wait_for_function("() => window.ikaros.network && window.ikaros.network.name === 'Demo'"
+                               " && window.ikaros.built && window.ikaros.socket.subscriptions"
+                               ".some((s) => s.path === 'Mix.OUTPUT')")
         server.post("/api/control", {"state": "play"})
         wait_for(lambda: server.tick() > 600, what="600 ticks of the demo")
         server.post("/api/control", {"state": "pause"})
@@ -130,3 +137,180 @@ def test_system_inspector_says_what_its_figures_are():
         shot(page, "system-inspector")
 
     in_own_browser(REACHING, lambda s, p: None, check)
+
+
+# --- the editor ---------------------------------------------------------------------------
+
+BOXES = """() => [...document.querySelectorAll('#editor-host svg rect.box')].map((r) => {
+    const b = r.getBoundingClientRect();
+    return {name: r.dataset.name, kind: r.dataset.kind, x: b.x, y: b.y, w: b.width, h: b.height};
+})"""
+# every connection's line and the pane it is drawn in, on screen
+LINES = """() => ({pane: document.querySelector('#editor-host svg.network-view').getBoundingClientRect().toJSON(),
+    lines: [...document.querySelectorAll('#editor-host svg g.edge path.edge-line')].map((p) => {
+        const b = p.getBoundingClientRect();
+        return {source: p.parentNode.dataset.source, target: p.parentNode.dataset.target,
+                x0: b.left, y0: b.top, x1: b.right, y1: b.bottom}; })})"""
+
+
+def open_editor(server, page):
+    page.click("#toggle-editor")
+    page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+
+
+def inside_pane(page, what, margin=8):
+    """Every box and every connection line lies wholly within the network pane, the lines
+    ``margin`` pixels clear of its edges (a line on the edge reads as running off it)."""
+    drawn = page.evaluate(LINES)
+    pane = drawn["pane"]
+    for b in page.evaluate(BOXES):
+        assert (pane["left"] <= b["x"] and b["x"] + b["w"] <= pane["right"] and
+                pane["top"] <= b["y"] and b["y"] + b["h"] <= pane["bottom"]), (what, b, pane)
+    for line in drawn["lines"]:
+        assert (pane["left"] + margin <= line["x0"] and line["x1"] <= pane["right"] - margin and
+                pane["top"] + margin <= line["y0"] and line["y1"] <= pane["bottom"] - margin), \
+            (what, line, pane)
+
+
+def no_overlap(rects):
+    rects = list(rects)
+    for i, a in enumerate(rects):
+        for b in rects[i + 1:]:
+            apart = (a["x"] + a["w"] <= b["x"] or b["x"] + b["w"] <= a["x"] or
+                     a["y"] + a["h"] <= b["y"] or b["y"] + b["h"] <= a["y"])
+            assert apart, f"{a['name']} and {b['name']} overlap: {a} {b}"
+
+
+def far_away_copy(tmp_path):
+    """planar_arm_reaching.ikg with every module stored far from the origin."""
+    text = open(REACHING, encoding="utf-8").read()
+    k = iter(range(100))
+    text = re.sub(r"<module ", lambda m: f'<module _x="{4000 + 220 * next(k)}" _y="3000" ', text)
+    path = tmp_path / "reaching.ikg"
+    path.write_text(text, encoding="utf-8")
+    return str(path)
+
+
+def test_auto_layout_fit_new_modules_and_the_feedback_line(tmp_path):
+    """Item 2: Auto layout ends with the graph fitted to the pane (it left a blank canvas);
+    new modules go where there is room near the middle of the view, not on one another.
+    Item 7: the delay-1 feedback line stays within the pane after Fit. Item 6: the class
+    list and the inspector show a description's code as code, not in backticks."""
+    def check(server, page):
+        page.click("#ed-auto-layout")
+        page.wait_for_function("() => document.querySelector('#ed-auto-layout') && "
+                               "[...document.querySelectorAll('#editor-host rect.box')].length === 8")
+        time.sleep(0.5)
+        try:
+            inside_pane(page, "after Auto layout")
+        finally:
+            shot(page, "auto-layout")
+        page.click("#ed-fit")
+        time.sleep(0.3)
+        inside_pane(page, "after Fit")
+        feedback = [line for line in page.evaluate(LINES)["lines"]
+                    if line["source"] == "Command.OUTPUT"]
+        assert len(feedback) == 1
+
+        # new modules: each in a free place, in the view
+        for n in range(3):
+            page.click("#ed-add-module")
+            page.fill(".class-search", "Scale")
+            page.click(".class-list li[data-class='Scale']")
+            if n == 0:      # item 6: the class list shows code as code
+                desc = page.locator(".class-info .class-description")
+                assert "`" not in desc.inner_text() and desc.locator("code").count() >= 1
+                assert "`" not in page.inner_text(".class-info")
+            page.click("#add-module-ok")
+            name = "Scale" if n == 0 else f"Scale{n + 1}"
+            page.wait_for_function("(n) => document.querySelector(`#editor-host rect.box[data-name='${n}']`)",
+                                   arg=name)
+        no_overlap(page.evaluate(BOXES))
+        pane = page.evaluate(LINES)["pane"]
+        for b in page.evaluate(BOXES):
+            if b["name"].startswith("Scale"):
+                assert pane["left"] <= b["x"] and b["x"] + b["w"] <= pane["right"], (b, pane)
+                assert pane["top"] <= b["y"] and b["y"] + b["h"] <= pane["bottom"], (b, pane)
+        # item 6: the inspector of the selected new module
+        desc = page.locator("#editor-inspector .module-description")
+        assert "`" not in desc.inner_text() and desc.locator("code").count() >= 1
+        shot(page, "new-modules")
+
+    in_own_browser(far_away_copy(tmp_path), open_editor, check)
+
+
+PORTS_MODEL = """<?xml version="1.0"?>
+<group name="Ports">
+    <module class="Constant" name="Source" data="1 2" _x="40" _y="60" />
+    <module class="Scale" name="Target" factor="2" _x="420" _y="60" />
+    <module class="Constant" name="Other" data="3" _x="40" _y="260" />
+    <connection source="Other.OUTPUT" target="Target.INPUT" />
+</group>
+"""
+
+
+def drag(page, a, b, steps=10):
+    page.mouse.move(*a)
+    page.mouse.down()
+    for i in range(1, steps + 1):
+        page.mouse.move(a[0] + (b[0] - a[0]) * i / steps, a[1] + (b[1] - a[1]) * i / steps)
+    page.mouse.up()
+
+
+def centre(locator):
+    r = locator.bounding_box()
+    return r["x"] + r["width"] / 2, r["y"] + r["height"] / 2
+
+
+def test_connecting_from_port_names_with_a_hover_cue_and_moving_by_the_title(tmp_path):
+    """Item 3: a port's name starts a connection as its circle does (from an output or from
+    an input), the port under the pointer stands out, and the box moves by its title."""
+    path = tmp_path / "ports.ikg"
+    path.write_text(PORTS_MODEL, encoding="utf-8")
+
+    def port(page, box, side, name, part):
+        return page.locator(f"#editor-host g.box-group[data-name='{box}'] .port-{side}"
+                            f"[data-port='{name}'] {part}")
+
+    def connected(page, source, target):
+        page.wait_for_function(
+            "([s, t]) => [...document.querySelectorAll('#editor-host g.edge')].some("
+            "(e) => e.dataset.source === s && e.dataset.target === t)", arg=[source, target])
+
+    def check(server, page):
+        source_box = page.locator("#editor-host g.box-group[data-name='Source'] rect.box")
+        target_box = page.locator("#editor-host g.box-group[data-name='Target'] rect.box")
+        before = (source_box.bounding_box(), target_box.bounding_box())
+
+        # the hover cue on a port's name
+        label = port(page, "Target", "in", "INPUT", "text.port-name")
+        page.mouse.move(*centre(label))
+        cue = page.evaluate("""() => {
+            const p = document.querySelector("#editor-host g.box-group[data-name='Target'] .port-in[data-port='INPUT']");
+            return {hover: p.matches(':hover'), stroke: getComputedStyle(p.querySelector('circle')).strokeWidth,
+                    weight: getComputedStyle(p.querySelector('text')).fontWeight}; }""")
+        assert cue["hover"] and cue["stroke"] == "3px" and cue["weight"] == "600", cue
+        x, y = centre(label)
+        under = page.evaluate("([x, y]) => getComputedStyle(document.elementFromPoint(x, y)).cursor", [x, y])
+        assert under == "crosshair", under
+
+        # output name -> input name
+        drag(page, centre(port(page, "Source", "out", "OUTPUT", "text.port-name")),
+             centre(port(page, "Target", "in", "INPUT", "text.port-name")))
+        connected(page, "Source.OUTPUT", "Target.INPUT")
+        # input name -> output circle: the connection goes from the output
+        drag(page, centre(port(page, "Target", "in", "SCALE", "text.port-name")),
+             centre(port(page, "Source", "out", "OUTPUT", "circle")))
+        connected(page, "Source.OUTPUT", "Target.SCALE")
+        assert (source_box.bounding_box(), target_box.bounding_box()) == before   # nothing moved
+
+        # the title moves the box
+        title = page.locator("#editor-host g.box-group[data-name='Target'] text.box-name")
+        x, y = centre(title)
+        drag(page, (x, y), (x + 60, y + 80))
+        page.wait_for_function(
+            "(x0) => document.querySelector(`#editor-host g.box-group[data-name='Target'] rect.box`)"
+            ".getBoundingClientRect().x > x0 + 30", arg=before[1]["x"])
+        shot(page, "ports")
+
+    in_own_browser(str(path), open_editor, check)

@@ -227,3 +227,18 @@ def test_a_frame_replaced_before_it_was_sent_loses_no_tick():
     frame_at(3)
     header, data = decode_frame(c.frame)
     assert (data["A.OUTPUT"][:, 0] + header["buffers"][0]["first_tick"]).tolist() == [3]
+
+
+def test_a_snapshot_read_before_a_new_subscribe_is_not_sent_under_it():
+    """Issue 27, item 1: history rows read for a client's old subscription lack what a new
+    subscribe asks for (the whole ring again); that snapshot is not sent to it."""
+    from ikaros.webui.snapshot import Client, Hub, Plan, Snapshot
+    c = Client(ws=None)
+    c.subs = [("A.OUTPUT", "history")]
+    snap = Snapshot(Plan({}, 0), tick=700, time_=7.0)
+    snap.history = {"A.OUTPUT": (np.arange(650, 701), np.zeros((51, 1), np.float32), (1,))}
+    snap.history_since = {"A.OUTPUT": 649}
+    c.seen = {"A.OUTPUT": 649}                  # what the client had when it was read
+    assert Hub._history_covers(c, snap)
+    c.seen = {}                                 # a subscribe came meanwhile
+    assert not Hub._history_covers(c, snap)

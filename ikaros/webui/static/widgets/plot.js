@@ -185,7 +185,7 @@ export default class Plot extends Widget {
     }
 
     resize() {
-        if (!this.plot) return;
+        if (!this.plot) { this.draw(); return; }     // shown at last (a view opened hidden)
         const w = this.body.clientWidth, h = this.body.clientHeight;
         if (w && h && (w !== this.plot.width || h !== this.plot.height)) this.plot.setSize({ width: w, height: h });
     }
