@@ -29,6 +29,45 @@ PLOTS = """() => window.ikaros.mainView.widgets.filter((w) => w.xs !== undefined
     return {title: w.attrs.title, min: u.scales.x.min, max: u.scales.x.max, coloured: n}; })"""
 
 
+# The bottom-left corner of a plot drawn with the x axis's tick labels alone and with the y
+# axis's alone, ticks 3000..3100 (a label at the left end) and values -1..1: the box of the
+# text's ink (dark grey; the series' colour and the light grid are left out) in each.
+LABEL_INK = """async () => {
+    const w = window.ikaros.mainView.widgets.find((v) => v.xs !== undefined);
+    w.xs = Array.from({length: 101}, (_, i) => 3000 + i);
+    w.lo = w.sel.map(() => w.xs.map((t) => Math.sin(t / 8)));
+    w.hi = w.lo.map((a) => a.slice());
+    const uPlot = (await import("/static/vendor/uplot/uPlot.esm.js")).default;
+    const ink = async (only) => {
+        const o = w.options(w.plot.width, w.plot.height);
+        const blank = (u, vals) => vals.map(() => "");
+        o.axes[only === "x" ? 1 : 0].values = blank;
+        o.axes[0].label = undefined;
+        const div = document.createElement("div");
+        document.body.appendChild(div);
+        const u = new uPlot(o, w.data(), div);
+        await new Promise((r) => setTimeout(r, 100));      // uPlot draws in a microtask
+        const b = u.bbox, c = u.ctx;
+        const x0 = 0, y0 = Math.max(0, b.top + b.height - 24), x1 = b.left + 40, y1 = b.top + b.height + 26;
+        const d = c.getImageData(x0, y0, x1 - x0, y1 - y0).data;
+        let box = null;
+        for (let j = 0; j < y1 - y0; j++) for (let i = 0; i < x1 - x0; i++) {
+            const k = 4 * (j * (x1 - x0) + i);
+            const hi = Math.max(d[k], d[k + 1], d[k + 2]), lo = Math.min(d[k], d[k + 1], d[k + 2]);
+            if (d[k + 3] > 128 && hi < 150 && hi - lo < 40) {
+                const X = x0 + i, Y = y0 + j;
+                box = box ? {x0: Math.min(box.x0, X), y0: Math.min(box.y0, Y), x1: Math.max(box.x1, X), y1: Math.max(box.y1, Y)}
+                          : {x0: X, y0: Y, x1: X, y1: Y};
+            }
+        }
+        u.destroy();
+        div.remove();
+        return box;
+    };
+    return {x: await ink("x"), y: await ink("y")};
+}"""
+
+
 def shot(page, name):
     os.makedirs(SHOTS, exist_ok=True)
     page.screenshot(path=os.path.join(SHOTS, f"{name}.png"))
@@ -103,6 +142,16 @@ def test_plots_show_a_paused_model_on_every_way_a_view_opens():
         show_view(page, "", 0)
         plots_drawn(page, now, "after-open")
         shot(page, "plots-after-open")
+
+        # item 7: the demo's plot (range -1..1): its lowest y label "-1" and the x tick
+        # labels, drawn alone, have ink boxes at least 4 pixels apart (they touched)
+        ink = page.evaluate(LABEL_INK)
+        y, x = ink["y"], ink["x"]
+        assert y and x, ink
+        gap = 4
+        apart = (y["x1"] + gap <= x["x0"] or x["x1"] + gap <= y["x0"] or
+                 y["y1"] + gap <= x["y0"] or x["y1"] + gap <= y["y0"])
+        assert apart, f"the y label -1 {y} meets the x tick labels {x}"
 
     in_own_browser(REACHING, lambda s, p: None, check)
 

@@ -138,8 +138,14 @@ export default class Plot extends Widget {
             font: "10px sans-serif", size: 30, gap: 2,
             grid: { stroke: grid, width: 0.5 }, ticks: { stroke: grid, width: 0.5, size: 3 },
         });
+        const xAxis = axis(this.bool(["show_x_axis"], true), this.str(["x_label"], "tick"));
+        // the x tick labels start below the lowest y label, which is centred on the x axis
+        xAxis.gap = 7;
+        xAxis.incrs = TICK_STEPS;
         const yAxis = axis(this.bool(["show_y_axis"], true), this.str(["unit"]) || undefined);
         yAxis.size = 44;
+        // a low plot still labels a few values (uPlot's 30 px would leave one or none)
+        yAxis.space = (u, i, lo, hi, dim) => Math.max(12, Math.min(30, dim / 3));
         if (decimals >= 0) yAxis.values = (u, vals) => vals.map((v) => v.toFixed(decimals));
         return {
             width: w, height: h, legend: { show: false }, cursor: { show: true, drag: { x: false, y: false } },
@@ -149,7 +155,7 @@ export default class Plot extends Widget {
                 y: fixed ? { range: [this.num(["min", "y_min"]), this.num(["max", "y_max"])] }
                     : { range: (u, lo, hi) => this.autoRange(lo, hi, includeZero) },
             },
-            axes: [{ ...axis(this.bool(["show_x_axis"], true), this.str(["x_label"], "tick")), incrs: TICK_STEPS }, yAxis],
+            axes: [xAxis, yAxis],
         };
     }
 
