@@ -8,6 +8,8 @@ import sys
 import traceback
 
 from . import classes, load
+from .closedpipe import run_command
+from .description import plain_text
 from .experiments import commandline as experiment_options
 from .errors import ModelError, RunError
 from .language.reader import read_file
@@ -355,10 +357,15 @@ def _worker(argv: list[str]) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """The ``ikaros`` command (``argv``: its arguments; None: the process's own)."""
     if argv is None:            # the command itself (not a call from Python code)
         from .interrupt import install
         install()
-    argv = sys.argv[1:] if argv is None else list(argv)
+        return run_command(_main, sys.argv[1:])
+    return _main(list(argv))
+
+
+def _main(argv: list[str]) -> int:
     if argv[:1] == ["sweep"]:
         from .experiments.sweepcli import main as sweep_main
         return sweep_main(argv[1:])
@@ -394,7 +401,7 @@ def main(argv: list[str] | None = None) -> int:
             return EXIT_OK
         if opts.classes:
             for name, desc in classes(*folders).items():
-                first = desc.description.split(". ")[0]
+                first = plain_text(desc.description).split(". ")[0]
                 print(f"{name:24} {first}")
             return EXIT_OK
         if opts.class_name:

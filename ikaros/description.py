@@ -217,7 +217,8 @@ class ClassDescription:
 
     def to_text(self) -> str:
         """The description as readable text, for ``ikaros --class NAME``."""
-        lines = [self.name, "=" * len(self.name), self.description or "(no description)", ""]
+        lines = [self.name, "=" * len(self.name), plain_text(self.description) or "(no description)",
+                 ""]
         lines.append("Parameters:" if self.parameters else "Parameters: none")
         for p in self.parameters:
             opts = f" options={'/'.join(p.options)}" if p.options else ""
@@ -229,26 +230,35 @@ class ClassDescription:
             if p.fixed:
                 opts += ", fixed while running"
             lines.append(f"  {p.name} ({p.type}, default {_plain(p.default)!r}{opts}): "
-                         f"{p.description}")
+                         f"{plain_text(p.description)}")
         lines.append("Inputs:" if self.inputs else "Inputs: none")
         for i in self.inputs:
             flags = [f for f in ("optional", "flatten", "stack", "use_label") if getattr(i, f)]
             lines.append(f"  {i.name}{' (' + ', '.join(flags) + ')' if flags else ''}: "
-                         f"{i.description}")
+                         f"{plain_text(i.description)}")
         lines.append("Outputs:" if self.outputs else "Outputs: none")
         for o in self.outputs:
-            lines.append(f"  {o.name} [{o.rule_text()}]: {o.description}")
+            lines.append(f"  {o.name} [{o.rule_text()}]: {plain_text(o.description)}")
         if self.states:
             lines.append("State:")
         for st in self.states:
             what = ", ".join(f"{k}={v}" for k, v in st.rule.items()) \
                 if st.type == "matrix" else f"default {st.default!r}"
-            lines.append(f"  {st.name} ({st.type}, {what}): {st.description}")
+            lines.append(f"  {st.name} ({st.type}, {what}): {plain_text(st.description)}")
         if self.source:
             lines.append(f"Source: {self.source}")
         if self.script:
             lines.append(f"Script: {self.script} (runs in a worker process per module)")
         return "\n".join(lines)
+
+
+_CODE = re.compile(r"``([^`]+)``|`([^`]+)`")
+
+
+def plain_text(text: str) -> str:
+    """A description as the terminal shows it: its ``code`` and `code` markup as the bare
+    words (the web UI shows them as code)."""
+    return _CODE.sub(lambda m: m.group(1) or m.group(2), text)
 
 
 def _plain(value: Any) -> Any:

@@ -76,4 +76,4 @@ def repeatable_examples(root: str) -> list[str]:
     return sorted(p for p in glob.glob(os.path.join(root, "examples", "**", "*.ikg"),
                                        recursive=True)
                   if os.path.basename(p) not in _NOT_REPEATABLE
-                  and os.path.basename(os.path.dirname(p)) != "vision")
+                  and os.path.basename(os.path.dirname(p)) not in ("vision", "ros2"))

@@ -80,6 +80,18 @@ def test_classes_and_class():
     assert ikaros("--class", "NoSuchClass").returncode == 1
 
 
+def test_classes_and_class_show_descriptions_without_their_markup():
+    """Issue 27, item 6: ``code`` in a description is printed as the bare word."""
+    listed = ikaros("--classes").stdout
+    assert "`" not in listed
+    scale = next(line for line in listed.splitlines() if line.split()[0] == "Scale")
+    assert scale.split(None, 1)[1] == ("Multiplies the input by factor, and by the first "
+                                       "element of SCALE when that input is connected.")
+    text = ikaros("--class", "Scale").stdout
+    assert "`" not in text
+    assert "Multiplies the input by factor, and by the first element of SCALE" in text
+
+
 def test_options_may_stand_between_overrides_and_the_model():
     r = ikaros("gain=3", "-b", "-s", "21", "examples/hello.ikg", "-q")
     assert r.returncode == 0, r.stderr
@@ -176,3 +188,17 @@ def test_dialect_option_gives_a_file_the_ikaros_3_ticks(tmp_path):
         ["P: 0", "P: 4"]
     r = ikaros("-b", "-s", "2", "--dialect", "4", str(path))
     assert r.returncode == 2 and "--dialect" in r.stderr
+
+
+def test_a_closed_pipe_ends_every_printing_command_quietly():
+    """Issue 27, item 8: ``ikaros --classes | head`` (a reader that goes away) ends with no
+    BrokenPipeError traceback and status 141, as a Unix tool ended by SIGPIPE."""
+    for args in (["--classes"], ["--class", "Scale"], ["--modules-doc", "-"],
+                 ["-b", "-s", "50", "examples/hello.ikg"]):
+        read_end, write_end = os.pipe()
+        os.close(read_end)                  # the reader has gone before the first write
+        proc = subprocess.run([sys.executable, "-m", "ikaros", *args], stdout=write_end,
+                              stderr=subprocess.PIPE, text=True, timeout=60, cwd=ROOT)
+        os.close(write_end)
+        assert proc.stderr == "", (args, proc.stderr)
+        assert proc.returncode == 141, (args, proc.returncode)

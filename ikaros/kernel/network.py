@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..dynamic import DynamicArray
+from ..closedpipe import print_line
 from ..errors import ModelError, RunError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.values import ValueError_, format_number, value_text
@@ -503,7 +504,8 @@ class Network:
             text = f"{where}: {message}" if where else message
             # one write per line, so that lines printed by other threads are not mixed in
             if level == PRINT:
-                print(text + "\n", end="", flush=True)
+                if not print_line(text) and self.stop_reason is None:
+                    self.stop_reason = (TERMINATE, "standard output closed")
             else:
                 print(f"{LEVEL_NAMES[level].replace('_', ' ')}: {text}\n", end="",
                       file=sys.stderr, flush=True)
@@ -638,7 +640,8 @@ class Network:
                  f"{f['actual_tick_duration'] * ms:.3f} ms",
                  f"Lag: now {f['lag'] * ms:.3f} ms, max {f['lag_max'] * ms:.3f} ms, 99th "
                  f"percentile {f['lag_p99'] * ms:.3f} ms; resynchronised {f['resyncs']} times",
-                 f"CPU usage: {f['cpu_usage'] * 100:.1f} %; idle: {f['idle'] * 100:.1f} %",
+                 f"CPU usage: {f['cpu_usage'] * 100:.1f} % of {f['cpu_cores']} cores; idle: "
+                 f"{f['idle'] * 100:.1f} %",
                  ""]
         rows = sorted(self.module_figures(), key=lambda m: -m["mean"])
         wm = max([32] + [len(m["module"]) for m in rows])     # long names widen the column

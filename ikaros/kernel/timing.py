@@ -107,7 +107,8 @@ class Timing:
             "lag_max": self.lag_max,
             "lag_p99": float(np.percentile(self.lags[:n], 99)) if n else 0.0,
             "resyncs": self.resyncs,
-            "cpu_usage": self.cpu_usage,
+            "cpu_usage": self.cpu_usage,        # of all cores (cpu_cores) together
+            "cpu_cores": self.cores,
             "idle": self.idle / elapsed if elapsed > 0 else 0.0,
             "busy": self.busy,
         }

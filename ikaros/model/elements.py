@@ -231,13 +231,18 @@ class View(Element):
 
 
 def _delay_text(delay) -> str | None:
-    """A number of ticks, a ``range`` (half-open, as in Python: written ``[a:b]`` or
-    ``[a:b:s]``), a list ``[0, 2]``, or the language's own text (``"1:3"``, inclusive)."""
+    """A number of ticks, a ``range`` (half-open, as in Python), a list ``[0, 2]``, or the
+    language's own text (``"1:3"``, inclusive). A range is written in the form Ikaros 2 reads
+    (``range(1, 4)`` as ``1:3``, ``range(0, 6, 2)`` as ``0, 2, 4``), not as Ikaros 3's
+    ``[1:4]``: a bracketed delay makes a file an Ikaros 3 file, with Ikaros 3's ticks."""
     if delay is None or isinstance(delay, str):
         return delay
     if isinstance(delay, range):
-        step = "" if delay.step == 1 else f":{delay.step}"
-        return f"[{delay.start}:{delay.stop}{step}]"
+        if len(delay) == 0:
+            raise ValueError(f"{delay} holds no delay")
+        if delay.step == 1 and len(delay) > 1:
+            return f"{delay.start}:{delay.stop - 1}"
+        delay = list(delay)
     if isinstance(delay, (list, tuple)):
         return ", ".join(value_text(int(d)) for d in delay)
     return value_text(delay)

@@ -27,6 +27,7 @@ MIN_TICKS, MAX_TICKS = 256, 16384
 DEFAULT_POINTS = 512
 MAX_POINTS = 8192
 MAX_EVENTS = 1 << 20          # pairs in one frame at most (the rest are counted as missed)
+RETIRED_FLOATS = 8 * MAX_FLOATS   # values kept in rings no client subscribes to any more
 
 
 class Ring:
@@ -59,6 +60,11 @@ class Ring:
             self.rows[i] = 0.0
         self.ticks[i] = tick
 
+    @property
+    def last_tick(self) -> int:
+        """The tick of the newest row (-1 before the first)."""
+        return int(self.ticks[(self.count - 1) % self.capacity]) if self.count else -1
+
     def since(self, tick: int) -> tuple[np.ndarray, np.ndarray]:
         """Copies of (ticks, rows) recorded after ``tick``, oldest first."""
         n = min(self.count, self.capacity)
@@ -71,12 +77,18 @@ class Ring:
 
 
 class Recorder:
-    """One ring per buffer subscribed with a history format (kernel side)."""
+    """One ring per buffer subscribed with a history format (kernel side).
+
+    A ring no client subscribes to any more is kept aside (up to ``RETIRED_FLOATS`` values,
+    the most recently dropped first) and taken up again by a new subscription while it is
+    still complete up to the present tick: a page reloaded, or a view opened again, on a
+    paused model shows the ticks it showed before."""
 
     def __init__(self, net, budget: float):
         self.net = net
         self.budget = budget
         self.rings: dict[str, Ring] = {}
+        self.retired: dict[str, Ring] = {}  # path -> ring, oldest first
         self._split: tuple[tuple[Ring, ...], tuple[Ring, ...]] = ((), ())  # always, others
         self._start = 0                     # where the next tick begins (fair under budget)
         self.skipped = 0                    # rows not recorded for lack of time
@@ -85,15 +97,38 @@ class Recorder:
                     ) -> None:
         """Replace the buffers (server thread); a ring of an unchanged buffer is kept. The
         buffers in ``events`` are recorded every tick whatever the budget: no event is lost."""
+        now = self.net.tick
         rings = {}
         for path, src in sources.items():
             old = self.rings.get(path)
+            if old is None:
+                old = self.retired.pop(path, None)
+                if old is not None and old.last_tick != now:
+                    old = None                  # ticks ran unrecorded since it was dropped
             keep = old is not None and old.src is src and old.always == (path in events)
             rings[path] = old if keep else Ring(src, path in events)
+        for path, ring in self.rings.items():
+            if path not in rings:
+                self._retire(path, ring)
         self.rings = rings
         # one assignment: the hook sees the old rings or the new ones, never a mix
         self._split = (tuple(r for r in rings.values() if r.always),
                        tuple(r for r in rings.values() if not r.always))
+
+    def _retire(self, path: str, ring: Ring) -> None:
+        self.retired.pop(path, None)
+        self.retired[path] = ring
+        total = sum(r.rows.size for r in self.retired.values())
+        while total > RETIRED_FLOATS:
+            oldest = next(iter(self.retired))
+            total -= self.retired.pop(oldest).rows.size
+
+    def use_network(self, net) -> None:
+        """Record another network's buffers: every ring is dropped (server thread)."""
+        self.net = net
+        self.rings = {}
+        self.retired = {}
+        self._split = ((), ())
 
     def hook(self) -> None:
         """The tick hook (kernel thread): one row per ring; event rings always, the others

@@ -300,8 +300,11 @@ def openapi() -> dict:
                           "description": "the tick the run pauses at (-s N), or null"},
             "tick": {"type": "integer"}, "tick_duration": num, "time": num, "elapsed": num,
             "ticks_per_second": num_or_none, "ticks_per_second_mean": num_or_none,
-            "actual_tick_duration": num_or_none, "lag": num, "lag_max": num,
-            "lag_p99": num, "resyncs": {"type": "integer"}, "cpu_usage": num, "idle": num,
+            "actual_tick_duration": num_or_none, "actual_tick_duration_mean": num_or_none,
+            "lag": num, "lag_max": num,
+            "lag_p99": num, "resyncs": {"type": "integer"}, "cpu_usage": num,
+            "cpu_cores": {"type": "integer", "description": "the cores cpu_usage is a share "
+                          "of (all of them together)"}, "idle": num,
             "file": {"type": "string"},
             "webui_req_int": {"type": "number", "description": "seconds between two data "
                               "snapshots at least (the model's setting of that name)"},

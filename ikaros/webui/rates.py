@@ -29,10 +29,12 @@ class TickRate:
 
     def sample(self, tick: int, running: bool, now: float | None = None,
                tick_duration: float = 0.0) -> dict:
-        """Record a sample; returns ``{"ticks_per_second", "ticks_per_second_mean"}``
-        (``None`` where nothing is known: the rate while not running, the mean before
-        anything ran). Within 50 ms of a start the rate is 1 / ``tick_duration`` (the
-        last tick's measured duration), when that is known."""
+        """Record a sample; returns ``{"ticks_per_second", "ticks_per_second_mean",
+        "actual_tick_duration_mean"}`` (``None`` where nothing is known: the rate and the
+        duration while not running, the mean before anything ran). Within 50 ms of a start
+        the rate is 1 / ``tick_duration`` (the last tick's measured duration), when that is
+        known. ``actual_tick_duration_mean`` is the mean time from one tick's start to the
+        next over the same window: 1 / the rate."""
         now = time.perf_counter() if now is None else now
         if self.last is not None and tick < self.last[1]:
             self.reset()                    # a new network (apply, open) starts at 0
@@ -55,4 +57,5 @@ class TickRate:
             elif tick_duration > 0:
                 rate = 1.0 / tick_duration
         mean = self.run_ticks / self.run_time if self.run_time > 0.05 else None
-        return {"ticks_per_second": rate, "ticks_per_second_mean": mean}
+        return {"ticks_per_second": rate, "ticks_per_second_mean": mean,
+                "actual_tick_duration_mean": 1.0 / rate if rate else None}

@@ -1,14 +1,17 @@
 """Recordings in the web UI. The record button's endpoint: ``GET /api/record`` says whether
 the running network is being recorded; ``POST /api/record {"on": true|false}`` starts a
-recording of every output into a new HDF5 file in the models folder (an MCAP file of ROS 2
-messages with ``"format": "mcap"``), or ends it. A
-recording also ends when its network does (the editor's apply, open and new build a new
-one). And the replay bar's endpoint, ``/api/replay``, for ``ikaros --replay``."""
+recording of every output into a new HDF5 file (an MCAP file of ROS 2 messages with
+``"format": "mcap"``) in the user-data folder (``ikaros -u DIR``,
+else ``recordings`` in the user's data folder: never the models folder, which may be a
+source tree), or ends it. A recording also ends when its network does (the editor's apply,
+open and new build a new one). And the replay bar's endpoint, ``/api/replay``, for
+``ikaros --replay``."""
 from __future__ import annotations
 
 import os
 import time
 
+import platformdirs
 from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
 
@@ -18,6 +21,15 @@ from .snapshot import between_ticks
 
 
 FORMATS = ("h5", "mcap")
+
+
+def recordings_folder(user_data: str | None) -> str:
+    """Where the record button writes: the user-data folder (``-u DIR``), else
+    ``recordings`` in the user's data folder (``~/.local/share/ikaros/recordings`` on Linux,
+    ``$XDG_DATA_HOME/ikaros/recordings`` when that is set)."""
+    if user_data:
+        return os.path.abspath(user_data)
+    return os.path.join(platformdirs.user_data_dir("ikaros"), "recordings")
 
 
 class RecordButton:
@@ -30,12 +42,13 @@ class RecordButton:
     def _answer(self):
         recorder = self.recorder
         on = recorder is not None and not recorder.closed and recorder.net is self.ui.net
+        folder = os.path.dirname(recorder.filename) if on else self._folder()
         return Json({"recording": on,
-                           "file": os.path.basename(recorder.filename) if on else None,
-                           "folder": self._folder()})
+                     "file": os.path.basename(recorder.filename) if on else None,
+                     "folder": folder})
 
-    def _folder(self) -> str | None:
-        return self.ui.models_dir or self.ui.model_dir
+    def _folder(self) -> str:
+        return recordings_folder(getattr(self.ui.net, "user_data", None))
 
     async def endpoint(self, request: Request):
         if request.method == "GET":
@@ -58,12 +71,14 @@ class RecordButton:
 
     def _start(self, extension: str):
         folder = self._folder()
-        if not folder:
-            raise ApiError(409, "no models folder to record into (start ikaros with "
-                                   "--models DIR)")
         net = self.ui.net
         if net.stopped:
             raise ApiError(409, "the run has ended; restart ikaros to record")
+        try:
+            os.makedirs(folder, exist_ok=True)
+        except OSError as e:
+            raise ApiError(500, f"cannot make the recordings folder {folder}: "
+                                f"{e.strerror or e}") from None
         stem = os.path.splitext(os.path.basename(net.filename or "model"))[0]
         name = f"{stem}-{time.strftime('%Y%m%d-%H%M%S')}"
         path, k = os.path.join(folder, name + extension), 1

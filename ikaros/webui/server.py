@@ -660,16 +660,11 @@ class WebUI:
         self.logbook._last = None
         self._model_settings(new)
         hub = self.hub
-        hub.net = new
-        hub.snap.net = new
-        hub.snap._job = None
-        hub.in_flight = False
         for client in list(hub.clients):
             client.subs = [(p, f) for p, f in client.subs if self._still_there(p, f)]
             client.version += 1
             client.last = None
-        hub.snap.set_sources({p: new.buffer_array(p)
-                              for c in hub.clients for p, _ in c.subs})
+        hub.use_network(new)
         self._set_model_dir(os.path.dirname(os.path.abspath(new.filename)))
         if alive or state not in (PAUSE,):
             new.controller.start(state)

@@ -80,6 +80,7 @@ class Snapshot:
     def __init__(self, plan: Plan, tick: int, time_: float):
         self.plan, self.tick, self.time = plan, tick, time_
         self.history: dict = {}             # path -> (ticks, rows, shape) (history.py)
+        self.history_since: dict = {}       # path -> the tick the rows were read after
 
 
 class _Job:
@@ -100,7 +101,8 @@ class Snapshotter:
         self.plan = Plan({}, 0)
         self._job: _Job | None = None
         self.copies = 0               # snapshots completed (for tests and figures)
-        self.read_history: Callable[[], dict] | None = None   # kernel thread, at the end
+        # kernel thread, at the end: (rows by path, the tick each was read after)
+        self.read_history: Callable[[], tuple[dict, dict]] | None = None
 
     def set_sources(self, sources: dict[str, np.ndarray]) -> None:
         """Replace the plan (in the server's thread; a job in flight keeps its own)."""
@@ -142,7 +144,7 @@ class Snapshotter:
             self.copies += 1
             snap = Snapshot(job.plan, self.net.tick, float(self.net.clock.time))
             if self.read_history is not None:
-                snap.history = self.read_history()
+                snap.history, snap.history_since = self.read_history()
         except Exception:                   # a hook must never raise into the kernel
             self._job = None
             snap = None
@@ -301,6 +303,17 @@ class Hub:
         self._update_plan()
         self.poke()
 
+    def use_network(self, net) -> None:
+        """Serve another network (an apply, open or new): the snapshot plan and the history
+        rings are made again over its buffers for the clients' subscriptions."""
+        self.net = net
+        self.snap.net = net
+        self.snap._job = None
+        self.snap.set_sources({})
+        self.history.use_network(net)
+        self.in_flight = False
+        self._update_plan()
+
     def set_ready(self, client: Client) -> None:
         client.ready = True
         self.poke()
@@ -365,7 +378,7 @@ class Hub:
             return
         targets = [c for c in list(self.clients) if c.ready and c.subs
                    and all(p in snap.plan.arrays for p, _ in c.subs)
-                   and c.last != (snap.tick, c.version)]
+                   and c.last != (snap.tick, c.version) and self._history_covers(c, snap)]
         if any(fmt in IMAGE_FORMATS for c in targets for _, fmt in c.subs):
             self.loop.create_task(self._distribute(snap, targets))
             return
@@ -394,8 +407,23 @@ class Hub:
             self.in_flight = False
         self.poke()
 
-    def _read_history(self) -> dict:
-        """The history rows every client still needs (kernel thread, between ticks)."""
+    @staticmethod
+    def _history_covers(c: Client, snap: Snapshot) -> bool:
+        """Whether the snapshot holds every history row the client lacks: one read before
+        a new subscribe (which asks for the whole ring again) does not; the client then
+        waits for the next one."""
+        for path, fmt in c.subs:
+            if fmt in HISTORY_FORMATS and path in snap.history:
+                has = (c.seen_before if c.frame is not None else c.seen).get(path, -1)
+                if has > snap.tick:         # a new network counts from 0 again
+                    has = -1
+                if snap.history_since.get(path, -1) > has:
+                    return False
+        return True
+
+    def _read_history(self) -> tuple[dict, dict]:
+        """The history rows every client still needs, and the tick they were read after
+        per path (kernel thread, between ticks)."""
         since: dict[str, int] = {}
         for c in list(self.clients):
             for path, fmt in c.subs:
@@ -404,7 +432,7 @@ class Hub:
                     seen = min(c.seen.get(path, -1), c.seen_before.get(path, -1)) \
                         if path in c.seen_before else -1
                     since[path] = min(since.get(path, seen), seen)
-        return self.history.read(since) if since else {}
+        return (self.history.read(since) if since else {}), since
 
     @staticmethod
     def _send_frame(c: Client, snap: Snapshot, cache: dict) -> None:

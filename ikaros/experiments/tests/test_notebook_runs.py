@@ -52,3 +52,23 @@ def test_the_planar_arm_notebook_runs_and_shows_the_learning_curve(tmp_path):
                      r"'Arm.seed': '1'\}", text)
     recorded = ikaros.open_recording(str(recording))
     np.testing.assert_array_equal(recorded["Arm.DISTANCE"].values[:, 0], distance)
+
+
+def test_the_notebooks_default_recording_is_outside_the_repository():
+    """Issue 27, item 5: the parameters cell as shipped writes its recording into a new
+    temporary folder, never beside the notebook (run from its folder, as Jupyter does)."""
+    nb = nbformat.read(NOTEBOOK, as_version=4)
+    parameters = next(c for c in nb.cells if "parameters" in c.metadata.get("tags", []))
+    here = os.getcwd()
+    os.chdir(os.path.dirname(NOTEBOOK))
+    try:
+        names: dict = {}
+        exec(parameters.source, names)
+        recording = os.path.abspath(names["recording"])
+        model = os.path.abspath(names["model"])
+    finally:
+        os.chdir(here)
+    assert model == MODEL
+    assert not recording.startswith(ROOT + os.sep), recording
+    assert os.path.isdir(os.path.dirname(recording)) and not os.path.exists(recording)
+    os.rmdir(os.path.dirname(recording))

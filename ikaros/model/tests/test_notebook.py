@@ -101,5 +101,8 @@ def test_the_example_notebook_runs_top_to_bottom():
     assert any("<iframe src=\"http://127.0.0.1:" in h for h in html)
     assert any("image/png" in o.get("data", {}) for o in outputs)
     printed = "".join(o.get("text", "") for o in outputs if o.output_type == "stream")
+    # issue 27, item 9: the progress bar is a widget (ipywidgets is in the notebook extra)
+    assert "IProgress not found" not in printed and "TqdmWarning" not in printed, printed
+    assert any("application/vnd.jupyter.widget-view+json" in o.get("data", {}) for o in outputs)
     assert re.search(r'Cell In\[\d+\]:2: <module name="PID">: parameter "Kp" of PID: '
                      r'"fast" is not a number', printed), printed

@@ -171,10 +171,9 @@ export class Socket extends EventTarget {
         if (this.ws && this.ws.readyState === WebSocket.OPEN) this.ws.send(JSON.stringify(message));
     }
 
-    /** Replace the subscriptions: a list of {path, format}. */
+    /** Replace the subscriptions: a list of {path, format}. Sent even when unchanged: new
+     *  widgets need the histories again, which the server sends after every subscribe. */
     subscribe(list) {
-        const key = (l) => JSON.stringify(l);
-        if (key(list) === key(this.subscriptions)) return;
         this.subscriptions = list;
         this._send({ type: "subscribe", buffers: list });
         this.ready();

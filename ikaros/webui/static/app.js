@@ -140,6 +140,7 @@ class App {
             return;
         }
         this.shapes.clear();
+        this.lastFrame = null;          // a frame of the previous network: its ticks do not count
         const walk = (g) => {
             for (const m of g.modules || []) {
                 for (const o of m.outputs || []) this.shapes.set(`${m.path}.${o.name}`, o.shape);

@@ -13,6 +13,14 @@ const threadPools = (p) => {
     return p.limit ? `${now} (${p.limit} in real time)` : `${now} (not limited)`;
 };
 
+/** The process's CPU time as a share of all cores, saying so, and in busy cores. */
+function cpuUsage(s) {
+    if (typeof s.cpu_usage !== "number") return "-";
+    if (typeof s.cpu_cores !== "number") return pct(s.cpu_usage);
+    const busy = s.cpu_usage * s.cpu_cores;
+    return `${pct(s.cpu_usage)} of ${s.cpu_cores} ${s.cpu_cores === 1 ? "core" : "cores"} (${busy.toFixed(2)} busy)`;
+}
+
 const FIELDS = [
     ["System", [
         ["file", "file", (s) => s.file ?? "-"],
@@ -26,14 +34,15 @@ const FIELDS = [
         ["ticks_per_second", "ticks/s", (s) => num(s.ticks_per_second, 1)],
         ["ticks_per_second_mean", "ticks/s (run mean)", (s) => num(s.ticks_per_second_mean, 1)],
         ["tick_duration", "tick duration", (s) => ms(s.tick_duration)],
-        ["actual_tick_duration", "actual duration", (s) => ms(s.actual_tick_duration)],
+        ["actual_tick_duration_mean", "actual duration (1 s mean)", (s) => ms(s.actual_tick_duration_mean)],
+        ["actual_tick_duration", "actual duration (last tick)", (s) => ms(s.actual_tick_duration)],
         ["lag", "lag", (s) => ms(s.lag)],
         ["lag_max", "lag max", (s) => ms(s.lag_max)],
         ["lag_p99", "lag 99%", (s) => ms(s.lag_p99)],
         ["resyncs", "resyncs", (s) => String(s.resyncs ?? "-")],
     ]],
     ["CPU", [
-        ["cpu_usage", "usage", (s) => pct(s.cpu_usage)],
+        ["cpu_usage", "usage", cpuUsage],
         ["idle", "idle time", (s) => pct(s.idle)],
     ]],
     ["Priority", [

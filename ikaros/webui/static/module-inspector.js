@@ -2,6 +2,7 @@
 // with their shapes and current values, and the module's own view when its class has one.
 import { api } from "./api.js";
 import { ViewRenderer } from "./views.js";
+import { describe, plainText } from "./describe.js";
 
 function valueText(v, decimals = 4) {
     // lines break only between numbers (after ", "), never inside one (base.css)
@@ -12,18 +13,6 @@ function valueText(v, decimals = 4) {
     if (typeof v === "number") return Number.isInteger(v) ? String(v) : v.toFixed(decimals).replace(/0+$/, "").replace(/\.$/, "");
     if (v === null || v === undefined) return "";
     return String(v);
-}
-
-/** A description's text as nodes: ``code`` and `code` become <code> elements (the
- *  description's own markup; shown whole, never as raw backticks). */
-export function describe(text) {
-    return String(text).split(/(``[^`]+``|`[^`]+`)/).filter(Boolean).map((part) => {
-        const m = part.match(/^``([^`]+)``$|^`([^`]+)`$/);
-        if (!m) return document.createTextNode(part);
-        const code = document.createElement("code");
-        code.textContent = m[1] ?? m[2];
-        return code;
-    });
 }
 
 function optionList(p) {
@@ -109,7 +98,7 @@ export class ModuleInspector {
             const tr = pt.insertRow();
             const name = tr.insertCell();
             name.textContent = p.name;
-            name.title = p.description || "";
+            name.title = plainText(p.description);
             const td = tr.insertCell();
             td.appendChild(this.editor(p));
         }
@@ -121,7 +110,7 @@ export class ModuleInspector {
                 const tr = t.insertRow();
                 const n = tr.insertCell();
                 n.textContent = b.name;
-                n.title = b.description || "";
+                n.title = plainText(b.description);
                 tr.insertCell().textContent = "[" + (b.shape || []).join(" × ") + "]" + (kind === "input" && b.connected === false ? " (unconnected)" : "");
                 const v = tr.insertCell();
                 v.className = "buffer-value";

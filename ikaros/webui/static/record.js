@@ -1,5 +1,6 @@
 // The record button: records every output of the running model into an HDF5 file in the
-// models folder (POST /api/record), until pressed again.
+// recordings folder (the user-data folder, POST /api/record), until pressed again. The
+// Messages pane and the button's tooltip name the folder and the file.
 import { getJSON, postJSON } from "./api.js";
 
 export class RecordButton {
@@ -9,19 +10,20 @@ export class RecordButton {
         this.button.className = "run-button";
         this.button.id = "run-record";
         this.button.textContent = "● Record";
-        this.button.title = "record every output into an HDF5 file in the models folder";
         this.button.addEventListener("click", () => this.toggle());
         el.appendChild(this.button);
         this.on = false;
+        this.show({ recording: false, folder: null });
         getJSON("/api/record").then((s) => this.show(s), () => {});
     }
 
     async toggle() {
         try {
             const state = await postJSON("/api/record", { on: !this.on });
+            const ended = this.file;
             this.show(state);
-            if (state.file) this.notify("print", `recording into ${state.file}`);
-            else this.notify("print", "recording ended");
+            if (state.file) this.notify("print", `recording into ${this.file}`);
+            else this.notify("print", ended ? `recording ended: ${ended}` : "recording ended");
         } catch (e) {
             this.notify("error", `record: ${e.message}`);
         }
@@ -29,10 +31,11 @@ export class RecordButton {
 
     show(state) {
         this.on = state.recording;
+        this.file = this.on ? `${state.folder}/${state.file}` : null;
         this.button.classList.toggle("active", this.on);
         this.button.textContent = this.on ? "● Recording" : "● Record";
-        this.button.title = this.on ? `recording into ${state.folder}/${state.file}; press to end`
-            : "record every output into an HDF5 file in the models folder";
+        this.button.title = this.on ? `recording into ${this.file}; press to end`
+            : `record every output into an HDF5 file in ${state.folder ?? "the recordings folder"}`;
     }
 }
 

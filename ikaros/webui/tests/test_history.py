@@ -42,6 +42,30 @@ def test_ring_keeps_the_last_rows_with_their_ticks():
     assert len(ticks) == ring.capacity and ticks[0] == 6
 
 
+class _Net:
+    tick = 0
+
+
+def test_a_dropped_ring_is_taken_up_again_while_nothing_ran_since():
+    """Issue 27, item 1: a page reloaded (or a view opened again) on a paused model gets
+    the rows recorded before; a ring that missed ticks since it was dropped is not reused."""
+    net, src = _Net(), np.zeros(1, np.float32)
+    rec = Recorder(net, budget=1.0)
+    rec.set_sources({"A.OUTPUT": src})
+    for t in range(1, 51):
+        net.tick = t
+        src[0] = t
+        rec.hook()
+    rec.set_sources({})                         # the page went away
+    rec.set_sources({"A.OUTPUT": src})          # and came back: nothing ran meanwhile
+    ticks, rows, _ = rec.read({"A.OUTPUT": -1})["A.OUTPUT"]
+    assert ticks.tolist() == list(range(1, 51)) and rows[:, 0].tolist() == list(range(1, 51))
+    rec.set_sources({})
+    net.tick = 51                               # a tick ran while nobody subscribed
+    rec.set_sources({"A.OUTPUT": src})
+    assert rec.read({"A.OUTPUT": -1})["A.OUTPUT"][0].tolist() == []
+
+
 def test_envelope_keeps_every_peak():
     ticks = np.arange(1, 1001)
     rows = np.zeros((1000, 1), np.float32)
@@ -203,3 +227,18 @@ def test_a_frame_replaced_before_it_was_sent_loses_no_tick():
     frame_at(3)
     header, data = decode_frame(c.frame)
     assert (data["A.OUTPUT"][:, 0] + header["buffers"][0]["first_tick"]).tolist() == [3]
+
+
+def test_a_snapshot_read_before_a_new_subscribe_is_not_sent_under_it():
+    """Issue 27, item 1: history rows read for a client's old subscription lack what a new
+    subscribe asks for (the whole ring again); that snapshot is not sent to it."""
+    from ikaros.webui.snapshot import Client, Hub, Plan, Snapshot
+    c = Client(ws=None)
+    c.subs = [("A.OUTPUT", "history")]
+    snap = Snapshot(Plan({}, 0), tick=700, time_=7.0)
+    snap.history = {"A.OUTPUT": (np.arange(650, 701), np.zeros((51, 1), np.float32), (1,))}
+    snap.history_since = {"A.OUTPUT": 649}
+    c.seen = {"A.OUTPUT": 649}                  # what the client had when it was read
+    assert Hub._history_covers(c, snap)
+    c.seen = {}                                 # a subscribe came meanwhile
+    assert not Hub._history_covers(c, snap)

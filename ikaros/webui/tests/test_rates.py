@@ -6,11 +6,13 @@ from ikaros.webui.rates import TickRate
 def test_rate_over_the_last_second_and_mean_without_pauses():
     r = TickRate()
     assert r.sample(0, False, now=0.0) == {"ticks_per_second": None,
-                                            "ticks_per_second_mean": None}
+                                            "ticks_per_second_mean": None,
+                                            "actual_tick_duration_mean": None}
     r.sample(0, True, now=1.0)                          # play
     for k in range(1, 11):                              # 100 ticks/s for 2 s
         out = r.sample(20 * k, True, now=1.0 + 0.2 * k)
     assert out["ticks_per_second"] == 100.0 and out["ticks_per_second_mean"] == 100.0
+    assert out["actual_tick_duration_mean"] == 0.01     # issue 27, item 4: 1 / 100 ticks/s
     assert r.sample(200, False, now=3.1)["ticks_per_second"] is None        # paused
     r.sample(200, False, now=13.0)                      # 10 s paused
     r.sample(200, True, now=13.0)                       # play again, now 400 ticks/s

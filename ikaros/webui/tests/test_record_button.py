@@ -1,5 +1,5 @@
 """The record button in the browser: pressed, the running model is recorded into an HDF5
-file in the models folder; pressed again, the recording ends."""
+file in the user-data folder (never the models folder); pressed again, the recording ends."""
 import os
 import time
 
@@ -17,9 +17,12 @@ from ikaros.experiments import open_recording  # noqa: E402
 MODEL = '<group name="R"><module class="Sweep" name="Counter" step="1" max="1e9"/></group>\n'
 
 
-def test_the_record_button_records_into_the_models_folder(tmp_path):
+def test_the_record_button_records_into_the_user_data_folder(tmp_path):
+    """Issue 27, item 5: with ``-u DIR`` the recording goes into DIR, and the page names the
+    folder and the file; nothing is written beside the model."""
     path = tmp_path / "counter.ikg"
     path.write_text(MODEL)
+    data = tmp_path / "data"
 
     def open_page(server, page):
         page.wait_for_selector("#run-record")
@@ -36,13 +39,15 @@ def test_the_record_button_records_into_the_models_folder(tmp_path):
             time.sleep(0.05)
         button.click()
         page.wait_for_selector("#run-record:not(.active)")
-        assert page.locator(".message", has_text="recording into counter-").count() == 1
+        assert page.locator(".message", has_text=f"recording into {data}/counter-").count() == 1
+        assert page.locator(".message", has_text=f"recording ended: {data}/counter-").count() == 1
         assert not page.errors
 
-    in_own_browser(str(path), open_page, check)
-    files = [f for f in os.listdir(tmp_path) if f.endswith(".h5")]
+    in_own_browser(str(path), open_page, check, options=["-u", str(data)])
+    assert not [f for f in os.listdir(tmp_path) if f.endswith(".h5")]
+    files = [f for f in os.listdir(data) if f.endswith(".h5")]
     assert len(files) == 1 and files[0].startswith("counter-")
-    ds = open_recording(str(tmp_path / files[0]))
+    ds = open_recording(str(data / files[0]))
     assert ds.attrs["finished"] is True and ds.sizes["tick"] >= 100
     ticks = ds["tick"].values
     np.testing.assert_array_equal(ticks, np.arange(ticks[0], ticks[0] + len(ticks)))
@@ -73,3 +78,29 @@ def test_replay_scrubs_through_a_recording_in_its_views(tmp_path):
         assert not page.errors
 
     in_own_browser(str(tmp_path / "run.h5"), open_page, check, options=["--replay"])
+
+
+def test_without_user_data_recordings_go_to_the_users_data_folder(tmp_path, monkeypatch):
+    """Issue 27, item 5: with no ``-u``, the record button writes into ``recordings`` in the
+    user's data folder (``$XDG_DATA_HOME/ikaros/recordings``), not beside the model."""
+    from starlette.testclient import TestClient
+    from ikaros.webui.server import create_app
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path / "xdg"))
+    models = tmp_path / "models"
+    models.mkdir()
+    (models / "counter.ikg").write_text(MODEL)
+    net = ikaros.load(str(models / "counter.ikg"))
+    folder = tmp_path / "xdg" / "ikaros" / "recordings"
+    try:
+        with TestClient(create_app(net)) as client:
+            assert client.get("/api/record").json() == {
+                "recording": False, "file": None, "folder": str(folder)}
+            started = client.post("/api/record", json={"on": True}).json()
+            assert started["recording"] and started["folder"] == str(folder)
+            assert started["file"].startswith("counter-") and started["file"].endswith(".h5")
+            net.step()
+            assert client.post("/api/record", json={"on": False}).json()["recording"] is False
+    finally:
+        net.close()
+    assert os.listdir(models) == ["counter.ikg"]
+    assert os.listdir(folder) == [started["file"]]

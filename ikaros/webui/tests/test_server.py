@@ -33,7 +33,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
 DEMO = os.path.join(ROOT, "examples", "demo.ikg")
 
 MODEL = """<?xml version="1.0"?>
-<group name="T">
+<group name="T" dialect="2">
     <module class="Constant" name="C" data="1 2 3; 4 5 6" />
     <module class="Constant" name="Img" data="0 0.5; 1 0.25" />
     <module class="Constant" name="Rgb" data="[[[1, 0], [0, 1]], [[0, 1], [0, 1]], [[0, 0], [1, 1]]]" />

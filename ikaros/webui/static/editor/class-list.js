@@ -1,6 +1,7 @@
 // The searchable class list (GET /api/classes): each class with its description, inputs,
 // outputs and parameters; choosing one adds a module of that class.
 import { dialog } from "./files.js";
+import { descriptionElement, plainText } from "../describe.js";
 
 function h(tag, cls, text) {
     const e = document.createElement(tag);
@@ -46,14 +47,19 @@ export function pickClass(classes) {
             list.querySelectorAll("li").forEach((li) => li.classList.toggle("current", li.dataset.class === n));
             info.textContent = "";
             const c = classes[n];
-            info.append(h("div", "class-name", n), h("div", "class-description", c.description || "(no description)"));
+            info.append(h("div", "class-name", n), c.description ? descriptionElement("div", "class-description", c.description)
+                : h("div", "class-description", "(no description)"));
             const table = (title, rows) => {
                 if (!rows.length) return;
                 info.append(h("div", "section-title", title));
                 const t = h("table", "inspector-table");
                 for (const r of rows) {
                     const tr = t.insertRow();
-                    r.forEach((x) => { tr.insertCell().textContent = x; });
+                    r.forEach((x, k) => {     // the last column is the description
+                        const cell = tr.insertCell();
+                        if (k === r.length - 1 && k > 0) cell.append(...descriptionElement("span", "", x).childNodes);
+                        else cell.textContent = x;
+                    });
                 }
                 info.append(t);
             };
@@ -75,7 +81,7 @@ export function pickClass(classes) {
             for (const [, n] of found) {
                 const li = h("li", "", n);
                 li.dataset.class = n;
-                li.title = classes[n].description || "";
+                li.title = plainText(classes[n].description);
                 li.addEventListener("click", () => show(n));
                 li.addEventListener("dblclick", () => { d.close(); resolve(n); });
                 list.appendChild(li);

@@ -6,7 +6,7 @@ import { WIDGETS } from "../widgets/index.js";
 import { pickClass } from "./class-list.js";
 import { ask, files, pickFile } from "./files.js";
 import { EditorInspector } from "./inspector.js";
-import { ELK_LIMIT, graphOf, layout, loadElk, storedPosition } from "./layout.js";
+import { BOX_W, ELK_LIMIT, HEADER, PORT_H, graphOf, layout, loadElk, storedPosition } from "./layout.js";
 import { EditorModel, GROUP_WIDGETS, clone, elements, kids, node, setWidgetBox, treeAsNetwork, viewsOf, widgetBox } from "./model.js";
 import { NetworkView } from "./network-view.js";
 import { RouteKeeper } from "./routes.js";
@@ -20,6 +20,11 @@ function h(tag, cls, text) {
 }
 
 const isComponent = (n) => n && (n.tag === "module" || n.tag === "group");
+
+// places around the middle of the view, nearest first, for a new box (freeSpot)
+const SPOT_OFFSETS = [];
+for (let i = -40; i <= 40; i++) for (let j = -30; j <= 30; j++) SPOT_OFFSETS.push([i * 20, j * 20]);
+SPOT_OFFSETS.sort((a, b) => Math.hypot(...a) - Math.hypot(...b));
 
 export class Editor {
     /** app: the App (navigator, messages, network). */
@@ -214,7 +219,7 @@ export class Editor {
         // forget the selection of nodes no longer in the tree
         for (const n of [...this.selection]) if (!this.model.chain(n)) this.selection.delete(n);
         this.updateTitle();
-        if (this.active) this.render();
+        if (this.active) this.rendering = this.render();
     }
 
     updateTitle() {
@@ -243,17 +248,30 @@ export class Editor {
         }
     }
 
-    /** A free place for a new box: the middle of the view, moved down past other boxes. */
-    freeSpot(w = 170, hgt = 80) {
+    /** A free place for a new box of w x hgt: the free place nearest to the middle of the
+     *  view, 20 px clear of every box (those drawn, and those just added to the tree). */
+    freeSpot(w = BOX_W, hgt = 80) {
         const r = this.host.getBoundingClientRect();
         const t = this.netView?.t || { k: 1, x: 0, y: 0 };
-        let x = Math.round(((r.width / 2) - t.x) / t.k / 10) * 10 - 80, y = Math.round(((r.height / 3) - t.y) / t.k / 10) * 10;
+        const cx = ((r.width || 800) / 2 - t.x) / t.k - w / 2, cy = ((r.height || 600) / 2 - t.y) / t.k - hgt / 2;
         const boxes = (this.graph?.boxes || []).map((b) => ({ ...this.positions.get(b.key), w: b.w, h: b.h })).filter((b) => b.x !== undefined);
-        for (let i = 0; i < 200; i++) {
-            if (!boxes.some((b) => x < b.x + b.w + 20 && b.x < x + w + 20 && y < b.y + b.h + 20 && b.y < y + hgt + 20)) break;
-            y += 30;
+        const drawn = new Set((this.graph?.boxes || []).map((b) => b.node));
+        for (const { node: n } of elements(this.group())) {
+            const p = (n.tag === "module" || n.tag === "group") && !drawn.has(n) && storedPosition({ node: n });
+            if (p) boxes.push({ ...p, w: BOX_W, h: 80 });
         }
-        return { x, y };
+        const free = (x, y) => !boxes.some((b) => x < b.x + b.w + 20 && b.x < x + w + 20 && y < b.y + b.h + 20 && b.y < y + hgt + 20);
+        for (const [dx, dy] of SPOT_OFFSETS) {
+            const x = Math.round((cx + dx) / 10) * 10, y = Math.round((cy + dy) / 10) * 10;
+            if (free(x, y)) return { x, y };
+        }
+        return { x: Math.round(cx / 10) * 10, y: Math.round((Math.max(cy, ...boxes.map((b) => b.y + b.h)) + 40) / 10) * 10 };
+    }
+
+    /** The height of a box of a class (its rows of ports). */
+    boxHeight(cls) {
+        const d = this.classes?.[cls];
+        return HEADER + Math.max(d?.inputs?.length || 0, d?.outputs?.length || 0, 1) * PORT_H + 6;
     }
 
     async addModule() {
@@ -261,7 +279,7 @@ export class Editor {
         const cls = await pickClass(this.classes);
         if (!cls) return;
         const g = this.group();
-        const at = this.freeSpot();
+        const at = this.freeSpot(BOX_W, this.boxHeight(cls));
         const added = this.edit(`add ${cls}`, () => {
             this.freeze(g);
             const m = node("module", { class: cls, name: this.model.uniqueName(g, cls), _x: String(at.x), _y: String(at.y) });
@@ -334,6 +352,7 @@ export class Editor {
                 if (p && isComponent(b.node) && !b.readOnly) { b.node.attrs._x = String(p.x); b.node.attrs._y = String(p.y); }
             }
         });
+        await this.rendering;           // drawn at the new positions: fit those, not the old
         this.netView?.fit();
     }
 

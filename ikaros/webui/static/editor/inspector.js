@@ -4,6 +4,7 @@
 import { isValidName, splitAddress, widgetClassOf } from "./model.js";
 import { SPELLINGS, templateOf } from "../widgets/templates.js";
 import { viewXml } from "../view-xml.js";
+import { descriptionElement, plainText } from "../describe.js";
 
 const NOT_WIDGETS = new Set(["module", "group", "connection", "input", "output", "parameter", "view", "define", "description"]);
 
@@ -164,14 +165,14 @@ export class EditorInspector {
     modulePanel(n) {
         const desc = this.ctx.classes()[n.attrs.class];
         this.el.appendChild(h("div", "module-class", n.attrs.class || "(no class)"));
-        if (desc?.description) this.el.appendChild(h("div", "module-description", desc.description));
+        if (desc?.description) this.el.appendChild(descriptionElement("div", "module-description", desc.description));
         const t = this.table();
         this.row(t, "name", this.nameField(n));
         const params = desc?.parameters || [];
         if (params.length) {
             const pt = this.table("Parameters");
             for (const p of params) {
-                const tr = this.row(pt, p.name, this.parameter(n, p), `${p.type}: ${p.description || ""}`);
+                const tr = this.row(pt, p.name, this.parameter(n, p), `${p.type}: ${plainText(p.description)}`);
                 if (n.attrs[p.name] !== undefined) {
                     const reset = h("button", "close", "↺");
                     reset.title = "use the default";

@@ -2,7 +2,8 @@
 // the right, connections (routed by the owner, else curves) labelled with their delay, the group's inputs and outputs
 // as pins at the edges. Zoom (wheel), pan (drag the background), select (click, shift-click,
 // or a rubber band: shift- or alt-drag on the background),
-// move (drag boxes), connect (drag from an output port to an input port), open a group
+// move (drag boxes by their title), connect (drag from an output port, its name or its row
+// to an input port, or the other way round), open a group
 // (double-click). The view changes nothing itself: it reports to its owner.
 import { HEADER, PORT_H, edgeKey, portOffset } from "./layout.js";
 
@@ -144,17 +145,40 @@ export class NetworkView {
         this.settle = setTimeout(() => this.setTransform(this.t), REST_MS);
     }
 
+    /** The drawing's extent [x0, y0, x1, y1]: every box (with room for an error note
+     *  under it) and every connection, routed or curved (a feedback loop goes around the
+     *  boxes), with its delay badge. */
+    extent() {
+        let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+        const add = (x, y, mx = 0, my = 0) => {
+            x0 = Math.min(x0, x - mx); y0 = Math.min(y0, y - my);
+            x1 = Math.max(x1, x + mx); y1 = Math.max(y1, y + my);
+        };
+        for (const b of this.graph.boxes) {
+            const p = this.pos.get(b.key);
+            if (!p) continue;
+            add(p.x, p.y);
+            add(p.x + b.w, p.y + b.h + 30);
+        }
+        for (const e of this.graph.edges) {
+            if (!e.from.box || !e.to.box || !this.pos.get(e.from.box.key) || !this.pos.get(e.to.box.key)) continue;
+            const route = this.routes?.get(edgeKey(e));
+            if (route) { for (const [x, y] of route) add(x, y, 4, 4); continue; }
+            const a = this.portXY(e.from.box, "out", e.from.port), b = this.portXY(e.to.box, "in", e.to.port);
+            for (let i = 0; i <= 20; i++) add(...pointAt(a.x, a.y, b.x, b.y, i / 20), 4, 4);
+        }
+        for (const L of this.labels || []) {
+            const r = L.placed;
+            if (r) { add(r[0], r[1]); add(r[2], r[3]); }
+        }
+        return [x0, y0, x1, y1];
+    }
+
     /** Fit the drawing into the view. */
     fit() {
         if (!this.graph || !this.graph.boxes.length) { this.setTransform({ k: 1, x: 20, y: 20 }); return; }
         const r = this.svg.getBoundingClientRect();
-        let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
-        for (const b of this.graph.boxes) {
-            const p = this.pos.get(b.key);
-            if (!p) continue;
-            x0 = Math.min(x0, p.x); y0 = Math.min(y0, p.y);
-            x1 = Math.max(x1, p.x + b.w); y1 = Math.max(y1, p.y + b.h + 30);
-        }
+        const [x0, y0, x1, y1] = this.extent();
         const w = Math.max(1, r.width || 800), h = Math.max(1, r.height || 600);
         const k = Math.min(1.25, Math.max(0.2, Math.min((w - 40) / (x1 - x0 + 1), (h - 40) / (y1 - y0 + 1))));
         this.setTransform({ k, x: 20 - x0 * k, y: 20 - y0 * k });
@@ -264,6 +288,12 @@ export class NetworkView {
             for (const port of side === "in" ? b.inputs : b.outputs) {
                 const o = portOffset(b, side, port);
                 const pg = el("g", { class: `port port-${side}`, "data-port": port, "data-side": side, "data-key": b.key }, g);
+                // the circle and the name start a connection; the box is moved by its title
+                // and the rest of its body
+                const named = port && (b.kind === "module" || b.kind === "group");
+                const reach = named ? Math.min(b.w / 2, 14 + 6.2 * port.length) : 8;
+                el("rect", { class: "port-hit", x: side === "in" ? o.x - 8 : o.x - reach, y: o.y - PORT_H / 2,
+                    width: reach + 8, height: PORT_H }, pg);
                 el("circle", { cx: o.x, cy: o.y, r: 5 }, pg);
                 if (port && (b.kind === "module" || b.kind === "group")) {
                     const t = el("text", { class: "port-name", x: side === "in" ? o.x + 9 : o.x - 9, y: o.y + 4,
@@ -325,6 +355,7 @@ export class NetworkView {
                 if (cost === 0) break;
             }
             taken.add(best.r);
+            L.placed = best.r;
             const { x: mx, y: my } = best;
             const lg = el("g", { class: `edge-label${L.selected ? " selected" : ""}`, "data-edge": String(L.i) }, layer);
             el("rect", { x: mx - w / 2, y: my - hh, width: w, height: 2 * hh, rx: hh }, lg);
@@ -351,12 +382,15 @@ export class NetworkView {
         const boxEl = e.target.closest?.(".box-group");
         const edgeEl = e.target.closest?.("[data-edge]");
         const start = { cx: e.clientX, cy: e.clientY };
-        if (port && port.dataset.side === "out") {
+        if (port) {
+            // from an output to an input, or the other way round
             const b = this.graph.boxes.find((x) => x.key === port.dataset.key);
-            if (b && !b.readOnly || b && b.kind === "input") {
-                const from = this.portXY(b, "out", port.dataset.port);
-                this.drag = { kind: "connect", from: { box: b, port: port.dataset.port }, start: from,
+            const side = port.dataset.side;
+            if (b && (!b.readOnly || (side === "out" && b.kind === "input") || (side === "in" && b.kind === "output"))) {
+                const from = this.portXY(b, side, port.dataset.port);
+                this.drag = { kind: "connect", side, end: { box: b, port: port.dataset.port }, start: from,
                     path: el("path", { class: "edge-temp", d: curve(from.x, from.y, from.x, from.y) }, this.tempLayer) };
+                this.svg.classList.add(side === "out" ? "connecting-to-in" : "connecting-to-out");
                 e.preventDefault();
                 return;
             }
@@ -416,9 +450,9 @@ export class NetworkView {
             for (const [k, v] of Object.entries({ x: x0, y: y0, width: x1 - x0, height: y1 - y0 })) d.rect.setAttribute(k, v);
         } else if (d.kind === "connect") {
             const p = this.local(e);
-            d.path.setAttribute("d", curve(d.start.x, d.start.y, p.x, p.y));
-            const over = document.elementFromPoint(e.clientX, e.clientY)?.closest?.(".port-in");
-            this.svg.querySelectorAll(".port-in.target").forEach((x) => x.classList.remove("target"));
+            d.path.setAttribute("d", d.side === "out" ? curve(d.start.x, d.start.y, p.x, p.y) : curve(p.x, p.y, d.start.x, d.start.y));
+            const over = this.connectTarget(d, e);
+            this.svg.querySelectorAll(".port.target").forEach((x) => x.classList.remove("target"));
             if (over) over.classList.add("target");
         }
     }
@@ -436,11 +470,19 @@ export class NetworkView {
         if (d.kind === "move" && d.moved) this.h.onMove(new Map(d.boxes.map(({ b }) => [b.key, this.pos.get(b.key)])));
         if (d.kind === "connect") {
             d.path.remove();
-            const over = document.elementFromPoint(e.clientX, e.clientY)?.closest?.(".port-in");
-            if (over) {
-                const b = this.graph.boxes.find((x) => x.key === over.dataset.key);
-                if (b) this.h.onConnect(d.from, { box: b, port: over.dataset.port });
+            this.svg.classList.remove("connecting-to-in", "connecting-to-out");
+            this.svg.querySelectorAll(".port.target").forEach((x) => x.classList.remove("target"));
+            const over = this.connectTarget(d, e);
+            const b = over && this.graph.boxes.find((x) => x.key === over.dataset.key);
+            if (b) {
+                const other = { box: b, port: over.dataset.port };
+                if (d.side === "out") this.h.onConnect(d.end, other); else this.h.onConnect(other, d.end);
             }
         }
+    }
+
+    /** The port of the other kind under the pointer while connecting, or null. */
+    connectTarget(d, e) {
+        return document.elementFromPoint(e.clientX, e.clientY)?.closest?.(d.side === "out" ? ".port-in" : ".port-out") || null;
     }
 }

@@ -138,25 +138,34 @@ export default class Plot extends Widget {
             font: "10px sans-serif", size: 30, gap: 2,
             grid: { stroke: grid, width: 0.5 }, ticks: { stroke: grid, width: 0.5, size: 3 },
         });
+        const xAxis = axis(this.bool(["show_x_axis"], true), this.str(["x_label"], "tick"));
+        // the x tick labels start below the lowest y label, which is centred on the x axis
+        xAxis.gap = 7;
+        xAxis.incrs = TICK_STEPS;
         const yAxis = axis(this.bool(["show_y_axis"], true), this.str(["unit"]) || undefined);
         yAxis.size = 44;
+        // a low plot still labels a few values (uPlot's 30 px would leave one or none)
+        yAxis.space = (u, i, lo, hi, dim) => Math.max(12, Math.min(30, dim / 3));
         if (decimals >= 0) yAxis.values = (u, vals) => vals.map((v) => v.toFixed(decimals));
         return {
             width: w, height: h, legend: { show: false }, cursor: { show: true, drag: { x: false, y: false } },
             series, bands, pxAlign: 0,
             scales: {
-                x: { time: false, range: (u, lo, hi) => this.tickRange(lo, hi) },
+                x: { time: false, range: () => this.tickRange() },
                 y: fixed ? { range: [this.num(["min", "y_min"]), this.num(["max", "y_max"])] }
                     : { range: (u, lo, hi) => this.autoRange(lo, hi, includeZero) },
             },
-            axes: [{ ...axis(this.bool(["show_x_axis"], true), this.str(["x_label"], "tick")), incrs: TICK_STEPS }, yAxis],
+            axes: [xAxis, yAxis],
         };
     }
 
-    /** The last buffer_size ticks, or from the first sample while there are fewer. */
-    tickRange(lo, hi) {
-        const from = Math.max(lo ?? 0, (hi ?? 0) - this.window());
-        return [from, Math.max(hi ?? 1, from + 1)];
+    /** The last buffer_size ticks, or from the first sample while there are fewer; taken
+     *  from the ticks held (uPlot widens a single tick t to 0..2t before asking). */
+    tickRange() {
+        if (!this.xs.length) return [0, 1];
+        const last = this.xs[this.xs.length - 1];
+        if (this.xs.length === 1) return [last - 1, last + 1];
+        return [Math.max(this.xs[0], last - this.window()), last];
     }
 
     /** The data's range, widened a little; a flat signal gets a unit-wide range. */
@@ -182,7 +191,7 @@ export default class Plot extends Widget {
     }
 
     resize() {
-        if (!this.plot) return;
+        if (!this.plot) { this.draw(); return; }     // shown at last (a view opened hidden)
         const w = this.body.clientWidth, h = this.body.clientHeight;
         if (w && h && (w !== this.plot.width || h !== this.plot.height)) this.plot.setSize({ width: w, height: h });
     }
