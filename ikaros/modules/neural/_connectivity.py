@@ -230,7 +230,8 @@ def _load_npz(filename: str, shape: tuple[int, int], where: str) -> Projection:
         if file_shape != tuple(shape):
             raise ValueError(f"it holds a {file_shape[0]} x {file_shape[1]} matrix but "
                              f"{shape[0]} x {shape[1]} is needed (receivers x input elements)")
-        fmt = str(z["format"]) if "format" in z else "coo"
+        fmt = z["format"].item() if "format" in z else "coo"
+        fmt = fmt.decode() if isinstance(fmt, bytes) else str(fmt)
         if fmt in ("csr", "csc"):
             indptr, indices, data = z["indptr"], z["indices"], z["data"]
             n_major = file_shape[0] if fmt == "csr" else file_shape[1]
