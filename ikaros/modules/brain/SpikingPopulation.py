@@ -85,6 +85,12 @@ class SpikingPopulation(Module):
                                         ".csv, .txt)", file=True, fixed=True)
     inhibition_weights_file = Parameter("", "file of the inhibitory weights (.npy, .npz, "
                                         ".csv, .txt)", file=True, fixed=True)
+    synapse_storage = Parameter("auto", "how the weights are kept: dense, by sender "
+                                "(sparse), or auto: dense when more than a quarter of the "
+                                "pairs are synapses", options="auto,dense,sparse", fixed=True)
+    spike_kernel = Parameter("auto", "auto: spikes are added by a loop compiled with numba "
+                             "when it is installed (ikaros[fast]); numpy: by NumPy (the same "
+                             "numbers)", options="auto,numpy")
     seed = Parameter(None, "seed of the synaptic weights; unset (or 0) gives different "
                      "weights every run", type="int")
     stdp = Parameter(False, "the excitatory synapses learn by STDP", fixed=True)
@@ -124,7 +130,7 @@ class SpikingPopulation(Module):
         self._v = np.full(n, REST)
         self._u = b * self._v
         self._current = np.zeros(n)
-        self._inhibition = np.zeros(n)
+        self._synaptic_current = np.zeros(n)
         if self.DIRECT_IN is not None and self.DIRECT_IN.size > n:
             raise ValueError(f"DIRECT_IN has {self.DIRECT_IN.size} elements but the "
                              f"population only {n} neurons")
@@ -155,12 +161,15 @@ class SpikingPopulation(Module):
         matrix = getattr(self, f"{kind}_weights")
         filename = getattr(self, f"{kind}_weights_file")
         if matrix is not None and np.size(matrix):
-            return connectivity.from_matrix(matrix, shape, f"{kind}_weights")
-        if filename:
-            return connectivity.load(resolve(self, filename), shape,
-                                     f"{kind}_weights_file")
-        lo, hi = sorted(weight_range)
-        return connectivity.random(rng, shape, lo, hi, getattr(self, f"{kind}_probability"))
+            p = connectivity.from_matrix(matrix, shape, f"{kind}_weights")
+        elif filename:
+            p = connectivity.load(resolve(self, filename), shape, f"{kind}_weights_file")
+        else:
+            lo, hi = sorted(weight_range)
+            p = connectivity.random(rng, shape, lo, hi, getattr(self, f"{kind}_probability"))
+        if self.synapse_storage == "sparse":
+            return p.as_sparse()
+        return p.as_dense() if self.synapse_storage == "dense" else p
 
     def _show_weights(self):
         if self.EXCITATION_WEIGHTS.size:
@@ -170,6 +179,13 @@ class SpikingPopulation(Module):
         """The elements of an input that spiked, and their values (None for flags)."""
         senders = np.flatnonzero(x >= self.threshold)
         return senders, (x[senders] if self.spike_input == "value" else None)
+
+    def _synaptic(self, projection, senders, values):
+        """The current the spikes of one input bring, summed from 0 in float64."""
+        total = self._synaptic_current
+        total.fill(0.0)
+        projection.add_spikes(total, senders, values, self.spike_kernel == "auto")
+        return total
 
     def tick(self):
         a, b, c, d = self._abcd
@@ -183,11 +199,9 @@ class SpikingPopulation(Module):
         pre = None
         if self._exc is not None:
             pre, values = self._spiking(self.EXCITATION_IN)
-            self._exc.add_spikes(current, pre, values)
+            current += self._synaptic(self._exc, pre, values)
         if self._inh is not None:
-            self._inhibition.fill(0.0)
-            self._inh.add_spikes(self._inhibition, *self._spiking(self.INHIBITION_IN))
-            current -= self._inhibition
+            current -= self._synaptic(self._inh, *self._spiking(self.INHIBITION_IN))
 
         fired = v >= th                      # spiked on the previous tick
         v[fired] = c

@@ -16,8 +16,12 @@ import os
 
 import numpy as np
 
+from ._spike_kernels import KERNELS
+
 DENSE_ABOVE = 0.25      # a projection denser than this is stored as a dense matrix
 _GAP_CHUNK = 1 << 22    # synapse positions drawn per round when sampling a sparse projection
+_SENDER_BLOCK = 1024    # senders made dense at a time
+_NO_VALUES = np.zeros(0, dtype=np.float32)
 
 
 class Projection:
@@ -57,26 +61,59 @@ class Projection:
         """This projection stored by sender (itself when it is already)."""
         return _sparse_from_dense(self.dense) if self.is_dense else self
 
+    def as_dense(self) -> "Projection":
+        """This projection stored dense (itself when it is already)."""
+        return self if self.is_dense else Projection(self.shape,
+                                                     dense=self._dense_by_sender().T)
+
     def to_dense(self) -> np.ndarray:
         """W as a dense float32 matrix (receivers x senders)."""
         if self.is_dense:
             return np.ascontiguousarray(self.dense)
-        w = np.zeros(self.shape, dtype=np.float32)
-        senders = np.repeat(np.arange(self.shape[1]), np.diff(self.indptr))
-        w[self.indices, senders] = self.data
-        return w
+        return np.ascontiguousarray(self._dense_by_sender().T)
+
+    def _dense_by_sender(self) -> np.ndarray:
+        """W transposed (senders x receivers, C order), filled a block of senders at a
+        time so that no index array of all the synapses is made."""
+        n_post, n_pre = self.shape
+        w_t = np.zeros((n_pre, n_post), dtype=np.float32)
+        flat = w_t.reshape(-1)
+        for first in range(0, n_pre, _SENDER_BLOCK):
+            last = min(first + _SENDER_BLOCK, n_pre)
+            lo, hi = self.indptr[first], self.indptr[last]
+            senders = np.repeat(np.arange(first, last, dtype=np.int64),
+                                np.diff(self.indptr[first:last + 1]))
+            flat[senders * n_post + self.indices[lo:hi]] = self.data[lo:hi]
+        return w_t
+
+    def stored_by_density(self) -> "Projection":
+        """This projection stored dense when more than DENSE_ABOVE of the pairs are
+        synapses, else by sender."""
+        if not self.is_dense and self.data.size > DENSE_ABOVE * max(1, np.prod(self.shape)):
+            return self.as_dense()
+        return self
 
     # --- propagation ---------------------------------------------------------------------
     def add_spikes(self, out: np.ndarray, senders: np.ndarray,
-                   values: np.ndarray | None = None) -> None:
-        """out += W[:, senders] @ values (values 1 when None): only the columns of the
-        senders that spiked are read."""
+                   values: np.ndarray | None = None, compiled: bool = False) -> None:
+        """out += W[:, senders] @ values (values 1 when None; out float64): only the columns
+        of the senders that spiked are read. Each weight (times its sender's value, in
+        float32) is added in float64, sender by sender; with ``compiled`` (numba installed)
+        a compiled loop does it, which gives the same numbers when out is zero on entry."""
         if senders.size == 0:
             return
+        if compiled and KERNELS is not None:
+            scale = _NO_VALUES if values is None else values.astype(np.float32)
+            if self.is_dense:
+                KERNELS.add_dense(self.dense, senders, scale, out)
+            else:
+                KERNELS.add_sparse(self.indptr, self.indices, self.data, senders, scale, out)
+            return
         if self.is_dense:
-            columns = self.dense[:, senders]
-            out += columns.sum(axis=1) if values is None else columns @ values.astype(
-                np.float32)
+            rows = self.dense.T[senders]              # one contiguous row per sender
+            if values is not None:
+                rows *= values.astype(np.float32)[:, None]
+            out += rows.sum(axis=0, dtype=np.float64)   # row after row, in order
             return
         positions = runs(self.indptr, senders)
         if positions.size == 0:
@@ -215,7 +252,7 @@ def load(filename: str, shape: tuple[int, int], where: str = "the weight file"
         if ext == ".npy":
             return from_matrix(np.load(filename, allow_pickle=False), shape, where)
         if ext == ".npz":
-            return _load_npz(filename, shape, where)
+            return _load_npz(filename, shape, where).stored_by_density()
         with open(filename, encoding="utf-8") as f:
             text = f.read().replace(",", " ")
         rows = [line.split() for line in text.splitlines() if line.strip()]
@@ -232,6 +269,8 @@ def _load_npz(filename: str, shape: tuple[int, int], where: str) -> Projection:
                              f"{shape[0]} x {shape[1]} is needed (receivers x input elements)")
         fmt = z["format"].item() if "format" in z else "coo"
         fmt = fmt.decode() if isinstance(fmt, bytes) else str(fmt)
+        if fmt == "csc" and _sorted_columns(z["indptr"], z["indices"], shape[0]):
+            return from_sparse(z["indptr"], z["indices"], z["data"], shape)
         if fmt in ("csr", "csc"):
             indptr, indices, data = z["indptr"], z["indices"], z["data"]
             n_major = file_shape[0] if fmt == "csr" else file_shape[1]
@@ -244,3 +283,15 @@ def _load_npz(filename: str, shape: tuple[int, int], where: str) -> Projection:
             return from_triplets(rows, cols, z["data"], shape)
         raise ValueError(f"the sparse format {fmt!r} is not read (save it as csr, csc or "
                          f"coo)")
+
+
+def _sorted_columns(indptr: np.ndarray, indices: np.ndarray, n_post: int) -> bool:
+    """Whether compressed sparse columns hold each receiver at most once per column, in
+    ascending order, and within 0..n_post-1."""
+    if indices.size == 0:
+        return True
+    if indices.min() < 0 or indices.max() >= n_post or indptr[-1] != indices.size:
+        return False
+    rising = np.diff(indices.astype(np.int64)) > 0
+    rising[indptr[1:-1][(indptr[1:-1] > 0) & (indptr[1:-1] < indices.size)] - 1] = True
+    return bool(rising.all())

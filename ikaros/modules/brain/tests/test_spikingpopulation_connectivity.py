@@ -147,27 +147,62 @@ def test_hand_computed_network_from_probability_and_seed(tmp_path):
     assert got == [izhikevich(DIRECT[i], 300, *RS) for i in range(3)]
 
 
+def recurrent_network(tmp_path, n, w, attrs, spike_input="flag"):
+    """n neurons with direct currents 0..8 and recurrent synapses of weights w."""
+    rows, cols = np.nonzero(w)
+    np.savez(tmp_path / "w.npz", row=rows, col=cols, data=w[rows, cols], shape=w.shape)
+    direct = matrix_text(np.linspace(0.0, 8.0, n), "g")
+    return (f'<module class="Constant" name="D" data="{direct}"/>'
+            f'<module class="SpikingPopulation" name="P" population_size="{n}" '
+            f'spike_input="{spike_input}" {attrs}/>'
+            '<connection source="D.OUTPUT" target="P.DIRECT_IN" delay="0"/>'
+            '<connection source="P.OUTPUT" target="P.EXCITATION_IN" delay="1"/>')
+
+
 def test_sparse_and_dense_storage_give_the_same_spikes(tmp_path):
-    """A recurrent population of 40 neurons with 30 % of its synapses: from the matrix
-    parameter the weights are stored dense, from triplets in a .npz by sender (sparse)."""
+    """A recurrent population of 40 neurons with 30 % of its synapses, weights multiples of
+    1/8 (so every order of summing is exact), stored dense and by sender, from the matrix
+    parameter and from a file of triplets."""
     rng = np.random.default_rng(12)
     n = 40
     w = np.where(rng.random((n, n)) < 0.3, rng.integers(1, 5, (n, n)) / 8.0, 0.0)
-    rows, cols = np.nonzero(w)
-    np.savez(tmp_path / "w.npz", row=rows, col=cols, data=w[rows, cols], shape=w.shape)
-    direct = matrix_text(rng.uniform(0.0, 8.0, n), "g")
+    rasters = [spike_ticks(tmp_path, recurrent_network(tmp_path, n, w, f'{source} '
+                                                       f'synapse_storage="{storage}"'),
+                           "P", 400)
+               for source in (f'excitation_weights="{matrix_text(w)}"',
+                              'excitation_weights_file="w.npz"')
+               for storage in ("dense", "sparse")]
+    assert all(r == rasters[0] for r in rasters[1:])
+    alone = spike_ticks(tmp_path, recurrent_network(tmp_path, n, w, 'excitation_probability'
+                                                    '="0"'), "P", 400)
+    assert rasters[0] != alone               # the recurrent synapses matter
 
-    def body(weights):
-        return (f'<module class="Constant" name="D" data="{direct}"/>'
-                f'<module class="SpikingPopulation" name="P" population_size="{n}" '
-                f'spike_input="flag" {weights}/>'
-                '<connection source="D.OUTPUT" target="P.DIRECT_IN" delay="0"/>'
-                '<connection source="P.OUTPUT" target="P.EXCITATION_IN" delay="1"/>')
-    dense = spike_ticks(tmp_path, body(f'excitation_weights="{matrix_text(w)}"'), "P", 400)
-    sparse = spike_ticks(tmp_path, body('excitation_weights_file="w.npz"'), "P", 400)
-    assert dense == sparse
-    alone = spike_ticks(tmp_path, body('excitation_probability="0"'), "P", 400)
-    assert dense != alone                    # the recurrent synapses matter
+
+@pytest.mark.parametrize("storage", ["dense", "sparse"])
+@pytest.mark.parametrize("spike_input", ["value", "flag"])
+def test_numba_and_numpy_add_the_same_numbers(tmp_path, storage, spike_input):
+    """Weights that are not exact in float32 sums: the compiled loop and NumPy add them in
+    the same order, so the membrane potentials agree to the bit."""
+    pytest.importorskip("numba")
+    rng = np.random.default_rng(3)
+    n = 30
+    w = np.where(rng.random((n, n)) < 0.5, rng.uniform(0.0, 0.04, (n, n)), 0.0)
+    if spike_input == "flag":
+        w *= 30.0
+    out = {}
+    for kernel in ("auto", "numpy"):
+        net = load_body(tmp_path, recurrent_network(
+            tmp_path, n, w, f'excitation_weights_file="w.npz" synapse_storage="{storage}" '
+            f'spike_kernel="{kernel}"', spike_input))
+        try:
+            out[kernel] = []
+            for _ in range(300):
+                net.step()
+                out[kernel].append(net.output("P.OUTPUT").copy())
+        finally:
+            net.close()
+    assert np.array_equal(out["auto"], out["numpy"])
+    assert np.sum(np.array(out["auto"]) >= 30) > 50
 
 
 @pytest.mark.parametrize("dt", [0.5, 0.25])
