@@ -4,6 +4,7 @@ import numpy as np
 from ikaros.module import Input, Module, Output, Parameter
 from ikaros.modules.io._files import resolve
 from ikaros.modules.neural import _connectivity as connectivity
+from ikaros.modules.neural._spike_kernels import KERNELS
 from ikaros.modules.neural._stdp import STDP
 
 # Izhikevich (2003) parameters (a, b, c, d) of the neuron types.
@@ -88,9 +89,10 @@ class SpikingPopulation(Module):
     synapse_storage = Parameter("auto", "how the weights are kept: dense, by sender "
                                 "(sparse), or auto: dense when more than a quarter of the "
                                 "pairs are synapses", options="auto,dense,sparse", fixed=True)
-    spike_kernel = Parameter("auto", "auto: spikes are added by a loop compiled with numba "
-                             "when it is installed (ikaros[fast]); numpy: by NumPy (the same "
-                             "numbers)", options="auto,numpy")
+    spike_kernel = Parameter("auto", "auto: the neurons and the spikes they receive are "
+                             "computed by loops compiled with numba when it is installed "
+                             "(ikaros[fast]); numpy: by NumPy (the same numbers)",
+                             options="auto,numpy", fixed=True)
     seed = Parameter(None, "seed of the synaptic weights; unset (or 0) gives different "
                      "weights every run", type="int")
     stdp = Parameter(False, "the excitatory synapses learn by STDP", fixed=True)
@@ -131,6 +133,8 @@ class SpikingPopulation(Module):
         self._u = b * self._v
         self._current = np.zeros(n)
         self._synaptic_current = np.zeros(n)
+        self._compiled = self.spike_kernel == "auto" and KERNELS is not None
+        self._spiking_buffer = np.zeros(n, dtype=np.int64)
         if self.DIRECT_IN is not None and self.DIRECT_IN.size > n:
             raise ValueError(f"DIRECT_IN has {self.DIRECT_IN.size} elements but the "
                              f"population only {n} neurons")
@@ -184,7 +188,7 @@ class SpikingPopulation(Module):
         """The current the spikes of one input bring, summed from 0 in float64."""
         total = self._synaptic_current
         total.fill(0.0)
-        projection.add_spikes(total, senders, values, self.spike_kernel == "auto")
+        projection.add_spikes(total, senders, values, self._compiled)
         return total
 
     def tick(self):
@@ -203,18 +207,22 @@ class SpikingPopulation(Module):
         if self._inh is not None:
             current -= self._synaptic(self._inh, *self._spiking(self.INHIBITION_IN))
 
-        fired = v >= th                      # spiked on the previous tick
-        v[fired] = c
-        u[fired] += d
         steps = max(1, self.substeps)
-        h = dt / steps
-        for _ in range(steps):
-            v += h * (0.04 * v * v + 5.0 * v + 140.0 - u + current)
-            np.minimum(v, th, out=v)
-        u += (dt * a) * (b * v - u)
-
-        self.OUTPUT[...] = v
-        spiking = np.flatnonzero(v >= th)
+        if self._compiled:
+            count = KERNELS.izhikevich(v, u, current, a, b, c, d, th, steps, dt / steps,
+                                       dt * a, self.OUTPUT.reshape(-1), self._spiking_buffer)
+            spiking = self._spiking_buffer[:count]
+        else:
+            fired = v >= th                      # spiked on the previous tick
+            v[fired] = c
+            u[fired] += d
+            h = dt / steps
+            for _ in range(steps):
+                v += h * (0.04 * v * v + 5.0 * v + 140.0 - u + current)
+                np.minimum(v, th, out=v)
+            u += (dt * a) * (b * v - u)
+            self.OUTPUT[...] = v
+            spiking = np.flatnonzero(v >= th)
         if self._stdp is not None:
             self._stdp.decay(dt)
             self._stdp.on_pre(pre)

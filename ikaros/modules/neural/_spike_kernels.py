@@ -1,4 +1,4 @@
-"""Compiled loops for spike propagation, with numba (the optional extra ``ikaros[fast]``).
+"""Compiled loops of spiking populations, with numba (the optional extra ``ikaros[fast]``).
 
 ``KERNELS`` is None when numba is not installed; the callers then use their NumPy forms,
 which add the same numbers in the same order (so both give the same spikes).
@@ -39,11 +39,35 @@ def _add_dense(weights, senders, values, out):
                 out[r] += weights[r, s]
 
 
+def _izhikevich(v, u, current, a, b, c, d, threshold, steps, h, dt_a, output, spiking):
+    """One tick of Izhikevich neurons, neuron by neuron, with the operations of
+    SpikingPopulation's NumPy form in the same order; the indices of the neurons that spike
+    go to ``spiking``; returns their number."""
+    count = 0
+    for i in range(v.size):
+        vi, ui = v[i], u[i]
+        if vi >= threshold:
+            vi = c
+            ui += d
+        for _ in range(steps):
+            vi += h * (0.04 * vi * vi + 5.0 * vi + 140.0 - ui + current[i])
+            if vi > threshold:
+                vi = threshold
+        ui += dt_a * (b * vi - ui)
+        v[i], u[i] = vi, ui
+        output[i] = vi
+        if vi >= threshold:
+            spiking[count] = i
+            count += 1
+    return count
+
+
 class _Kernels:
     def __init__(self):
         jit = numba.njit(cache=True, nogil=True)
         self.add_sparse = jit(_add_sparse)
         self.add_dense = jit(_add_dense)
+        self.izhikevich = jit(_izhikevich)
 
 
 KERNELS = _Kernels() if numba is not None else None
