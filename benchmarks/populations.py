@@ -13,7 +13,9 @@ spikes counted as flags (``spike_input="flag"``). The weights are drawn once wit
 written to files (compressed sparse columns) that both simulators read, so both run the same
 network. Each case runs 1 s of model time (1,000 ticks of 1 ms) in a process of its own,
 for ikaros and for every Brian2 target given; it prints the build time, the run time, the
-spike count, the peak memory (maximum resident set of the process) and, for Brian2, how
+spike count, the CPU time of the run (less sensitive than the wall time to other processes
+on a shared machine), the peak memory (maximum resident set of the process) and, for
+Brian2, how
 many spikes (tick, neuron) the two runs have in common and the first tick where they
 differ. Brian2 runs with the Python of its own environment (``--brian2-python``; Brian2 2.9
 does not import with NumPy 2.4): it is never a dependency of ikaros. Brian2's compilation is
@@ -87,19 +89,19 @@ def run_ikaros(folder: str, ticks: int) -> None:
     build = time.perf_counter() - start
     out = net.buffer_array("P.OUTPUT")
     ticks_of, neurons = [], []
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     for t in range(ticks):
         net.step()
         spiking = np.flatnonzero(out >= 30.0)
         if spiking.size:
             neurons.append(spiking)
             ticks_of.append(np.full(spiking.size, t))
-    run = time.perf_counter() - start
+    run, cpu = time.perf_counter() - start, time.process_time() - cpu
     net.close()
     spikes = (np.stack([np.concatenate(ticks_of), np.concatenate(neurons)], axis=1)
               if neurons else np.zeros((0, 2), np.int64))
     np.save(os.path.join(folder, "ikaros.npy"), spikes)
-    print(json.dumps({"build_s": build, "run_s": run, "spikes": int(len(spikes)),
+    print(json.dumps({"build_s": build, "run_s": run, "cpu_s": cpu, "spikes": int(len(spikes)),
                       "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
 
 
@@ -139,9 +141,9 @@ def main() -> None:
         run_ikaros(args.child, args.ticks)
         return
     print(f"# load average at start: {', '.join(f'{x:.2f}' for x in os.getloadavg())}")
-    print("| network | simulator | build s | run s (1 s of model time) | spikes | peak MB | "
-          "same spikes |")
-    print("|---|---|---|---|---|---|---|")
+    print("| network | simulator | build s | run s (1 s of model time) | run CPU s | spikes | "
+          "peak MB | same spikes |")
+    print("|---|---|---|---|---|---|---|---|")
     for case in args.cases.split(","):
         size, density = case.split(":")
         n, p = int(size), (1.0 if density == "dense" else float(density))
@@ -160,10 +162,10 @@ def main() -> None:
                 rows.append((f"Brian2 {result.get('version', '')} {target}", result, same))
             for name, r, same in rows:
                 if "error" in r:
-                    print(f"| {label} | {name} | – | {r['error']} | – | – | |")
+                    print(f"| {label} | {name} | – | {r['error']} | – | – | – | |")
                 else:
                     print(f"| {label} | {name} | {r['build_s']:.2f} | {r['run_s']:.2f} | "
-                          f"{r['spikes']} | {r['peak_mb']:.0f} | {same} |")
+                          f"{r['cpu_s']:.2f} | {r['spikes']} | {r['peak_mb']:.0f} | {same} |")
             sys.stdout.flush()
     print(f"# load average at end: {', '.join(f'{x:.2f}' for x in os.getloadavg())}")
 

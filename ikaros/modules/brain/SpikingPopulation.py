@@ -135,6 +135,8 @@ class SpikingPopulation(Module):
         self._synaptic_current = np.zeros(n)
         self._compiled = self.spike_kernel == "auto" and KERNELS is not None
         self._spiking_buffer = np.zeros(n, dtype=np.int64)
+        if self._compiled:
+            KERNELS.warm_up()
         if self.DIRECT_IN is not None and self.DIRECT_IN.size > n:
             raise ValueError(f"DIRECT_IN has {self.DIRECT_IN.size} elements but the "
                              f"population only {n} neurons")

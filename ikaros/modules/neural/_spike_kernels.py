@@ -5,6 +5,8 @@ which add the same numbers in the same order (so both give the same spikes).
 """
 from __future__ import annotations
 
+import numpy as np
+
 try:
     import numba
 except ImportError:          # numba is optional: the NumPy forms are used instead
@@ -68,6 +70,22 @@ class _Kernels:
         self.add_sparse = jit(_add_sparse)
         self.add_dense = jit(_add_dense)
         self.izhikevich = jit(_izhikevich)
+        self._ready = False
+
+    def warm_up(self) -> None:
+        """Compile (or load from numba's cache) every loop for the argument types the
+        populations pass, so that the first tick does not pay for it."""
+        if self._ready:
+            return
+        f32, f64, i64 = np.float32, np.float64, np.int64
+        one, none = np.zeros(1, i64), np.zeros(0, f32)
+        for values in (none, np.ones(1, f32)):
+            self.add_sparse(np.array([0, 1], i64), np.zeros(1, np.int32), np.ones(1, f32),
+                            one, values, np.zeros(1, f64))
+            self.add_dense(np.ones((1, 1), f32, order="F"), one, values, np.zeros(1, f64))
+        self.izhikevich(np.zeros(1), np.zeros(1), np.zeros(1), 0.02, 0.2, -65.0, 8.0, 30.0,
+                        2, 0.5, 0.02, np.zeros(1, f32), np.zeros(1, i64))
+        self._ready = True
 
 
 KERNELS = _Kernels() if numba is not None else None
