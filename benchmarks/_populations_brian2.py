@@ -4,10 +4,10 @@ and runs in Brian2's own environment (never a dependency of ikaros)::
 
     /tmp/brian2-venv/bin/python benchmarks/_populations_brian2.py CASE_DIR TARGET TICKS
 
-CASE_DIR holds network.json, direct.npy and the weights (excitation.npz, inhibition.npz in
-compressed sparse columns: receivers x senders). It prints one JSON line: build and run
-seconds, the spike count, the peak memory; the spikes go to CASE_DIR/brian2-TARGET.npy as
-(tick, neuron) rows.
+CASE_DIR holds network.json, direct.npy and the weights (receivers x senders), excitation
+and inhibition, each a dense .npy or compressed sparse columns in a .npz. It prints one JSON
+line: build and run seconds, the CPU time of the run, the spike count, the peak memory; the
+spikes go to CASE_DIR/brian2-TARGET.npy as (tick, neuron) rows.
 
 The model, as SpikingPopulation with spike_input="flag" and a recurrent connection of delay
 1: per 1 ms step, v is integrated in ``substeps`` Euler steps and held at the threshold,
@@ -24,11 +24,19 @@ import time
 import numpy as np
 
 
-def load_csc(path):
-    z = np.load(path)
+def load_synapses(case_dir, name):
+    """(senders, receivers, weights), sender by sender, from name.npy (a dense receivers x
+    senders matrix) or name.npz (compressed sparse columns)."""
+    path = os.path.join(case_dir, name)
+    if os.path.exists(path + ".npy"):
+        w = np.load(path + ".npy")
+        n_post, n_pre = w.shape
+        return (np.repeat(np.arange(n_pre, dtype=np.int32), n_post),
+                np.tile(np.arange(n_post, dtype=np.int32), n_pre), w.T.ravel())
+    z = np.load(path + ".npz")
     indptr, indices = z["indptr"], z["indices"]
     senders = np.repeat(np.arange(len(indptr) - 1, dtype=np.int32), np.diff(indptr))
-    return senders, indices.astype(np.int32), z["data"].astype(np.float64)
+    return senders, indices.astype(np.int32), z["data"]
 
 
 def _children_cpu():
@@ -67,10 +75,10 @@ def main(case_dir, target, ticks):
                         "Ie = 0\nIi = 0", when="groups")
     synapses = []
     for name, var in (("excitation", "Ie"), ("inhibition", "Ii")):
-        pre, post, w = load_csc(os.path.join(case_dir, f"{name}.npz"))
+        pre, post, w = load_synapses(case_dir, name)
         s = b2.Synapses(group, group, "w : 1", on_pre=f"{var}_post += w")
         s.connect(i=pre, j=post)
-        s.w = w
+        s.w = w.astype(np.float64)
         synapses.append(s)
         del pre, post, w
     monitor = b2.SpikeMonitor(group)

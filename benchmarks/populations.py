@@ -10,8 +10,8 @@ drawn uniformly in 3..9, and the population's OUTPUT fed back (delay 1) into its
 EXCITATION_IN and INHIBITION_IN, each pair of neurons connected with the case's probability
 (1 for dense), excitatory weights uniform in 0..12/(N p) and inhibitory ones in 0..16/(N p),
 spikes counted as flags (``spike_input="flag"``). The weights are drawn once with a seed and
-written to files (compressed sparse columns) that both simulators read, so both run the same
-network. Each case runs 1 s of model time (1,000 ticks of 1 ms) in a process of its own,
+written to files (a dense .npy matrix, or compressed sparse columns in a .npz) that both
+simulators read, so both run the same network. Each case runs 1 s of model time (1,000 ticks of 1 ms) in a process of its own,
 for ikaros and for every Brian2 target given; it prints the build time, the run time, the
 spike count, the CPU time of the run (less sensitive than the wall time to other processes
 on a shared machine), the peak memory (maximum resident set of the process) and, for
@@ -54,9 +54,13 @@ def make_case(folder: str, n: int, p: float) -> None:
     np.save(os.path.join(folder, "direct.npy"),
             rng.uniform(*DIRECT_RANGE, n).astype(np.float32))
     for name, gain in (("excitation", EXCITATION_GAIN), ("inhibition", INHIBITION_GAIN)):
-        projection = connectivity.random(rng, (n, n), 0.0, gain / (n * p), p).as_sparse()
-        np.savez(os.path.join(folder, f"{name}.npz"), format="csc", shape=(n, n),
-                 indptr=projection.indptr, indices=projection.indices, data=projection.data)
+        projection = connectivity.random(rng, (n, n), 0.0, gain / (n * p), p)
+        if projection.is_dense:
+            np.save(os.path.join(folder, f"{name}.npy"), projection.dense)
+        else:
+            np.savez(os.path.join(folder, f"{name}.npz"), format="csc", shape=(n, n),
+                     indptr=projection.indptr, indices=projection.indices,
+                     data=projection.data)
         del projection
     with open(os.path.join(folder, "network.json"), "w") as f:
         json.dump({"n": n, "p": p, "threshold": 30.0, "substeps": 2,
@@ -65,11 +69,12 @@ def make_case(folder: str, n: int, p: float) -> None:
 
 def model_text(folder: str, n: int) -> str:
     direct = " ".join(repr(float(x)) for x in np.load(os.path.join(folder, "direct.npy")))
+    ext = "npy" if os.path.exists(os.path.join(folder, "excitation.npy")) else "npz"
     return (f'<group name="Populations" stop="-1">\n'
             f'<module class="Constant" name="Direct" data="{direct}"/>\n'
             f'<module class="SpikingPopulation" name="P" population_size="{n}" '
-            f'spike_input="flag" excitation_weights_file="excitation.npz" '
-            f'inhibition_weights_file="inhibition.npz"/>\n'
+            f'spike_input="flag" excitation_weights_file="excitation.{ext}" '
+            f'inhibition_weights_file="inhibition.{ext}"/>\n'
             '<connection source="Direct.OUTPUT" target="P.DIRECT_IN" delay="0"/>\n'
             '<connection source="P.OUTPUT" target="P.EXCITATION_IN" delay="1"/>\n'
             '<connection source="P.OUTPUT" target="P.INHIBITION_IN" delay="1"/>\n'
