@@ -210,34 +210,52 @@ def random(rng: np.random.Generator, shape: tuple[int, int], low: float, high: f
         raise ValueError(f"a connection probability must be in 0..1, not {probability}")
     if probability >= 1.0:
         return Projection((n_post, n_pre), dense=rng.uniform(low, high, (n_post, n_pre)))
-    positions = _bernoulli_positions(rng, n_post * n_pre, probability)
-    weights = rng.uniform(low, high, positions.size).astype(np.float32)
     if probability > DENSE_ABOVE:
+        positions = np.concatenate([np.zeros(0, np.int64), *_bernoulli_positions(
+            rng, n_post * n_pre, probability)])
         w = np.zeros(n_post * n_pre, dtype=np.float32)
-        w[positions] = weights
+        w[positions] = _uniform_float32(rng, low, high, positions.size)
         return Projection((n_post, n_pre), dense=w.reshape(n_pre, n_post).T)
-    cols, rows = np.divmod(positions, n_post)     # positions run sender by sender
+    counts = np.zeros(n_pre, dtype=np.int64)
+    rows = []
+    for positions in _bernoulli_positions(rng, n_post * n_pre, probability):
+        cols, receivers = np.divmod(positions, n_post)   # positions run sender by sender
+        counts += np.bincount(cols, minlength=n_pre)
+        rows.append(receivers.astype(np.int32))
+        del cols, receivers
+    indices = np.concatenate([np.zeros(0, np.int32), *rows])
+    del rows
     indptr = np.zeros(n_pre + 1, dtype=np.int64)
-    np.cumsum(np.bincount(cols, minlength=n_pre), out=indptr[1:])
-    return Projection((n_post, n_pre), indptr=indptr, indices=rows, data=weights)
+    np.cumsum(counts, out=indptr[1:])
+    return Projection((n_post, n_pre), indptr=indptr, indices=indices,
+                      data=_uniform_float32(rng, low, high, indices.size))
 
 
-def _bernoulli_positions(rng: np.random.Generator, size: int, p: float) -> np.ndarray:
-    """The ascending positions in 0..size-1 chosen each with probability p: the gaps
-    between them are geometric, so the cost is in proportion to the number chosen."""
+def _uniform_float32(rng: np.random.Generator, low: float, high: float, size: int
+                     ) -> np.ndarray:
+    """``rng.uniform(low, high, size)`` as float32, drawn a block at a time."""
+    out = np.empty(size, dtype=np.float32)
+    for first in range(0, size, _GAP_CHUNK):
+        last = min(first + _GAP_CHUNK, size)
+        out[first:last] = rng.uniform(low, high, last - first)
+    return out
+
+
+def _bernoulli_positions(rng: np.random.Generator, size: int, p: float):
+    """The ascending positions in 0..size-1 chosen each with probability p, a block at a
+    time: the gaps between them are geometric, so the cost is in proportion to the number
+    chosen."""
     if p <= 0.0 or size == 0:
-        return np.zeros(0, dtype=np.int64)
-    parts, last = [], -1
+        return
+    last = -1
     while last < size - 1:
-        gaps = rng.geometric(p, _GAP_CHUNK)
-        positions = last + np.cumsum(gaps)
+        positions = last + np.cumsum(rng.geometric(p, _GAP_CHUNK))
         positions = positions[positions < size]
         if positions.size:
-            parts.append(positions)
+            yield positions
             last = int(positions[-1])
         if positions.size < _GAP_CHUNK:
-            break
-    return np.concatenate(parts) if parts else np.zeros(0, dtype=np.int64)
+            return
 
 
 def load(filename: str, shape: tuple[int, int], where: str = "the weight file"
