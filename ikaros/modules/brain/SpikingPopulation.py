@@ -73,15 +73,19 @@ class SpikingPopulation(Module):
     synapse_min = Parameter(0.5, "smallest random synaptic weight")
     inhibition_synapse_range = Parameter(None, "smallest and largest random inhibitory "
                                          "weight; empty: synapse_min synapse_max",
-                                         type="array")
+                                         type="array", fixed=True)
     excitation_probability = Parameter(1.0, "probability that a neuron has a synapse from "
-                                       "an element of EXCITATION_IN", range=(0, 1))
+                                       "an element of EXCITATION_IN", range=(0, 1),
+                                       fixed=True)
     inhibition_probability = Parameter(1.0, "probability that a neuron has a synapse from "
-                                       "an element of INHIBITION_IN", range=(0, 1))
+                                       "an element of INHIBITION_IN", range=(0, 1),
+                                       fixed=True)
     excitation_weights = Parameter(None, "excitatory weights (neurons x EXCITATION_IN "
-                                   "elements); empty: from the file or drawn", type="matrix")
+                                   "elements); empty: from the file or drawn", type="matrix",
+                                   fixed=True)
     inhibition_weights = Parameter(None, "inhibitory weights (neurons x INHIBITION_IN "
-                                   "elements); empty: from the file or drawn", type="matrix")
+                                   "elements); empty: from the file or drawn", type="matrix",
+                                   fixed=True)
     excitation_weights_file = Parameter("", "file of the excitatory weights (.npy, .npz, "
                                         ".csv, .txt)", file=True, fixed=True)
     inhibition_weights_file = Parameter("", "file of the inhibitory weights (.npy, .npz, "
