@@ -21,7 +21,10 @@ import resource
 import sys
 import time
 
+import brian2 as b2
 import numpy as np
+
+from _peak_memory import peak_mb  # beside this file
 
 
 def load_synapses(case_dir, name):
@@ -45,7 +48,6 @@ def _children_cpu():
 
 
 def main(case_dir, target, ticks):
-    import brian2 as b2
     b2.prefs.codegen.loop_invariant_optimisations = False
     b2.prefs.codegen.cpp.extra_compile_args_gcc = ["-w", "-O3"]   # no -ffast-math
     if target == "cpp_standalone":
@@ -102,7 +104,7 @@ def main(case_dir, target, ticks):
     spikes = np.stack([ticks_of_spikes, np.asarray(monitor.i, dtype=np.int64)], axis=1)
     np.save(os.path.join(case_dir, f"brian2-{target}.npy"), spikes)
     print(json.dumps({"build_s": build, "run_s": run, "cpu_s": cpu, "spikes": int(len(spikes)),
-                      "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+                      "peak_mb": peak_mb(),
                       "version": b2.__version__}))
 
 

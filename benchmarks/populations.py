@@ -27,7 +27,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import resource
 import subprocess
 import sys
 import tempfile
@@ -39,6 +38,12 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 if ROOT not in sys.path:
     sys.path.insert(0, ROOT)
 
+import ikaros  # noqa: E402
+from ikaros.modules.brain.SpikingPopulation import NEURON_TYPES  # noqa: E402
+from ikaros.modules.neural import _connectivity as connectivity  # noqa: E402
+
+from _peak_memory import peak_mb  # noqa: E402  (beside this file)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_CASES = "1000:dense,1000:0.01,10000:dense,10000:0.01,100000:0.01"
 SEED = 1
@@ -48,8 +53,6 @@ EXCITATION_GAIN, INHIBITION_GAIN = 12.0, 16.0
 
 def make_case(folder: str, n: int, p: float) -> None:
     """Write the network of one case: network.json, direct.npy and the weights."""
-    from ikaros.modules.brain.SpikingPopulation import NEURON_TYPES
-    from ikaros.modules.neural import _connectivity as connectivity
     rng = np.random.default_rng(SEED)
     np.save(os.path.join(folder, "direct.npy"),
             rng.uniform(*DIRECT_RANGE, n).astype(np.float32))
@@ -83,7 +86,6 @@ def model_text(folder: str, n: int) -> str:
 
 def run_ikaros(folder: str, ticks: int) -> None:
     """The child process of the ikaros side: prints one JSON line."""
-    import ikaros
     with open(os.path.join(folder, "network.json")) as f:
         n = json.load(f)["n"]
     path = os.path.join(folder, "model.ikg")
@@ -107,7 +109,7 @@ def run_ikaros(folder: str, ticks: int) -> None:
               if neurons else np.zeros((0, 2), np.int64))
     np.save(os.path.join(folder, "ikaros.npy"), spikes)
     print(json.dumps({"build_s": build, "run_s": run, "cpu_s": cpu, "spikes": int(len(spikes)),
-                      "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
+                      "peak_mb": peak_mb()}))
 
 
 def child(command: list[str], timeout: float) -> dict:
