@@ -4,6 +4,7 @@
     python benchmarks/populations.py --brian2-python /tmp/brian2-venv/bin/python
     python benchmarks/populations.py --cases 1000:dense,10000:0.01 --brian2-targets \\
         numpy,cython,cpp_standalone --brian2-python /tmp/brian2-venv/bin/python
+    python benchmarks/populations.py --ikaros-kernels auto,numpy   # with and without numba
 
 The network: N regular-spiking Izhikevich neurons, each with a constant DIRECT_IN current
 drawn uniformly in 3..9, and the population's OUTPUT fed back (delay 1) into its own
@@ -70,13 +71,14 @@ def make_case(folder: str, n: int, p: float) -> None:
                    "abcd": NEURON_TYPES["regular_spiking"]}, f)
 
 
-def model_text(folder: str, n: int) -> str:
+def model_text(folder: str, n: int, kernel: str = "auto") -> str:
     direct = " ".join(repr(float(x)) for x in np.load(os.path.join(folder, "direct.npy")))
     ext = "npy" if os.path.exists(os.path.join(folder, "excitation.npy")) else "npz"
     return (f'<group name="Populations" stop="-1">\n'
             f'<module class="Constant" name="Direct" data="{direct}"/>\n'
             f'<module class="SpikingPopulation" name="P" population_size="{n}" '
-            f'spike_input="flag" excitation_weights_file="excitation.{ext}" '
+            f'spike_input="flag" spike_kernel="{kernel}" '
+            f'excitation_weights_file="excitation.{ext}" '
             f'inhibition_weights_file="inhibition.{ext}"/>\n'
             '<connection source="Direct.OUTPUT" target="P.DIRECT_IN" delay="0"/>\n'
             '<connection source="P.OUTPUT" target="P.EXCITATION_IN" delay="1"/>\n'
@@ -84,13 +86,13 @@ def model_text(folder: str, n: int) -> str:
             '</group>\n')
 
 
-def run_ikaros(folder: str, ticks: int) -> None:
+def run_ikaros(folder: str, ticks: int, kernel: str) -> None:
     """The child process of the ikaros side: prints one JSON line."""
     with open(os.path.join(folder, "network.json")) as f:
         n = json.load(f)["n"]
     path = os.path.join(folder, "model.ikg")
     with open(path, "w") as f:
-        f.write(model_text(folder, n))
+        f.write(model_text(folder, n, kernel))
     start = time.perf_counter()
     net = ikaros.load(path)
     build = time.perf_counter() - start
@@ -107,7 +109,7 @@ def run_ikaros(folder: str, ticks: int) -> None:
     net.close()
     spikes = (np.stack([np.concatenate(ticks_of), np.concatenate(neurons)], axis=1)
               if neurons else np.zeros((0, 2), np.int64))
-    np.save(os.path.join(folder, "ikaros.npy"), spikes)
+    np.save(os.path.join(folder, f"ikaros-{kernel}.npy"), spikes)
     print(json.dumps({"build_s": build, "run_s": run, "cpu_s": cpu, "spikes": int(len(spikes)),
                       "peak_mb": peak_mb()}))
 
@@ -123,9 +125,9 @@ def child(command: list[str], timeout: float) -> dict:
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
-def agreement(folder: str, other: str) -> str:
+def agreement(folder: str, mine: str, other: str) -> str:
     """How many spikes the two runs share, and the first tick where they differ."""
-    a = {tuple(r) for r in np.load(os.path.join(folder, "ikaros.npy")).tolist()}
+    a = {tuple(r) for r in np.load(os.path.join(folder, mine)).tolist()}
     b = {tuple(r) for r in np.load(os.path.join(folder, other)).tolist()}
     differ = a ^ b
     first = f", first difference at tick {min(t for t, _ in differ)}" if differ else ""
@@ -142,10 +144,13 @@ def main() -> None:
                         help="comma-separated: numpy, cython, cpp_standalone")
     parser.add_argument("--timeout", type=float, default=900.0,
                         help="seconds allowed to each run")
+    parser.add_argument("--ikaros-kernels", default="auto",
+                        help="comma-separated spike_kernel values: auto (numba when "
+                        "installed), numpy")
     parser.add_argument("--child", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child:
-        run_ikaros(args.child, args.ticks)
+        run_ikaros(args.child, args.ticks, args.ikaros_kernels)
         return
     print(f"# load average at start: {', '.join(f'{x:.2f}' for x in os.getloadavg())}")
     print("| network | simulator | build s | run s (1 s of model time) | run CPU s | spikes | "
@@ -158,14 +163,22 @@ def main() -> None:
         with tempfile.TemporaryDirectory() as folder:
             print(f"{label}: writing the network", file=sys.stderr)
             make_case(folder, n, p)
-            rows = [("ikaros", child([sys.executable, __file__, "--child", folder,
-                                      "--ticks", str(args.ticks)], args.timeout), "")]
+            rows = []
+            kernels = args.ikaros_kernels.split(",")
+            mine = f"ikaros-{kernels[0]}.npy"
+            for kernel in kernels:
+                print(f"{label}: ikaros, spike_kernel {kernel}", file=sys.stderr)
+                result = child([sys.executable, __file__, "--child", folder, "--ticks",
+                                str(args.ticks), "--ikaros-kernels", kernel], args.timeout)
+                same = ("" if kernel == kernels[0] or "error" in result or "error" in rows[0][1]
+                        else agreement(folder, mine, f"ikaros-{kernel}.npy"))
+                rows.append((f"ikaros ({kernel})", result, same))
             for target in (args.brian2_targets.split(",") if args.brian2_python else []):
                 print(f"{label}: Brian2 {target}", file=sys.stderr)
                 result = child([args.brian2_python, os.path.join(HERE, "_populations_brian2.py"),
                                 folder, target, str(args.ticks)], args.timeout)
                 same = ("" if "error" in result or "error" in rows[0][1]
-                        else agreement(folder, f"brian2-{target}.npy"))
+                        else agreement(folder, mine, f"brian2-{target}.npy"))
                 rows.append((f"Brian2 {result.get('version', '')} {target}", result, same))
             for name, r, same in rows:
                 if "error" in r:
