@@ -305,11 +305,18 @@ def _load_npz(filename: str, shape: tuple[int, int], where: str) -> Projection:
 
 def _sorted_columns(indptr: np.ndarray, indices: np.ndarray, n_post: int) -> bool:
     """Whether compressed sparse columns hold each receiver at most once per column, in
-    ascending order, and within 0..n_post-1."""
+    ascending order, and within 0..n_post-1 (checked a block at a time, so that no index
+    array as long as the synapses is made)."""
     if indices.size == 0:
         return True
-    if indices.min() < 0 or indices.max() >= n_post or indptr[-1] != indices.size:
+    if indptr[-1] != indices.size or np.any(np.diff(indptr) < 0):
         return False
-    rising = np.diff(indices.astype(np.int64)) > 0
-    rising[indptr[1:-1][(indptr[1:-1] > 0) & (indptr[1:-1] < indices.size)] - 1] = True
-    return bool(rising.all())
+    starts = np.zeros(indices.size, dtype=bool)        # where a column begins
+    starts[indptr[:-1][indptr[:-1] < indices.size]] = True
+    for first in range(0, indices.size, _GAP_CHUNK):
+        block = indices[first:first + _GAP_CHUNK + 1]
+        if block.min() < 0 or block.max() >= n_post:
+            return False
+        if not np.all((np.diff(block) > 0) | starts[first + 1:first + block.size]):
+            return False
+    return True
