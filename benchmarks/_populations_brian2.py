@@ -51,8 +51,7 @@ def main(case_dir, target, ticks):
     b2.prefs.codegen.loop_invariant_optimisations = False
     b2.prefs.codegen.cpp.extra_compile_args_gcc = ["-w", "-O3"]   # no -ffast-math
     if target == "cpp_standalone":
-        b2.set_device("cpp_standalone", directory=os.path.join(case_dir, "standalone"),
-                      build_on_run=False)
+        b2.set_device("cpp_standalone", build_on_run=False)
     else:
         b2.prefs.codegen.target = target
     with open(os.path.join(case_dir, "network.json")) as f:
@@ -92,7 +91,8 @@ def main(case_dir, target, ticks):
         network.restore()
     if target == "cpp_standalone":
         network.run(ticks * b2.ms)            # only generates the code
-        b2.device.build(run=False, compile=True)
+        b2.device.build(directory=os.path.join(case_dir, "standalone"), run=False,
+                        compile=True)
         start, cpu = time.perf_counter(), _children_cpu()
         b2.device.run()
         run, cpu = time.perf_counter() - start, _children_cpu() - cpu
