@@ -12,13 +12,12 @@ EXCITATION_IN and INHIBITION_IN, each pair of neurons connected with the case's 
 (1 for dense), excitatory weights uniform in 0..12/(N p) and inhibitory ones in 0..16/(N p),
 spikes counted as flags (``spike_input="flag"``). The weights are drawn once with a seed and
 written to files (a dense .npy matrix, or compressed sparse columns in a .npz) that both
-simulators read, so both run the same network. Each case runs 1 s of model time (1,000 ticks of 1 ms) in a process of its own,
-for ikaros and for every Brian2 target given; it prints the build time, the run time, the
-spike count, the CPU time of the run (less sensitive than the wall time to other processes
-on a shared machine), the peak memory (maximum resident set of the process) and, for
-Brian2, how
-many spikes (tick, neuron) the two runs have in common and the first tick where they
-differ. Brian2 runs with the Python of its own environment (``--brian2-python``; Brian2 2.9
+simulators read, so both run the same network. Each case runs 1 s of model time (1,000
+ticks of 1 ms) in a process of its own, for ikaros and for every Brian2 target given; it
+prints the build time, the run time, the CPU time of the run (less sensitive than the wall
+time to other processes on a shared machine), the spike count, the peak memory (the
+process's VmHWM) and how many spikes (tick, neuron) a run has in common with the first
+ikaros run, with the first tick where they differ. Brian2 runs with the Python of its own environment (``--brian2-python``; Brian2 2.9
 does not import with NumPy 2.4): it is never a dependency of ikaros. Brian2's compilation is
 not timed (its runtime targets run one warm-up step first and are then restored; the C++
 standalone target's compile is left out).

@@ -4,7 +4,7 @@ import numpy as np
 from ikaros.module import Input, Module, Output, Parameter
 from ikaros.modules.io._files import resolve
 from ikaros.modules.neural import _connectivity as connectivity
-from ikaros.modules.neural._spike_kernels import KERNELS
+from ikaros.modules.neural._spike_kernels import kernels
 from ikaros.modules.neural._stdp import STDP
 
 # Izhikevich (2003) parameters (a, b, c, d) of the neuron types.
@@ -137,10 +137,9 @@ class SpikingPopulation(Module):
         self._u = b * self._v
         self._current = np.zeros(n)
         self._synaptic_current = np.zeros(n)
-        self._compiled = self.spike_kernel == "auto" and KERNELS is not None
+        self._kernels = kernels() if self.spike_kernel == "auto" else None
+        self._compiled = self._kernels is not None
         self._spiking_buffer = np.zeros(n, dtype=np.int64)
-        if self._compiled:
-            KERNELS.warm_up()
         if self.DIRECT_IN is not None and self.DIRECT_IN.size > n:
             raise ValueError(f"DIRECT_IN has {self.DIRECT_IN.size} elements but the "
                              f"population only {n} neurons")
@@ -215,8 +214,9 @@ class SpikingPopulation(Module):
 
         steps = max(1, self.substeps)
         if self._compiled:
-            count = KERNELS.izhikevich(v, u, current, a, b, c, d, th, steps, dt / steps,
-                                       dt * a, self.OUTPUT.reshape(-1), self._spiking_buffer)
+            count = self._kernels.izhikevich(v, u, current, a, b, c, d, th, steps, dt / steps,
+                                             dt * a, self.OUTPUT.reshape(-1),
+                                             self._spiking_buffer)
             spiking = self._spiking_buffer[:count]
         else:
             fired = v >= th                      # spiked on the previous tick

@@ -16,7 +16,7 @@ import os
 
 import numpy as np
 
-from ._spike_kernels import KERNELS
+from ._spike_kernels import kernels
 
 DENSE_ABOVE = 0.25      # a projection denser than this is stored as a dense matrix
 _GAP_CHUNK = 1 << 22    # synapse positions drawn per round when sampling a sparse projection
@@ -102,12 +102,13 @@ class Projection:
         a compiled loop does it, which gives the same numbers when out is zero on entry."""
         if senders.size == 0:
             return
-        if compiled and KERNELS is not None:
+        loops = kernels() if compiled else None
+        if loops is not None:
             scale = _NO_VALUES if values is None else values.astype(np.float32)
             if self.is_dense:
-                KERNELS.add_dense(self.dense, senders, scale, out)
+                loops.add_dense(self.dense, senders, scale, out)
             else:
-                KERNELS.add_sparse(self.indptr, self.indices, self.data, senders, scale, out)
+                loops.add_sparse(self.indptr, self.indices, self.data, senders, scale, out)
             return
         if self.is_dense:
             rows = self.dense.T[senders]              # one contiguous row per sender

@@ -1,16 +1,13 @@
 """Compiled loops of spiking populations, with numba (the optional extra ``ikaros[fast]``).
 
-``KERNELS`` is None when numba is not installed; the callers then use their NumPy forms,
-which add the same numbers in the same order (so both give the same spikes).
+``kernels()`` gives them, or None when numba is not installed; the callers then use their
+NumPy forms, which compute the same numbers in the same order (so both give the same
+spikes). numba is imported on the first call only (it takes about a second), as the
+kernel's compiled tick does, so that classes that never ask for the loops do not pay for it.
 """
 from __future__ import annotations
 
 import numpy as np
-
-try:
-    import numba
-except ImportError:          # numba is optional: the NumPy forms are used instead
-    numba = None
 
 
 def _add_sparse(indptr, indices, data, senders, values, out):
@@ -64,19 +61,18 @@ def _izhikevich(v, u, current, a, b, c, d, threshold, steps, h, dt_a, output, sp
     return count
 
 
-class _Kernels:
-    def __init__(self):
+class Kernels:
+    """The loops compiled by numba."""
+
+    def __init__(self, numba):
         jit = numba.njit(cache=True, nogil=True)
         self.add_sparse = jit(_add_sparse)
         self.add_dense = jit(_add_dense)
         self.izhikevich = jit(_izhikevich)
-        self._ready = False
 
     def warm_up(self) -> None:
         """Compile (or load from numba's cache) every loop for the argument types the
         populations pass, so that the first tick does not pay for it."""
-        if self._ready:
-            return
         f32, f64, i64 = np.float32, np.float64, np.int64
         one, none = np.zeros(1, i64), np.zeros(0, f32)
         for values in (none, np.ones(1, f32)):
@@ -85,7 +81,21 @@ class _Kernels:
             self.add_dense(np.ones((1, 1), f32, order="F"), one, values, np.zeros(1, f64))
         self.izhikevich(np.zeros(1), np.zeros(1), np.zeros(1), 0.02, 0.2, -65.0, 8.0, 30.0,
                         2, 0.5, 0.02, np.zeros(1, f32), np.zeros(1, i64))
-        self._ready = True
 
 
-KERNELS = _Kernels() if numba is not None else None
+_kernels: list = []
+
+
+def kernels() -> Kernels | None:
+    """The compiled loops, made (or loaded from numba's cache) on the first call; None
+    when numba is not installed."""
+    if not _kernels:
+        try:
+            import numba
+        except ImportError:          # numba is optional: the NumPy forms are used instead
+            _kernels.append(None)
+        else:
+            made = Kernels(numba)
+            made.warm_up()
+            _kernels.append(made)
+    return _kernels[0]
