@@ -17,9 +17,9 @@ ticks of 1 ms) in a process of its own, for ikaros and for every Brian2 target g
 prints the build time, the run time, the CPU time of the run (less sensitive than the wall
 time to other processes on a shared machine), the spike count, the peak memory (the
 process's VmHWM) and how many spikes (tick, neuron) a run has in common with the first
-ikaros run, with the first tick where they differ. Brian2 runs with the Python of its own environment (``--brian2-python``; Brian2 2.9
-does not import with NumPy 2.4): it is never a dependency of ikaros. Brian2's compilation is
-not timed (its runtime targets run one warm-up step first and are then restored; the C++
+ikaros run, with the first tick where they differ. Brian2 runs with the Python of its own
+environment (``--brian2-python``; Brian2 2.9 does not import with NumPy 2.4): it is never a
+dependency of ikaros. Brian2's compilation is not timed (its runtime targets run one warm-up step first and are then restored; the C++
 standalone target's compile is left out).
 """
 from __future__ import annotations
