@@ -19,8 +19,8 @@ time to other processes on a shared machine), the spike count, the peak memory (
 process's VmHWM) and how many spikes (tick, neuron) a run has in common with the first
 ikaros run, with the first tick where they differ. Brian2 runs with the Python of its own
 environment (``--brian2-python``; Brian2 2.9 does not import with NumPy 2.4): it is never a
-dependency of ikaros. Brian2's compilation is not timed (its runtime targets run one warm-up step first and are then restored; the C++
-standalone target's compile is left out).
+dependency of ikaros. Brian2's compilation is not timed (its runtime targets run one
+warm-up step first and are then restored; the C++ standalone target's compile is left out).
 """
 from __future__ import annotations
 
