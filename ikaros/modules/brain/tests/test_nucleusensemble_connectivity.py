@@ -93,3 +93,15 @@ def test_wrong_weight_file_shape_is_named(tmp_path):
     with pytest.raises(Exception) as info:
         run(tmp_path, 'size="3" excitation_weights_file="w.npy"', E)
     assert "excitation_weights_file" in str(info.value) and "3 x 4" in str(info.value)
+
+
+def test_sparse_storage_without_scipy_names_the_install(tmp_path, monkeypatch):
+    """A sparse topology needs scipy: without it the load fails with the pip install that
+    brings it; dense storage needs nothing more than NumPy."""
+    import sys
+    monkeypatch.setitem(sys.modules, "scipy.sparse", None)     # import fails
+    with pytest.raises(Exception) as info:
+        run(tmp_path, 'size="3" synapse_storage="sparse"', E[:3])
+    assert "pip install 'ikaros[scipy]'" in str(info.value)
+    got = run(tmp_path, 'size="3" synapse_storage="dense" scale="no"', E[:3])
+    assert np.allclose(got, expected(np.eye(3), E[:3], False), atol=1e-6)
