@@ -32,9 +32,10 @@ BODY = (
 )
 
 
-def raster(folder) -> dict:
-    """{population: [[tick, neuron], ...]} of every spike in TICKS ticks."""
-    net = load_body(folder, BODY)
+def raster(folder, **overrides) -> dict:
+    """{population: [[tick, neuron], ...]} of every spike in TICKS ticks (keyword arguments
+    set attributes of the top group, which its modules inherit)."""
+    net = load_body(folder, BODY, **overrides)
     thresholds = {"Fs": 25.0}
     try:
         spikes = {p: [] for p in POPULATIONS}
