@@ -4,8 +4,8 @@ A projection is made from a connection probability with a seed (each receiver-se
 a synapse with that probability, its weight uniform in a range), from a user weight matrix
 (a parameter, or a file: .npy, a .npz written by ``scipy.sparse.save_npz`` or by
 ``numpy.savez`` with ``row``, ``col``, ``data`` and ``shape``, or a text/CSV file), or from
-a sparse matrix. It is stored dense when most pairs are synapses and by sender (compressed
-sparse columns) otherwise, so that spikes are propagated by adding only the columns of the
+a sparse matrix. It is stored dense when more than a quarter of the pairs are synapses and
+by sender (compressed sparse columns) otherwise, so that spikes are propagated by adding only the columns of the
 senders that spiked: a tick costs in proportion to the spikes, not to receivers x senders.
 Reading files needs only NumPy; ``product`` of a sparse projection with a rate vector uses
 scipy.sparse.
@@ -50,12 +50,6 @@ class Projection:
     @property
     def synapse_count(self) -> int:
         return int(np.count_nonzero(self.dense)) if self.is_dense else int(self.data.size)
-
-    @property
-    def nbytes(self) -> int:
-        if self.is_dense:
-            return int(self.dense.nbytes)
-        return int(self.indptr.nbytes + self.indices.nbytes + self.data.nbytes)
 
     def as_sparse(self) -> "Projection":
         """This projection stored by sender (itself when it is already)."""
