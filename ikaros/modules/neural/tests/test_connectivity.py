@@ -93,3 +93,10 @@ def test_files(tmp_path):
     np.savez(tmp_path / "csc.npz", format="csc", shape=(4, 3), indptr=[0, 2, 4, 5],
              indices=[2, 1, 2, 0, 2], data=[0.5, 2.0, 0.25, 1.5, 3.0])
     assert np.array_equal(connectivity.load(str(tmp_path / "csc.npz"), (4, 3)).to_dense(), W)
+
+
+def test_a_scipy_sparse_matrix_is_taken_as_it_is():
+    sparse = pytest.importorskip("scipy.sparse")
+    p = connectivity.from_matrix(sparse.csr_matrix(W), (4, 3))
+    assert not p.is_dense and np.array_equal(p.to_dense(), W)
+    assert list(p.indptr) == [0, 2, 4, 5] and list(p.indices) == [1, 2, 0, 2, 2]
