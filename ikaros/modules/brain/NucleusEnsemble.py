@@ -1,12 +1,18 @@
 """NucleusEnsemble: a population of nuclei with topologies and neuromodulation."""
 import numpy as np
 
-from ikaros.module import Input, Module, Output, Parameter
+from ikaros.module import Input, Module, Output, Parameter, require
+from ikaros.modules.io._files import resolve
+from ikaros.modules.neural import _connectivity as connectivity
 
 from ._nucleus import ATAN_1
 
 NA_THRESHOLD = 0.5          # noradrenaline threshold when NA_THRESHOLD is not connected
 WEIGHT_MIN, WEIGHT_MAX = 0.01, 100.0
+SPARSE_FROM = 1 << 18       # synapse_storage auto: sparse from this many pairs (when sparse)
+INPUTS = (("EXCITATION", "excitation", "EX_TOPOLOGY"),
+          ("INHIBITION", "inhibition", "INH_TOPOLOGY"),
+          ("SHUNTING_INHIBITION", "shunting_inhibition", "SH_INH_TOPOLOGY"))
 
 
 def _activation(name, x):
@@ -37,7 +43,14 @@ class NucleusEnsemble(Module):
     connected the excitation weights w (initially 1) adapt: for an active nucleus its output
     enters a window of the last ``moving_avg_window_size`` values (initially 1) and w +=
     ADAPTATIONRATE (0.001 when unconnected) * (SETPOINT - window mean), kept in 0.01..100.
-    Modulatory inputs have one element per nucleus or one shared element. Ikaros 2 left the
+    Modulatory inputs have one element per nucleus or one shared element. Besides the named
+    topologies, a topology can be ``random`` (each nucleus-input pair connected with
+    ``connection_probability``, weight 1, drawn with ``seed``) or be read from a file
+    (``*_weights_file``: .npy, .npz of scipy.sparse.save_npz or of numpy.savez with row,
+    col, data and shape, .csv, .txt; nuclei x input elements, float32), which replaces the
+    topology parameter. With ``synapse_storage`` auto a topology of at least 262,144 pairs of
+    which at most a quarter are connected is kept sparse and multiplied with scipy.sparse
+    (the extra ikaros[scipy]); ``sparse`` asks for that always, ``dense`` never. Ikaros 2 left the
     lateral topologies empty, averaged the window over ``size`` values, replaced phi by w and
     divided atan by tan(1); these are fixed here."""
 
@@ -59,11 +72,29 @@ class NucleusEnsemble(Module):
     tetanus_leak = Parameter(1.0, "fraction of the tetanus trace lost each tick (1: the trace "
                              "is the current drive)", range=(0, 1))
     excitation_topology = Parameter("one_to_one", "how EXCITATION reaches the nuclei",
-                                    options="one_to_one/all_to_all")
+                                    options="one_to_one/all_to_all/random")
     inhibition_topology = Parameter("one_to_one", "how INHIBITION reaches the nuclei",
-                                    options="one_to_one/lateral/wta")
+                                    options="one_to_one/lateral/wta/random")
     shunting_inhibition_topology = Parameter("one_to_one", "how SHUNTING_INHIBITION reaches "
-                                             "the nuclei", options="one_to_one/lateral/wta")
+                                             "the nuclei", options="one_to_one/lateral/wta/"
+                                             "random")
+    connection_probability = Parameter(0.1, "probability of each nucleus-input pair of a "
+                                       "random topology", range=(0, 1))
+    seed = Parameter(None, "seed of the random topologies; unset (or 0) gives different ones "
+                     "every run", type="int")
+    excitation_weights_file = Parameter("", "file of the excitation weights (nuclei x "
+                                        "EXCITATION elements), replacing "
+                                        "excitation_topology", file=True, fixed=True)
+    inhibition_weights_file = Parameter("", "file of the inhibition weights, replacing "
+                                        "inhibition_topology", file=True, fixed=True)
+    shunting_inhibition_weights_file = Parameter("", "file of the shunting inhibition "
+                                                 "weights, replacing "
+                                                 "shunting_inhibition_topology", file=True,
+                                                 fixed=True)
+    synapse_storage = Parameter("auto", "how the topologies are kept: dense, sparse "
+                                "(scipy.sparse products), or auto: sparse when large and at "
+                                "most a quarter connected", options="auto,dense,sparse",
+                                fixed=True)
     recurrent_topology = Parameter("none", "each nucleus's connection to its own previous "
                                    "output", options="none/excitatory/inhibitory")
     activation_function = Parameter("scaledsigmoid", "the output function f",
@@ -118,13 +149,39 @@ class NucleusEnsemble(Module):
         self.fatal_error(f"a modulatory input has {x.size} elements; it needs 1 or {self.size}")
         return np.zeros(self.size)
 
+    def _projection(self, rng, kind, n_in):
+        """The fixed topology of one input: from its file, drawn, or named."""
+        shape = (self.size, n_in)
+        filename = getattr(self, f"{kind}_weights_file")
+        if filename:
+            p = connectivity.load(resolve(self, filename), shape, f"{kind}_weights_file")
+        elif getattr(self, f"{kind}_topology") == "random":
+            p = connectivity.random(rng, shape, 1.0, 1.0, self.connection_probability)
+        else:
+            p = connectivity.from_matrix(self._topology(getattr(self, f"{kind}_topology"),
+                                                        n_in), shape)
+        sparse = self.synapse_storage == "sparse" or (
+            self.synapse_storage == "auto" and n_in * self.size >= SPARSE_FROM
+            and p.synapse_count <= connectivity.DENSE_ABOVE * n_in * self.size)
+        if not sparse:
+            return p.as_dense()
+        if self._sparse is None:
+            self._sparse = require("scipy.sparse", "scipy", extra="scipy")
+        return p.as_sparse()
+
+    @staticmethod
+    def _row_counts(p):
+        """The number of synapses onto each nucleus."""
+        if p.is_dense:
+            return np.count_nonzero(p.dense, axis=1)
+        return np.bincount(p.indices, minlength=p.shape[0])
+
     def init(self):
         n = self.size
         self._topo = {}
-        for name, param, ext in (("EXCITATION", self.excitation_topology, "EX_TOPOLOGY"),
-                                 ("INHIBITION", self.inhibition_topology, "INH_TOPOLOGY"),
-                                 ("SHUNTING_INHIBITION", self.shunting_inhibition_topology,
-                                  "SH_INH_TOPOLOGY")):
+        self._sparse = None
+        rng = np.random.default_rng(self.seed or None)
+        for name, kind, ext in INPUTS:
             x = getattr(self, name)
             if x is None:
                 continue
@@ -133,7 +190,8 @@ class NucleusEnsemble(Module):
                 self.fatal_error(f"{ext} must have {n} rows and {x.size} columns, not "
                                  f"shape {e.shape}")
                 e = None
-            self._topo[name] = (e, self._topology(param, x.size))
+            p = self._projection(rng, kind, x.size)
+            self._topo[name] = (e, p, self._row_counts(p))
         self._rec = {"excitatory": 1.0, "inhibitory": -1.0}.get(self.recurrent_topology, 0.0)
         self._x = np.zeros(n)
         self._weights = np.ones(n)
@@ -150,12 +208,14 @@ class NucleusEnsemble(Module):
         x = getattr(self, name)
         if x is None:
             return 0.0
-        ext, topo = self._topo[name]
+        ext, projection, count = self._topo[name]
         if ext is not None:
             topo = ext.reshape(self.size, x.size).astype(np.float64)
-        total = topo @ x.astype(np.float64)
-        if self.scale:
+            total = topo @ x.astype(np.float64)
             count = np.count_nonzero(topo, axis=1)
+        else:
+            total = projection.product(x, self._sparse)
+        if self.scale:
             total = np.divide(total, count, out=np.zeros(self.size), where=count > 0)
         return total
 
