@@ -1,5 +1,5 @@
 """The web UI's record button endpoint: /api/record starts and ends a recording in the
-models folder."""
+user-data folder (ikaros -u)."""
 import os
 import warnings
 
@@ -21,9 +21,10 @@ pytestmark = pytest.mark.filterwarnings("ignore:.*httpx.*")
 
 
 def test_record_on_and_off(tmp_path):
-    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>')
     models = tmp_path / "models"
     models.mkdir()
+    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>',
+                    user_data=str(models))
     with TestClient(create_app(net, models_dir=str(models))) as client:
         assert client.get("/api/record").json() == {"recording": False, "file": None,
                                                     "folder": str(models)}
@@ -47,7 +48,8 @@ def test_record_on_and_off(tmp_path):
 
 
 def test_a_second_recording_never_overwrites_the_first(tmp_path):
-    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>')
+    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>',
+                    user_data=str(tmp_path))
     with TestClient(create_app(net, models_dir=str(tmp_path))) as client:
         first = client.post("/api/record", json={"on": True}).json()["file"]
         second = client.post("/api/record", json={"on": True}).json()["file"]
@@ -92,7 +94,8 @@ def test_replay_on_the_command_line_needs_no_model_and_no_batch(tmp_path, capsys
 
 
 def test_an_apply_ends_the_recording_of_the_network_it_replaces(tmp_path):
-    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>')
+    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>',
+                    user_data=str(tmp_path))
     app = create_app(net, models_dir=str(tmp_path))
     with TestClient(app) as client:
         file = client.post("/api/record", json={"on": True}).json()["file"]
