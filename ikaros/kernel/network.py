@@ -26,6 +26,7 @@ from .dynamic import DynamicRing, delayed_copy
 from .execution import AsyncModule, Plan, module_tick
 from .gating import gated
 from .fusion import fuse
+from .portguard import port_guard
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .limits import check_memory as _check_memory
 from .ranges import check_parameter, fit_shape
@@ -286,7 +287,8 @@ class Network:
             return fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
                         pre_tick)
         self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
-                         self.threads or 1, self._module_cost, fuser)
+                         self.threads or 1, self._module_cost, fuser,
+                         port_guard(self.schedule, self._buffers))
         self._bulk = bulk if bulk_copy is not None else None
         self.compiled_since = 0 if self.compiled_modules else None
         if self.compiled_since is not None:
@@ -590,12 +592,16 @@ class Network:
         from ..notebook import network_html
         return network_html(self)
 
-    def record(self, filename: str, only: list[str] | str | None = None, every: int = 1):
+    def record(self, filename: str, only: list[str] | str | None = None, every: int = 1,
+               flush_seconds: float = 1.0, on_error: str = "stop"):
         """Record outputs (all, or those matching the glob patterns ``only``) every
         ``every``-th tick into the HDF5 file ``filename``, from the next tick until the
-        returned Recorder's ``close()`` or this network's ``close()``."""
+        returned Recorder's ``close()`` or this network's ``close()``. The rows are
+        flushed at least every ``flush_seconds``; when writing fails the run stops
+        (``on_error="stop"``) or goes on without recording (``"continue"``)."""
         from ..experiments.recording import Recorder
-        return Recorder(self, filename, only=only, every=every)
+        return Recorder(self, filename, only=only, every=every,
+                        flush_seconds=flush_seconds, on_error=on_error)
 
     @property
     def controller(self) -> Controller:
