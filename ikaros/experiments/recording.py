@@ -34,7 +34,7 @@ from datetime import datetime, timezone
 import numpy as np
 
 from ..kernel import switching
-from ..kernel.taps import ROW, SIGNAL
+from ..kernel.taps import ROW, SIGNAL, TICK
 from ..module import FATAL_ERROR, WARNING
 from .chunks import COMPRESSION_LEVEL, shuffled, shuffled_deflate
 from .signals import module_parameters, seeds, select_outputs
@@ -301,7 +301,8 @@ class Recorder:
             if hook in hooks:
                 hooks.remove(hook)
         if self._error is None:
-            self._tap.settle()          # the row of the tick just done
+            if self._tap.state[TICK] < net.tick:    # not a tick cut off (Ctrl-C) half done
+                self._tap.settle()          # the row of the tick just done
             self._hand_over()
         net.remove_tap(self._tap)
         self._queue.put(None)
