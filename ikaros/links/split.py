@@ -19,6 +19,7 @@ from __future__ import annotations
 import os
 import secrets
 import selectors
+import signal
 import subprocess
 import sys
 import time
@@ -31,13 +32,17 @@ from ..kernel.network import Network
 from ..kernel.scope import VariableError, substitute
 from ..kernel.tree import Group, find_component
 from ..module import EXCEPTION, FATAL_ERROR
+from .atomic import signals_held
 from .endpoint import KEY_VARIABLE, check_key, link_key, split_address, tcp
-from .peer import HEARTBEAT_MS, HEARTBEAT_TIMEOUT_MS, zmq_module
+from .peer import zmq_module
 from .wire import LinkError, decode, encode
 
 WORKER_PORT = 9200          # the default port of ``ikaros worker``
 START_SECONDS = 60.0        # for a worker to start, build the model and initialise
 POLL_SECONDS = 0.5          # how often a wait checks that the peer is still there
+STALL_TICKS = 50            # a worker silent this many tick durations is lost (stall_ticks)
+MIN_STALL_SECONDS = 0.2     # but never less (a loaded machine's scheduling)
+END_SECONDS = 1.5           # for a lost worker's process to end after SIGTERM (then SIGKILL)
 
 
 def process_groups(top: Group) -> dict[Group, str]:
@@ -52,6 +57,26 @@ def process_groups(top: Group) -> dict[Group, str]:
             if where:
                 groups[c] = where
     return groups
+
+
+def stall_seconds(group: Group, tick_duration: float) -> float:
+    """How long a worker may be silent (not even answering the link's heartbeats) before
+    it is lost: the group's ``stall_ticks`` (default STALL_TICKS) tick durations, at least
+    MIN_STALL_SECONDS. A worker busy with a long tick still answers the heartbeats (ZeroMQ
+    answers them on its own thread); a stopped or hung process, or a lost machine, does
+    not."""
+    try:
+        text = substitute(group.attrs.get("stall_ticks") or "", group.parent).strip()
+    except VariableError as e:
+        raise group.node.error(f"stall_ticks: {e}") from None
+    if not text:            # (also a variable left empty)
+        ticks = STALL_TICKS
+    else:
+        if not text.isdigit() or int(text) < 1:
+            raise group.node.error(f'stall_ticks "{text}" must be a whole number of ticks '
+                                   f'>= 1')
+        ticks = int(text)
+    return max(ticks * tick_duration, MIN_STALL_SECONDS)
 
 
 def make_network(builder, top, order, runs, edges) -> Network:
@@ -129,7 +154,6 @@ class SplitNetwork(PartNetwork):
     def __init__(self, builder, top, order, runs, edges, groups):
         self.workers = [WorkerLink(g, where, *crossings(runs, groups, g))
                         for g, where in groups.items()]
-        self._in_flight = False
         self._source_text = builder._text
         self._load_request = {"type": "load", "filename": builder.filename,
                               "overrides": builder.overrides,
@@ -144,6 +168,7 @@ class SplitNetwork(PartNetwork):
                 text = f.read()
         try:
             for worker in self.workers:          # they build while this process does
+                worker.stall_seconds = stall_seconds(worker.group, self.clock.tick_duration)
                 worker.start(dict(self._load_request, text=text))
             super()._compile()
         except BaseException:
@@ -162,21 +187,23 @@ class SplitNetwork(PartNetwork):
     def _tick(self) -> None:
         for worker in self.workers:
             worker.send_tick(self.tick)
-        self._in_flight = True
         super()._tick()             # may end the run, which collects the workers' tick
-        if self._in_flight:
-            self._collect()
-            if self.stop_reason is not None and not self._stopped:
-                self._end()
+        self._collect()
+        if self.stop_reason is not None and not self._stopped:
+            self._end()
 
     def _collect(self) -> None:
-        self._in_flight = False
+        """Take each worker's answer to the tick sent to it and not yet answered (also
+        after a Ctrl-C that came at any point of the tick)."""
         for worker in self.workers:
+            tick = worker.pending
+            if tick is None:
+                continue
             try:
-                log = worker.receive_tick(self.tick - 1)
+                log = worker.receive_tick()
             except LinkError as e:
                 log = [(FATAL_ERROR, worker.group.path, str(e))]
-            self._relay(log, self.tick - 1)
+            self._relay(log, tick)
 
     def _relay(self, log: list, tick: int) -> None:
         """Log (and print, and act on) a worker's notifications of ``tick``."""
@@ -217,8 +244,7 @@ class SplitNetwork(PartNetwork):
 
     def _end(self) -> None:
         try:
-            if self._in_flight:
-                self._collect()
+            self._collect()
             super()._end()
         finally:
             self._stop_workers()
@@ -243,6 +269,9 @@ class WorkerLink:
         self.watched: dict = {}         # path -> array of other buffers to bring over
         self._asked: list = []          # the watched paths asked for with the last tick
         self.lost = None                # why the link was lost
+        self.pending: int | None = None     # the tick sent and not yet answered
+        self.serving = False            # whether it has built and initialised its group
+        self.stall_seconds = MIN_STALL_SECONDS     # set from the model's timing
         self.remote = "://" in where or ":" in where
         self.what = f'the worker of group "{group.path}" (process="{where}")'
 
@@ -260,8 +289,11 @@ class WorkerLink:
             host, port = "127.0.0.1", self._spawn()
         s = self.socket = zmq.Context.instance().socket(zmq.DEALER)
         s.setsockopt(zmq.LINGER, 0)
-        s.setsockopt(zmq.HEARTBEAT_IVL, HEARTBEAT_MS)
-        s.setsockopt(zmq.HEARTBEAT_TIMEOUT, HEARTBEAT_TIMEOUT_MS)
+        # a stalled worker is found by its silence: a heartbeat every quarter of the stall
+        # time, and the link lost when none is answered within three quarters of it
+        quarter = max(1, int(self.stall_seconds * 250))
+        s.setsockopt(zmq.HEARTBEAT_IVL, quarter)
+        s.setsockopt(zmq.HEARTBEAT_TIMEOUT, 3 * quarter)
         self.monitor = s.get_monitor_socket(zmq.EVENT_DISCONNECTED)
         s.connect(tcp(host, port))
         self.address = tcp(host, port)
@@ -279,7 +311,8 @@ class WorkerLink:
             p for p in (package_root, os.environ.get("PYTHONPATH")) if p)
         self.process = subprocess.Popen(
             [sys.executable, "-m", "ikaros", "worker", "--port", "0", "--once",
-             "--parent", str(os.getpid())], stdout=subprocess.PIPE, env=env)
+             "--parent", str(os.getpid())], stdout=subprocess.PIPE, env=env,
+            preexec_fn=_ignore_ctrl_c)
         line = b""
         with selectors.DefaultSelector() as sel:
             sel.register(self.process.stdout, selectors.EVENT_READ)
@@ -299,23 +332,39 @@ class WorkerLink:
                                         f"{text or 'no answer'}")
         return int(text.rsplit(":", 1)[1].split()[0])
 
-    def _receive(self, deadline: float | None = None) -> tuple[dict, list]:
-        """The next message from the worker; LinkError when it is lost or refuses."""
-        zmq = zmq_module()
+    def _receive(self, deadline: float | None = None, then=None):
+        """The next message from the worker as (header, arrays), or what ``then(header,
+        arrays)`` makes of it: a Ctrl-C or SIGTERM that comes while the message is read and
+        taken waits until it is (the wait for it may be interrupted). LinkError when the
+        worker is lost or refuses."""
+        while True:
+            self._wait(deadline)
+            with signals_held():
+                message = self._read()
+                if message is not None:
+                    return then(*message) if then is not None else message
+
+    def _wait(self, deadline: float | None) -> None:
+        """Until a message is there; LinkError when the worker is lost."""
         if self.lost:
             raise LinkError(self.lost)
-        while not self.socket.poll(POLL_SECONDS * 1000):
+        poll_ms = min(POLL_SECONDS, self.stall_seconds / 4) * 1000
+        while not self.socket.poll(poll_ms):
             reason = None
             if self.process is not None and self.process.poll() is not None:
                 reason = f"its process ended (exit status {self.process.returncode})"
             elif self.monitor.poll(0):
-                reason = "the connection was lost"
+                reason = f"the connection was lost (silent for {self.stall_seconds:g} s, " \
+                         f"or closed)"
             elif deadline is not None and time.monotonic() > deadline:
                 reason = f"no answer within {START_SECONDS:g} s"
             if reason:
                 self.lost = f"{self.what} at {self.address} was lost: {reason}"
                 raise LinkError(self.lost)
-        frames = self.socket.recv_multipart(zmq.NOBLOCK)
+
+    def _read(self) -> tuple[dict, list] | None:
+        """The message that is there (None for the worker's check of the link)."""
+        frames = self.socket.recv_multipart(zmq_module().NOBLOCK)
         try:
             header, arrays = decode(frames, self.key)
         except LinkError:
@@ -323,7 +372,7 @@ class WorkerLink:
             if header.get("type") != "refused":
                 raise
         if header.get("type") == "ping":                # the worker checks the link
-            return self._receive(deadline)
+            return None
         if header.get("type") in ("refused", "error"):
             self.lost = f"{self.what} at {self.address}: {header.get('message')}"
             raise LinkError(self.lost)
@@ -337,23 +386,33 @@ class WorkerLink:
         except LinkError as e:
             raise self.group.node.error(str(e)) from None
         self._take(header, arrays, -1)
+        self.serving = True
         return header.get("log", [])
 
     def send_tick(self, tick: int) -> None:
         if not self.lost:
-            self._asked = list(self.watched)
+            asked = list(self.watched)
             header = {"type": "tick", "tick": tick, "requests": self.requests,
-                      "watch": self._asked}
-            self.socket.send_multipart(encode(header, [b.array for b in self.incoming],
-                                              self.key))
-            self.requests = []
+                      "watch": asked}
+            frames = encode(header, [b.array for b in self.incoming], self.key)
+            with signals_held():        # sent whole, and then awaited
+                self.socket.send_multipart(frames)
+                self._asked, self.pending, self.requests = asked, tick, []
 
-    def receive_tick(self, tick: int) -> list:
-        """Take the worker's values of ``tick``; returns its notifications of the tick
-        (an end of file or a fatal error among them ends the run here too)."""
-        header, arrays = self._receive()
-        self._take(header, arrays, tick)
-        return header.get("log", [])
+    def receive_tick(self) -> list:
+        """Take the worker's values of the tick sent last; returns its notifications of
+        the tick (an end of file or a fatal error among them ends the run here too)."""
+        tick = self.pending
+
+        def take(header, arrays):
+            self.pending = None
+            self._take(header, arrays, tick)
+            return header.get("log", [])
+        try:
+            return self._receive(then=take)
+        except LinkError:
+            self.pending = None
+            raise
 
     def _take(self, header, arrays, tick) -> None:
         asked = self._asked if tick >= 0 else []
@@ -372,19 +431,42 @@ class WorkerLink:
         """End the worker's session and close the link (once)."""
         if self.socket is not None:
             if not self.lost:
-                self.socket.send_multipart(encode({"type": "stop"}, key=self.key))
-                self.socket.poll(2000)             # its acknowledgement, once stopped
+                with signals_held():
+                    self.socket.send_multipart(encode({"type": "stop"}, key=self.key))
+                if self.serving:
+                    self.socket.poll(2000)         # its acknowledgement, once stopped
             self.socket.disable_monitor()
             self.monitor.close(0)
             self.socket.close(0)
             self.socket = None
         if self.process is not None:
+            if (self.lost or not self.serving) and self.process.poll() is None:
+                self._end_process()
             try:
                 self.process.wait(10)
             except subprocess.TimeoutExpired:
                 self.process.kill()
                 self.process.wait()
             self.process = None
+
+    def _end_process(self) -> None:
+        """A worker started here that no longer answers (stopped, hung), or is still
+        building the model: SIGTERM, so that its modules' stop() runs once it goes on
+        (SIGCONT), and SIGKILL when it has not ended END_SECONDS later."""
+        self.process.terminate()
+        if hasattr(signal, "SIGCONT"):
+            self.process.send_signal(signal.SIGCONT)
+        try:
+            self.process.wait(END_SECONDS)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+
+
+def _ignore_ctrl_c() -> None:
+    """In a worker started here, before it runs: ignore SIGINT from its start on. A Ctrl-C
+    reaches every process of the terminal's process group, and the main process stops its
+    workers itself (a worker stopping on its own would answer a tick with its end)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _plain(value: Any) -> Any:

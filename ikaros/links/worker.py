@@ -89,6 +89,15 @@ class Worker:
         self.socket.send_multipart([peer] + encode(header, arrays,
                                                    self.key if signed else None))
 
+    def _answer(self, peer: bytes, header: dict, arrays=()) -> bool:
+        """Send to the session's peer; False when it is gone (it found this worker silent
+        too long, say after a SIGSTOP, and ended the run)."""
+        try:
+            self._send(peer, header, arrays)
+            return True
+        except self.zmq.ZMQError:
+            return False
+
     def _next(self, session: bytes | None = None):
         """(peer, header, arrays) of the next acceptable message; (None, None, None) when
         the session's peer (or the spawning process) is gone."""
@@ -147,9 +156,10 @@ class Worker:
             print(f"ikaros worker: running group {request['group']} of "
                   f"{request['filename']}", file=sys.stderr, flush=True)
         try:
-            self._send(peer, {"type": "ready", "tick": -1, "log": net.take_log()},
-                       net.sources())
-            while True:
+            if not self._answer(peer, {"type": "ready", "tick": -1, "log": net.take_log()},
+                                net.sources()):
+                header = None
+            while header is not None:
                 _, header, arrays = self._next(peer)
                 if header is None or header.get("type") == "stop":
                     break
@@ -160,10 +170,14 @@ class Worker:
                         net.step()
                     except RunError:
                         pass            # the fatal error is in the log it sends
-                self._send(peer, {"type": "tick", "tick": header.get("tick"),
-                                  "log": net.take_log()},
-                           net.sources(header.get("watch", [])))
+                if not self._answer(peer, {"type": "tick", "tick": header.get("tick"),
+                                           "log": net.take_log()},
+                                    net.sources(header.get("watch", []))):
+                    header = None
         finally:
             net.close()
             if header is not None:
-                self._send(peer, {"type": "stopped"})
+                self._answer(peer, {"type": "stopped"})
+            elif self.parent is None:
+                print("ikaros worker: the main process is gone; the session ended",
+                      file=sys.stderr, flush=True)
