@@ -16,6 +16,7 @@ h5py = pytest.importorskip("h5py")
 pytest.importorskip("xarray")
 
 from ikaros.experiments import open_recording  # noqa: E402
+from ikaros.testing import running_processes, wait_for  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__)))))
@@ -77,33 +78,10 @@ def rows(path) -> int:
         return 0
 
 
-def wait_until(condition, seconds, what):
-    deadline = time.monotonic() + seconds
-    while not condition():
-        assert time.monotonic() < deadline, f"{what} not within {seconds} s"
-        time.sleep(0.1)
-
-
-def alive_in_group(pgid: int) -> list[int]:
-    """The processes of a process group that are not zombies."""
-    found = []
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            with open(f"/proc/{entry}/stat") as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        if int(fields[2]) == pgid and fields[0] != "Z":
-            found.append(int(entry))
-    return found
-
-
 def run_1_under_way(out):
     """Run 0 has finished and run 1 has flushed rows of its recording."""
-    wait_until(lambda: finished(out / "run_0.h5") and rows(out / "run_1.h5") > 0, 120,
-               "run 0 finished and run 1 under way")
+    assert wait_for(lambda: finished(out / "run_0.h5") and rows(out / "run_1.h5") > 0,
+                    120, 0.1), "run 0 finished and run 1 under way: not within 120 s"
 
 
 @pytest.mark.parametrize("how", ["SIGTERM", "Ctrl-C"])
@@ -122,9 +100,9 @@ def test_an_interrupted_sweep_writes_its_table_and_leaves_no_process(folder, how
         assert sweep.returncode == 1
         assert "Traceback" not in err
         assert f"interrupted; the table of the runs so far is in {out}" in err
-        wait_until(lambda: not alive_in_group(sweep.pid), 10, "every process of the sweep gone")
+        assert wait_for(lambda: not running_processes(sweep.pid), 10)
     finally:
-        if alive_in_group(sweep.pid):
+        if running_processes(sweep.pid):
             os.killpg(sweep.pid, signal.SIGKILL)
     table = pd.read_csv(out / "results.csv")
     assert list(table["run"]) == [0, 1]
@@ -160,9 +138,9 @@ def test_a_sweep_killed_with_sigkill_leaves_no_worker(folder):
         sweep.send_signal(signal.SIGKILL)
         sweep.wait(30)
         # the worker of run 1 hears of it (SIGTERM), closes its recording and exits
-        wait_until(lambda: not alive_in_group(sweep.pid), 10, "every worker gone")
+        assert wait_for(lambda: not running_processes(sweep.pid), 10)
     finally:
-        if alive_in_group(sweep.pid):
+        if running_processes(sweep.pid):
             os.killpg(sweep.pid, signal.SIGKILL)
     ds = open_recording(str(out / "run_1.h5"))
     assert ds.attrs["finished"] is False

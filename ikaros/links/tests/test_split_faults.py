@@ -13,6 +13,7 @@ import pytest
 
 import ikaros
 from ikaros.errors import RunError
+from ikaros.testing import running_processes, wait_for
 
 pytest.importorskip("zmq")
 
@@ -60,49 +61,6 @@ def model(tmp_path):
     return str(path)
 
 
-def alive(pid: int) -> bool:
-    """Whether a process exists and is not a zombie."""
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except OSError:
-        return False
-
-
-def alive_in_group(pgid: int) -> list[int]:
-    found = []
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open(f"/proc/{entry}/stat") as f:
-                    fields = f.read().rsplit(")", 1)[1].split()
-            except OSError:
-                continue
-            if int(fields[2]) == pgid and fields[0] != "Z":
-                found.append(int(entry))
-    return found
-
-
-def children(pid: int) -> list[int]:
-    found = []
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open(f"/proc/{entry}/stat") as f:
-                    if int(f.read().rsplit(")", 1)[1].split()[1]) == pid:
-                        found.append(int(entry))
-            except OSError:
-                continue
-    return found
-
-
-def wait_until(condition, seconds, what):
-    deadline = time.monotonic() + seconds
-    while not condition():
-        assert time.monotonic() < deadline, f"{what} not within {seconds} s"
-        time.sleep(0.05)
-
-
 @pytest.mark.parametrize("stall_ticks, seconds", [("", 0.5), ("100", 1.0)])
 def test_a_stopped_worker_is_found_after_the_stall_ticks_and_the_run_ends_at_once(
         model, stall_ticks, seconds):
@@ -119,11 +77,11 @@ def test_a_stopped_worker_is_found_after_the_stall_ticks_and_the_run_ends_at_onc
         net.close()
         ended = time.monotonic() - stopped
     finally:
-        if alive(worker):
+        if worker in running_processes():
             os.kill(worker, signal.SIGKILL)
     assert seconds - 0.1 <= found < seconds + 2.5
     assert ended < found + 4           # the stopped worker is ended, not waited for
-    assert not alive(worker)
+    assert worker not in running_processes()
 
 
 def test_a_worker_busy_for_longer_than_the_stall_time_is_not_lost(model):
@@ -182,13 +140,13 @@ def test_ctrl_c_of_a_split_model_reports_nothing_but_the_stop(model):
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                start_new_session=True)
         try:
-            wait_until(lambda: children(run.pid), 60, "the worker started")
+            assert wait_for(lambda: running_processes(parent=run.pid), 60)
             time.sleep(delay)
             os.killpg(run.pid, signal.SIGINT)      # as a terminal sends Ctrl-C
             out, err = run.communicate(timeout=30)
-            wait_until(lambda: not alive_in_group(run.pid), 10, "every process gone")
+            assert wait_for(lambda: not running_processes(run.pid), 10)
         finally:
-            if alive_in_group(run.pid):
+            if running_processes(run.pid):
                 os.killpg(run.pid, signal.SIGKILL)
         assert run.returncode == 0, err
         assert err == "ikaros: interrupted\n"
