@@ -149,3 +149,34 @@ def test_a_sweep_killed_with_sigkill_leaves_no_worker(folder):
     np.testing.assert_array_equal(ds["tick"].values, np.arange(n))
     with h5py.File(out / "run_1.h5", "r") as f:
         assert f.attrs["ticks_recorded"] == n
+
+
+STOPPER = '''from ikaros import Module, Parameter
+
+
+class Stopper(Module):
+    """Raises KeyboardInterrupt (as Ctrl-C does) on tick ``at`` (-1: never)."""
+    at = Parameter(-1, "the tick", type="int")
+
+    def tick(self):
+        if self.clock.tick == self.at:
+            raise KeyboardInterrupt
+'''
+
+
+def test_a_sweep_in_this_process_interrupted_writes_the_table_of_every_run(tmp_path):
+    from ikaros.experiments.sweeps import sweep
+    (tmp_path / "Stopper.py").write_text(STOPPER)
+    (tmp_path / "m.ikg").write_text('<group name="M"><module class="Sweep" name="Counter" '
+                                    'min="0" max="1e9" step="1"/>'
+                                    '<module class="Stopper" name="S"/></group>')
+    with pytest.raises(KeyboardInterrupt):
+        sweep(str(tmp_path / "m.ikg"), {"S.at": [-1, 5, -1]}, ticks=20,
+              record=["Counter.OUTPUT"], out=str(tmp_path / "out"), workers=1,
+              table_format="csv", progress=False)
+    table = pd.read_csv(tmp_path / "out" / "results.csv")
+    assert list(table["status"]) == ["ok", "interrupted", "interrupted"]
+    assert list(table["ticks"]) == [20, 5, 0]
+    ds = open_recording(str(tmp_path / "out" / "run_1.h5"))
+    assert ds.attrs["finished"] is False
+    np.testing.assert_array_equal(ds["tick"].values, np.arange(5))
