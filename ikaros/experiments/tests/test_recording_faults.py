@@ -166,3 +166,22 @@ def test_the_flush_interval_is_a_setting(tmp_path):
     net.close()
     np.testing.assert_array_equal(open_recording(str(tmp_path / "run.h5"))["tick"].values,
                                   np.arange(4))
+
+
+def test_readers_stop_at_the_rows_the_file_counts_as_stored(tmp_path):
+    net = load_body(tmp_path, BODY)
+    path = str(tmp_path / "run.h5")
+    with net.record(path, only="Counter.OUTPUT"):
+        net.run(ticks=10)
+    net.close()
+    with h5py.File(path, "a") as f:        # as if rows 4-9 were cut off half written
+        assert f["stored"][0] == 10
+        f["stored"][0] = 4
+    assert open_recording(path).sizes["tick"] == 4
+    replay = load_body(tmp_path, f'<module class="Replay" name="R" filename="{path}" '
+                                 f'signal="Counter.OUTPUT"/>')
+    replay.log_level = -1
+    replay.run(ticks=100)           # ends with the last row kept: 4 ticks
+    assert replay.tick == 4
+    np.testing.assert_array_equal(replay.output("R.OUTPUT"), [4])
+    replay.close()
