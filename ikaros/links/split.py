@@ -32,7 +32,7 @@ from ..kernel.network import Network
 from ..kernel.scope import VariableError, substitute
 from ..kernel.tree import Group, find_component
 from ..module import EXCEPTION, FATAL_ERROR
-from .atomic import signals_held
+from .atomic import SignalHold
 from .endpoint import KEY_VARIABLE, check_key, link_key, split_address, tcp
 from .peer import zmq_module
 from .wire import LinkError, decode, encode
@@ -154,6 +154,9 @@ class SplitNetwork(PartNetwork):
     def __init__(self, builder, top, order, runs, edges, groups):
         self.workers = [WorkerLink(g, where, *crossings(runs, groups, g))
                         for g, where in groups.items()]
+        self._hold = SignalHold()           # link messages whole through a Ctrl-C
+        for worker in self.workers:
+            worker.hold = self._hold
         self._source_text = builder._text
         self._load_request = {"type": "load", "filename": builder.filename,
                               "overrides": builder.overrides,
@@ -166,6 +169,7 @@ class SplitNetwork(PartNetwork):
         if text is None:
             with open(self.filename, encoding="utf-8") as f:
                 text = f.read()
+        self._hold.install()
         try:
             for worker in self.workers:          # they build while this process does
                 worker.stall_seconds = stall_seconds(worker.group, self.clock.tick_duration)
@@ -250,8 +254,11 @@ class SplitNetwork(PartNetwork):
             self._stop_workers()
 
     def _stop_workers(self) -> None:
-        for worker in self.workers:
-            worker.stop()
+        try:
+            for worker in self.workers:
+                worker.stop()
+        finally:
+            self._hold.uninstall()
 
 
 class WorkerLink:
@@ -271,6 +278,7 @@ class WorkerLink:
         self.lost = None                # why the link was lost
         self.pending: int | None = None     # the tick sent and not yet answered
         self.serving = False            # whether it has built and initialised its group
+        self.hold = SignalHold()        # the network's, which it installs
         self.stall_seconds = MIN_STALL_SECONDS     # set from the model's timing
         self.remote = "://" in where or ":" in where
         self.what = f'the worker of group "{group.path}" (process="{where}")'
@@ -339,7 +347,7 @@ class WorkerLink:
         worker is lost or refuses."""
         while True:
             self._wait(deadline)
-            with signals_held():
+            with self.hold:
                 message = self._read()
                 if message is not None:
                     return then(*message) if then is not None else message
@@ -395,7 +403,7 @@ class WorkerLink:
             header = {"type": "tick", "tick": tick, "requests": self.requests,
                       "watch": asked}
             frames = encode(header, [b.array for b in self.incoming], self.key)
-            with signals_held():        # sent whole, and then awaited
+            with self.hold:        # sent whole, and then awaited
                 self.socket.send_multipart(frames)
                 self._asked, self.pending, self.requests = asked, tick, []
 
@@ -431,7 +439,7 @@ class WorkerLink:
         """End the worker's session and close the link (once)."""
         if self.socket is not None:
             if not self.lost:
-                with signals_held():
+                with self.hold:
                     self.socket.send_multipart(encode({"type": "stop"}, key=self.key))
                 if self.serving:
                     self.socket.poll(2000)         # its acknowledgement, once stopped

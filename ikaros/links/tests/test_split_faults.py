@@ -150,3 +150,22 @@ def test_ctrl_c_of_a_split_model_reports_nothing_but_the_stop(model):
                 os.killpg(run.pid, signal.SIGKILL)
         assert run.returncode == 0, err
         assert err == "ikaros: interrupted\n"
+
+
+def test_a_signal_that_comes_while_a_message_is_held_is_handled_after_it():
+    from ikaros.links.atomic import SignalHold
+    seen = []
+    before = signal.signal(signal.SIGINT, lambda signum, frame: seen.append("handled"))
+    hold = SignalHold()
+    hold.install()
+    try:
+        with hold:
+            signal.raise_signal(signal.SIGINT)
+            seen.append("message sent")
+        signal.raise_signal(signal.SIGINT)      # outside: at once
+        seen.append("after")
+    finally:
+        hold.uninstall()
+        mine = signal.signal(signal.SIGINT, before)
+    assert seen == ["message sent", "handled", "handled", "after"]
+    assert mine != hold._handler            # the handler given back
