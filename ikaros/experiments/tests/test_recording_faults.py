@@ -4,6 +4,7 @@ and the flush interval."""
 import os
 import re
 import resource
+import signal
 import subprocess
 import sys
 import time
@@ -16,7 +17,7 @@ pytest.importorskip("xarray")
 
 from ikaros.errors import RunError  # noqa: E402
 from ikaros.experiments import open_recording  # noqa: E402
-from ikaros.testing import load_body  # noqa: E402
+from ikaros.testing import load_body, wait_for  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__)))))
@@ -185,3 +186,33 @@ def test_readers_stop_at_the_rows_the_file_counts_as_stored(tmp_path):
     assert replay.tick == 4
     np.testing.assert_array_equal(replay.output("R.OUTPUT"), [4])
     replay.close()
+
+
+def test_a_recording_run_ended_by_sigterm_keeps_every_tick_and_is_not_finished(tmp_path):
+    out = tmp_path / "run.h5"
+    env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    run = subprocess.Popen([sys.executable, "-m", "ikaros", "-b", "-q", "-s", "1000000000",
+                            model(tmp_path), "--record", str(out), "--record-flush", "0.1"],
+                           env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert wait_for(lambda: out.exists() and _rows(out) > 1000, 60, 0.1)
+        run.send_signal(signal.SIGTERM)
+        _, err = run.communicate(timeout=30)
+    finally:
+        if run.poll() is None:
+            run.kill()
+    assert run.returncode == 0 and err == "ikaros: interrupted\n"
+    ds = open_recording(str(out))
+    n = ds.sizes["tick"]
+    assert ds.attrs["finished"] is False
+    np.testing.assert_array_equal(ds["tick"].values, np.arange(n))
+    np.testing.assert_array_equal(ds["Counter.OUTPUT"].values[:, 0], np.arange(n) + 1)
+    with h5py.File(out, "r") as f:
+        assert f.attrs["ticks_recorded"] == n == f["stored"][0]
+
+
+def _rows(path) -> int:
+    try:
+        return open_recording(str(path)).sizes["tick"]
+    except OSError:
+        return 0
