@@ -169,3 +169,12 @@ def test_a_signal_that_comes_while_a_message_is_held_is_handled_after_it():
         mine = signal.signal(signal.SIGINT, before)
     assert seen == ["message sent", "handled", "handled", "after"]
     assert mine != hold._handler            # the handler given back
+
+
+def test_a_stall_ticks_that_is_not_a_whole_number_is_a_load_error(model):
+    from ikaros.errors import ModelError
+    for bad in ("x", "0", "1.5"):
+        with pytest.raises(ModelError, match=f'split.ikg:3: <group name="Vision">: '
+                                             f'stall_ticks "{bad}" must be a whole number '
+                                             f'of ticks >= 1'):
+            ikaros.load(model, stall=bad)
