@@ -38,7 +38,8 @@ from ..kernel.taps import ROW, SIGNAL, TICK
 from ..module import FATAL_ERROR, WARNING
 from .chunks import COMPRESSION_LEVEL, shuffled, shuffled_deflate
 from .signals import module_parameters, seeds, select_outputs
-from .writefaults import check_on_error, failure_text, reason
+from .writefaults import (check_on_error, failure_text, probe_room, reason,
+                          remove_recording)
 
 FORMAT = "ikaros-recording"
 FORMAT_VERSION = 2             # 2: the dataset "stored" says how many rows may be read
@@ -135,10 +136,10 @@ class Recorder:
         """The file with its header and empty datasets, flushed; nothing is left behind
         when it cannot be written (a disk full already)."""
         try:
-            _probe_room(self.filename, PROBE_BYTES + len(_model_text(self.net)))
+            probe_room(self.filename, PROBE_BYTES + len(_model_text(self.net)))
             self._file = h5py.File(self.filename, "w", libver="latest")
         except OSError as e:
-            _remove(self.filename, only_empty=True)
+            remove_recording(self.filename, only_empty=True)
             raise OSError(f"cannot write the recording {self.filename}: {reason(e)}") \
                 from None
         try:
@@ -153,7 +154,7 @@ class Recorder:
                 self._file.close()
             except Exception:       # noqa: BLE001: it goes anyway
                 pass
-            _remove(self.filename)
+            remove_recording(self.filename)
             raise OSError(f"cannot write the recording {self.filename}: {reason(e)}") \
                 from None
 
@@ -322,7 +323,7 @@ class Recorder:
                 self._error = e
         if self._error is not None:     # what was flushed stays readable, not "finished"
             if self.stored == 0:
-                _remove(self.filename)
+                remove_recording(self.filename)
             self._report()
 
     def __enter__(self):
@@ -435,29 +436,6 @@ def _model_text(net) -> str:
 def _version() -> str:
     from .. import __version__
     return __version__
-
-
-def _probe_room(filename: str, size: int) -> None:
-    """Write ``size`` bytes into the file (then empty it): a disk already full fails here,
-    in plain writes, before HDF5 (which does not recover from a failed write of its
-    header) is given the file."""
-    with open(filename, "wb") as f:
-        try:
-            f.write(bytes(size))
-            f.flush()
-        finally:
-            f.seek(0)
-            f.truncate(0)
-
-
-def _remove(filename: str, only_empty: bool = False) -> None:
-    """Remove a recording that holds nothing (if it is there; ``only_empty``: if it is
-    an empty file)."""
-    try:
-        if not only_empty or os.path.getsize(filename) == 0:
-            os.remove(filename)
-    except OSError:
-        pass
 
 
 def _detach(file) -> None:

@@ -1,7 +1,8 @@
 """What a recording does when writing it fails (a full disk, a file-size limit), whatever
 its file format: the run stops (``on_error="stop"``, the default) or goes on without the
 recording (``"continue"``), and the one-line message names the file, why, and the ticks
-the file holds."""
+the file holds. A disk full already at the start is found before the file is handed to
+the format's library (``probe_room``), and a file that holds nothing is removed."""
 from __future__ import annotations
 
 import os
@@ -43,3 +44,27 @@ def failure_text(filename: str, error: BaseException, stored: int, first_tick,
         "the run stops"
     return (f"writing the recording {filename} failed ({reason(error)}); "
             f"{kept_text(stored, first_tick, last_tick)}; {then}")
+
+
+def probe_room(filename: str, size: int) -> None:
+    """Write ``size`` bytes into the file (then empty it): a disk already full fails here,
+    in plain writes, before a file format's library is given the file (HDF5 does not
+    recover from a failed write of its header)."""
+    with open(filename, "wb") as f:
+        try:
+            f.write(bytes(size))
+            f.flush()
+        finally:
+            f.seek(0)
+            f.truncate(0)
+
+
+def remove_recording(filename: str, only_empty: bool = False) -> None:
+    """Remove a recording that holds nothing (if it is there; ``only_empty``: if it is
+    an empty file)."""
+    try:
+        if not only_empty or os.path.getsize(filename) == 0:
+            os.remove(filename)
+    except OSError:
+        pass
+
