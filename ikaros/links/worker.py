@@ -14,7 +14,8 @@ import sys
 from ..errors import ModelError, RunError
 from .endpoint import check_key, link_key, tcp
 from .peer import HEARTBEAT_MS, HEARTBEAT_TIMEOUT_MS, zmq_module
-from .split import POLL_SECONDS, WORKER_PORT, worker_network
+from .split import worker_network
+from .workerlink import POLL_SECONDS, WORKER_PORT
 from .wire import LinkError, decode, encode
 
 
