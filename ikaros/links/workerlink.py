@@ -63,6 +63,7 @@ class WorkerLink:
         self._asked: list = []          # the watched paths asked for with the last tick
         self.lost = None                # why the link was lost
         self.pending: int | None = None     # the tick sent and not yet answered
+        self.listening = False          # whether the worker started here listens
         self.serving = False            # whether it has built and initialised its group
         self.hold = SignalHold()        # the network's, which it installs
         self.stall_seconds = MIN_STALL_SECONDS     # set from the model's timing
@@ -124,6 +125,7 @@ class WorkerLink:
             self.process.wait()
             raise self.group.node.error(f"{self.what} did not start: "
                                         f"{text or 'no answer'}")
+        self.listening = True
         return int(text.rsplit(":", 1)[1].split()[0])
 
     def _receive(self, deadline: float | None = None, then=None):
@@ -246,7 +248,11 @@ class WorkerLink:
     def _end_process(self) -> None:
         """A worker started here that no longer answers (stopped, hung), or is still
         building the model: SIGTERM, so that its modules' stop() runs once it goes on
-        (SIGCONT), and SIGKILL when it has not ended END_SECONDS later."""
+        (SIGCONT), and SIGKILL when it has not ended END_SECONDS later. One that has not
+        yet said it listens (still starting Python) has nothing to stop: SIGKILL."""
+        if not self.listening:
+            self.process.kill()
+            return
         self.process.terminate()
         if hasattr(signal, "SIGCONT"):
             self.process.send_signal(signal.SIGCONT)

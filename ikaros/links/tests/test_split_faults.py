@@ -135,7 +135,7 @@ def test_a_remote_worker_that_goes_on_after_the_main_process_gave_up_prints_no_t
 
 
 def test_ctrl_c_of_a_split_model_reports_nothing_but_the_stop(model):
-    for delay in (0.3, 1.5, 3.0):      # while the worker starts, and into the run
+    for delay in (0.05, 0.3, 1.5, 3.0):    # while the worker starts, and into the run
         run = subprocess.Popen([sys.executable, "-m", "ikaros", "-b", model], env=ENV,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                start_new_session=True)
