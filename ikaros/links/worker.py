@@ -81,7 +81,7 @@ class Worker:
                     if once:
                         return
                 else:
-                    self._send(peer, {"type": "refused", "message": "no model loaded"})
+                    self._answer(peer, {"type": "refused", "message": "no model loaded"})
         finally:
             self.monitor.close(0)
             self.socket.close(0)
@@ -90,11 +90,12 @@ class Worker:
         self.socket.send_multipart([peer] + encode(header, arrays,
                                                    self.key if signed else None))
 
-    def _answer(self, peer: bytes, header: dict, arrays=()) -> bool:
-        """Send to the session's peer; False when it is gone (it found this worker silent
-        too long, say after a SIGSTOP, and ended the run)."""
+    def _answer(self, peer: bytes, header: dict, arrays=(), signed: bool = True) -> bool:
+        """Send to a peer; False when it is gone (a main process that found this worker
+        silent too long, say after a SIGSTOP, and ended the run; its last messages may
+        still come in after)."""
         try:
-            self._send(peer, header, arrays)
+            self._send(peer, header, arrays, signed)
             return True
         except self.zmq.ZMQError:
             return False
@@ -113,11 +114,12 @@ class Worker:
             try:
                 header, arrays = decode(frames, self.key)
             except LinkError as e:
-                self._send(peer, {"type": "refused", "message": f"refused: {e}"}, signed=False)
+                self._answer(peer, {"type": "refused", "message": f"refused: {e}"},
+                             signed=False)
                 print(f"ikaros worker: refused a request: {e}", file=sys.stderr, flush=True)
                 continue
             if session is not None and peer != session:
-                self._send(peer, {"type": "refused", "message": "busy with another model"})
+                self._answer(peer, {"type": "refused", "message": "busy with another model"})
                 continue
             return peer, header, arrays
 
@@ -131,11 +133,7 @@ class Worker:
 
     def _alive(self, peer: bytes) -> bool:
         """Whether ``peer`` is still connected (a router cannot send to one that is gone)."""
-        try:
-            self._send(peer, {"type": "ping"})
-            return True
-        except self.zmq.ZMQError:
-            return False
+        return self._answer(peer, {"type": "ping"})
 
     def _session(self, peer: bytes, request: dict) -> None:
         from ..kernel.builder import Builder
@@ -149,7 +147,7 @@ class Worker:
                                                          request["incoming"],
                                                          request["outgoing"])).build()
         except (ModelError, RunError, LinkError, KeyError, OSError) as e:
-            self._send(peer, {"type": "error", "message": f"could not load the model: {e}"})
+            self._answer(peer, {"type": "error", "message": f"could not load the model: {e}"})
             return
         header: dict | None = {}
         self._drain_monitor()

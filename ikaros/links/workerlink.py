@@ -85,10 +85,9 @@ class WorkerLink:
         s = self.socket = zmq.Context.instance().socket(zmq.DEALER)
         s.setsockopt(zmq.LINGER, 0)
         # a stalled worker is found by its silence: a heartbeat every quarter of the stall
-        # time, and the link lost when none is answered within three quarters of it
-        quarter = max(1, int(self.stall_seconds * 250))
-        s.setsockopt(zmq.HEARTBEAT_IVL, quarter)
-        s.setsockopt(zmq.HEARTBEAT_TIMEOUT, 3 * quarter)
+        # time, and the link lost when none is answered within the stall time
+        s.setsockopt(zmq.HEARTBEAT_IVL, max(1, int(self.stall_seconds * 250)))
+        s.setsockopt(zmq.HEARTBEAT_TIMEOUT, max(1, int(self.stall_seconds * 1000)))
         self.monitor = s.get_monitor_socket(zmq.EVENT_DISCONNECTED)
         s.connect(tcp(host, port))
         self.address = tcp(host, port)
