@@ -26,7 +26,8 @@ class Interrupted(KeyboardInterrupt):
 def install(grace: float = GRACE) -> None:
     """Make SIGINT raise Interrupted and end the process within ``grace`` seconds. SIGTERM
     (kill, a closing session) ends a run the same way, so every module's stop() runs and
-    devices reach their safe state before the process exits."""
+    devices reach their safe state before the process exits. A process started with
+    SIGINT ignored (a split model's worker, ``nohup``) keeps ignoring it."""
     global _installed
 
     def handler(signum, frame):
@@ -35,7 +36,8 @@ def install(grace: float = GRACE) -> None:
         _arm(grace)
         raise Interrupted()
 
-    signal.signal(signal.SIGINT, handler)
+    if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:    # (ignored: left so)
+        signal.signal(signal.SIGINT, handler)
     signal.signal(signal.SIGTERM, handler)
     _installed = True
 

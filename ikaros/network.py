@@ -49,12 +49,16 @@ class Network(KernelNetwork):
     def _repr_html_(self) -> str:
         return notebook.network_html(self)
 
-    def record(self, filename: str, only: list[str] | str | None = None, every: int = 1):
+    def record(self, filename: str, only: list[str] | str | None = None, every: int = 1,
+               flush_seconds: float = 1.0, on_error: str = "stop"):
         """Record outputs (all, or those matching the glob patterns ``only``) every
         ``every``-th tick into the HDF5 file ``filename``, from the next tick until the
         returned Recorder's ``close()`` or this network's ``close()``. A ``.mcap`` file
-        holds the outputs as ROS 2 messages (experiments/mcap_recording.py)."""
-        return open_recorder(self, filename, only=only, every=every)
+        holds the outputs as ROS 2 messages (experiments/mcap_recording.py). The rows are
+        flushed at least every ``flush_seconds``; when writing fails the run stops
+        (``on_error="stop"``) or goes on without recording (``"continue"``)."""
+        return open_recorder(self, filename, only=only, every=every,
+                             flush_seconds=flush_seconds, on_error=on_error)
 
 
 Builder.network_class = Network       # every build makes one (the kernel does not know it)

@@ -63,6 +63,24 @@ def wait_for(condition: Callable[[], object], seconds: float = 2.0,
         time.sleep(pause)
 
 
+def running_processes(group: int | None = None, parent: int | None = None) -> list[int]:
+    """The ids of the processes, zombies left out, of process group ``group`` and/or whose
+    parent is ``parent`` (Linux: read from /proc), to check that a run left none behind."""
+    found = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat", encoding="ascii", errors="replace") as f:
+                state, ppid, pgrp = f.read().rsplit(")", 1)[1].split()[:3]
+        except (OSError, ValueError):
+            continue
+        if state != "Z" and (group is None or int(pgrp) == group) and \
+                (parent is None or int(ppid) == parent):
+            found.append(int(entry))
+    return found
+
+
 # Examples whose values differ from run to run whatever the kernel does: servos of a
 # simulator that move in real time, and OpenCV's float filters, which round the last bit
 # differently from run to run (docs/images.md) and so may tip a threshold.

@@ -12,8 +12,19 @@ def _every(text: str) -> int:
     return int(text)
 
 
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = -1.0
+    if not value >= 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f'"{text}" is not a number of seconds >= 0')
+    return value
+
+
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    """Add --record, --record-only, --record-every and --replay to the ikaros command."""
+    """Add --record, --record-only, --record-every, --record-flush, --record-on-error and
+    --replay to the ikaros command."""
     g = p.add_argument_group("experiments")
     g.add_argument("--record", metavar="FILE.h5",
                    help="record outputs into an HDF5 file while running (needs "
@@ -28,6 +39,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     g.add_argument("--foxglove", nargs="?", type=int, const=8765, metavar="PORT",
                    help="serve the outputs live to Foxglove on 127.0.0.1:PORT (default "
                         "8765) as ROS 2 messages (needs ikaros[foxglove])")
+    g.add_argument("--record-flush", type=_seconds, default=None, metavar="SECONDS",
+                   help="write and flush the recorded rows at least this often (default "
+                        "1); a run killed with SIGKILL loses at most about this long; 0: "
+                        "after every tick")
+    g.add_argument("--record-on-error", choices=("stop", "continue"), default="stop",
+                   help="when writing the recording fails (a full disk): stop the run "
+                        "(default) or continue it without recording")
     g.add_argument("--replay", metavar="FILE.h5",
                    help="show a recording in the web UI: its model's views, stepping "
                         "through the recorded ticks")
@@ -35,8 +53,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def check_arguments(p: argparse.ArgumentParser, opts) -> None:
     """Usage errors of the experiment options."""
-    if (opts.record_only or opts.record_every != 1) and not opts.record:
-        p.error("--record-only and --record-every need --record FILE.h5")
+    if (opts.record_only or opts.record_every != 1 or opts.record_flush is not None or
+            opts.record_on_error != "stop") and not opts.record:
+        p.error("--record-only, --record-every, --record-flush and --record-on-error need "
+                "--record FILE.h5")
 
 
 def start_live_view(net, opts):
@@ -57,15 +77,19 @@ def start_recording(net, opts, argv: list[str]):
     if not opts.record:
         return None
     from .recorders import open_recorder
+    from .recording import FLUSH_SECONDS
     return open_recorder(net, opts.record, only=opts.record_only, every=opts.record_every,
-                    command_line=["ikaros"] + list(argv))
+                         command_line=["ikaros"] + list(argv),
+                         flush_seconds=FLUSH_SECONDS if opts.record_flush is None
+                         else opts.record_flush, on_error=opts.record_on_error)
 
 
 @contextlib.contextmanager
 def batch_session(net, opts, recording=None):
     """Around a batch run: the progress bar (on a terminal, not with -q); the recording
-    is closed at the end."""
+    is closed at the end (not marked finished when the run was interrupted)."""
     from .progress import Progress
+    complete = False
     try:
         if Progress.wanted(sys.stderr, opts.quiet):
             total = opts.stop if opts.stop is not None else \
@@ -74,6 +98,10 @@ def batch_session(net, opts, recording=None):
                 yield
         else:
             yield
+        complete = True
+    except BaseException as e:      # a run ended by an error is recorded whole
+        complete = not isinstance(e, KeyboardInterrupt)
+        raise
     finally:
         if recording is not None:
-            recording.close()
+            recording.close(complete=complete)

@@ -24,9 +24,10 @@ from .. import priority
 from ..hardware.ros2.messages import float32_array_encoder
 from ..hardware.ros2.msgdefs import DEFINITIONS
 from ..kernel.taps import ROW, SIGNAL
-from ..module import require
+from ..module import FATAL_ERROR, WARNING, require
 from .recording import FLUSH_SECONDS, _model_text
 from .signals import module_parameters, select_outputs
+from .writefaults import check_on_error, failure_text, remove_recording
 
 MESSAGE = "std_msgs/msg/Float32MultiArray"
 BLOCK_ROWS = 1024
@@ -39,12 +40,16 @@ def topic_of(address: str) -> str:
 
 class McapRecorder:
     """Records outputs of a network into an MCAP file, every ``every``-th tick from the next
-    tick on, until ``close()`` (or the network's ``close()``); ``only`` as for Recorder."""
+    tick on, until ``close()`` (or the network's ``close()``); ``only``, ``flush_seconds``
+    and ``on_error`` as for Recorder (writefaults.py). Unlike an HDF5 recording, an MCAP file
+    whose writing failed (a full disk) is not kept: its last chunk and its index are lost, so
+    it is removed and the message says so."""
 
     def __init__(self, net, filename: str, only: list[str] | str | None = None,
                  every: int = 1, command_line: list[str] | None = None,
-                 flush_seconds: float = FLUSH_SECONDS):
+                 flush_seconds: float = FLUSH_SECONDS, on_error: str = "stop"):
         mcap_writer = require("mcap.writer", "mcap", extra="ros2")
+        self.on_error = check_on_error(on_error)
         if int(every) < 1:
             raise ValueError(f"every must be a whole number >= 1, not {every}")
         self.net = net
@@ -62,6 +67,7 @@ class McapRecorder:
         self._rows = np.ascontiguousarray(self._rows)
         self._queue: queue.Queue = queue.Queue()
         self._error: BaseException | None = None
+        self._reported = False
         self._closed = False
         self.ticks_recorded = 0
         self._thread = threading.Thread(target=self._write_loop, name="ikaros-mcap",
@@ -95,6 +101,13 @@ class McapRecorder:
         """The tap's call back (at the start of a tick): hand the rows kept to the writer
         and give the block again."""
         tap = self._tap
+        if self._error is not None:
+            tap.stop()
+            if not self._reported:
+                self._reported = True
+                self.net.notify(WARNING if self.on_error == "continue" else FATAL_ERROR,
+                                None, self.failure)
+            return
         tap.state[SIGNAL] = 0
         row = int(tap.state[ROW])
         if row:
@@ -126,11 +139,21 @@ class McapRecorder:
                                                  encode(values[signal.start:signal.stop]),
                                                  stamp, int(tick))
                     self.ticks_recorded += 1
-            except Exception as e:      # noqa: BLE001  (a full disk: reported at close)
+            except Exception as e:      # noqa: BLE001  (a full disk): the run is told
                 self._error = e
+                self._tap.request()
 
-    def close(self) -> None:
-        """Write what is left and end the file. Call it between ticks."""
+    @property
+    def failure(self) -> str | None:
+        """Why writing failed and what the file holds (None while it has not failed)."""
+        if self._error is None:
+            return None
+        return failure_text(self.filename, self._error, 0, None, None, self.on_error)
+
+    def close(self, complete: bool = True) -> None:
+        """Write what is left and end the file, with metadata ``run``: ``finished`` (false
+        for a run cut off, ``complete=False``) and ``ticks_recorded``. Call it between
+        ticks."""
         if self._closed:
             return
         self._closed = True
@@ -144,12 +167,18 @@ class McapRecorder:
         self._thread.join()
         try:
             if self._error is None:
+                self._writer.add_metadata("run", {
+                    "finished": "true" if complete else "false",
+                    "ticks_recorded": str(self.ticks_recorded)})
                 self._writer.finish()
+        except OSError as e:
+            self._error = e
         finally:
             self._file.close()
         if self._error is not None:
-            raise OSError(f"writing the recording {self.filename} failed after "
-                          f"{self.ticks_recorded} ticks: {self._error}")
+            remove_recording(self.filename)
+            if self.on_error == "stop":
+                raise OSError(self.failure)
 
     def __enter__(self):
         return self

@@ -54,11 +54,21 @@ def _open(h5py, filename: str):
             raise OSError(f"cannot read the recording {filename}: {first}") from None
 
 
+def readable_rows(f) -> int:
+    """The rows of an open recording file that were written whole: up to its ``stored``
+    count (rows past it may be half written, by a full disk or a kill; a file of format
+    version 1 has no count)."""
+    n = min(f["tick"].shape[0], f["time"].shape[0], f["real_time"].shape[0],
+            f["data"].shape[0])
+    return min(n, int(f["stored"][0])) if "stored" in f else n
+
+
 def open_recording(filename: str, only: list[str] | str | None = None):
     """The signals of a recording (``ikaros --record`` or ``net.record``) as an xarray
     Dataset: one variable per recorded output (``ds["Arm.DISTANCE"]``), dimension ``tick``
     first. ``only`` keeps the signals matching these glob patterns. A recording still being
-    written, or cut off by a crash, is read up to its last flushed chunk.
+    written, or cut off by a crash or a full disk, is read up to its last flushed row
+    (never a row that was not written).
 
     The attributes hold the model file's name and text (``model``), the parameters at the
     start and their changes while running (``parameter_changes``: (tick, address, value)),
@@ -73,8 +83,7 @@ def open_recording(filename: str, only: list[str] | str | None = None):
             patterns = [only] if isinstance(only, str) else list(only)
             signals = [s for s in signals
                        if any(fnmatch.fnmatchcase(s.name, p) for p in patterns)]
-        n = min(f["tick"].shape[0], f["time"].shape[0], f["real_time"].shape[0],
-                f["data"].shape[0])
+        n = readable_rows(f)
         if signals:
             first = min(s.start for s in signals)
             last = max(s.stop for s in signals)

@@ -14,6 +14,11 @@ compression within a fraction of a millisecond, not the 5 ms the kernel thread w
 otherwise keep it, and so keeps up with a fast tick. The file is in SWMR mode:
 readers may open it while the run goes on, and a run that is killed leaves a file readable
 up to its last flushed chunk.
+
+After each flush of the file the dataset ``stored`` is set to the number of rows written
+and flushed, and the file flushed again: a reader reads only that many rows, so rows that a
+failed write (a full disk) or a kill left half written are never read. A write that fails
+ends the recording (writefaults.py says what then happens to the run).
 """
 from __future__ import annotations
 
@@ -30,14 +35,16 @@ import numpy as np
 
 from .. import priority
 from ..kernel import switching
-from ..kernel.taps import ROW, SIGNAL
-from ..module import WARNING
+from ..kernel.taps import ROW, SIGNAL, TICK
+from ..module import FATAL_ERROR, WARNING
 from ..version import __version__
 from .chunks import COMPRESSION_LEVEL, shuffled, shuffled_deflate
 from .signals import module_parameters, seeds, select_outputs
+from .writefaults import (check_on_error, failure_text, probe_room, reason,
+                          remove_recording)
 
 FORMAT = "ikaros-recording"
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2             # 2: the dataset "stored" says how many rows may be read
 # HDF5 takes about 0.1 ms (holding the GIL) per chunk written and per dataset write,
 # whatever its size: big chunks, written a block of them at a time, keep that small per tick
 CHUNK_BYTES = 16 << 20        # at most this many bytes of values per chunk
@@ -46,6 +53,7 @@ BLOCK_ROWS = 1 << 16           # and at most this many rows
 RING_BLOCKS = 2                # the block being filled and the one being written
 FLUSH_SECONDS = 1.0            # a partly filled chunk is written after this long
 PATH_BYTES, VALUE_BYTES = 256, 4096     # room for one parameter change
+PROBE_BYTES = 256 << 10        # free room needed at the start, besides the model's text
 CHANGE_DTYPE = np.dtype([("tick", "<i8"), ("path", f"S{PATH_BYTES}"),
                          ("value", f"S{VALUE_BYTES}")])
 
@@ -64,14 +72,21 @@ class Recorder:
     tick on, until ``close()`` (or the network's ``close()``).
 
     ``only``: glob patterns of output addresses (``"Arm.*.OUTPUT"``); every output when None.
+    ``flush_seconds``: how often the rows so far are written and flushed (a run killed
+    with SIGKILL loses at most about this long; 0: after every tick). ``on_error``: when
+    writing fails, "stop" the run (a fatal error) or "continue" it without recording (a
+    warning); either way the message names the file and the ticks it holds.
     """
 
     def __init__(self, net, filename: str, only: list[str] | str | None = None,
                  every: int = 1, command_line: list[str] | None = None,
-                 flush_seconds: float = FLUSH_SECONDS):
+                 flush_seconds: float = FLUSH_SECONDS, on_error: str = "stop"):
         h5py = h5py_module()
         if int(every) < 1:
             raise ValueError(f"every must be a whole number >= 1, not {every}")
+        if not float(flush_seconds) >= 0:
+            raise ValueError(f"flush_seconds must be a number >= 0, not {flush_seconds}")
+        self.on_error = check_on_error(on_error)
         self.net = net
         self.filename = os.path.abspath(filename)
         self.every = int(every)
@@ -80,16 +95,8 @@ class Recorder:
         row_bytes = 4 * max(columns, 1)
         self.chunk_ticks = T = max(1, min(16384, CHUNK_BYTES // row_bytes))
         self._block_rows = T * max(1, min(BLOCK_BYTES // (T * row_bytes), BLOCK_ROWS // T))
-        self.flush_seconds = flush_seconds
-        try:
-            self._file = h5py.File(self.filename, "w", libver="latest")
-        except OSError as e:
-            reason = os.strerror(e.errno) if e.errno else str(e)
-            raise OSError(f"cannot write the recording {filename}: {reason}") from None
-        self._write_header(command_line)
-        self._create_datasets(columns)
-        self._file.swmr_mode = True       # from here on readers may open it
-        self._file.flush()
+        self.flush_seconds = float(flush_seconds)
+        self._create_file(h5py, command_line, columns)
         shuffled(np.zeros((1, 1), np.float32))      # numba's start, before the run goes on
         # rows past the last filled one of a block are never read, so need no clearing;
         # its pages are touched here, not by the kernel thread's copies
@@ -113,6 +120,12 @@ class Recorder:
         self._queue: queue.Queue = queue.Queue()
         self._error: BaseException | None = None      # set by the writer thread
         self._reported = False
+        # rows written (the file's row count, the tick of its last row), and those of them
+        # flushed and counted in "stored": all a reader reads
+        self._written = (0, None)
+        self.stored = 0
+        self._first_tick: int | None = None
+        self._last_tick: int | None = None
         self._writer = threading.Thread(target=self._write_loop, name="ikaros-recorder",
                                         daemon=True)
         self._writer.start()
@@ -120,6 +133,32 @@ class Recorder:
         net.parameter_hooks.append(self.parameter_changed)
         net.close_hooks.append(self._close_with_network)
         atexit.register(self.close)     # a script that ends without close() loses nothing
+
+    def _create_file(self, h5py, command_line, columns: int) -> None:
+        """The file with its header and empty datasets, flushed; nothing is left behind
+        when it cannot be written (a disk full already)."""
+        try:
+            probe_room(self.filename, PROBE_BYTES + len(_model_text(self.net)))
+            self._file = h5py.File(self.filename, "w", libver="latest")
+        except OSError as e:
+            remove_recording(self.filename, only_empty=True)
+            raise OSError(f"cannot write the recording {self.filename}: {reason(e)}") \
+                from None
+        try:
+            self._write_header(command_line)
+            self._create_datasets(columns)
+            self._file.swmr_mode = True       # from here on readers may open it
+            self._file.flush()
+        except Exception as e:      # noqa: BLE001: the file is removed, the error told
+            _detach(self._file)
+            self._data = self._times = self._stored = self._changes = None
+            try:
+                self._file.close()
+            except Exception:       # noqa: BLE001: it goes anyway
+                pass
+            remove_recording(self.filename)
+            raise OSError(f"cannot write the recording {self.filename}: {reason(e)}") \
+                from None
 
     def _write_header(self, command_line: list[str] | None) -> None:
         net, f = self.net, self._file
@@ -153,6 +192,7 @@ class Recorder:
         self._changes = f.create_dataset("parameter_changes", (0,), maxshape=(None,),
                                          dtype=CHANGE_DTYPE, chunks=(16,),
                                          compression="gzip")
+        self._stored = f.create_dataset("stored", data=np.zeros(1, np.int64))
 
     # --- the kernel thread ---------------------------------------------------------------
     def _start_block(self) -> None:
@@ -224,10 +264,20 @@ class Recorder:
             self._report()
 
     def _report(self) -> None:
+        """Tell the network once that writing failed: a fatal error that ends the run, or
+        with on_error="continue" a warning."""
         if not self._reported:
             self._reported = True
-            self.net.notify(WARNING, None, f"the recording {self.filename} stopped: "
-                                           f"writing failed: {self._error}")
+            self.net.notify(WARNING if self.on_error == "continue" else FATAL_ERROR, None,
+                            self.failure)
+
+    @property
+    def failure(self) -> str | None:
+        """Why writing failed and what the file holds (None while it has not failed)."""
+        if self._error is None:
+            return None
+        return failure_text(self.filename, self._error, self.stored, self._first_tick,
+                            self._last_tick, self.on_error)
 
     @property
     def closed(self) -> bool:
@@ -235,17 +285,15 @@ class Recorder:
         return self._closed
 
     def _close_with_network(self) -> None:
-        """When the network closes: never raise there (its modules must still be
-        stopped); a failure is a warning in the network's log."""
-        try:
-            self.close()
-        except Exception as e:      # noqa: BLE001
-            if not self._reported:
-                self.net.notify(WARNING, None, f"the recording {self.filename} failed: {e}")
+        """When the network closes (a failure is reported in its log, never raised)."""
+        self.close()
 
-    def close(self) -> None:
-        """Write what is left, mark the recording finished and close the file. Call it
-        between ticks (from the kernel's thread while the network runs)."""
+    def close(self, complete: bool = True) -> None:
+        """Write what is left, mark the recording finished (unless not ``complete``: an
+        interrupted run) and close the file. Call it between ticks (from the kernel's
+        thread while the network runs). A write that fails is reported in the network's
+        log (see ``on_error``) and in ``failure``; the file then keeps the rows written
+        before and stays not finished."""
         if self._closed:
             return
         self._closed = True
@@ -256,24 +304,35 @@ class Recorder:
             if hook in hooks:
                 hooks.remove(hook)
         if self._error is None:
-            self._tap.settle()          # the row of the tick just done
+            if self._tap.state[TICK] < net.tick:    # not a tick cut off (Ctrl-C) half done
+                self._tap.settle()          # the row of the tick just done
             self._hand_over()
         net.remove_tap(self._tap)
         self._queue.put(None)
         self._writer.join()
         switching.restore()
-        self._file.close()
+        self._data = self._times = self._stored = self._changes = None     # before the file
+        try:
+            self._file.close()
+        except Exception as e:      # noqa: BLE001: reported below
+            self._error = self._error or e
+        if self._error is None:
+            try:
+                with h5py_module().File(self.filename, "a") as f:
+                    f.attrs["finished"] = complete
+                    f.attrs["ticks_recorded"] = self.stored
+            except Exception as e:      # noqa: BLE001: reported below
+                self._error = e
         if self._error is not None:     # what was flushed stays readable, not "finished"
-            raise OSError(f"writing the recording {self.filename} failed: {self._error}")
-        with h5py_module().File(self.filename, "a") as f:
-            f.attrs["finished"] = True
-            f.attrs["ticks_recorded"] = f["tick"].shape[0]
+            if self.stored == 0:
+                remove_recording(self.filename)
+            self._report()
 
     def __enter__(self):
         return self
 
-    def __exit__(self, *exc):
-        self.close()
+    def __exit__(self, kind, error, trace):
+        self.close(complete=not isinstance(error, KeyboardInterrupt))
 
     # --- the writer thread ---------------------------------------------------------------
     def _write_loop(self) -> None:
@@ -293,6 +352,7 @@ class Recorder:
                 due = time.perf_counter() + every
             if not item:
                 if item is None:
+                    self._commit_last()
                     return
                 continue
             try:
@@ -302,8 +362,7 @@ class Recorder:
                     else:
                         self._write_change(*item[1:])
             except Exception as e:      # reported to the kernel thread at its next call back
-                self._error = e
-                self._tap.request()
+                self._fail(e)
             finally:
                 if item[0] == "rows" and item[5] is not None:
                     self._free.put(item[5])     # the kernel thread may fill it again
@@ -329,10 +388,38 @@ class Recorder:
         if self._real_zero is None and len(real):
             self._real_zero = real[0]
         self._times["real_time"][start:end] = np.array(real) - (self._real_zero or 0.0)
-        now = time.perf_counter()
-        if flush or now - self._file_flushed > self.flush_seconds:
+        if n:
+            if self._first_tick is None and start == 0:
+                self._first_tick = int(ticks[0])
+            self._written = (end, int(ticks[-1]))
+        if flush or time.perf_counter() - self._file_flushed > self.flush_seconds:
+            self._commit()
+
+    def _commit(self) -> None:
+        """Flush the rows written, then count them in ``stored`` (flushed again): the
+        count never covers a row that is not in the file."""
+        end, last_tick = self._written
+        self._file.flush()
+        if end > self.stored:
+            self._stored[0] = end
             self._file.flush()
-            self._file_flushed = now
+            self.stored, self._last_tick = end, last_tick
+        self._file_flushed = time.perf_counter()
+
+    def _commit_last(self) -> None:
+        """At the end: count the rows written since the last flush."""
+        if self._error is None and self._written[0] > self.stored:
+            try:
+                self._commit()
+            except Exception as e:      # noqa: BLE001: reported by close()
+                self._fail(e)
+
+    def _fail(self, error: BaseException) -> None:
+        """Writing failed: nothing more goes into the file (it keeps the rows counted in
+        ``stored``); the kernel thread hears of it at its next call back."""
+        _detach(self._file)
+        self._error = error
+        self._tap.request()
 
     def _write_change(self, tick: int, path: str, value: str) -> None:
         k = self._changes.shape[0]
@@ -348,3 +435,18 @@ def _model_text(net) -> str:
         from ..language.writer import to_text
         return to_text(net.model)
 
+
+def _detach(file) -> None:
+    """Point the HDF5 file's descriptor at the null device: after a failed write HDF5
+    tries to write its caches again at every close, failing each time, and a process that
+    ends with such objects left can crash; written to the null device they close
+    cleanly, and the file on disk stays as it was after its last good flush."""
+    try:
+        fd = file.id.get_vfd_handle()
+        null = os.open(os.devnull, os.O_RDWR)
+    except Exception:       # noqa: BLE001: not a file on disk (nothing to protect)
+        return
+    try:
+        os.dup2(null, fd)
+    finally:
+        os.close(null)

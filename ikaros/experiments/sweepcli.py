@@ -88,7 +88,9 @@ def main(argv: list[str]) -> int:
         print(f"ikaros sweep: error: {e}", file=sys.stderr)
         return EXIT_ERROR
     except KeyboardInterrupt:
-        print("ikaros sweep: interrupted", file=sys.stderr)
+        where = f"; the table of the runs so far is in " \
+                f"{os.path.join(opts.out, 'results.' + opts.format)}" if opts.out else ""
+        print(f"ikaros sweep: interrupted{where}", file=sys.stderr)
         return EXIT_ERROR
     failed = int((table["status"] != "ok").sum())
     if opts.out is None:

@@ -14,10 +14,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import poolworkers
+from .resume import done_before, signature, write_signature
 from .recording import Recorder
 from .signals import select_outputs
 
 MAX_METRIC_ELEMENTS = 16       # a recorded output this small has its final values in the table
+INTERRUPTED = "interrupted"    # the status of a run that a Ctrl-C or SIGTERM cut off or left
+CUT_OFF_SECONDS = 1.0          # for the runs cut off by Ctrl-C to send their rows
 
 
 # --- the grid -----------------------------------------------------------------------------
@@ -82,7 +86,8 @@ class RunSpec:
 
 def run_one(spec: RunSpec) -> dict:
     """Build and run one combination; never raises: a failure is the row's status and
-    error (with the traceback's last line for where)."""
+    error (with the traceback's last line for where), a Ctrl-C or SIGTERM the status
+    "interrupted" with the ticks run (its recording is left not finished)."""
     started = time.perf_counter()
     row = {"run": spec.index, **spec.settings}
     net = None
@@ -92,9 +97,8 @@ def run_one(spec: RunSpec) -> dict:
         row.update(status="ok", error="", ticks=net.tick)
         row.update(metrics)
     except BaseException as e:          # noqa: BLE001: a run's failure is data, not a crash
-        if isinstance(e, KeyboardInterrupt):
-            raise
-        row.update(status="error", error=_error_text(e),
+        row.update(status=INTERRUPTED if isinstance(e, KeyboardInterrupt) else "error",
+                   error="" if isinstance(e, KeyboardInterrupt) else _error_text(e),
                    ticks=net.tick if net is not None else 0)
     finally:
         if net is not None:
@@ -205,6 +209,13 @@ def sweep(model: str, settings: dict[str, list | str], ticks: int,
     ``workers`` are; local processes otherwise). A failed run is tried ``retries`` more
     times, then reported (``on_failure(row)``, and in the table); it never stops the
     others. With ``out`` the table is also written there (results.parquet or results.csv).
+
+    Ctrl-C or SIGTERM ends the sweep within seconds: its worker processes end their runs
+    (the recordings are left not finished), the table of the runs so far is written (the
+    others "interrupted", with the ticks they ran) and KeyboardInterrupt is raised. The
+    workers end with the sweep however it ends (also SIGKILL). A sweep into an ``out``
+    that holds one with the same model, grid, ticks and recording (resume.py) runs only
+    the runs that one did not finish.
     """
     import pandas as pd
     values = {name: parse_values(v) if isinstance(v, str) else list(v)
@@ -225,13 +236,40 @@ def sweep(model: str, settings: dict[str, list | str], ticks: int,
         _check_patterns(specs[0])
     kind = _backend(backend, workers, address)
     runner = ray_runner(address, workers) if kind == "ray" else local_runner(workers)
-    rows = runner(specs, retries, _Reporter(len(specs), progress, on_failure))
-    table = pd.DataFrame(sorted(rows, key=lambda r: r["run"]))
-    first = ["run", *values, "status", "error", "attempts", "ticks", "seconds", "recording"]
-    table = table[first + [c for c in table.columns if c not in first]]
+    before = {}
+    if out:
+        sign = signature(text, values, ticks, patterns, every)
+        before = done_before(out, table_format, sign, specs)
+        write_signature(out, sign)
+        if before and progress is not False:
+            print(f"ikaros sweep: {len(before)} of {len(specs)} runs were done before in "
+                  f"{out}; running the others", file=sys.stderr, flush=True)
+    reporter = _Reporter(len(specs) - len(before), progress, on_failure)
+    try:
+        runner([s for s in specs if s.index not in before], retries, reporter)
+    except KeyboardInterrupt:
+        if out:
+            rows = {**before, **{r["run"]: r for r in reporter.rows}}
+            rows.update({s.index: _interrupted_row(s) for s in specs if s.index not in rows})
+            write_table(_table(pd, rows.values(), values), out, table_format)
+        raise
+    table = _table(pd, list(before.values()) + reporter.rows, values)
     if out:
         write_table(table, out, table_format)
     return table
+
+
+def _table(pd, rows, values: dict):
+    """The results table: one row per run in order, the settings and status first."""
+    table = pd.DataFrame(sorted(rows, key=lambda r: r["run"]))
+    first = ["run", *values, "status", "error", "attempts", "ticks", "seconds", "recording"]
+    return table[first + [c for c in table.columns if c not in first]]
+
+
+def _interrupted_row(spec: RunSpec) -> dict:
+    """The row of a run that was not run (or whose end never came back)."""
+    return {"run": spec.index, **spec.settings, "status": INTERRUPTED, "error": "",
+            "attempts": 0, "ticks": 0, "seconds": 0.0, "recording": spec.recording or ""}
 
 
 def _check_patterns(spec: RunSpec) -> None:
@@ -275,6 +313,7 @@ class _Reporter:
 
     def __init__(self, total: int, progress: bool | None, on_failure):
         self.on_failure = on_failure or _print_failure
+        self.rows: list[dict] = []      # of the runs done, and those cut off
         self.bar = None
         if progress is None:
             progress = sys.stderr.isatty()
@@ -289,6 +328,9 @@ class _Reporter:
             self.bar = Bar(total=total, unit="run", file=sys.stderr)
 
     def done(self, row: dict) -> None:
+        self.rows.append(row)
+        if row["status"] == INTERRUPTED:
+            return
         if row["status"] != "ok":
             self.on_failure(row)
         if self.bar is not None:
@@ -316,12 +358,12 @@ def local_runner(workers: int | None):
         count = workers or os.cpu_count() or 1
         try:
             if count == 1:
-                rows = []
                 for spec in specs:
                     row = _with_retries(lambda s=spec: run_one(s), retries)
-                    rows.append(row)
                     reporter.done(row)
-                return rows
+                    if row["status"] == INTERRUPTED:
+                        raise KeyboardInterrupt
+                return reporter.rows
             return _in_processes(specs, min(count, len(specs) or 1), retries, reporter)
         finally:
             reporter.close()
@@ -348,12 +390,13 @@ def _in_processes(specs, count: int, retries: int, reporter) -> list[dict]:
         reporter.done(row)
     while queue:
         suspects = []       # runs that were in the pool when one of its processes died
-        with cf.ProcessPoolExecutor(max_workers=count, mp_context=context) as pool:
-            running: dict = {}
+        pool = _pool(count, context)
+        running: dict = {}
+        try:
             while (queue and not suspects) or running:
                 while queue and len(running) < count and not suspects:
                     spec, attempt = queue.pop()
-                    running[pool.submit(run_one, spec)] = (spec, attempt)
+                    running[pool.submit(poolworkers.run, run_one, spec)] = (spec, attempt)
                 done, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
                 for future in done:
                     spec, attempt = running.pop(future)
@@ -363,21 +406,60 @@ def _in_processes(specs, count: int, retries: int, reporter) -> list[dict]:
                         suspects.append((spec, attempt))
                         continue
                     finish(spec, attempt, row)
+        except KeyboardInterrupt:
+            _end_workers(pool, running, reporter)
+            raise
+        pool.shutdown(wait=True)
         # A broken pool fails every run it held; run each again alone to learn which one
         # took its process down (only that one is charged).
         for spec, attempt in suspects:
-            finish(spec, attempt, _alone(spec, context))
+            finish(spec, attempt, _alone(spec, context, reporter))
     return rows
 
 
-def _alone(spec: RunSpec, context) -> dict:
+def _pool(count: int, context):
+    """A process pool whose workers end with this process (poolworkers.py)."""
+    import concurrent.futures as cf
+    return cf.ProcessPoolExecutor(max_workers=count, mp_context=context,
+                                  initializer=poolworkers.start, initargs=(os.getpid(),))
+
+
+def _end_workers(pool, running: dict, reporter) -> None:
+    """On Ctrl-C or SIGTERM: SIGTERM to every worker, the rows of the runs they cut off
+    (those that come back within CUT_OFF_SECONDS) to the reporter, then SIGKILL to the
+    workers still there (their runs have ended, or had their time)."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    for process in processes:
+        process.terminate()
+    deadline = time.monotonic() + CUT_OFF_SECONDS
+    for future, (spec, attempt) in running.items():
+        try:
+            row = future.result(timeout=max(deadline - time.monotonic(), 0))
+        except BaseException:       # noqa: BLE001: not back in time, or its process died
+            continue
+        row["attempts"] = attempt
+        reporter.done(row)
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        if process.is_alive():
+            process.kill()
+        process.join(1)
+
+
+def _alone(spec: RunSpec, context, reporter) -> dict:
     """Run one spec in a process of its own; a process that dies fails the run."""
     import concurrent.futures as cf
-    with cf.ProcessPoolExecutor(max_workers=1, mp_context=context) as pool:
-        try:
-            return pool.submit(run_one, spec).result()
-        except cf.process.BrokenProcessPool:
-            return _error_row(spec, "a worker process died while this run was in it")
+    pool = _pool(1, context)
+    future = pool.submit(poolworkers.run, run_one, spec)
+    try:
+        return future.result()
+    except cf.process.BrokenProcessPool:
+        return _error_row(spec, "a worker process died while this run was in it")
+    except KeyboardInterrupt:
+        _end_workers(pool, {future: (spec, 1)}, reporter)
+        raise
+    finally:
+        pool.shutdown(wait=False)
 
 
 def _error_row(spec: RunSpec, error: str) -> dict:
@@ -389,7 +471,7 @@ def _with_retries(attempt, retries: int) -> dict:
     for k in range(retries + 1):
         row = attempt()
         row["attempts"] = k + 1
-        if row["status"] == "ok":
+        if row["status"] in ("ok", INTERRUPTED):
             break
     return row
 

@@ -12,6 +12,7 @@ from ..interrupt import is_interrupt
 from ..module import Clock
 from .buffers import alias_view
 from .gating import gated
+from .portguard import PortGuard
 from .schedule import thread_groups
 
 
@@ -134,12 +135,15 @@ class Plan:
 
     ``threads`` > 1 runs thread groups (modules joined by zero-delay connections) in
     parallel lanes; results are the same as with one thread, since lanes share no
-    zero-delay data. ``cost(module)`` weighs modules when lanes are balanced.
+    zero-delay data. ``cost(module)`` weighs modules when lanes are balanced. After the
+    calls a PortGuard finds a module that replaced one of its port arrays (``ports``:
+    portguard.port_attributes), among those whose Python tick runs.
     """
 
     def __init__(self, schedule: list, pre_tick: dict, tick_of: dict, edges: dict,
-                 threads: int, cost, fuser=None):
+                 threads: int, cost, fuser=None, ports: list | None = None):
         self.schedule = schedule
+        self.ports = ports or []
         self.index = {inst: i for i, inst in enumerate(schedule)}
         self.calls = {}
         for inst in schedule:
@@ -152,6 +156,7 @@ class Plan:
             self.sequence = [c for inst in schedule for c in self.calls[inst]]
             self.owner = {c: inst for inst in schedule for c in self.calls[inst]}
             self.fused = {}
+        self._watch()
         n = len(schedule)
         self.count = np.zeros(n, dtype=np.int64)
         self.total = np.zeros(n)
@@ -175,9 +180,22 @@ class Plan:
     def adopt(self, sequence: list, owner: dict, fused: dict) -> None:
         """Use other calls for the tick from now on (the compiled plan made meanwhile)."""
         self.sequence, self.owner, self.fused = sequence, owner, fused
+        self._watch()
+
+    def _watch(self) -> None:
+        """Guard the ports of the modules whose Python tick runs."""
+        guard = PortGuard([(inst, ports) for inst, ports in self.ports
+                           if inst not in self.fused])
+        self.guard = guard if len(guard) else None
 
     def run(self) -> tuple | None:
         """Run one tick's calls. Returns (module, exception) for a failure, else None."""
+        failure = self._run()
+        if failure is None and self.guard is not None:
+            return self.guard.check()
+        return failure
+
+    def _run(self) -> tuple | None:
         if self.pool is not None:
             return self._run_lanes()
         if self.profiling:

@@ -30,6 +30,7 @@ from .dynamic import DynamicRing, delayed_copy
 from .execution import AsyncModule, Plan, module_tick
 from .gating import gated
 from .fusion import fuse
+from .portguard import port_attributes
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .firsttick import FIRST_TICK, empty_history
 from .limits import check_memory as _check_memory
@@ -320,7 +321,8 @@ class Network:
             return fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
                         pre_tick)
         self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
-                         self.threads or 1, self._module_cost, fuser)
+                         self.threads or 1, self._module_cost, fuser,
+                         port_attributes(self.schedule, self._buffers))
         self._bulk = bulk if bulk_copy is not None else None
         self.compiled_since = 0 if self.compiled_modules else None
         if self.compiled_since is not None:

@@ -16,28 +16,18 @@ and rings, so delays are kept in ticks.
 """
 from __future__ import annotations
 
-import os
-import secrets
-import selectors
-import subprocess
-import sys
-import time
 from typing import Any
 
 import numpy as np
 
 from ..errors import RunError
-from ..hardware.link.endpoint import KEY_VARIABLE, check_key, link_key, split_address, tcp
-from ..hardware.link.peer import HEARTBEAT_MS, HEARTBEAT_TIMEOUT_MS, zmq_module
-from ..hardware.link.wire import LinkError, decode, encode
+from ..hardware.link.wire import LinkError
 from ..kernel.network import Network
 from ..kernel.scope import VariableError, substitute
 from ..kernel.tree import Group, find_component
 from ..module import EXCEPTION, FATAL_ERROR
-
-WORKER_PORT = 9200          # the default port of ``ikaros worker``
-START_SECONDS = 60.0        # for a worker to start, build the model and initialise
-POLL_SECONDS = 0.5          # how often a wait checks that the peer is still there
+from .atomic import SignalHold
+from .workerlink import WorkerLink, stall_seconds
 
 
 def process_groups(top: Group) -> dict[Group, str]:
@@ -131,7 +121,9 @@ class SplitNetwork(PartNetwork):
     def __init__(self, builder, top, order, runs, edges, groups):
         self.workers = [WorkerLink(g, where, *crossings(runs, groups, g))
                         for g, where in groups.items()]
-        self._in_flight = False
+        self._hold = SignalHold()           # link messages whole through a Ctrl-C
+        for worker in self.workers:
+            worker.hold = self._hold
         self._source_text = builder._text
         self._load_request = {"type": "load", "filename": builder.filename,
                               "overrides": builder.overrides,
@@ -144,8 +136,10 @@ class SplitNetwork(PartNetwork):
         if text is None:
             with open(self.filename, encoding="utf-8") as f:
                 text = f.read()
+        self._hold.install()
         try:
             for worker in self.workers:          # they build while this process does
+                worker.stall_seconds = stall_seconds(worker.group, self.clock.tick_duration)
                 worker.start(dict(self._load_request, text=text))
             super()._compile()
         except BaseException:
@@ -164,21 +158,23 @@ class SplitNetwork(PartNetwork):
     def _tick(self) -> None:
         for worker in self.workers:
             worker.send_tick(self.tick)
-        self._in_flight = True
         super()._tick()             # may end the run, which collects the workers' tick
-        if self._in_flight:
-            self._collect()
-            if self.stop_reason is not None and not self._stopped:
-                self._end()
+        self._collect()
+        if self.stop_reason is not None and not self._stopped:
+            self._end()
 
     def _collect(self) -> None:
-        self._in_flight = False
+        """Take each worker's answer to the tick sent to it and not yet answered (also
+        after a Ctrl-C that came at any point of the tick)."""
         for worker in self.workers:
+            tick = worker.pending
+            if tick is None:
+                continue
             try:
-                log = worker.receive_tick(self.tick - 1)
+                log = worker.receive_tick()
             except LinkError as e:
                 log = [(FATAL_ERROR, worker.group.path, str(e))]
-            self._relay(log, self.tick - 1)
+            self._relay(log, tick)
 
     def _relay(self, log: list, tick: int) -> None:
         """Log (and print, and act on) a worker's notifications of ``tick``."""
@@ -219,174 +215,17 @@ class SplitNetwork(PartNetwork):
 
     def _end(self) -> None:
         try:
-            if self._in_flight:
-                self._collect()
+            self._collect()
             super()._end()
         finally:
             self._stop_workers()
 
     def _stop_workers(self) -> None:
-        for worker in self.workers:
-            worker.stop()
-
-
-class WorkerLink:
-    """The main process's end of the link to the worker that runs ``group``."""
-
-    def __init__(self, group: Group, where: str, incoming: list, outgoing: list):
-        self.group = group
-        self.where = where
-        self.incoming = incoming        # sources the worker reads: sent every tick
-        self.outgoing = outgoing        # the worker's sources others read: received
-        self.process = None
-        self.socket = None
-        self.monitor = None
-        self.requests: list = []        # parameter changes and commands for the next tick
-        self.watched: dict = {}         # path -> array of other buffers to bring over
-        self._asked: list = []          # the watched paths asked for with the last tick
-        self.lost = None                # why the link was lost
-        self.remote = "://" in where or ":" in where
-        self.what = f'the worker of group "{group.path}" (process="{where}")'
-
-    def start(self, request: dict) -> None:
-        zmq = zmq_module()
-        if self.remote:
-            host, port = split_address(self.where, WORKER_PORT)
-            self.key = link_key(self.group.attrs.get("key"))
-            try:
-                check_key(host, self.key, f"the worker address of group {self.group.path}")
-            except LinkError as e:
-                raise self.group.node.error(str(e)) from None
-        else:
-            self.key = secrets.token_hex(16).encode()
-            host, port = "127.0.0.1", self._spawn()
-        s = self.socket = zmq.Context.instance().socket(zmq.DEALER)
-        s.setsockopt(zmq.LINGER, 0)
-        s.setsockopt(zmq.HEARTBEAT_IVL, HEARTBEAT_MS)
-        s.setsockopt(zmq.HEARTBEAT_TIMEOUT, HEARTBEAT_TIMEOUT_MS)
-        self.monitor = s.get_monitor_socket(zmq.EVENT_DISCONNECTED)
-        s.connect(tcp(host, port))
-        self.address = tcp(host, port)
-        request = dict(request, group=self.group.path,
-                       incoming=[b.path for b in self.incoming],
-                       outgoing=[b.path for b in self.outgoing])
-        s.send_multipart(encode(request, key=self.key))
-
-    def _spawn(self) -> int:
-        """Start ``ikaros worker`` on this machine for one session; returns its port."""
-        package_root = os.path.dirname(os.path.dirname(os.path.dirname(
-            os.path.abspath(__file__))))     # the folder that holds ikaros/
-        env = dict(os.environ, **{KEY_VARIABLE: self.key.decode()})
-        env["PYTHONPATH"] = os.pathsep.join(
-            p for p in (package_root, os.environ.get("PYTHONPATH")) if p)
-        self.process = subprocess.Popen(
-            [sys.executable, "-m", "ikaros", "worker", "--port", "0", "--once",
-             "--parent", str(os.getpid())], stdout=subprocess.PIPE, env=env)
-        line = b""
-        with selectors.DefaultSelector() as sel:
-            sel.register(self.process.stdout, selectors.EVENT_READ)
-            deadline = time.monotonic() + START_SECONDS
-            while b"\n" not in line and time.monotonic() < deadline:
-                if sel.select(POLL_SECONDS):
-                    data = os.read(self.process.stdout.fileno(), 256)     # unbuffered
-                    if not data:
-                        break
-                    line += data
-        self.process.stdout.close()
-        text = line.decode(errors="replace").partition("\n")[0].strip()
-        if not text.startswith("ikaros worker: listening on tcp://"):
-            self.process.kill()
-            self.process.wait()
-            raise self.group.node.error(f"{self.what} did not start: "
-                                        f"{text or 'no answer'}")
-        return int(text.rsplit(":", 1)[1].split()[0])
-
-    def _receive(self, deadline: float | None = None) -> tuple[dict, list]:
-        """The next message from the worker; LinkError when it is lost or refuses."""
-        zmq = zmq_module()
-        if self.lost:
-            raise LinkError(self.lost)
-        while not self.socket.poll(POLL_SECONDS * 1000):
-            reason = None
-            if self.process is not None and self.process.poll() is not None:
-                reason = f"its process ended (exit status {self.process.returncode})"
-            elif self.monitor.poll(0):
-                reason = "the connection was lost"
-            elif deadline is not None and time.monotonic() > deadline:
-                reason = f"no answer within {START_SECONDS:g} s"
-            if reason:
-                self.lost = f"{self.what} at {self.address} was lost: {reason}"
-                raise LinkError(self.lost)
-        frames = self.socket.recv_multipart(zmq.NOBLOCK)
         try:
-            header, arrays = decode(frames, self.key)
-        except LinkError:
-            header, arrays = decode(frames, None)       # only a refusal comes unsigned
-            if header.get("type") != "refused":
-                raise
-        if header.get("type") == "ping":                # the worker checks the link
-            return self._receive(deadline)
-        if header.get("type") in ("refused", "error"):
-            self.lost = f"{self.what} at {self.address}: {header.get('message')}"
-            raise LinkError(self.lost)
-        return header, arrays
-
-    def ready(self) -> list:
-        """Wait for the worker to have built and initialised its group; take its values
-        of tick -1. Returns its notifications (level, module path, message)."""
-        try:
-            header, arrays = self._receive(time.monotonic() + START_SECONDS)
-        except LinkError as e:
-            raise self.group.node.error(str(e)) from None
-        self._take(header, arrays, -1)
-        return header.get("log", [])
-
-    def send_tick(self, tick: int) -> None:
-        if not self.lost:
-            self._asked = list(self.watched)
-            header = {"type": "tick", "tick": tick, "requests": self.requests,
-                      "watch": self._asked}
-            self.socket.send_multipart(encode(header, [b.array for b in self.incoming],
-                                              self.key))
-            self.requests = []
-
-    def receive_tick(self, tick: int) -> list:
-        """Take the worker's values of ``tick``; returns its notifications of the tick
-        (an end of file or a fatal error among them ends the run here too)."""
-        header, arrays = self._receive()
-        self._take(header, arrays, tick)
-        return header.get("log", [])
-
-    def _take(self, header, arrays, tick) -> None:
-        asked = self._asked if tick >= 0 else []
-        due = len(self.outgoing) + len(asked)
-        if header.get("tick") != tick or len(arrays) != due:
-            self.lost = (f"{self.what} sent tick {header.get('tick')} with {len(arrays)} "
-                         f"arrays where tick {tick} with {due} was due")
-            raise LinkError(self.lost)
-        for buf, a in zip(self.outgoing, arrays):
-            buf.array[...] = a.reshape(buf.shape)
-        for path, a in zip(asked, arrays[len(self.outgoing):]):
-            target = self.watched[path]
-            target[...] = a.reshape(target.shape)
-
-    def stop(self) -> None:
-        """End the worker's session and close the link (once)."""
-        if self.socket is not None:
-            if not self.lost:
-                self.socket.send_multipart(encode({"type": "stop"}, key=self.key))
-                self.socket.poll(2000)             # its acknowledgement, once stopped
-            self.socket.disable_monitor()
-            self.monitor.close(0)
-            self.socket.close(0)
-            self.socket = None
-        if self.process is not None:
-            try:
-                self.process.wait(10)
-            except subprocess.TimeoutExpired:
-                self.process.kill()
-                self.process.wait()
-            self.process = None
+            for worker in self.workers:
+                worker.stop()
+        finally:
+            self._hold.uninstall()
 
 
 def _plain(value: Any) -> Any:

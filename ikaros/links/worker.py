@@ -15,7 +15,8 @@ from ..errors import ModelError, RunError
 from ..hardware.link.endpoint import check_key, link_key, tcp
 from ..hardware.link.peer import HEARTBEAT_MS, HEARTBEAT_TIMEOUT_MS, zmq_module
 from ..hardware.link.wire import LinkError, decode, encode
-from .split import POLL_SECONDS, WORKER_PORT, worker_network
+from .split import worker_network
+from .workerlink import POLL_SECONDS, WORKER_PORT
 
 
 def parser() -> argparse.ArgumentParser:
@@ -80,7 +81,7 @@ class Worker:
                     if once:
                         return
                 else:
-                    self._send(peer, {"type": "refused", "message": "no model loaded"})
+                    self._answer(peer, {"type": "refused", "message": "no model loaded"})
         finally:
             self.monitor.close(0)
             self.socket.close(0)
@@ -88,6 +89,16 @@ class Worker:
     def _send(self, peer: bytes, header: dict, arrays=(), signed: bool = True) -> None:
         self.socket.send_multipart([peer] + encode(header, arrays,
                                                    self.key if signed else None))
+
+    def _answer(self, peer: bytes, header: dict, arrays=(), signed: bool = True) -> bool:
+        """Send to a peer; False when it is gone (a main process that found this worker
+        silent too long, say after a SIGSTOP, and ended the run; its last messages may
+        still come in after)."""
+        try:
+            self._send(peer, header, arrays, signed)
+            return True
+        except self.zmq.ZMQError:
+            return False
 
     def _next(self, session: bytes | None = None):
         """(peer, header, arrays) of the next acceptable message; (None, None, None) when
@@ -103,11 +114,12 @@ class Worker:
             try:
                 header, arrays = decode(frames, self.key)
             except LinkError as e:
-                self._send(peer, {"type": "refused", "message": f"refused: {e}"}, signed=False)
+                self._answer(peer, {"type": "refused", "message": f"refused: {e}"},
+                             signed=False)
                 print(f"ikaros worker: refused a request: {e}", file=sys.stderr, flush=True)
                 continue
             if session is not None and peer != session:
-                self._send(peer, {"type": "refused", "message": "busy with another model"})
+                self._answer(peer, {"type": "refused", "message": "busy with another model"})
                 continue
             return peer, header, arrays
 
@@ -121,11 +133,7 @@ class Worker:
 
     def _alive(self, peer: bytes) -> bool:
         """Whether ``peer`` is still connected (a router cannot send to one that is gone)."""
-        try:
-            self._send(peer, {"type": "ping"})
-            return True
-        except self.zmq.ZMQError:
-            return False
+        return self._answer(peer, {"type": "ping"})
 
     def _session(self, peer: bytes, request: dict) -> None:
         from ..kernel.builder import Builder
@@ -139,7 +147,7 @@ class Worker:
                                                          request["incoming"],
                                                          request["outgoing"])).build()
         except (ModelError, RunError, LinkError, KeyError, OSError) as e:
-            self._send(peer, {"type": "error", "message": f"could not load the model: {e}"})
+            self._answer(peer, {"type": "error", "message": f"could not load the model: {e}"})
             return
         header: dict | None = {}
         self._drain_monitor()
@@ -147,9 +155,10 @@ class Worker:
             print(f"ikaros worker: running group {request['group']} of "
                   f"{request['filename']}", file=sys.stderr, flush=True)
         try:
-            self._send(peer, {"type": "ready", "tick": -1, "log": net.take_log()},
-                       net.sources())
-            while True:
+            if not self._answer(peer, {"type": "ready", "tick": -1, "log": net.take_log()},
+                                net.sources()):
+                header = None
+            while header is not None:
                 _, header, arrays = self._next(peer)
                 if header is None or header.get("type") == "stop":
                     break
@@ -160,10 +169,14 @@ class Worker:
                         net.step()
                     except RunError:
                         pass            # the fatal error is in the log it sends
-                self._send(peer, {"type": "tick", "tick": header.get("tick"),
-                                  "log": net.take_log()},
-                           net.sources(header.get("watch", [])))
+                if not self._answer(peer, {"type": "tick", "tick": header.get("tick"),
+                                           "log": net.take_log()},
+                                    net.sources(header.get("watch", []))):
+                    header = None
         finally:
             net.close()
             if header is not None:
-                self._send(peer, {"type": "stopped"})
+                self._answer(peer, {"type": "stopped"})
+            elif self.parent is None:
+                print("ikaros worker: the main process is gone; the session ended",
+                      file=sys.stderr, flush=True)

@@ -104,10 +104,10 @@ class ReplayBar:
 
     def _recorded_ticks(self, path: str) -> list:
         if self._ticks is None or self._ticks[0] != path:
-            from ..experiments.reading import _open
+            from ..experiments.reading import _open, readable_rows
             from ..experiments.recording import h5py_module
             with _open(h5py_module(), path) as f:
-                n = min(f["tick"].shape[0], f["data"].shape[0])
+                n = readable_rows(f)
                 self._ticks = (path, [int(t) for t in f["tick"][:n]])
         return self._ticks[1]
 

@@ -1,6 +1,7 @@
 """MCAP recordings: read back by the mcap reader and decoded by rosbags (an independent ROS 2
 implementation), tick for tick equal to the model's outputs."""
 import numpy as np
+import pytest
 from mcap.reader import make_reader
 from rosbags.typesys import Stores, get_typestore, get_types_from_msg
 
@@ -61,3 +62,28 @@ def test_every_tick_of_every_output_is_a_ros_2_message(tmp_path):
     assert attachments == [("model.ikg", MODEL)]
     assert metadata["parameters"]["Twice.factor"] == "2"
     assert metadata["ikaros"]["tick_duration"] == "0.01"
+
+
+def test_a_failed_write_stops_the_run_and_leaves_no_file(tmp_path, monkeypatch):
+    from mcap.writer import Writer
+    written = []
+
+    def fill_up(self, channel_id, log_time, data, publish_time, sequence=0):
+        if len(written) == 30:
+            raise OSError(28, "No space left on device")
+        written.append(sequence)
+    monkeypatch.setattr(Writer, "add_message", fill_up)
+    model = tmp_path / "m.ikg"
+    model.write_text(MODEL)
+    path = tmp_path / "run.mcap"
+    with ikaros.load(str(model)) as net:
+        recording = net.record(str(path), flush_seconds=0)
+        with pytest.raises(ikaros.RunError, match=r"writing the recording .*run\.mcap failed "
+                                                  r"\(No space left on device\); it holds no "
+                                                  r"ticks \(the file is removed\); the run "
+                                                  r"stops"):
+            net.run(ticks=10**7)      # ended by the failure, well before
+        assert net.tick < 10**7
+        with pytest.raises(OSError, match="No space left on device"):
+            recording.close()
+    assert not path.exists()

@@ -119,7 +119,7 @@ def test_the_command_line_writes_a_table_and_one_recording_per_run(model, tmp_pa
                                   2 * np.arange(1, 21))
     assert recorded.attrs["finished"] is True
     assert sorted(os.listdir(out)) == ["results.csv", "run_0.h5", "run_1.h5", "run_2.h5",
-                                       "run_3.h5"]
+                                       "run_3.h5", "sweep.json"]
 
 
 def test_command_line_usage_errors(model, capsys):

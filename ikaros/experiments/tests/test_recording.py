@@ -181,21 +181,25 @@ def test_a_run_killed_mid_way_is_readable_up_to_its_last_flushed_chunk(tmp_path)
         assert json.loads(f.attrs["command_line"])[0] == "ikaros"
 
 
-def test_a_failing_recording_stops_with_a_warning_and_the_run_goes_on(tmp_path):
+def test_a_failing_recording_asked_to_continue_stops_with_a_warning_and_the_run_goes_on(
+        tmp_path):
     net = load_body(tmp_path, BODY)
     net.log_level = -1
-    recorder = net.record(str(tmp_path / "run.h5"))
+    recorder = net.record(str(tmp_path / "run.h5"), flush_seconds=0, on_error="continue")
     stopped = []
     net.modules["Counter"].module.stop = lambda: stopped.append(True)
     net.run(ticks=5)
-    recorder._error = OSError("disk full")     # as the writer thread reports a failure:
-    recorder._tap.request()                    # the recorder hears of it at the next tick
+    deadline = time.monotonic() + 30
+    while recorder.stored < 4 and time.monotonic() < deadline:     # ticks 0-3 flushed
+        time.sleep(0.01)
+    recorder._fail(OSError("disk full"))       # as the writer thread reports a failure:
     net.run(ticks=5)                           # no exception: the model keeps running
     assert net.tick == 10
     net.close()
     assert stopped == [True]
     warnings = [m for _, _, _, m in net.log if "disk full" in m]
-    assert warnings == [f"the recording {tmp_path / 'run.h5'} stopped: writing failed: "
-                        f"disk full"]
+    assert warnings == [f"writing the recording {tmp_path / 'run.h5'} failed (disk full); "
+                        f"it holds 4 ticks (0 to 3); the run goes on without recording"]
     ds = open_recording(str(tmp_path / "run.h5"))
     assert ds.attrs["finished"] is False
+    np.testing.assert_array_equal(ds["tick"].values, np.arange(4))

@@ -63,6 +63,8 @@ class Replay(Module):
                 raise build_error(self, f'the recording "{self.filename}" has no outputs '
                                         f'of module "{self.module}"')
         self._rows = min(f["data"].shape[0], f["tick"].shape[0])
+        if "stored" in f:       # rows past the file's count of rows written whole
+            self._rows = min(self._rows, int(f["stored"][0]))
         # a block is a chunk of the file (decompressed once), or BLOCK_TICKS rows
         self._block_ticks = f["data"].chunks[0] if f["data"].chunks else BLOCK_TICKS
         if self._rows == 0:

@@ -1,0 +1,88 @@
+"""The life of a sweep's worker processes: they die with the sweep, every way it ends.
+
+Each worker, when it starts (``start``), ignores Ctrl-C (the terminal sends it to the whole
+process group; the sweep itself ends its workers) and asks Linux to send it SIGTERM when
+its parent dies (``prctl(PR_SET_PDEATHSIG)``, so also when the sweep is killed with
+SIGKILL); elsewhere a thread watches the parent. SIGTERM during a run interrupts the run
+(its modules are stopped and its recording closed as not finished, and the run's row says
+"interrupted" with the ticks it ran), and the worker exits at once if its parent is gone,
+within ``GRACE`` seconds in any case. SIGTERM between runs exits when the parent is gone;
+else the sweep, which sent it, ends the worker once the rows of the runs cut off are back
+(an idle worker that exits at once would make the pool fail those runs' rows).
+"""
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import os
+import signal
+import sys
+import threading
+import time
+
+from ..interrupt import GRACE, Interrupted
+
+PR_SET_PDEATHSIG = 1            # linux/prctl.h
+EXIT_TERMINATED = 128 + signal.SIGTERM
+WATCH_SECONDS = 0.2             # how often the watching thread looks for the parent
+
+_state = {"parent": None, "running": False}
+
+
+def start(parent: int) -> None:
+    """The initializer of a worker process of the sweep whose process id is ``parent``."""
+    _state["parent"] = parent
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, _terminated)
+    if not _die_with_parent():
+        threading.Thread(target=_watch_parent, name="ikaros-sweep-parent",
+                         daemon=True).start()
+    if os.getppid() != parent:          # it died before the request took hold
+        _exit()
+
+
+def run(function, spec):
+    """``function(spec)`` in a worker; after a run cut off by SIGTERM whose sweep is gone,
+    the worker exits."""
+    _state["running"] = True
+    try:
+        return function(spec)
+    finally:
+        _state["running"] = False
+        if os.getppid() != _state["parent"]:
+            _exit()
+
+
+def _die_with_parent() -> bool:
+    """Ask the kernel for SIGTERM when the parent dies; whether it took."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
+        return libc.prctl(PR_SET_PDEATHSIG, int(signal.SIGTERM), 0, 0, 0) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def _watch_parent() -> None:
+    while os.getppid() == _state["parent"]:
+        time.sleep(WATCH_SECONDS)
+    os.kill(os.getpid(), signal.SIGTERM)
+
+
+def _terminated(signum, frame) -> None:
+    if not _state["running"]:
+        if os.getppid() != _state["parent"]:
+            _exit()
+        return          # the sweep ends this idle worker itself, once the runs are back
+    timer = threading.Timer(GRACE, _exit)
+    timer.daemon = True
+    timer.start()
+    raise Interrupted()
+
+
+def _exit() -> None:
+    try:
+        sys.stderr.flush()
+    finally:
+        os._exit(EXIT_TERMINATED)

@@ -1,0 +1,77 @@
+"""The check after a tick that no module replaced the array of one of its ports.
+
+A module's ports are attributes holding the arrays the kernel connected; ``self.OUTPUT =
+[1, 2]`` binds the attribute to a new object, so the value never reaches the output (and
+``self.INPUT = ...`` hides the input). The check compares identities in C (``map`` of
+``operator.is_`` over the modules' attribute dictionaries and the arrays), only for the
+modules whose Python tick runs (not those the compiled or fused tick computes): every port
+after the first tick, then a slice of ``SLICE`` ports after each tick in turn, so that it
+costs a few microseconds per tick however large the model (a port replaced later is found
+within ports / SLICE ticks). Only when an identity differs is the culprit looked for.
+"""
+from __future__ import annotations
+
+import operator
+
+from ..module import attribute_name
+
+SLICE = 16          # ports checked after each tick (all of them after the first)
+
+
+class ReplacedPort(Exception):
+    """A module's tick assigned to one of its ports instead of writing into it."""
+
+
+def _message(attr: str, is_output: bool) -> str:
+    if is_output:
+        return (f"the tick replaced its output {attr} (self.{attr} = ...), so the value "
+                f"never reaches the output: write into the array instead, "
+                f"self.{attr}[:] = ...")
+    return (f"the tick assigned to its input {attr} (self.{attr} = ...): a module never "
+            f"replaces or writes its inputs; read them (or work on a copy, "
+            f"x = self.{attr}.copy())")
+
+
+def port_attributes(schedule: list, buffers: dict) -> list:
+    """(instance, {attribute: is_output}) of each module in ``schedule`` (``buffers``:
+    {instance: (inputs, outputs)} by port name)."""
+    return [(inst, {**{attribute_name(n): False for n in buffers[inst][0]},
+                    **{attribute_name(n): True for n in buffers[inst][1]}})
+            for inst in schedule]
+
+
+class PortGuard:
+    """Watches the port attributes of ``modules`` ((instance, {attribute: is_output})
+    each) as they are bound now."""
+
+    def __init__(self, modules: list):
+        self._where = []            # (instance, attribute, is_output) of each entry
+        dicts, names, arrays = [], [], []
+        for inst, ports in modules:
+            attributes = vars(inst.module)
+            for attr, is_output in ports.items():
+                if attributes.get(attr) is not None:
+                    self._where.append((inst, attr, is_output))
+                    dicts.append(attributes)
+                    names.append(attr)
+                    arrays.append(attributes[attr])
+        self._all = (dicts, names, arrays)
+        self._slices = [(dicts[k:k + SLICE], names[k:k + SLICE], arrays[k:k + SLICE])
+                        for k in range(0, len(dicts), SLICE)]
+        self._next = -1             # the slice to check next; -1: all of them
+
+    def __len__(self) -> int:
+        return len(self._where)
+
+    def check(self) -> tuple | None:
+        """None when the ports checked now hold their arrays, else (instance,
+        ReplacedPort) for the first that does not."""
+        k = self._next
+        dicts, names, arrays = self._all if k < 0 else self._slices[k]
+        self._next = (k + 1) % len(self._slices)
+        if all(map(operator.is_, map(dict.get, dicts, names), arrays)):
+            return None
+        for (inst, attr, is_output), attributes, array in zip(self._where, *self._all[::2]):
+            if attributes.get(attr) is not array:
+                return inst, ReplacedPort(_message(attr, is_output))
+        return None
