@@ -4,13 +4,16 @@ priority request (``priority="fifo"``: SCHED_FIFO for the tick thread, memory lo
     python benchmarks/realtime_under_load.py                 # 30 s per run, 8 runs: ~4.5 min
     python benchmarks/realtime_under_load.py --seconds 5     # a quick look
 
-Two models, each run in a process of its own:
+Three models, each run in a process of its own:
 * robot_320 (benchmarks/models.py: 320 modules) at 1 kHz;
 * the Epi bus at 100 Hz: the Dynamixel module with 19 servos (Protocol 2.0, sync write of goal
   positions and sync read of present positions every tick) against the simulator
   (``ikaros-sim dynamixel --line-time``) in a process of its own, as a real bus would be.
 
-The hog is one busy-loop process per core, at normal priority. Printed per run: lag p50, p99
+* 1,000 Izhikevich neurons (benchmarks/populations.py's dense network) at 1 kHz, ten 5 s runs
+  beside one busy loop (issue 30's target: no resynchronisation in any run).
+
+The hog is one busy-loop process per core (one for the spiking runs), at normal priority. Printed per run: lag p50, p99
 and max over every tick (ms), resynchronisations, ticks run of those asked for, what the
 priority request was granted, and the garbage collections of each generation during the run
 (count / longest, ms). SCHED_FIFO is granted only where the process may (root, or
@@ -30,6 +33,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, ROOT)
 
 from benchmarks import models  # noqa: E402
+from benchmarks.populations import make_case, model_text  # noqa: E402
 from benchmarks.robots import LATENCY_MS, SERVOS, start_simulator  # noqa: E402
 
 # The run, in a child process: every tick's lag is kept by a tick hook.
@@ -95,9 +99,21 @@ def _above_the_hog(pid: int) -> None:
               "the hog it answers late, as no real servo would")
 
 
-def start_hog() -> list[subprocess.Popen]:
+def start_hog(processes: int | None = None) -> list[subprocess.Popen]:
+    """Busy-loop processes at normal priority: one a core unless told how many."""
     return [subprocess.Popen([sys.executable, "-c", "while True: pass"])
-            for _ in range(os.cpu_count() or 1)]
+            for _ in range(processes or os.cpu_count() or 1)]
+
+
+def spiking_model(folder: str) -> str:
+    """The 1,000-neuron Izhikevich network of benchmarks/populations.py (dense)."""
+    case = os.path.join(folder, "spiking")
+    os.makedirs(case)
+    make_case(case, 1000, 1.0)
+    path = os.path.join(case, "spiking.ikg")
+    with open(path, "w") as f:
+        f.write(model_text(case, 1000))
+    return path
 
 
 def run(path: str, ticks: int, settings: dict) -> dict:
@@ -127,6 +143,10 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--seconds", type=float, default=30.0, help="per run (default 30)")
     parser.add_argument("--priority", default="fifo", help="the request (default fifo)")
+    parser.add_argument("--spiking-runs", type=int, default=10,
+                        help="runs of 1,000 spiking neurons at 1 kHz beside one busy loop "
+                             "(default 10)")
+    parser.add_argument("--spiking-seconds", type=float, default=5.0)
     options = parser.parse_args()
     print(f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}, "
           f"{'root' if os.geteuid() == 0 else 'not root'}; {options.seconds:g} s per run")
@@ -153,6 +173,26 @@ def main() -> None:
                                 p.kill()
                                 p.wait()
                         show(name, hog, asked, ticks, result)
+            spiking = spiking_model(folder)
+            ticks = int(options.spiking_seconds / 0.001)
+            for asked in (False, True):
+                resyncs = []
+                for _ in range(options.spiking_runs):
+                    settings = {"tick_duration": 0.001}
+                    if asked:
+                        settings["priority"] = options.priority
+                    hogs = start_hog(1)
+                    try:
+                        result = run(spiking, ticks, settings)
+                    finally:
+                        for p in hogs:
+                            p.kill()
+                            p.wait()
+                    resyncs.append(result["resyncs"])
+                    show("spiking_1k", True, asked, ticks, result)
+                print(f"spiking_1k beside one busy loop, {'with' if asked else 'without'} "
+                      f"the priority request: runs with no resynchronisation "
+                      f"{resyncs.count(0)} of {len(resyncs)}")
     finally:
         simulator.terminate()
         simulator.wait(timeout=10)

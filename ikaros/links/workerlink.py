@@ -98,8 +98,8 @@ class WorkerLink:
 
     def _spawn(self) -> int:
         """Start ``ikaros worker`` on this machine for one session; returns its port."""
-        import ikaros
-        package_root = os.path.dirname(os.path.dirname(os.path.abspath(ikaros.__file__)))
+        package_root = os.path.dirname(os.path.dirname(os.path.dirname(
+            os.path.abspath(__file__))))     # the folder that holds ikaros/
         env = dict(os.environ, **{KEY_VARIABLE: self.key.decode()})
         env["PYTHONPATH"] = os.pathsep.join(
             p for p in (package_root, os.environ.get("PYTHONPATH")) if p)
