@@ -187,7 +187,7 @@ def main() -> None:
                         show(name, hog, asked, ticks, result)
             spiking = spiking_model(folder)
             ticks = int(options.spiking_seconds / 0.001)
-            for asked in (False, True):
+            for asked in (False, True) if options.spiking_runs else ():
                 resyncs = []
                 for _ in range(options.spiking_runs):
                     settings = {"tick_duration": 0.001}
