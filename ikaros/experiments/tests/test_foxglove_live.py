@@ -2,6 +2,7 @@
 WebSocket client speaking Foxglove's protocol."""
 import asyncio
 import json
+import os
 import struct
 
 import numpy as np
@@ -10,6 +11,7 @@ from rosbags.typesys import Stores, get_typestore
 
 import ikaros
 from ikaros.experiments.foxglove_live import FoxgloveView
+from ikaros.hardware.ros2 import LOOPBACK
 
 MODEL = """<group tick_duration="0.01">
   <module class="Constant" name="A" data="1, 2, 3"/>
@@ -61,3 +63,34 @@ def test_the_outputs_are_channels_of_ros_2_messages(tmp_path):
     np.testing.assert_array_equal(a.data, [1, 2, 3])
     np.testing.assert_array_equal(b.data, [4, 5])
     assert [(d.size, d.stride) for d in b.layout.dim] == [(2, 2), (1, 1)]
+
+
+IMAGES = """<group tick_duration="0.01">
+  <module class="Constant" name="Picture" data="[[[1, 0]], [[0, 0.5]], [[0, 1]]]"/>
+  <module class="Constant" name="Angles" data="0.5, -0.25"/>
+  <module class="ROS2Publisher" name="Joints" topic="/joint_states" type="JointState"
+          names="shoulder, elbow" domain_id="{domain}"/>
+  <connection source="Angles.OUTPUT" target="Joints.INPUT"/>
+</group>"""
+
+
+def test_colour_images_and_what_publishers_send_keep_their_ros_types(tmp_path, monkeypatch):
+    monkeypatch.setenv("CYCLONEDDS_URI", LOOPBACK)
+    path = tmp_path / "m.ikg"
+    path.write_text(IMAGES.format(domain=100 + os.getpid() % 100))
+    with ikaros.load(str(path)) as net:
+        view = FoxgloveView(net, port=0, interval=0.0, only=["Picture.OUTPUT"])
+        try:
+            channels, got = asyncio.run(asyncio.wait_for(
+                _listen(view.port, 2, lambda: net.run(ticks=1)), 30))
+        finally:
+            view.close()
+    assert sorted((c["topic"], c["schemaName"]) for c in channels.values()) == [
+        ("/ikaros/Picture/OUTPUT", "sensor_msgs/msg/Image"),
+        ("/joint_states", "sensor_msgs/msg/JointState")]
+    image = STORE.deserialize_cdr(got["/ikaros/Picture/OUTPUT"], "sensor_msgs/msg/Image")
+    assert (image.height, image.width, image.encoding, image.step) == (1, 2, "rgb8", 6)
+    assert list(image.data) == [255, 0, 0, 0, 128, 255]     # (r, g, b) of each pixel
+    joints = STORE.deserialize_cdr(got["/joint_states"], "sensor_msgs/msg/JointState")
+    assert joints.name == ["shoulder", "elbow"]
+    np.testing.assert_array_equal(joints.position, [0.5, -0.25])

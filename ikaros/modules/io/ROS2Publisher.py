@@ -1,10 +1,11 @@
 """ROS2Publisher: publishes an input on a ROS 2 topic every tick."""
 import numpy as np
 
+from ikaros.hardware.ros2.images import IMAGE_ENCODINGS, image_message
 from ikaros.hardware.ros2.messages import layout_of, stamp
 from ikaros.module import Input, Module, Parameter
 
-from ._ros2 import (IMAGE_ENCODINGS, connect, domain_parameter, image_message, qos_parameter,
+from ._ros2 import (connect, domain_parameter, qos_parameter,
                     topic_parameter, type_parameter)
 
 
@@ -32,6 +33,11 @@ class ROS2Publisher(Module):
     encoding = Parameter("rgb8", "Image: the encoding sent", options=IMAGE_ENCODINGS,
                          fixed=True)
 
+    # What the last tick published (the message type's ROS name and its bytes), for views of
+    # the run: the live Foxglove view shows it on the same topic.
+    message_type: str = ""
+    last_message: bytes | None = None
+
     INPUT = Input("the values to publish")
     VELOCITY = Input("JointState: the joint velocities", optional=True)
     EFFORT = Input("JointState: the joint efforts", optional=True)
@@ -50,6 +56,7 @@ class ROS2Publisher(Module):
                              f"(3, rows, cols), not {self.INPUT.shape}")
         self._first = self.start_steps()[1]
         self._publisher = dds.Publisher(self.topic, self._kind, self.qos, domain)
+        self.message_type = self._kind.name
         self._encode = {"Float32MultiArray": self._array, "Float64MultiArray": self._array,
                         "Float32": self._scalar, "Float64": self._scalar,
                         "Twist": self._twist, "JointState": self._joint_state,
@@ -58,7 +65,8 @@ class ROS2Publisher(Module):
     def tick(self):
         if self._first is None or self.clock.tick < self._first:
             return
-        self._publisher.publish(self._kind.encode(self._encode()))
+        self.last_message = self._kind.encode(self._encode())
+        self._publisher.publish(self.last_message)
 
     def stop(self):
         self._publisher.close()

@@ -3,9 +3,10 @@ import time
 
 import numpy as np
 
+from ikaros.hardware.ros2.images import image_values
 from ikaros.module import Module, Output, Parameter
 
-from ._ros2 import (connect, domain_parameter, image_values, qos_parameter, topic_parameter,
+from ._ros2 import (connect, domain_parameter, qos_parameter, topic_parameter,
                     type_parameter)
 
 SHAPES = {"Float32": "1", "Float64": "1", "Twist": "6"}

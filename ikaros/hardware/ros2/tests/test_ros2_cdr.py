@@ -5,6 +5,7 @@ import pytest
 import rosbags.typesys as rosbags        # an independent implementation of ROS 2 CDR
 
 from ikaros.hardware.ros2.cdr import CdrError
+from ikaros.hardware.ros2.msgdefs import DEFINITIONS
 from ikaros.hardware.ros2.messages import (TYPES, float32_array_encoder, layout_of,
                                            message_type, stamp)
 
@@ -150,3 +151,30 @@ def test_the_fast_array_encoder_writes_what_the_message_encoder_writes(shape):
     full = TYPES["std_msgs/msg/Float32MultiArray"].encode({"layout": layout_of(shape),
                                                            "data": values})
     assert float32_array_encoder(shape)(values) == full
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_each_definition_reads_our_bytes_in_rosbags(case):
+    """The .msg text Foxglove and MCAP files are given describes the bytes we write."""
+    name, ours, _ = CASES[case]
+    store = rosbags.get_typestore(rosbags.Stores.EMPTY)
+    store.register(rosbags.get_types_from_msg(DEFINITIONS[name], name))
+    back = store.deserialize_cdr(TYPES[name].encode(ours), name)
+    assert back.__msgtype__ == name
+
+
+@pytest.mark.parametrize("name", ["std_msgs/msg/Float32MultiArray",
+                                  "std_msgs/msg/Float64MultiArray", "sensor_msgs/msg/Image"])
+def test_the_array_and_image_definitions_read_our_bytes_in_rosbags(name):
+    store = rosbags.get_typestore(rosbags.Stores.EMPTY)
+    store.register(rosbags.get_types_from_msg(DEFINITIONS[name], name))
+    if name == "sensor_msgs/msg/Image":
+        message = {"header": {"stamp": (1, 2), "frame_id": "cam"}, "height": 2, "width": 3,
+                   "encoding": "mono8", "is_bigendian": 0, "step": 3, "data": bytes(range(6))}
+        back = store.deserialize_cdr(TYPES[name].encode(message), name)
+        assert (back.height, back.width, bytes(back.data)) == (2, 3, bytes(range(6)))
+    else:
+        message = {"layout": layout_of((2, 2)), "data": np.arange(4)}
+        back = store.deserialize_cdr(TYPES[name].encode(message), name)
+        np.testing.assert_array_equal(back.data, np.arange(4))
+        assert [(d.size, d.stride) for d in back.layout.dim] == [(2, 4), (2, 2)]
