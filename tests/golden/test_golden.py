@@ -1,7 +1,9 @@
 """Every case of every golden file: the original C++ Ikaros 3's outputs on small models.
 
-The golden files are ``shared/golden/*.json`` beside the repository (``<repo>/../shared``;
-``IKAROS_SHARED`` names another folder), read as they are: each case's model is run for its
+The golden files are copies of the project's ``shared/golden/*.json`` in
+``tests/golden/files`` (so that the tests run in any clone), read as they are; where
+``shared/`` lies beside the repository (``IKAROS_SHARED`` names another folder) the copies
+must equal it. Each case's model is run for its
 ticks, and after the k-th tick every output the file records for tick k is compared, shape
 and values (numpy ``allclose``, rtol = atol = 1e-5, NaN equal to ``null``), as the golden
 README says. The models are Ikaros 3 files, so they are loaded with ``dialect=3``: most of
@@ -19,7 +21,7 @@ import ikaros
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SHARED = os.environ.get("IKAROS_SHARED") or os.path.join(os.path.dirname(ROOT), "shared")
-GOLDEN = os.path.join(SHARED, "golden")
+GOLDEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "files")
 
 RTOL = ATOL = 1e-5
 # golden/README.md: classes that integrate at sub-tick steps may need rtol 1e-4
@@ -27,11 +29,8 @@ LOOSER = {"IntegrateAndFirePopulation": 1e-4, "RatePopulation": 1e-4, "KalmanFil
 
 
 def _cases() -> list:
-    files = sorted(glob.glob(os.path.join(GOLDEN, "*.json")))
-    if not files:
-        return [pytest.param(None, None, id="golden-files-missing")]
     cases = []
-    for file in files:
+    for file in sorted(glob.glob(os.path.join(GOLDEN, "*.json"))):
         with open(file, encoding="utf-8") as f:
             golden = json.load(f)
         for case in golden["cases"]:
@@ -58,9 +57,6 @@ def _agrees(got: np.ndarray, want: np.ndarray, rtol: float) -> bool:
 
 @pytest.mark.parametrize("cls, case", _cases())
 def test_golden_case(cls, case, tmp_path):
-    if case is None:
-        pytest.fail(f"no golden files: {GOLDEN} holds no *.json (the repository expects "
-                    f"shared/ beside it, or IKAROS_SHARED naming that folder)")
     rtol = LOOSER.get(cls, RTOL)
     path = tmp_path / "golden.ikg"
     path.write_text(case["model"], encoding="utf-8")
@@ -79,3 +75,15 @@ def test_golden_case(cls, case, tmp_path):
                                        f"C++ {want.tolist()}")
     assert not differences, f"{len(differences)} differences; the first: " + \
         "; ".join(differences[:3])
+
+
+@pytest.mark.skipif(not os.path.isdir(os.path.join(SHARED, "golden")),
+                    reason="the project's shared/ folder is not beside this clone")
+def test_the_copies_are_the_shared_golden_files():
+    shared = os.path.join(SHARED, "golden")
+    names = sorted(os.path.basename(p) for p in glob.glob(os.path.join(shared, "*.json")))
+    assert names == sorted(os.path.basename(p) for p in glob.glob(os.path.join(GOLDEN, "*.json")))
+    for name in names:
+        with open(os.path.join(shared, name), "rb") as a, open(os.path.join(GOLDEN, name),
+                                                              "rb") as b:
+            assert a.read() == b.read(), f"tests/golden/files/{name} differs from shared/"
