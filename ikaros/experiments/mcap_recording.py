@@ -25,8 +25,8 @@ from ..hardware.ros2.messages import float32_array_encoder
 from ..hardware.ros2.msgdefs import DEFINITIONS
 from ..kernel.taps import ROW, SIGNAL
 from ..module import FATAL_ERROR, WARNING, require
-from .recording import FLUSH_SECONDS, _model_text
-from .signals import module_parameters, select_outputs
+from .recording import FLUSH_SECONDS
+from .signals import model_text, module_parameters, select_outputs
 from .writefaults import check_on_error, failure_text, remove_recording
 
 MESSAGE = "std_msgs/msg/Float32MultiArray"
@@ -87,7 +87,7 @@ class McapRecorder:
         self._encoders = [float32_array_encoder(s.shape) for s in self.signals]
         self._wall = time.time_ns()
         w.add_attachment(self._wall, self._wall, "model.ikg", "application/xml",
-                         _model_text(net).encode("utf-8"))
+                         model_text(net).encode("utf-8"))
         w.add_metadata("parameters", module_parameters(net))
         w.add_metadata("ikaros", {"file": net.filename or "", "tick_duration":
                                   repr(net.clock.tick_duration),

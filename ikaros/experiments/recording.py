@@ -39,7 +39,7 @@ from ..kernel.taps import ROW, SIGNAL, TICK
 from ..module import FATAL_ERROR, WARNING
 from ..version import __version__
 from .chunks import COMPRESSION_LEVEL, shuffled, shuffled_deflate
-from .signals import module_parameters, seeds, select_outputs
+from .signals import model_text, module_parameters, seeds, select_outputs
 from .writefaults import (check_on_error, failure_text, probe_room, reason,
                           remove_recording)
 
@@ -138,7 +138,7 @@ class Recorder:
         """The file with its header and empty datasets, flushed; nothing is left behind
         when it cannot be written (a disk full already)."""
         try:
-            probe_room(self.filename, PROBE_BYTES + len(_model_text(self.net)))
+            probe_room(self.filename, PROBE_BYTES + len(model_text(self.net)))
             self._file = h5py.File(self.filename, "w", libver="latest")
         except OSError as e:
             remove_recording(self.filename, only_empty=True)
@@ -177,7 +177,7 @@ class Recorder:
             "parameters": json.dumps(parameters), "seeds": json.dumps(seeds(parameters)),
             "finished": False,
         })
-        f.create_dataset("model", data=_model_text(net))
+        f.create_dataset("model", data=model_text(net))
 
     def _create_datasets(self, columns: int) -> None:
         f, T = self._file, self.chunk_ticks
@@ -425,15 +425,6 @@ class Recorder:
         k = self._changes.shape[0]
         self._changes.resize(k + 1, axis=0)
         self._changes[k] = (tick, path.encode()[:PATH_BYTES], value.encode()[:VALUE_BYTES])
-
-
-def _model_text(net) -> str:
-    try:
-        with open(net.filename, encoding="utf-8") as f:
-            return f.read()
-    except (OSError, TypeError, UnicodeDecodeError):
-        from ..language.writer import to_text
-        return to_text(net.model)
 
 
 def _detach(file) -> None:

@@ -6,6 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..language.writer import to_text
+
 
 @dataclass(frozen=True)
 class Signal:
@@ -57,3 +59,13 @@ def seeds(parameters: dict[str, str]) -> dict[str, str]:
     """The parameters named seed (of random generators), by address."""
     return {path: value for path, value in parameters.items()
             if path.rsplit(".", 1)[-1] == "seed"}
+
+
+def model_text(net) -> str:
+    """The text of the model a recording keeps: its file as it is, or the tree written
+    out (a model built in code)."""
+    try:
+        with open(net.filename, encoding="utf-8") as f:
+            return f.read()
+    except (OSError, TypeError, UnicodeDecodeError):
+        return to_text(net.model)
