@@ -1,13 +1,18 @@
-"""Every case of every golden file: the original C++ Ikaros 3's outputs on small models.
+"""Every case of every golden file: the original C++ programs' outputs on small models.
 
-The golden files are copies of the project's ``shared/golden/*.json`` in
-``tests/golden/files`` (so that the tests run in any clone), read as they are; where
-``shared/`` lies beside the repository (``IKAROS_SHARED`` names another folder) the copies
-must equal it. Each case's model is run for its
-ticks, and after the k-th tick every output the file records for tick k is compared, shape
-and values (numpy ``allclose``, rtol = atol = 1e-5, NaN equal to ``null``), as the golden
-README says. The models are Ikaros 3 files, so they are loaded with ``dialect=3``: most of
-them use no Ikaros 3-only form that would make the loader see it by itself.
+``tests/golden/files`` holds copies of the project's ``shared/golden/*.json`` (Ikaros 3) and
+``tests/golden/files-v2`` of ``shared/golden-v2/*.json`` (Ikaros 2), so that the tests run in
+any clone; where ``shared/`` lies beside the repository (``IKAROS_SHARED`` names another
+folder) the copies must equal it. Each case's model is run for its ticks and every output the
+file records is compared after the tick it belongs to, shape and values (numpy ``allclose``,
+rtol = atol = 1e-5, NaN equal to ``null``), as each README says:
+
+- Ikaros 3 (``golden/README.md``): record ``"k"`` after the k-th ``net.step()``. The models use
+  few Ikaros 3-only forms, so they are loaded with ``dialect=3``.
+- Ikaros 2 (``golden-v2/README.md``): record ``"k"`` is the state after Ikaros 2's tick k,
+  compared after the (k+1)-th ``net.step()``. The models are loaded as they are: the loader
+  must itself read them as Ikaros 2 files. A one-row output is written there as a list, so a
+  ``(1, n)`` output here equals a list of n.
 """
 import glob
 import json
@@ -21,7 +26,9 @@ import ikaros
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SHARED = os.environ.get("IKAROS_SHARED") or os.path.join(os.path.dirname(ROOT), "shared")
-GOLDEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "files")
+HERE = os.path.dirname(os.path.abspath(__file__))
+# (the folder of copies here, the folder in shared/, the dialect to force, the first record)
+SETS = {"3": ("files", "golden", "3", 1), "2": ("files-v2", "golden-v2", None, 0)}
 
 RTOL = ATOL = 1e-5
 # golden/README.md: classes that integrate at sub-tick steps may need rtol 1e-4
@@ -30,12 +37,13 @@ LOOSER = {"IntegrateAndFirePopulation": 1e-4, "RatePopulation": 1e-4, "KalmanFil
 
 def _cases() -> list:
     cases = []
-    for file in sorted(glob.glob(os.path.join(GOLDEN, "*.json"))):
-        with open(file, encoding="utf-8") as f:
-            golden = json.load(f)
-        for case in golden["cases"]:
-            cases.append(pytest.param(golden["class"], case,
-                                      id=f'{golden["class"]}-{case["name"]}'))
+    for version, (folder, _, _, _) in SETS.items():
+        for file in sorted(glob.glob(os.path.join(HERE, folder, "*.json"))):
+            with open(file, encoding="utf-8") as f:
+                golden = json.load(f)
+            for case in golden["cases"]:
+                cases.append(pytest.param(version, golden["class"], case,
+                                          id=f'v{version}-{golden["class"]}-{case["name"]}'))
     return cases
 
 
@@ -55,35 +63,46 @@ def _agrees(got: np.ndarray, want: np.ndarray, rtol: float) -> bool:
         np.allclose(got[~unknown], want[~unknown], rtol=rtol, atol=ATOL)
 
 
-@pytest.mark.parametrize("cls, case", _cases())
-def test_golden_case(cls, case, tmp_path):
-    rtol = LOOSER.get(cls, RTOL)
+def _same_shape(got: np.ndarray, want: np.ndarray, version: str) -> bool:
+    if got.shape == want.shape:
+        return True
+    return version == "2" and want.ndim == 1 and got.shape == (1,) + want.shape
+
+
+@pytest.mark.parametrize("version, cls, case", _cases())
+def test_golden_case(version, cls, case, tmp_path):
+    _, _, dialect, first = SETS[version]
+    rtol = LOOSER.get(cls, RTOL) if version == "3" else RTOL
     path = tmp_path / "golden.ikg"
     path.write_text(case["model"], encoding="utf-8")
     differences = []
-    with ikaros.load(str(path), quiet=True, dialect=3) as net:
-        for k in range(1, case["ticks"] + 1):
+    forced = {"dialect": dialect} if dialect else {}
+    with ikaros.load(str(path), quiet=True, **forced) as net:
+        for k in range(first, first + case["ticks"]):
             net.step()
             for output, value in case["outputs"][str(k)].items():
                 want = _expected(value)
                 got = np.asarray(net.output(output), dtype=np.float64)
-                if got.shape != want.shape:
-                    differences.append(f"tick {k} {output}: shape {list(got.shape)}, "
+                if not _same_shape(got, want, version):
+                    differences.append(f"record {k} {output}: shape {list(got.shape)}, "
                                        f"C++ {list(want.shape)}")
-                elif not _agrees(got, want, rtol):
-                    differences.append(f"tick {k} {output}: {got.tolist()}, "
+                elif not _agrees(got.reshape(want.shape), want, rtol):
+                    differences.append(f"record {k} {output}: {got.tolist()}, "
                                        f"C++ {want.tolist()}")
     assert not differences, f"{len(differences)} differences; the first: " + \
         "; ".join(differences[:3])
 
 
-@pytest.mark.skipif(not os.path.isdir(os.path.join(SHARED, "golden")),
-                    reason="the project's shared/ folder is not beside this clone")
-def test_the_copies_are_the_shared_golden_files():
-    shared = os.path.join(SHARED, "golden")
+@pytest.mark.parametrize("version", sorted(SETS))
+def test_the_copies_are_the_shared_golden_files(version):
+    folder, shared_folder, _, _ = SETS[version]
+    shared = os.path.join(SHARED, shared_folder)
+    if not os.path.isdir(shared):
+        pytest.skip("the project's shared/ folder is not beside this clone")
+    copies = os.path.join(HERE, folder)
     names = sorted(os.path.basename(p) for p in glob.glob(os.path.join(shared, "*.json")))
-    assert names == sorted(os.path.basename(p) for p in glob.glob(os.path.join(GOLDEN, "*.json")))
+    assert names == sorted(os.path.basename(p) for p in glob.glob(os.path.join(copies, "*.json")))
     for name in names:
-        with open(os.path.join(shared, name), "rb") as a, open(os.path.join(GOLDEN, name),
+        with open(os.path.join(shared, name), "rb") as a, open(os.path.join(copies, name),
                                                               "rb") as b:
-            assert a.read() == b.read(), f"tests/golden/files/{name} differs from shared/"
+            assert a.read() == b.read(), f"tests/golden/{folder}/{name} differs from shared/"

@@ -12,9 +12,8 @@ class FunctionGenerator(Module):
     otherwise 0) or ``ticksquare`` (1 on the first ``tickduty`` ticks of every ``basetime``
     ticks, otherwise 0; it ignores frequency and shift). The phase within a period is taken with
     trunc as Ikaros 2 and 3 do, so a negative t + shift mirrors the wave; ``fraction="floor"``
-    (this project's) continues the same periodic wave instead. As in Ikaros 2 only the first
-    element of the output gets the value and the others stay 0; ``elements="all"`` (this
-    project's) writes it to every element. The output is 0 in init. ``type`` may be given by
+    (this project's) continues the same periodic wave instead. As in Ikaros 2 every element
+    of the output gets the same value (``size`` is the number of elements). The output is 0 in init. ``type`` may be given by
     its label (``type="triangle"``, as Ikaros 3 files do) or by its index (``type="1"``, the
     Ikaros 2 list value). A ``basetime`` below 1 gives f = 0 and a warning. An inverted ramp
     comes from offset = 1 and amplitude = -1.
@@ -27,9 +26,7 @@ class FunctionGenerator(Module):
     fraction = Parameter("trunc", "how the phase within a period is taken: trunc (the original; "
                       "a negative time mirrors the wave) or floor (the wave continues)",
                       options="trunc/floor")
-    elements = Parameter("first", "which elements of the output get the value: first (the "
-                         "original) or all", options="first/all")
-    size = Parameter(1, "number of elements of the output",
+    size = Parameter(1, "the number of elements of the output, each holding the same value",
                      type="int", range=(1, None))
     type = Parameter("sin", "the function", options="sin/triangle/ramp/square/ticksquare/sine")
     offset = Parameter(0.0, "a constant added to the output")
@@ -80,7 +77,4 @@ class FunctionGenerator(Module):
             t = self.clock.tick
         value = self._value(t, math.floor if self.fraction == "floor" else math.trunc)
         value = self.offset + self.amplitude * value
-        if self.elements == "all":
-            self.OUTPUT.fill(value)
-        else:
-            self.OUTPUT.flat[0] = value
+        self.OUTPUT.fill(value)

@@ -24,7 +24,7 @@ MODEL = """<?xml version="1.0"?>
 <group name="T">
     <module class="FunctionGenerator" name="Ramp" type="ramp" frequency="0.01" />
     <module class="FunctionGenerator" name="Pulse" type="ticksquare" basetime="7" tickduty="1"
-            size="3" elements="all" />
+            size="3" />
 </group>
 """
 

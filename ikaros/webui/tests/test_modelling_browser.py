@@ -320,7 +320,7 @@ def test_plots_auto_range_axes_single_sample_and_every_tick(tmp_path):
 
 WIDGETS = """<?xml version="1.0"?>
 <group name="W">
-    <module class="FunctionGenerator" name="Spikes" type="ticksquare" basetime="3" tickduty="1" size="4" elements="all" />
+    <module class="FunctionGenerator" name="Spikes" type="ticksquare" basetime="3" tickduty="1" size="4" />
     <module class="Randomizer" name="Noise" outputsize="50" seed="3" />
     <module class="Constant" name="Pts" data="0 1; 1 3; 2 5" />
     <module class="Constant" name="Field" data="[[[1, 0, 1], [0, 1, 0]], [[0, 1, 0], [1, 0, -1]]]" />

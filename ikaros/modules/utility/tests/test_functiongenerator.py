@@ -22,17 +22,18 @@ def run(tmp_path, attrs, ticks=12):
         net.close()
 
 
-def test_only_the_first_element_gets_the_value_as_in_ikaros_2(tmp_path):
+def test_every_element_gets_the_value_as_in_ikaros_2(tmp_path):
+    # golden-v2 FunctionGenerator: size="4" gives four equal elements at every tick
     net = load(tmp_path, '<module class="FunctionGenerator" name="G" size="3" offset="2"/>')
     try:
         net.step()
-        assert net.output("G.OUTPUT").tolist() == [2, 0, 0]
+        assert net.output("G.OUTPUT").tolist() == [2, 2, 2]
     finally:
         net.close()
 
 
 def test_sin_default_frequency(tmp_path):
-    got, shape = run(tmp_path, 'size="3" offset="0.5" amplitude="2" elements="all"')
+    got, shape = run(tmp_path, 'size="3" offset="0.5" amplitude="2"')
     t = np.arange(12)
     assert shape == (3,)
     assert np.allclose(got, 0.5 + 2 * np.sin(0.15707963267949 * t), atol=1e-6)
