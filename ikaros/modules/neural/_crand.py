@@ -12,6 +12,8 @@ words, whose first 310 outputs are discarded), computed from its published defin
 """
 import weakref
 
+import numpy as np
+
 RAND_MAX = 2147483647
 
 
@@ -52,3 +54,26 @@ def network_rand(clock) -> CRand:
     if stream is None:
         stream = _streams[clock] = CRand()
     return stream
+
+
+def uses_crand(module) -> bool:
+    """Whether a module with a ``seed`` parameter draws from the network's rand() sequence:
+    with the seed unset (or 0) in an Ikaros 2 file, as the original draws. Otherwise it
+    draws from NumPy's generator with that seed (below 0, or unset in an Ikaros 3 file: a
+    new seed every run)."""
+    return not module.seed and module.dialect != "3"
+
+
+def numpy_generator(module) -> np.random.Generator:
+    """NumPy's generator for a module's ``seed`` when it does not use rand()."""
+    return np.random.default_rng(module.seed if module.seed and module.seed > 0 else None)
+
+
+def random_rows(module):
+    """A function giving a random index below n for a module with a ``seed`` parameter:
+    rand() % n as the original draws (see ``uses_crand``), or from NumPy's generator."""
+    if uses_crand(module):
+        stream = network_rand(module.clock)
+        return lambda n: stream.rand() % n
+    rng = numpy_generator(module)
+    return lambda n: int(rng.integers(n))
