@@ -12,11 +12,10 @@ class SpectralTiming(Module):
     (j = 0 .. no_of_taps - 1) of input element i outputs
     y_i exp(-(y_i - (j + 1) / no_of_taps)^2 / (2 sigma^2)), y_i being the trace. As the trace
     decays after a stimulus, the units peak one after another, from the last row to the
-    first. OUTPUT has one row per tap and one column per input element. With sigma 0 the
-    output is 0. (Ikaros 2 also left the output at 0 when no_of_taps was 1.) As in Ikaros 2
-    (the class is not in Ikaros 3), OUTPUT has a column for each element of INPUT's first
-    row only: of a matrix input only the first row is coded, and the other rows of TRACE
-    stay 0 (the golden files show it)."""
+    first. With sigma 0 the output is 0. OUTPUT has one row per tap and, as in Ikaros 2 (the
+    class is not in Ikaros 3), a column for each element of INPUT's first row only: of a
+    matrix input only the first row is coded, and the other rows of TRACE stay 0 (the golden
+    files show it, and the formula above on their cases)."""
 
     no_of_taps = Parameter(10, "the number of temporal units for each input element",
                            type="int")

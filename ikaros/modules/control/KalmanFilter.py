@@ -14,12 +14,14 @@ class KalmanFilter(Module):
     ``process_noise`` times the identity and R is ``observation_noise`` times the identity; the
     state starts at 0 with P = I. A is ``state_size`` × ``state_size``, B is ``state_size`` ×
     (elements of INPUT) and H is ``observation_size`` × ``state_size``; a matrix given as one
-    row of the right number of elements is read row by row. An empty B is zero, and so are an
-    empty A and H, as in Ikaros 2 and 3, which keeps the state at 0;
+    row of the right number of elements is read row by row. The golden files show Ikaros 2
+    computing these formulas with A, B and H given. An empty B is zero, and so are an empty A
+    and H, which keeps the state at 0: that is Ikaros 3's behaviour, and for Ikaros 2 this
+    project's reading (no reference shows an Ikaros 2 filter without them);
     ``default_matrices="identity"`` (this project's) makes an empty A the identity and an empty
-    H ones on its diagonal. OBSERVATION must have ``observation_size`` elements (the Ikaros 2
-    class read past it otherwise). If S cannot be inverted the correction is skipped for that
-    tick and a warning is given once.
+    H ones on its diagonal. OBSERVATION must have ``observation_size`` elements (another size
+    is refused here; no reference shows what Ikaros 2 does with it). If S cannot be inverted
+    the correction is skipped for that tick and a warning is given once.
 
     The ports and parameters of today's Ikaros 3 class are accepted in an Ikaros 2 file too,
     where they are this project's additions to the Ikaros 2 filter (the Ikaros 2 class has

@@ -16,7 +16,8 @@ class Delta(Module):
     prediction exceeds the US: the reference does not describe ``inverse``; this is the
     simplest rule that gives what Ikaros 3 computed on its one recorded case (CS 1, US 0.5,
     inverse: CR stays 0). An Ikaros 2 file ignores ``inverse``: with it the Ikaros 2 class
-    learned towards the US exactly as without it (the golden files show it). ``beta``, ``gamma``, ``delta`` and ``epsilon`` are unused, as in Ikaros 2;
+    learned towards the US exactly as without it (the golden files show it). ``beta``, ``gamma``, ``delta`` and ``epsilon`` are unused (for beta and gamma the
+    golden files show Ikaros 2 ignoring them);
     they are kept so models that set them load unchanged. ``output="error"`` (this
     project's addition) outputs the prediction error sum(US) - CR instead of the
     prediction: the US signal once the learned response has inhibited it, as in the

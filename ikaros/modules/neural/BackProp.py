@@ -17,8 +17,8 @@ class BackProp(Module):
     order and range no reference gives, and its learning rule is not documented either, so
     this class does not reproduce the original's numbers: here the initial weights are
     uniform in [-0.5, 0.5] from NumPy's generator (the same ``seed`` gives the same run; unset
-    or 0, a different run every time). (Ikaros 2 declared ``lr`` as a list; here it is a
-    number.)"""
+    or 0, a different run every time). (The catalogue gives ``lr`` no default; here it is a
+    number, 0.2.)"""
 
     lr = Parameter(0.2, "the learning rate", range=(0, None))
     momentum = Parameter(0.0, "the part of the previous weight change added to the current one",

@@ -28,7 +28,10 @@ class Perceptron(Module):
     0.42 ln(tick + 10) when ``learning_rate_mod`` is sqrt or log. ``learning_type`` instant
     applies each change at once, batch sums the changes of ``batch_size`` training ticks and
     applies them together, momentum adds ``momentum_ratio`` times the previous change. A bias
-    of 0 (not allowed in Ikaros 2) is read as 1 with a warning. The class is not in Ikaros 3.
+    of 0 is read as 1 with a warning. The class is not in Ikaros 3. The golden files show
+    Ikaros 2's initial weights and responses (below) but no learning, so the learning rules
+    above follow the catalogue's list of them (and Hassoun) and are this project's reading;
+    the learning rate's decay factors are this project's too.
 
     The initial weights are uniform in [rand_weights_min, rand_weights_max]. With ``seed``
     unset (or 0) an Ikaros 2 file draws them as the original does, from the C library's
