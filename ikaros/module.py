@@ -270,7 +270,8 @@ class Clock:
     """The kernel's clock as modules see it: read ``tick`` and ``time`` inside ``tick()``.
     ``lag`` is how many seconds late the tick started in real-time mode (its deadline is
     ``tick * tick_duration`` after the time base started); 0 in the other modes."""
-    __slots__ = ("tick", "tick_duration", "time", "real_time", "lag")
+    # (__weakref__: a standard module may keep per-network state keyed by the shared clock)
+    __slots__ = ("tick", "tick_duration", "time", "real_time", "lag", "__weakref__")
 
     def __init__(self, tick_duration: float = 0.0):
         self.tick = -1                  # first tick 0 (Ikaros 3 file: 1); one less in init

@@ -6,16 +6,19 @@ from ikaros.module import Input, Module, Output, Parameter
 
 class CoarseCoder(Module):
     """Codes a two-dimensional value (INPUT[0] = x, INPUT[1] = y, each in min..max) as activity
-    in an output_size x output_size map, x along the columns and y along the rows. The value
-    is first mapped to a map position (px, py): min goes to ``radius`` and max to
-    output_size - 1 - radius, so the whole code stays inside the map (values outside min..max
-    are clipped to it). With type ``tile`` the cells whose column lies in round(px - radius)
-    .. round(px + radius) and whose row lies in round(py - radius) .. round(py + radius) are 1
-    and the rest 0; with ``normalize`` the active cells are 1 / their number, so the map sums
-    to 1. With type ``gaussian`` each cell is exp(-d^2 / (2 radius^2)), d being its distance
-    from (px, py); with ``normalize`` the map is divided by its sum. (Ikaros 2's gaussian type
-    was exp(-d), ignoring radius and normalize.) A radius of 0 makes the nearest cell 1. When
-    max equals min every value codes as min, with a warning."""
+    in an output_size x output_size map, x along the columns and y along the rows, as Ikaros
+    2 does (the class is not in Ikaros 3). The value is first mapped to a map position
+    (px, py): min goes to ``radius`` and max to output_size - 1 - radius, so the whole code
+    stays inside the map (values outside min..max are clipped to it). With type ``tile`` the
+    cells whose column lies in round(px - radius) .. round(px + radius) and whose row lies in
+    round(py - radius) .. round(py + radius) are 1 and the rest 0; with ``normalize`` the
+    active cells are 1 / their number, so the map sums to 1. With type ``gaussian`` each cell
+    is exp(-d), d being its distance in cells from (px, py): Ikaros 2's "Gaussian" (the
+    golden files show it), whose width does not follow radius. ``profile="normal"`` (this
+    project's) makes it a true Gaussian, exp(-d^2 / (2 radius^2)), a radius of 0 then making
+    the nearest cell 1. With ``normalize`` a gaussian map is divided by its sum (this
+    project's reading: no reference shows whether Ikaros 2 normalizes its gaussian code).
+    When max equals min every value codes as min, with a warning."""
 
     type = Parameter("tile", "tile: a square of 1s; gaussian: a Gaussian bump",
                      options="tile/gaussian")
@@ -25,6 +28,8 @@ class CoarseCoder(Module):
     min = Parameter(0.0, "the value coded at the first position")
     max = Parameter(1.0, "the value coded at the last position")
     normalize = Parameter(False, "scale the code so that the map sums to 1")
+    profile = Parameter("distance", "the gaussian type's profile: distance: exp(-d), as Ikaros "
+                        "2; normal: exp(-d^2 / (2 radius^2))", options="distance/normal")
     INPUT = Input("the value to code: [x, y]")
     OUTPUT = Output("the coarse code", size_param_x="output_size", size_param_y="output_size")
 
@@ -57,16 +62,17 @@ class CoarseCoder(Module):
         n = out.shape[0]
         px, py = self._position()
         r = max(self.radius, 0.0)
-        if self.type == "gaussian" and r > 0:
+        if self.type == "gaussian" and (r > 0 or self.profile == "distance"):
             d2 = (self._cols - px) ** 2 + (self._rows - py) ** 2
-            out[...] = np.exp(-d2 / (2 * r * r))
+            out[...] = np.exp(-np.sqrt(d2)) if self.profile == "distance" else \
+                np.exp(-d2 / (2 * r * r))
             if self.normalize:
                 total = float(out.sum(dtype=np.float64))
                 if total > 0:
                     out *= np.float32(1 / total)
             return
         out.fill(0)
-        if self.type == "gaussian":             # radius 0: the nearest cell
+        if self.type == "gaussian":             # a normal profile of radius 0: the nearest cell
             r = 0.0
         i0, i1 = int(np.floor(px - r + 0.5)), int(np.floor(px + r + 0.5))
         j0, j1 = int(np.floor(py - r + 0.5)), int(np.floor(py + r + 0.5))

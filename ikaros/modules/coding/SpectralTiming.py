@@ -12,21 +12,24 @@ class SpectralTiming(Module):
     (j = 0 .. no_of_taps - 1) of input element i outputs
     y_i exp(-(y_i - (j + 1) / no_of_taps)^2 / (2 sigma^2)), y_i being the trace. As the trace
     decays after a stimulus, the units peak one after another, from the last row to the
-    first. OUTPUT has one row per tap and one column per input element. With sigma 0 the
-    output is 0. (Ikaros 2 also left the output at 0 when no_of_taps was 1.)"""
+    first. With sigma 0 the output is 0. OUTPUT has one row per tap and, as in Ikaros 2 (the
+    class is not in Ikaros 3), a column for each element of INPUT's first row only: of a
+    matrix input only the first row is coded, and the other rows of TRACE stay 0 (the golden
+    files show it, and the formula above on their cases)."""
 
     no_of_taps = Parameter(10, "the number of temporal units for each input element",
                            type="int")
     sigma = Parameter(0.05, "the width of each unit's tuning to the trace level")
     decay = Parameter(0.985, "the factor the trace is multiplied by on every tick")
     INPUT = Input("the stimuli")
-    OUTPUT = Output("the temporal units: one row per tap, one column per input element",
-                    shape="@no_of_taps, INPUT.size")
+    OUTPUT = Output("the temporal units: one row per tap, one column per element of INPUT's "
+                    "first row", shape="@no_of_taps, INPUT.cols")
     TRACE = Output("the decaying stimulus trace of each input element", size_set="INPUT")
 
     def init(self):
-        self._x = self.INPUT.reshape(-1)
-        self._trace = self.TRACE.reshape(-1)
+        n = self.OUTPUT.shape[1]
+        self._x = self.INPUT.reshape(-1)[:n]
+        self._trace = self.TRACE.reshape(-1)[:n]
         taps = self.OUTPUT.shape[0]
         self._levels = (np.arange(1, taps + 1, dtype=np.float32) / taps)[:, None]
 

@@ -14,22 +14,29 @@ class KalmanFilter(Module):
     ``process_noise`` times the identity and R is ``observation_noise`` times the identity; the
     state starts at 0 with P = I. A is ``state_size`` × ``state_size``, B is ``state_size`` ×
     (elements of INPUT) and H is ``observation_size`` × ``state_size``; a matrix given as one
-    row of the right number of elements is read row by row. An empty B is zero, and so are an
-    empty A and H, as in Ikaros 2 and 3, which keeps the state at 0;
+    row of the right number of elements is read row by row. The golden files show Ikaros 2
+    computing these formulas with A, B and H given. An empty B is zero, and so are an empty A
+    and H, which keeps the state at 0: that is Ikaros 3's behaviour, and for Ikaros 2 this
+    project's reading (no reference shows an Ikaros 2 filter without them);
     ``default_matrices="identity"`` (this project's) makes an empty A the identity and an empty
-    H ones on its diagonal. OBSERVATION must have ``observation_size`` elements (the Ikaros 2
-    class read past it otherwise). If S cannot be inverted the correction is skipped for that
-    tick and a warning is given once.
+    H ones on its diagonal. OBSERVATION must have ``observation_size`` elements (another size
+    is refused here; no reference shows what Ikaros 2 does with it). If S cannot be inverted
+    the correction is skipped for that tick and a warning is given once.
 
-    In an Ikaros 2 file four optional inputs are added (this project's, after an early
-    reading of Ikaros 3; an Ikaros 3 file gets Ikaros 3's own interface, below); left
-    unconnected, the filter works as above. RESET: on a tick when its first element is above 0, the
-    state restarts (x = 0, P = I) before that tick. GATED: on a tick when its first element
-    is 0 or below, the filter does nothing (state and outputs are held). INPUT_VALID: on a
-    tick when its first element is 0 or below, the control input is left out of the
+    The ports and parameters of today's Ikaros 3 class are accepted in an Ikaros 2 file too,
+    where they are this project's additions to the Ikaros 2 filter (the Ikaros 2 class has
+    none of them); left unconnected and at their defaults, the filter works as above.
+    NORMALIZED_INNOVATION is yᵀS⁻¹y of the observation used; with ``innovation_gate`` above
+    0 an observation whose normalized innovation exceeds it is rejected (the tick is a
+    prediction only, KALMAN_GAIN 0) and GATED is 1, else 0. RESET: on a tick when its first
+    element is above 0, the state restarts (x = 0, P = I) before that tick. INPUT_VALID: on
+    a tick when its first element is 0 or below, the control input is left out of the
     prediction. OBSERVATION_VALID (one element for all, or observation_size elements): only
     the observation elements above 0 correct the state; the others have INNOVATION 0 and a
-    KALMAN_GAIN column of 0, and with none valid the tick is a prediction only.
+    KALMAN_GAIN column of 0, and with none valid the tick is a prediction only. ENABLE (this
+    project's, in both dialects): on a tick when its first element is 0 or below, the
+    filter does nothing (state and outputs are held). In an Ikaros 2 file of this project
+    written before GATED became an output, that input was called GATED.
 
     In an Ikaros 3 file (dialect 3) the class is Ikaros 3's: k = OBSERVATION's size
     (observation_size is not used), GATED is an output (1 when ``innovation_gate`` > 0 and
@@ -63,7 +70,7 @@ class KalmanFilter(Module):
                                   "(R = observation_noise·I)")
     input_size = Parameter(1, "Ikaros 3: the columns of B when INPUT is not connected",
                            type="int", range=(0, None))
-    innovation_gate = Parameter(0.0, "Ikaros 3: the largest normalized innovation yᵀS⁻¹y "
+    innovation_gate = Parameter(0.0, "the largest normalized innovation yᵀS⁻¹y "
                                 "accepted (0: no gate)")
     inversion_jitter = Parameter(0.0, "Ikaros 3: added to S's diagonal on a retry when S "
                                  "cannot be inverted")
@@ -79,26 +86,23 @@ class KalmanFilter(Module):
 
     INPUT = Input("the control input u", optional=True)
     OBSERVATION = Input("the observation z, of observation_size elements")
-    INPUT_VALID = Input("Ikaros 3: a first element of 0 or below leaves INPUT out",
-                        optional=True)
-    OBSERVATION_VALID = Input("Ikaros 3: which observation elements are used (above 0)",
-                              optional=True)
-    RESET = Input("Ikaros 3: a first element above 0 restarts the state", optional=True)
+    INPUT_VALID = Input("a first element of 0 or below leaves INPUT out (Ikaros 3: all "
+                        "elements 0)", optional=True)
+    OBSERVATION_VALID = Input("which observation elements are used: above 0 (Ikaros 3: the "
+                              "whole observation unless all elements are 0)", optional=True)
+    RESET = Input("a first element above 0 restarts the state (Ikaros 3: any element not 0, "
+                  "to INITIAL_STATE and INITIAL_P)", optional=True)
+    ENABLE = Input("this project's: a first element of 0 or below holds the filter for the "
+                   "tick", optional=True)
 
     STATE = Output("the state estimate x", size_param="state_size")
     INNOVATION = Output("the observation minus the predicted observation, z − H·x'",
                         size_set="OBSERVATION")
     KALMAN_GAIN = Output("the Kalman gain K, state_size × observation_size (Ikaros 3: "
                          "state_size × OBSERVATION's size)")
-
-    def configure(self):
-        if self.dialect == "3":
-            self.add_output("GATED", (1,), "1 when the innovation gate rejected the "
-                            "observation")
-            self.add_output("NORMALIZED_INNOVATION", (1,), "yᵀS⁻¹y")
-        else:
-            self.add_input("GATED", optional=True, description="a first element of 0 or "
-                           "below holds the filter for the tick")
+    GATED = Output("1 when the innovation gate rejected the observation, else 0", size="1")
+    NORMALIZED_INNOVATION = Output("yᵀS⁻¹y, the squared innovation scaled by its covariance",
+                                   size="1")
 
     def set_sizes(self):
         k = self.observation_size
@@ -135,6 +139,8 @@ class KalmanFilter(Module):
         self.STATE.fill(0)
         self.INNOVATION.fill(0)
         self.KALMAN_GAIN.fill(0)
+        self.GATED.fill(0)
+        self.NORMALIZED_INNOVATION.fill(0)
 
     def _matrix(self, name, rows, cols, empty):
         value = np.asarray(getattr(self, name), dtype=np.float64)
@@ -159,14 +165,14 @@ class KalmanFilter(Module):
         return bool(x.size and x.flat[0] > 0)
 
     def tick(self):
+        if self.ENABLE is not None and not self._on(self.ENABLE):
+            return
         if self._v3 is not None:
             self._v3.tick()
             return
         if self.RESET is not None and self._on(self.RESET):
             self._x = np.zeros(self.state_size)
             self._P = np.eye(self.state_size)
-        if self.GATED is not None and not self._on(self.GATED):
-            return
         n, m = self.state_size, self.observation_size
         A, B, H = self._matrices()
         Q = self.process_noise * np.eye(n)
@@ -179,12 +185,14 @@ class KalmanFilter(Module):
             np.broadcast_to(self.OBSERVATION_VALID.reshape(-1) > 0, (m,))
         y = np.where(used, self.OBSERVATION.reshape(-1).astype(np.float64) - H @ x, 0.0)
         K = np.zeros((n, m))
+        gated = normalized = 0.0
         if used.any():
             Hu = H[used]
             S = Hu @ P @ Hu.T + self.observation_noise * np.eye(int(used.sum()))
             try:
                 # K = P Hᵀ S⁻¹, computed as the solution of Sᵀ Kᵀ = H Pᵀ
                 Ku = np.linalg.solve(S.T, Hu @ P.T).T
+                normalized = float(y[used] @ np.linalg.solve(S, y[used]))
                 if not np.all(np.isfinite(Ku)):
                     raise np.linalg.LinAlgError("non-finite gain")
             except np.linalg.LinAlgError:
@@ -193,11 +201,16 @@ class KalmanFilter(Module):
                                  "is not used on such ticks")
                     self._warned = True
             else:
-                K[:, used] = Ku
-                x = x + Ku @ y[used]
-                P = (np.eye(n) - Ku @ Hu) @ P
-                P = 0.5 * (P + P.T)
+                if 0 < self.innovation_gate < normalized:
+                    gated = 1.0
+                else:
+                    K[:, used] = Ku
+                    x = x + Ku @ y[used]
+                    P = (np.eye(n) - Ku @ Hu) @ P
+                    P = 0.5 * (P + P.T)
         self._x, self._P = x, P
+        self.GATED[0] = gated
+        self.NORMALIZED_INNOVATION[0] = normalized
         self.STATE[...] = x.reshape(self.STATE.shape)
         self.INNOVATION[...] = y.reshape(self.INNOVATION.shape)
         self.KALMAN_GAIN[...] = K.reshape(self.KALMAN_GAIN.shape)

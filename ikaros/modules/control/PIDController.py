@@ -12,26 +12,29 @@ class PIDController(Module):
     set point and the input are smoothed by exponential moving averages, f = F·f + (1−F)·x,
     with constants ``Fs`` and ``Fm`` (0 means no smoothing); their difference is DELTA;
     DELTA is smoothed again separately for the proportional, integral and derivative terms
-    (``Fp``, ``Fi``, ``Fd``). The integral adds the I-filtered error once per tick, and the
-    derivative is the change of the D-filtered error since the previous tick (0 on the first
-    tick). The control value ``Kb + Kp·P + Ki·INTEGRAL + Kd·D`` is clipped to
-    ``Cmin``..``Cmax``; while it is clipped the error of that tick is not integrated
-    (anti-windup). OUTPUT is the clipped value smoothed with ``Fc``. Gains are per tick,
-    not per second. The derivative term is chosen by ``derivative_mode``: ``input`` (the
-    default in an Ikaros 2 file, as the Ikaros 2 class computes it) is the change of the
-    filtered input since the previous tick, a sign that pushes the output the wrong way,
-    with ``Fd`` unused; ``measurement`` is minus that change (the corrected sign; Ikaros 3's
-    default); ``error`` (this project's) is the change of the D-filtered error. The
-    derivative is 0 on the first tick.
+    (``Fp``, ``Fi``, ``Fd``). The integral adds the I-filtered error once per tick. The
+    control value ``Kb + Kp·P + Ki·INTEGRAL + Kd·D`` is clipped to ``Cmin``..``Cmax``;
+    while it is clipped the error of that tick is not integrated (anti-windup). OUTPUT is
+    the clipped value smoothed with ``Fc``. Gains are per tick, not per second. The
+    derivative term D is chosen by ``derivative_mode``: ``input`` (the default in an Ikaros
+    2 file, as the Ikaros 2 class computes it) is the change of the filtered input since the
+    previous tick, a sign that pushes the output the wrong way, with ``Fd`` unused;
+    ``measurement`` is minus that change (the corrected sign; Ikaros 3's default);
+    ``error`` (this project's) is the change of the D-filtered error. As in Ikaros 2 the
+    previous value starts at 0, so on the first tick the change is the signal itself (the
+    golden files show it).
 
-    The Ikaros 3 interface adds three optional inputs (each of one element, for all
-    controllers, or of the size of INPUT); left unconnected, the controller works as above
-    (the Ikaros 2 interface). RESET: on a tick when its first element is above 0, every
-    controller starts afresh (filters, integral and derivative memory cleared) before that
-    tick is computed. INPUT_VALID: an element whose value is 0 or below is held for the tick
-    (all its outputs and its integral keep their values), for a measurement that is missing.
-    GATED: an element whose value is 0 or below is switched off: its OUTPUT and every signal
-    and memory of it are 0, so it starts afresh when the gate opens again.
+    Ikaros 2 ignores RESET (the code that would use it is switched off there), so its
+    integral keeps adding up while RESET is above 0; an Ikaros 2 file gets that by default.
+    ``use_reset="yes"`` makes RESET work: on a tick when its first element is above 0, every
+    controller starts afresh (filters, integral and derivative memory at 0) before that tick
+    is computed. Two more optional inputs are this project's (neither Ikaros 2 nor Ikaros 3
+    has them), each of one element, for all controllers, or of the size of INPUT; left
+    unconnected, the controller works as above. INPUT_VALID: an element whose value is 0 or
+    below is held for the tick (all its outputs and its integral keep their values), for a
+    measurement that is missing. GATED: an element whose value is 0 or below is switched
+    off: its OUTPUT and every signal and memory of it are 0, so it starts afresh when the
+    gate opens again.
 
     In an Ikaros 3 file (dialect 3) the class computes as Ikaros 3 does: the filter
     constants ``Fs`` ... ``Fc`` are rates (1/s; 0 is no filter): each filter moves the
@@ -40,11 +43,11 @@ class PIDController(Module):
     with ``Fd``) is per second: with ``derivative_mode="measurement"`` (the default) minus
     the change of the filtered input, with ``"error"`` the change of DELTA, from 0 before
     the first tick. The clipped control value is smoothed with ``Fc`` and then changes by at
-    most ``output_rate_limit`` per second (0: no limit). RESET computes the filtered set
-    point, input and DELTA but sets OUTPUT, the error filters, the integral and the
-    derivative memory to 0 for that tick. ``output_rate_limit`` and ``derivative_mode``
-    are used only in dialect 3."""
-    state = ("_last_d", "_fresh")     # the derivative's memory (saved with the outputs)
+    most ``output_rate_limit`` per second (0: no limit). RESET (used by default there)
+    computes the filtered set point, input and DELTA but sets OUTPUT, the error filters, the
+    integral and the derivative memory to 0 for that tick. ``output_rate_limit`` is used
+    only in dialect 3."""
+    state = ("_last_d",)     # the derivative's memory (saved with the outputs)
 
     Kb = Parameter(0.0, "the bias: a constant added to the control value")
     Kp = Parameter(0.1, "the proportional gain")
@@ -69,6 +72,8 @@ class PIDController(Module):
                                 "Ikaros 3) or the error (error: the D-filtered error; in an "
                                 "Ikaros 3 file DELTA)", options="input/measurement/error",
                                 default_v3="measurement")
+    use_reset = Parameter(False, "whether RESET is used: no in an Ikaros 2 file (Ikaros 2 "
+                          "ignores it), yes in an Ikaros 3 file", default_v3=True)
     Cmin = Parameter(-1000.0, "the smallest control value; below it the output is clipped "
                      "and integration stops")
     Cmax = Parameter(1000.0, "the largest control value; above it the output is clipped "
@@ -76,12 +81,12 @@ class PIDController(Module):
 
     INPUT = Input("the measured values, one controller per element")
     SETPOINT = Input("the desired values: the size of INPUT, or one element for all")
-    GATED = Input("Ikaros 3: where 0 or below, the controller is off (output 0, state "
+    GATED = Input("this project's: where 0 or below, the controller is off (output 0, state "
                   "cleared)", optional=True)
-    INPUT_VALID = Input("Ikaros 3: where 0 or below, the measurement is missing and the "
+    INPUT_VALID = Input("this project's: where 0 or below, the measurement is missing and the "
                         "controller holds", optional=True)
-    RESET = Input("Ikaros 3: a first element above 0 clears every controller's state",
-                  optional=True)
+    RESET = Input("a first element above 0 clears every controller's state; used only with "
+                  "use_reset", optional=True)
 
     OUTPUT = Output("the control output", size_set="INPUT,SETPOINT")
     DELTA = Output("the filtered set point minus the filtered input", size_set="INPUT,SETPOINT")
@@ -113,7 +118,6 @@ class PIDController(Module):
         self._control = np.zeros(shape, dtype=np.float32)
         self._work = np.zeros(shape, dtype=np.float32)
         self._clipped = np.zeros(shape, dtype=bool)
-        self._fresh = np.ones(shape, dtype=bool)    # no derivative memory yet
         self._gate = self._mask("GATED")
         self._valid = self._mask("INPUT_VALID")
         self._state = (self.OUTPUT, self.DELTA, self.FILTERED_SETPOINT, self.FILTERED_INPUT,
@@ -142,12 +146,12 @@ class PIDController(Module):
     def _clear(self, where):
         for a in self._state:
             a[where] = 0
-        self._fresh[where] = True
         if self._pid3 is not None:
             self._pid3.clear(where)
 
     def tick(self):
-        reset = self.RESET is not None and self.RESET.size and self.RESET.flat[0] > 0
+        reset = self.use_reset and self.RESET is not None and self.RESET.size and \
+            self.RESET.flat[0] > 0
         if reset and self._pid3 is None:
             self._clear(Ellipsis)
         held = None
@@ -173,8 +177,6 @@ class PIDController(Module):
         self._smooth(self.FILTERED_ERROR_D, self.DELTA, self.Fd)
         mode = self.derivative_mode
         signal = self.FILTERED_ERROR_D if mode == "error" else self.FILTERED_INPUT
-        np.copyto(self._last_d, signal, where=self._fresh)
-        self._fresh[...] = False
         self.INTEGRAL += self.FILTERED_ERROR_I
 
         c = self._control

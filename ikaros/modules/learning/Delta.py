@@ -11,11 +11,13 @@ class Delta(Module):
     alpha * CS[i] * e. The weights start at zero and never shrink, so the module learns the
     strength of each stimulus alone (or any map whose inputs do not overlap) but not
     extinction. CS may have any shape (it is read flat); all elements of US are summed. While
-    CS or US is unconnected nothing is learned and CR is 0. With ``inverse`` the error's
-    sign is reversed (e = CR - sum(US)), so the weights grow only while the prediction
-    exceeds the US: the reference does not describe ``inverse``; this is the simplest rule
-    that gives what the original computed on its one recorded case (CS 1, US 0.5, inverse:
-    CR stays 0). ``beta``, ``gamma``, ``delta`` and ``epsilon`` are unused, as in Ikaros 2;
+    CS or US is unconnected nothing is learned and CR is 0. In an Ikaros 3 file ``inverse``
+    reverses the error's sign (e = CR - sum(US)), so the weights grow only while the
+    prediction exceeds the US: the reference does not describe ``inverse``; this is the
+    simplest rule that gives what Ikaros 3 computed on its one recorded case (CS 1, US 0.5,
+    inverse: CR stays 0). An Ikaros 2 file ignores ``inverse``: with it the Ikaros 2 class
+    learned towards the US exactly as without it (the golden files show it). ``beta``, ``gamma``, ``delta`` and ``epsilon`` are unused (for beta and gamma the
+    golden files show Ikaros 2 ignoring them);
     they are kept so models that set them load unchanged. ``output="error"`` (this
     project's addition) outputs the prediction error sum(US) - CR instead of the
     prediction: the US signal once the learned response has inhibited it, as in the
@@ -29,8 +31,8 @@ class Delta(Module):
     gamma = Parameter(1.0, "unused (kept for Ikaros 2 models)")
     delta = Parameter(1.0, "unused (kept for Ikaros 2 models)")
     epsilon = Parameter(1.0, "unused (kept for Ikaros 2 models)")
-    inverse = Parameter(False, "reverse the error's sign: learn only while CR exceeds "
-                        "sum(US) (see the description)")
+    inverse = Parameter(False, "Ikaros 3 files: reverse the error's sign, learning only "
+                        "while CR exceeds sum(US) (Ikaros 2 ignores it; see the description)")
     output = Parameter("prediction", "prediction: CR = sum(CS * w) (the original); error: the "
                        "prediction error sum(US) - CR, as the cerebellum's learned response "
                        "inhibits the US pathway", options="prediction/error")
@@ -58,7 +60,7 @@ class Delta(Module):
         target = np.float32(np.sum(self.US, dtype=np.float64))
         prediction = np.float32(np.dot(cs, self.weights))
         error = target - prediction
-        if self.inverse:
+        if self.inverse and self.dialect == "3":
             error = -error
         if error > 0:
             self.weights += np.float32(self.alpha) * error * cs

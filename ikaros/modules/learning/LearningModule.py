@@ -12,7 +12,9 @@ class LearningModule(Module):
     TOP-DOWN-ERROR and AUX-OUTPUT of AUX-INPUT (each 0 while its input is unconnected), and W
     (one row and one column per INPUT element) and U (one row per INPUT element, one column
     per AUX-T-INPUT element) stay 0. A Python subclass (``class Hebb(LearningModule)``)
-    inherits the ports and parameter and overrides ``tick``."""
+    inherits the ports and parameter and overrides ``tick``. The catalogue gives the Ikaros 2
+    template's ports and says it does no learning; the copies it makes here are this
+    project's reading (no golden case covers it)."""
 
     learning_rate = Parameter(0.1, "the learning rate, for subclasses' learning rules")
 

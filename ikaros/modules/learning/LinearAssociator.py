@@ -6,21 +6,28 @@ from ikaros.module import Input, Module, Output, Parameter
 
 class LinearAssociator(Module):
     """Learns a linear map MATRIX from T-INPUT to T-OUTPUT and outputs OUTPUT = MATRIX . INPUT
-    (computed after this tick's learning). MATRIX starts at zero, with one row per element of
-    T-OUTPUT and one column per element of T-INPUT. On every tick the pair T-INPUT, T-OUTPUT
-    is put in a memory of ``memory_max`` samples (once it is full, a random stored sample is
-    replaced). In ``gradient_descent`` mode the module then goes ``memory_training`` times
-    through the stored samples; for each, the error e = target - MATRIX . x is smoothed as
-    m = beta * m + (1 - beta) * e (momentum) and MATRIX += alpha * outer(m, x). In ``LMS`` mode
-    MATRIX is set to the least-squares solution over the stored samples (the least-norm one
-    when they do not fix it), so memory_max should be well above the input size. ERROR is the
-    mean Euclidean norm of the errors over the stored samples (in gradient descent, as met in
-    the last pass before each update) and CONFIDENCE is 1 - ERROR. When LEARNING is connected
-    the module stores and learns only on ticks where its first element is above 0, and that
-    element scales alpha; ERROR and CONFIDENCE then keep their values between learning
-    ticks. Unconnected, it learns on every tick. The same ``seed`` gives the same choice of
-    replaced samples. (Ikaros 2 ignored LEARNING, never replaced the last memory slot, and in
-    LMS mode trained once more by gradient descent after the least-squares fit.)"""
+    (computed after this tick's learning), as Ikaros 2 does (the class is not in Ikaros 3).
+    MATRIX starts at zero, with one row per element of T-OUTPUT and one column per element
+    of T-INPUT. On every tick the pair T-INPUT, T-OUTPUT is put in a memory of
+    ``memory_max`` samples (once it is full, a random stored sample is replaced). In
+    ``gradient_descent`` mode the module then learns the pair of this tick once and goes
+    ``memory_training`` times through the stored samples; each step computes the error
+    e = target - MATRIX . x, smooths it as m = beta * m + (1 - beta) * e (momentum, kept from
+    step to step) and adds alpha * outer(m, x) to MATRIX. ERROR is the mean Euclidean norm of
+    the errors met in the last pass through the memory (of the first step when
+    memory_training is 0) and CONFIDENCE is 1 - ERROR. With the default memory of one sample
+    and one pass this is two steps on the pair of the tick, which is what Ikaros 2 computes
+    (the golden files show it, and that ERROR is measured between the two); how Ikaros 2
+    orders the steps for a larger memory, which sample it replaces, and its ``LMS`` mode are
+    not shown by any reference: here ``LMS`` sets MATRIX to the least-squares solution over
+    the stored samples (the least-norm one when they do not fix it), so memory_max should be
+    well above the input size, and ERROR is the mean norm of its errors.
+
+    Ikaros 2 ignores LEARNING (the golden files show it learning with LEARNING below 0),
+    and so does this class by default. ``use_learning="yes"`` (this project's) stores and
+    learns only on ticks where LEARNING's first element is above 0, that element scaling
+    alpha; ERROR and CONFIDENCE then keep their values between learning ticks. The same
+    ``seed`` gives the same choice of replaced samples."""
 
     mode = Parameter("gradient_descent", "gradient_descent: learn sample by sample; LMS: set "
                      "the least-squares solution over the stored samples",
@@ -32,8 +39,10 @@ class LinearAssociator(Module):
                                 "tick (gradient descent)", type="int")
     seed = Parameter(None, "seed of the random generator that picks the sample to replace; "
                      "unset (or 0) gives a different run every time", type="int")
-    LEARNING = Input("learning happens while its first element is above 0, which also scales "
-                     "alpha; unconnected: always", optional=True)
+    use_learning = Parameter(False, "no: LEARNING is ignored, as in Ikaros 2; yes: learning "
+                             "happens while its first element is above 0, which scales alpha")
+    LEARNING = Input("with use_learning: learning happens while its first element is above 0, "
+                     "which also scales alpha", optional=True)
     INPUT = Input("the input mapped to OUTPUT")
     T_INPUT = Input("the training input", name="T-INPUT")
     T_OUTPUT = Input("the training target", name="T-OUTPUT")
@@ -79,9 +88,21 @@ class LinearAssociator(Module):
         self._mem_x[slot] = self.T_INPUT.reshape(-1)
         self._mem_y[slot] = self.T_OUTPUT.reshape(-1)
 
+    def _pass(self, xs, ys, alpha, beta):
+        """One gradient step on each sample in turn; the norms of the errors met."""
+        w = self._w
+        norms = np.empty(len(xs))
+        for i, (x, y) in enumerate(zip(xs, ys)):
+            e = y - w @ x
+            norms[i] = np.sqrt(e @ e)
+            self._momentum *= beta
+            self._momentum += (1 - beta) * e
+            w += alpha * np.outer(self._momentum, x)
+        return norms
+
     def tick(self):
         rate = 1.0
-        if self.LEARNING is not None:
+        if self.use_learning and self.LEARNING is not None:
             rate = float(self.LEARNING.reshape(-1)[0])
         if rate > 0:
             self._remember()
@@ -94,18 +115,10 @@ class LinearAssociator(Module):
                 error = np.mean(np.sqrt(np.sum(errors * errors, axis=1)))
             else:
                 alpha, beta = np.float32(self.alpha * rate), np.float32(self.beta)
-                norms = None
+                norms = self._pass(self.T_INPUT.reshape(1, -1), self.T_OUTPUT.reshape(1, -1),
+                                   alpha, beta)
                 for _ in range(max(0, self.memory_training)):
-                    norms = np.empty(len(xs))
-                    for i, (x, y) in enumerate(zip(xs, ys)):
-                        e = y - w @ x
-                        norms[i] = np.sqrt(e @ e)
-                        self._momentum *= beta
-                        self._momentum += (1 - beta) * e
-                        w += alpha * np.outer(self._momentum, x)
-                if norms is None:       # no training pass: measure the error only
-                    errors = ys - xs @ w.T
-                    norms = np.sqrt(np.sum(errors * errors, axis=1))
+                    norms = self._pass(xs, ys, alpha, beta)
                 error = np.mean(norms)
             self.ERROR[0] = error
             self.CONFIDENCE[0] = 1 - self.ERROR[0]

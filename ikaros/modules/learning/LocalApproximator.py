@@ -15,7 +15,9 @@ class LocalApproximator(Module):
     its input to INPUT; an example at distance 0 gives its output exactly (the mean of them
     if there are several). When the optional DISTANCE_TABLE is connected, the examples with a
     negative distance (KNN's mark for a missing neighbour) are left out. OUTPUT is 0 while
-    there is no example. (Ikaros 2's version of this module was never finished.)"""
+    there is no example. The class is not in Ikaros 3, and no reference gives Ikaros 2's
+    computation beyond the catalogue's one line (local linear regression, a plain or a
+    distance-weighted average): these formulas are this project's reading of it."""
 
     type = Parameter("linear_approximation", "linear_approximation: a local least-squares "
                      "affine fit; average: the mean output; distance_weighted_average: the "

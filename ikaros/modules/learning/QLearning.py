@@ -13,12 +13,16 @@ class QLearning(Module):
     element of REINFORCEMENT and s the current state; a positive r marks a goal and the
     target is then gamma * r (the episode ends there: GridWorld moves the agent back to its
     start). With ``finite`` the target is gamma * r for a positive r and gamma * max_a Q(s, a)
-    otherwise (negative reinforcement is not learned, as in Ikaros 2). The new action is,
+    otherwise (negative reinforcement is not learned). The new action is,
     with probability ``epsilon``, a random one; otherwise the action with the largest Q value
     in the current state (the first on ties), or a random one while all of them are 0. ACTION
     is that action as a one-hot vector of four elements (for GridWorld: up, right, down,
     left). VALUE holds max(0, max_a Q) for every state. The same ``seed`` gives the same
-    run."""
+    run. The class is not in Ikaros 3. The golden files check Ikaros 2's values with the
+    defaults (infinite horizon, no exploration, values above 0 from the start); the finite
+    horizon and the random choices (epsilon, all values 0) follow the catalogue's summary
+    and are this project's reading, its random numbers drawn from NumPy's generator rather
+    than the original's."""
 
     horizon = Parameter("infinite", "infinite: reinforcement adds to the discounted value of "
                         "the next state; finite: only a positive reinforcement (a goal) counts",

@@ -2,6 +2,7 @@
 import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
+from ikaros.modules.neural._crand import random_rows
 
 
 class Trainer(Module):
@@ -18,8 +19,17 @@ class Trainer(Module):
     example sent on the previous tick (0 on tick 0), which is right when TEST_X reaches the
     learner with a delay of 1 and its answer comes back with a delay of 0. The outputs are 0
     in init and the first examples go out on tick 0. Without TRAINING_DATA_Y, TRAIN_Y is one
-    element that stays 0. The same ``seed`` gives the same random order. (Ikaros 2 never
-    moved on to the next example of TESTING_DATA_X.)"""
+    element that stays 0.
+
+    The random order draws the row as rand() % rows from the C library's rand(), as Ikaros 2
+    does: with ``seed`` unset (or 0) an Ikaros 2 file gets the original's sequence (glibc's,
+    from its start, shared with the other modules of the network that draw from it), so the
+    order is the same on every run and the same as the original's when no other module
+    draws (the golden files show it). The first example is row 0. With testing by even, odd
+    or input rows, the test row is drawn after the training row (this project's reading).
+    A seed above 0 gives the same order for the same seed, and a seed below 0 (or an unset
+    seed in an Ikaros 3 file) a different order on every run. The class is not in
+    Ikaros 3."""
 
     order = Parameter("random", "random or sequential order of presentation",
                       options="random/sequential")
@@ -27,8 +37,9 @@ class Trainer(Module):
                                 "examples), even or odd rows of the training data, or input "
                                 "(the TESTING_DATA inputs)", options="none/all/even/odd/input")
     repetitions = Parameter(1, "the number of ticks each example is held", type="int")
-    seed = Parameter(None, "seed of the random generator; unset (or 0) gives a different run "
-                     "every time", type="int")
+    seed = Parameter(None, "seed of the random order; unset or 0: Ikaros 2's rand() "
+                     "sequence (Ikaros 3 file: a different run every time); below 0: a "
+                     "different run every time", type="int")
     TRAINING_DATA_X = Input("the training inputs, one example per row")
     TRAINING_DATA_Y = Input("the training targets, one example per row", optional=True)
     TESTING_DATA_X = Input("the test inputs, one example per row (crossvalidation input)",
@@ -88,7 +99,7 @@ class Trainer(Module):
         if len(self._train_rows) == 0 or len(self._test_rows) == 0:
             raise ValueError("there are too few examples for this crossvalidation")
         self._testing = mode != "none"
-        self._rng = np.random.default_rng(self.seed or None)
+        self._draw = random_rows(self)
         self._held = 0
         self._train_i = self._test_i = 0            # positions in _train_rows / _test_rows
         self._target = np.zeros(ny, np.float32)     # target of the test example sent last
@@ -114,8 +125,9 @@ class Trainer(Module):
             return
         self._held = 0
         if self.order == "random":
-            self._train_i = int(self._rng.integers(len(self._train_rows)))
-            self._test_i = int(self._rng.integers(len(self._test_rows)))
+            self._train_i = self._draw(len(self._train_rows))
+            if self.crossvalidation in ("even", "odd", "input"):
+                self._test_i = self._draw(len(self._test_rows))
         else:
             self._train_i = (self._train_i + 1) % len(self._train_rows)
             self._test_i = (self._test_i + 1) % len(self._test_rows)

@@ -30,7 +30,11 @@ class Autoassociator(Module):
     first. ENERGY is -0.5 v^T W v with v = 2 s - 1; T-OUTPUT is 1/(1 + exp(-a W (2 T-INPUT -
     1))), the one-step recall of the training pattern; AUX-OUTPUT is 1/(1 + exp(-a U (2
     AUX-INPUT - 1))); ERROR-OUTPUT is W^T TOP-DOWN-ERROR, the error passed to lower layers.
-    Outputs that need an unconnected input stay 0."""
+    Outputs that need an unconnected input stay 0. The class is not in Ikaros 3; of Ikaros 2's
+    the catalogue gives only its ports, parameters and a summary (Hebbian learning with a
+    depression trace, completion of a partial pattern, an energy), and the golden files have
+    no case of it (it draws random numbers), so these formulas are this project's reading,
+    and its noise comes from NumPy's generator, not the original's."""
 
     learning_rate = Parameter(0.001, "the Hebbian learning rate", range=(0, None))
     depression_rate = Parameter(0.01, "how fast the depression traces follow the co-activity "

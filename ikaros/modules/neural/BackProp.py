@@ -7,12 +7,18 @@ from ikaros.module import Input, Module, Output, Parameter
 class BackProp(Module):
     """A multilayer perceptron with one hidden layer of ``hidden_units`` logistic units and one
     logistic output unit per element of T_TARGET (targets in 0..1); every unit has a bias.
-    On every tick the network takes one on-line back-propagation step on the pair
-    T_INPUT -> T_TARGET (gradient descent on the squared error with learning rate ``lr`` and
-    ``momentum`` times the previous change added), then OUTPUT is its response to INPUT with
-    the new weights. ERROR is the mean squared difference between T_TARGET and the response to
-    T_INPUT before the step. The initial weights are uniform in [-0.5, 0.5]; the same ``seed``
-    gives the same run. (Ikaros 2 declared ``lr`` as a list; here it is a number.)"""
+    On every tick OUTPUT is the network's response to INPUT, and then the network takes one
+    on-line back-propagation step on the pair T_INPUT -> T_TARGET (gradient descent on the
+    squared error with learning rate ``lr`` and ``momentum`` times the previous change
+    added). ERROR is the Euclidean norm of the difference between T_TARGET and the response
+    to T_INPUT before the step. That OUTPUT comes before the tick's step and that ERROR is a
+    norm is what the Ikaros 2 golden files show; the class is not in Ikaros 3. The original
+    draws its initial weights from the C library's rand() (the same on every run) in an
+    order and range no reference gives, and its learning rule is not documented either, so
+    this class does not reproduce the original's numbers: here the initial weights are
+    uniform in [-0.5, 0.5] from NumPy's generator (the same ``seed`` gives the same run; unset
+    or 0, a different run every time). (The catalogue gives ``lr`` no default; here it is a
+    number, 0.2.)"""
 
     lr = Parameter(0.2, "the learning rate", range=(0, None))
     momentum = Parameter(0.0, "the part of the previous weight change added to the current one",
@@ -26,7 +32,7 @@ class BackProp(Module):
     T_TARGET = Input("the desired response to T_INPUT (0..1); its size is the number of "
                      "output units", flatten=True)
     OUTPUT = Output("the network's response to INPUT", size_set="T_TARGET")
-    ERROR = Output("mean squared training error on this tick, before the weight change",
+    ERROR = Output("the norm of the training error on this tick, before the weight change",
                    size="1")
 
     def init(self):
@@ -50,13 +56,13 @@ class BackProp(Module):
         return x1, h, self._sigmoid(self._w2 @ h)
 
     def tick(self):
+        self.OUTPUT[...] = self._forward(self.INPUT)[2].reshape(self.OUTPUT.shape)
         x1, h, y = self._forward(self.T_INPUT)
         t = self.T_TARGET.astype(np.float64)
-        self.ERROR[0] = np.mean((t - y) ** 2)
+        self.ERROR[0] = np.sqrt(np.sum((t - y) ** 2))
         delta_out = (t - y) * y * (1 - y)
         delta_hidden = (self._w2[:, :-1].T @ delta_out) * h[:-1] * (1 - h[:-1])
         self._d2 = self.lr * np.outer(delta_out, h) + self.momentum * self._d2
         self._d1 = self.lr * np.outer(delta_hidden, x1) + self.momentum * self._d1
         self._w2 += self._d2
         self._w1 += self._d1
-        self.OUTPUT[...] = self._forward(self.INPUT)[2].reshape(self.OUTPUT.shape)

@@ -22,8 +22,11 @@ class CSOM(StreamSOM):
     TOP_DOWN activity. With ``load_state`` the weights (and, unless ``load_weights_only``, the
     learning rate, radius and statistics) are read at the start from ``filename``, a text file
     of one number per line; with ``save_state`` they are written there at the end. Extensions
-    of Ikaros 2: the sigma parameters (Ikaros 2 CSOM had no neighbourhood parameters) and
-    ``seed``; ``border_multiplier`` and ``device_id`` (CUDA) have no effect here."""
+    of Ikaros 2: the sigma parameters (the catalogue lists no neighbourhood parameters for
+    Ikaros 2's CSOM) and ``seed``; ``border_multiplier`` and ``device_id`` (CUDA) have no
+    effect here. The class is not in Ikaros 3, and the golden files have no case of it (its
+    weights are random): these formulas are this project's reading of the catalogue's
+    summary, and the random numbers come from NumPy's generator, not the original's."""
 
     border_multiplier = Parameter(2, "no effect here (Ikaros 2: a border for spans)")
     use_arbor = Parameter(True, "weight the receptive field with a quadratic arbor function "

@@ -19,10 +19,12 @@ class CSOM_L(SOMBase):
     between their min and max, so the map first orders itself and then refines. SALIENCE is
     the summed activity of all units at each field. ``read_file`` names a text file of
     weights (one number per line, unit by unit, row by row) read at the start, ``write_file``
-    one written at the end. The map size is (input - rf_size) / rf_inc + 1 fields across
-    (Ikaros 2 computed (input - rf_size + 1) / rf_inc, which reads past the input for steps
-    above 1). ``assoc_radius_x`` and ``assoc_radius_y`` (lateral associations, not on any
-    output in Ikaros 2) have no effect; ``seed`` is an extension."""
+    one written at the end. The map size is (input - rf_size) / rf_inc + 1 fields across.
+    ``assoc_radius_x`` and ``assoc_radius_y`` (lateral associations: no output in the
+    catalogue's list shows them) have no effect; ``seed`` is an extension. The class is not
+    in Ikaros 3, and the golden files have no case of it (its weights are random): these
+    formulas are this project's reading of the catalogue's summary, and the random numbers
+    come from NumPy's generator, not the original's."""
 
     assoc_radius_x = Parameter(1, "no effect here (Ikaros 2: range of lateral associations)")
     assoc_radius_y = Parameter(1, "no effect here (Ikaros 2: range of lateral associations)")

@@ -18,11 +18,13 @@ class CSOM_PCA(StreamSOM):
     random unit vectors (the same ``seed`` gives the same run); alpha and sigma decay after
     each tick between their min and max. RECONSTRUCTION puts back at every field the weights of
     the unit with the largest |TOP_DOWN| times that value (the best unit times its activity
-    when TOP_DOWN is not connected; Ikaros 2 summed over all units, which overcounts when
-    neighbouring units are alike), averaged where fields overlap; ERROR is the RMS difference
+    when TOP_DOWN is not connected), averaged where fields overlap; ERROR is the RMS difference
     between the fields and that reconstruction by their best unit. Extensions of Ikaros 2: the
     sigma parameters and ``seed``; ``activity_inc_x``, ``activity_inc_y``, ``update_algo``
-    (both algorithms give the same result) and ``border_multiplier`` have no effect here."""
+    and ``border_multiplier`` have no effect here. The class is not in Ikaros 3, and the
+    golden files have no case of it (its weights are random): these formulas are this
+    project's reading of the catalogue's summary, and the random numbers come from NumPy's
+    generator, not the original's."""
 
     activity_inc_x = Parameter(1, "no effect here (Ikaros 2: activity field increment)")
     activity_inc_y = Parameter(1, "no effect here (Ikaros 2: activity field increment)")

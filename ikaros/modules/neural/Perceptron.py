@@ -5,6 +5,8 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
+from ._crand import network_rand, numpy_generator, uses_crand
+
 _ZERO_ONE = ("step", "sigmoid")          # activations whose targets are 0/1 (the others -1/1)
 
 
@@ -25,9 +27,25 @@ class Perceptron(Module):
     (for sigmoid or tanh units). r is ``learning_rate``, divided by 0.1 sqrt(tick + 100) or by
     0.42 ln(tick + 10) when ``learning_rate_mod`` is sqrt or log. ``learning_type`` instant
     applies each change at once, batch sums the changes of ``batch_size`` training ticks and
-    applies them together, momentum adds ``momentum_ratio`` times the previous change. The
-    initial weights are uniform in [rand_weights_min, rand_weights_max]; the same ``seed``
-    gives the same run. A bias of 0 (not allowed in Ikaros 2) is read as 1 with a warning."""
+    applies them together, momentum adds ``momentum_ratio`` times the previous change. A bias
+    of 0 is read as 1 with a warning. The class is not in Ikaros 3. The golden files show
+    Ikaros 2's initial weights and responses (below) but no learning, so the learning rules
+    above follow the catalogue's list of them (and Hassoun) and are this project's reading;
+    the learning rate's decay factors are this project's too.
+
+    The initial weights are uniform in [rand_weights_min, rand_weights_max]. With ``seed``
+    unset (or 0) an Ikaros 2 file draws them as the original does, from the C library's
+    rand() sequence (glibc's, shared with the network's other modules that draw from it):
+    min + (max - min) rand() / RAND_MAX for each unit in turn, its input weights and then
+    its bias weight, so that the first Perceptron of a model starts with the original's
+    weights (the golden files show it). A seed above 0 gives the same weights for the same
+    seed, below 0 (or unset in an Ikaros 3 file) different weights on every run.
+
+    In an Ikaros 2 file the layer learns only on ticks where TRAIN's first element is
+    exactly 1: in the golden files the original did not learn at all with 1.7, 0.5 or a
+    sine on TRAIN (nor report ERROR or CORRECT), and that it learns with 1 is this project's
+    reading. In an Ikaros 3 file (or with TRAIN unconnected) any value other than 0 trains
+    (this project's)."""
 
     rand_weights_min = Parameter(-0.5, "lower limit of the random initial weights")
     rand_weights_max = Parameter(0.5, "upper limit of the random initial weights")
@@ -59,15 +77,16 @@ class Perceptron(Module):
                                      "computed over")
     normalize_target = Parameter(False, "read a target > 0 as 1 and any other as 0 (step, "
                                  "sigmoid) or -1 (sign, tanh)")
-    seed = Parameter(None, "seed of the random initial weights; unset (or 0) gives a "
-                     "different run every time", type="int")
+    seed = Parameter(None, "seed of the random initial weights; unset or 0: Ikaros 2's rand() "
+                     "sequence (Ikaros 3 file: different weights every run); below 0: "
+                     "different weights every run", type="int")
 
     INPUT = Input("the pattern to respond to", flatten=True)
     T_INPUT = Input("the training pattern", flatten=True)
     T_TARGET = Input("the desired response to T_INPUT; its size is the number of units",
                      flatten=True)
-    TRAIN = Input("learn on ticks where the first element is not 0; unconnected: always",
-                  optional=True)
+    TRAIN = Input("learn on ticks where the first element is 1 (Ikaros 3 file: not 0); "
+                  "unconnected: always", optional=True)
     OUTPUT = Output("the response of each unit to INPUT", size_set="T_TARGET")
     ERROR = Output("sqrt of the summed squared difference between T_TARGET and the response "
                    "to T_INPUT, on the last training tick", size="1")
@@ -78,9 +97,13 @@ class Perceptron(Module):
         n_out, n_in = self.T_TARGET.size, self.T_INPUT.size
         if self.INPUT.size != n_in:
             self.fatal_error(f"INPUT has {self.INPUT.size} elements but T_INPUT {n_in}")
-        rng = np.random.default_rng(self.seed or None)
-        self._w = rng.uniform(self.rand_weights_min, self.rand_weights_max,
-                              (n_out, n_in + 1)).astype(np.float64)
+        low, high = self.rand_weights_min, self.rand_weights_max
+        if uses_crand(self):
+            stream = network_rand(self.clock)
+            self._w = np.array([[np.float32(stream.uniform(low, high))
+                                 for _ in range(n_in + 1)] for _ in range(n_out)], np.float64)
+        else:
+            self._w = numpy_generator(self).uniform(low, high, (n_out, n_in + 1))
         self._bias = self.bias
         if self._bias == 0:
             self.warning("bias 0 is not allowed; 1 is used")
@@ -182,7 +205,11 @@ class Perceptron(Module):
                 self._batch_count = 0
 
     def tick(self):
-        if self.TRAIN is None or self.TRAIN.reshape(-1)[0] != 0:
+        train = self.TRAIN is None
+        if not train:
+            first = self.TRAIN.reshape(-1)[0]
+            train = first != 0 if self.dialect == "3" else first == 1
+        if train:
             self._train()
         self.OUTPUT[...] = self._activate(self._w @ self._augment(self.INPUT)).reshape(
             self.OUTPUT.shape)

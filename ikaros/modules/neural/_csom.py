@@ -77,7 +77,6 @@ class SOMBase(Module):
     def _blocks(self):
         bx = getattr(self, "block_size_x", -1)
         by = getattr(self, "block_size_y", -1)
-        # (Ikaros 2 tested block_size_x twice, so block_size_y = -1 was not replaced)
         bx = self.rf_size_x if bx is None or bx <= 0 else bx
         by = self.rf_size_y if by is None or by <= 0 else by
         sx = max(0, getattr(self, "span_size_x", 0) or 0)

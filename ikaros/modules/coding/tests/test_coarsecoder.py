@@ -21,10 +21,11 @@ def tile(v, n, r, normalize=False):
     return out / out.sum() if normalize else out
 
 
-def gaussian(v, n, r, normalize=False):
+def gaussian(v, n, r, normalize=False, profile="distance"):
     px, py = position(np.asarray(v, dtype=np.float64), n, r)
     j, i = np.mgrid[0:n, 0:n]
-    out = np.exp(-((i - px) ** 2 + (j - py) ** 2) / (2 * r * r))
+    d2 = (i - px) ** 2 + (j - py) ** 2
+    out = np.exp(-np.sqrt(d2)) if profile == "distance" else np.exp(-d2 / (2 * r * r))
     return out / out.sum() if normalize else out
 
 
@@ -48,16 +49,35 @@ def test_tile_over_ticks(tmp_path, normalize):
         net.close()
 
 
+@pytest.mark.parametrize("profile", ["distance", "normal"])
 @pytest.mark.parametrize("normalize", [False, True])
-def test_gaussian_over_ticks(tmp_path, normalize):
+def test_gaussian_over_ticks(tmp_path, normalize, profile):
     net = load(tmp_path, RANDOM + f'<module class="CoarseCoder" name="C" type="gaussian" '
-                                  f'output_size="7" radius="1.5" normalize="{normalize}"/>')
+                                  f'output_size="7" radius="1.5" normalize="{normalize}" '
+                                  f'profile="{profile}"/>')
     try:
         for _ in range(4):
             net.step()
             x = net.output("R.OUTPUT")
-            assert np.allclose(net.output("C.OUTPUT"), gaussian(x, 7, 1.5, normalize),
-                               atol=1e-6)
+            assert np.allclose(net.output("C.OUTPUT"),
+                               gaussian(x, 7, 1.5, normalize, profile), atol=1e-6)
+    finally:
+        net.close()
+
+
+def test_hand_worked_ikaros2_gaussian(tmp_path):
+    # 3 x 3, radius 0: x = 0.5 -> column 1, y = 0 -> row 0; each cell is exp(-distance)
+    net = load(tmp_path, '<module class="Constant" name="K" data="0.5 0"/>\n'
+                         '<module class="CoarseCoder" name="C" type="gaussian" output_size="3" '
+                         'radius="0"/>\n'
+                         '<connection source="K.OUTPUT" target="C.INPUT" delay="0"/>')
+    try:
+        net.step()
+        e = np.exp
+        r2 = np.sqrt(2)
+        assert np.allclose(net.output("C.OUTPUT"), [[e(-1), 1, e(-1)],
+                                                    [e(-r2), e(-1), e(-r2)],
+                                                    [e(-np.sqrt(5)), e(-2), e(-np.sqrt(5))]])
     finally:
         net.close()
 
@@ -79,7 +99,8 @@ def test_hand_worked_corners_and_clipping(tmp_path):
 
 def test_radius_0_and_equal_min_max(tmp_path):
     body = ('<module class="Constant" name="K" data="0.5 1"/>\n'
-            '<module class="CoarseCoder" name="C" output_size="5" radius="0" type="gaussian"/>\n'
+            '<module class="CoarseCoder" name="C" output_size="5" radius="0" type="gaussian" '
+            'profile="normal"/>\n'
             '<module class="CoarseCoder" name="E" output_size="5" min="2" max="2"/>\n'
             '<connection source="K.OUTPUT" target="C.INPUT" delay="0"/>\n'
             '<connection source="K.OUTPUT" target="E.INPUT" delay="0"/>')

@@ -6,12 +6,14 @@ import ikaros
 from ikaros.testing import load_body as load
 
 
-def code(x, size, sigma, lo, hi, amplitude=None):
+def code(x, size, sigma, lo, hi, amplitude=None, normalize=True):
     out = np.zeros((len(x), size))
     for j, v in enumerate(x):
         c = (size - 1) * (v - lo) / (hi - lo)
         for k in range(size):
             out[j, k] = np.exp(-(k - c) ** 2 / (2 * sigma ** 2))
+        if normalize:
+            out[j] /= out[j].sum()
     if amplitude is not None:
         out *= np.reshape(amplitude, (-1, 1)) if len(amplitude) > 1 else amplitude[0]
     return out
@@ -22,14 +24,23 @@ RANDOM = ('<module class="Randomizer" name="R" outputsize="3" min="-1" max="2" s
 
 
 def test_rows_of_gaussians_over_ticks(tmp_path):
+    # Ikaros 2: sigma 2.7 is read as 2 and each row sums to 1; the options give a sigma of
+    # 2.7 and curves of peak 1
     net = load(tmp_path, RANDOM + '<module class="PopulationCoder" name="P" size="7" '
-                                  'sigma="1.5" min="-1" max="2"/>')
+                                  'sigma="2.7" min="-1" max="2"/>\n'
+                                  '<module class="PopulationCoder" name="Q" size="7" '
+                                  'sigma="2.7" min="-1" max="2" whole_sigma="no" '
+                                  'normalize="no"/>\n'
+                                  '<connection source="R.OUTPUT" target="Q.INPUT" delay="0"/>')
     try:
         assert net.output("P.OUTPUT").shape == (3, 7)
         for _ in range(4):
             net.step()
             x = net.output("R.OUTPUT").astype(np.float64)
-            assert np.allclose(net.output("P.OUTPUT"), code(x, 7, 1.5, -1, 2), atol=1e-6)
+            assert np.allclose(net.output("P.OUTPUT"), code(x, 7, 2, -1, 2), atol=1e-6)
+            assert np.allclose(net.output("P.OUTPUT").sum(axis=1), 1, atol=1e-6)
+            assert np.allclose(net.output("Q.OUTPUT"), code(x, 7, 2.7, -1, 2, normalize=False),
+                               atol=1e-6)
     finally:
         net.close()
 
@@ -54,9 +65,13 @@ def test_amplitude_per_row_and_for_all(tmp_path):
         net.close()
 
 
-def test_hand_worked_sigma_0_and_equal_min_max(tmp_path):
+def test_hand_worked_sigma_below_1_and_equal_min_max(tmp_path):
+    # sigma 0.5 is read as 0 (Ikaros 2): only a value exactly on a unit gives activity
     body = ('<module class="Constant" name="K" data="0.5 1 3"/>\n'
-            '<module class="PopulationCoder" name="P" size="5" sigma="0"/>\n'
+            '<module class="PopulationCoder" name="P" size="5" sigma="0.5"/>\n'
+            '<module class="Constant" name="L" data="0.45"/>\n'
+            '<module class="PopulationCoder" name="Z" size="6" sigma="0.5"/>\n'
+            '<connection source="L.OUTPUT" target="Z.INPUT" delay="0"/>\n'
             '<module class="PopulationCoder" name="E" size="3" min="1" max="1"/>\n'
             '<connection source="K.OUTPUT" target="P.INPUT" delay="0"/>\n'
             '<connection source="K.OUTPUT" target="E.INPUT" delay="0"/>')
@@ -66,7 +81,9 @@ def test_hand_worked_sigma_0_and_equal_min_max(tmp_path):
         # positions 2, 4, 12 (outside: no unit)
         assert np.array_equal(net.output("P.OUTPUT"),
                               [[0, 0, 1, 0, 0], [0, 0, 0, 0, 1], [0, 0, 0, 0, 0]])
+        assert np.array_equal(net.output("Z.OUTPUT"), [[0] * 6])     # 0.45 is at 2.25 units
         g = np.exp(-np.arange(3) ** 2 / 2)
+        g /= g.sum()
         assert np.allclose(net.output("E.OUTPUT"), [g, g, g])
         warnings = [m for (_, level, where, m) in net.log if where == "E" and level == 5]
         assert len(warnings) == 1

@@ -25,8 +25,9 @@ def test_row_k_is_the_input_k_ticks_ago(tmp_path):
 
 
 def test_hand_worked_counter_through_a_matrix_input(tmp_path):
-    # a 2 x 1 matrix input is flattened to 2 columns; Sweep gives 1, 2, 3, ... from tick 0
-    body = ('<module class="Sweep" name="S" outputsize_x="1" outputsize_y="2" min="0" '
+    # of a matrix input only the first row goes through the line (Ikaros 2 sizes OUTPUT by
+    # INPUT's columns): a 2 x 2 Sweep gives 1, 2, 3, ... in every element from tick 0
+    body = ('<module class="Sweep" name="S" outputsize_x="2" outputsize_y="2" min="0" '
             'max="100" step="1"/>\n'
             '<module class="TappedDelayLine" name="T" no_of_taps="3"/>\n'
             '<connection source="S.OUTPUT" target="T.INPUT" delay="0"/>')

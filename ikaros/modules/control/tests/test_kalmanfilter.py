@@ -134,7 +134,7 @@ def test_bad_matrix_shape_is_a_build_error(tmp_path):
                        '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
 
 
-# --- the Ikaros 3 inputs: GATED, INPUT_VALID, OBSERVATION_VALID, RESET -------------------------
+# --- the optional inputs in an Ikaros 2 file: ENABLE, INPUT_VALID, OBSERVATION_VALID, RESET ---
 # Scalar filter, A = H = 1, Q = R = 1, observation 3 every tick: a normal first tick gives
 # K = 2/3, x = 2 (P = 2/3), a normal second tick K = 5/8, x = 2.625.
 
@@ -158,15 +158,15 @@ def run_v3(tmp_path, columns, rows, attrs="", links=()):
     return out
 
 
-def test_v3_gated_holds_the_filter(tmp_path):
+def test_enable_holds_the_filter(tmp_path):
     out = run_v3(tmp_path, [("Z", 1), ("G", 1)], [[3, 1], [3, 0], [3, 1]],
-                 links=[("G", "GATED")])
+                 links=[("G", "ENABLE")])
     assert np.allclose(out[0][0], [2]) and np.allclose(out[1][0], [2])
     assert np.allclose(out[1][2], [[2 / 3]])              # held from tick 0
     assert np.allclose(out[2][0], [2.625]) and np.allclose(out[2][2], [[5 / 8]])
 
 
-def test_v3_reset_restarts_the_state(tmp_path):
+def test_reset_restarts_the_state(tmp_path):
     out = run_v3(tmp_path, [("Z", 1), ("R", 1)], [[3, 0], [3, 1], [3, 0]],
                  links=[("R", "RESET")])
     assert np.allclose(out[1][0], [2]) and np.allclose(out[1][2], [[2 / 3]])
@@ -174,7 +174,7 @@ def test_v3_reset_restarts_the_state(tmp_path):
     assert np.allclose(out[2][0], [2.625])
 
 
-def test_v3_observation_valid_zero_is_a_prediction_only(tmp_path):
+def test_observation_valid_zero_is_a_prediction_only(tmp_path):
     out = run_v3(tmp_path, [("Z", 1), ("V", 1)], [[3, 0], [3, 1]],
                  links=[("V", "OBSERVATION_VALID")])
     assert out[0] == ([0.0], [0.0], [[0.0]])
@@ -182,7 +182,7 @@ def test_v3_observation_valid_zero_is_a_prediction_only(tmp_path):
     assert np.allclose(out[1][2], [[0.75]]) and np.allclose(out[1][0], [2.25])
 
 
-def test_v3_observation_valid_per_element(tmp_path):
+def test_observation_valid_per_element(tmp_path):
     out = run_v3(tmp_path, [("Z", 2), ("V", 2)], [[3, 5, 1, 0]],
                  attrs='observation_size="2" H="1; 1"', links=[("V", "OBSERVATION_VALID")])
     state, innovation, gain = out[0]
@@ -190,7 +190,7 @@ def test_v3_observation_valid_per_element(tmp_path):
     assert np.allclose(gain, [[2 / 3, 0]])
 
 
-def test_v3_input_valid_leaves_the_control_input_out(tmp_path):
+def test_input_valid_leaves_the_control_input_out(tmp_path):
     out = run_v3(tmp_path, [("Z", 1), ("U", 1), ("I", 1)], [[3, 1, 0], [3, 1, 1]],
                  attrs='B="1"', links=[("U", "INPUT"), ("I", "INPUT_VALID")])
     assert np.allclose(out[0][0], [2])                    # as without INPUT
@@ -198,10 +198,33 @@ def test_v3_input_valid_leaves_the_control_input_out(tmp_path):
     assert np.allclose(out[1][0], [3]) and np.allclose(out[1][2], [[5 / 8]])
 
 
-def test_v3_observation_valid_of_wrong_size_is_an_error(tmp_path):
+def test_observation_valid_of_wrong_size_is_an_error(tmp_path):
     with pytest.raises(ModelError, match="OBSERVATION_VALID has 3 elements"):
         run_v3(tmp_path, [("Z", 1), ("V", 3)], [[3, 1, 1, 1]],
                links=[("V", "OBSERVATION_VALID")])
+
+
+def test_ikaros_2_file_has_the_ikaros_3_outputs_and_gate(tmp_path):
+    # scalar filter, A = H = Q = R = 1, P = I at the start: tick 0, z = 3: S = 3, y = 3,
+    # y²/S = 3, K = 2/3, x = 2, P = 2/3; tick 1, z = 9: S = 8/3, y = 7, y²/S = 18.375 > 10:
+    # rejected, x = 2 (prediction), P = 5/3; tick 2, z = 3: P' = 8/3, S = 11/3, y = 1,
+    # y²/S = 3/11, K = 8/11, x = 2 + 8/11
+    data_file(tmp_path, [("Z", 1)], [[3], [9], [3]])
+    net = load(tmp_path, '<module class="InputFile" name="D" filename="d.txt"/>\n'
+                         '<module class="KalmanFilter" name="K" A="1" H="1" '
+                         'innovation_gate="10"/>\n'
+                         '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>')
+    expected = [(2, 2 / 3, 0, 3), (2, 0, 1, 18.375), (2 + 8 / 11, 8 / 11, 0, 3 / 11)]
+    try:
+        for state, gain, gated, normalized in expected:
+            net.step()
+            assert net.output("K.STATE")[0] == pytest.approx(state, rel=1e-6)
+            assert net.output("K.KALMAN_GAIN")[0, 0] == pytest.approx(gain, rel=1e-6)
+            assert net.output("K.GATED")[0] == gated
+            assert net.output("K.NORMALIZED_INNOVATION")[0] == pytest.approx(normalized,
+                                                                             rel=1e-6)
+    finally:
+        net.close()
 
 
 # --- Ikaros 3 files (dialect 3): MODULES-V3 §25 -------------------------------------------

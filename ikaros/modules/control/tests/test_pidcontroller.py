@@ -10,8 +10,7 @@ def reference(inputs, setpoints, Kb=0.0, Kp=0.1, Ki=0.0, Kd=0.0, Fs=0.0, Fm=0.0,
               Fi=0.0, Fd=0.0, Fc=0.0, Cmin=-1000.0, Cmax=1000.0):
     """The documented PID computation, one tick at a time, in float64."""
     n = max(np.size(inputs[0]), np.size(setpoints[0]))
-    fs = fm = ep = ei = ed = integral = out = np.zeros(n)
-    last_d = None
+    fs = fm = ep = ei = ed = integral = out = last_d = np.zeros(n)
     rows = []
     for x, s in zip(inputs, setpoints):
         fs = Fs * fs + (1 - Fs) * np.asarray(s, float)
@@ -20,8 +19,6 @@ def reference(inputs, setpoints, Kb=0.0, Kp=0.1, Ki=0.0, Kd=0.0, Fs=0.0, Fm=0.0,
         ep = Fp * ep + (1 - Fp) * delta
         ei = Fi * ei + (1 - Fi) * delta
         ed = Fd * ed + (1 - Fd) * delta
-        if last_d is None:
-            last_d = ed
         integral = integral + ei
         c = Kb + Kp * ep + Ki * integral + Kd * (ed - last_d)
         last_d = ed
@@ -106,13 +103,14 @@ def test_clipping_stops_integration(tmp_path):
         net.close()
 
 
-def test_derivative_is_zero_on_the_first_tick(tmp_path):
+def test_derivative_memory_starts_at_0(tmp_path):
+    # as in Ikaros 2: on the first tick the change is the signal itself (error [1, -2])
     rows = [[0, 0], [0.5, 0], [0.5, 0]]
     write_inputs(tmp_path, rows)
     net = load(tmp_path, body('Kp="0" Kd="2" derivative_mode="error"'))
     try:
         net.step()
-        assert np.allclose(net.output("P.OUTPUT"), [0, 0])
+        assert np.allclose(net.output("P.OUTPUT"), [2, -4])
         net.step()                    # error falls from 1 to 0.5: derivative -0.5, times 2
         assert np.allclose(net.output("P.OUTPUT"), [-1, 0])
         net.step()
@@ -138,11 +136,11 @@ def test_mismatched_sizes_are_a_build_error(tmp_path):
         load(tmp_path, body("", setpoint="1 2 3"))
 
 
-# --- the Ikaros 3 inputs: GATED, INPUT_VALID, RESET ------------------------------------------
+# --- the optional inputs: GATED, INPUT_VALID, RESET -------------------------------------------
 # Setpoint 1 and measurement 0 in both elements, Kp=0.5, Ki=0.25: the error is 1 every tick,
 # so an element's output after its k-th counted tick is 0.5 + 0.25 * k.
 
-def run_v3(tmp_path, columns):
+def run_v3(tmp_path, columns, params=""):
     """Runs the controller with the given Ikaros 3 inputs read from a file, one row per tick
     ({input name: (rows of values)}); returns OUTPUT and INTEGRAL after each tick."""
     names = list(columns)
@@ -154,7 +152,7 @@ def run_v3(tmp_path, columns):
     body = ('<module class="Constant" name="S" data="1 1"/>\n'
             '<module class="Constant" name="X" data="0 0"/>\n'
             '<module class="InputFile" name="F" filename="v3.txt"/>\n'
-            '<module class="PIDController" name="P" Kp="0.5" Ki="0.25"/>\n'
+            f'<module class="PIDController" name="P" Kp="0.5" Ki="0.25" {params}/>\n'
             '<connection source="S.OUTPUT" target="P.SETPOINT" delay="0"/>\n'
             '<connection source="X.OUTPUT" target="P.INPUT" delay="0"/>\n' +
             "".join(f'<connection source="F.{n}" target="P.{n}" delay="0"/>\n' for n in names))
@@ -169,25 +167,32 @@ def run_v3(tmp_path, columns):
     return out
 
 
-def test_v3_reset_clears_the_integral(tmp_path):
-    out = run_v3(tmp_path, {"RESET": [[0], [0], [1], [0]]})
+def test_reset_clears_the_integral_with_use_reset(tmp_path):
+    out = run_v3(tmp_path, {"RESET": [[0], [0], [1], [0]]}, 'use_reset="yes"')
     assert out == [([0.75, 0.75], [1, 1]), ([1.0, 1.0], [2, 2]),
                    ([0.75, 0.75], [1, 1]), ([1.0, 1.0], [2, 2])]
 
 
-def test_v3_input_valid_holds_an_element(tmp_path):
+def test_ikaros_2_file_ignores_reset(tmp_path):
+    # Ikaros 2 ignores RESET: the integral keeps adding up (golden-v2 PIDController)
+    out = run_v3(tmp_path, {"RESET": [[0], [1], [1], [0]]})
+    assert out == [([0.75, 0.75], [1, 1]), ([1.0, 1.0], [2, 2]),
+                   ([1.25, 1.25], [3, 3]), ([1.5, 1.5], [4, 4])]
+
+
+def test_input_valid_holds_an_element(tmp_path):
     out = run_v3(tmp_path, {"INPUT_VALID": [[1, 1], [1, 0], [1, 0], [1, 1]]})
     assert out == [([0.75, 0.75], [1, 1]), ([1.0, 0.75], [2, 1]),
                    ([1.25, 0.75], [3, 1]), ([1.5, 1.0], [4, 2])]
 
 
-def test_v3_gated_switches_an_element_off(tmp_path):
+def test_gated_switches_an_element_off(tmp_path):
     out = run_v3(tmp_path, {"GATED": [[1, 0], [1, 0], [1, 1], [0, 1]]})
     assert out == [([0.75, 0.0], [1, 0]), ([1.0, 0.0], [2, 0]),
                    ([1.25, 0.75], [3, 1]), ([0.0, 1.0], [0, 2])]
 
 
-def test_v3_input_of_wrong_size_is_an_error(tmp_path):
+def test_optional_input_of_wrong_size_is_an_error(tmp_path):
     with pytest.raises(ModelError, match="GATED has 3 elements"):
         run_v3(tmp_path, {"GATED": [[1, 1, 1]]})
 
@@ -255,10 +260,10 @@ def test_ikaros_2_derivative_of_the_filtered_input(tmp_path, mode, sign):
                                                   f' derivative_mode="{mode}"')
     net = load(tmp_path, body(attrs, data=""))
     try:
-        fm, last, got, expected = np.zeros(2), None, [], []
+        fm, last, got, expected = np.zeros(2), np.zeros(2), [], []
         for row in rows:
             fm = 0.5 * fm + 0.5 * np.array(row)
-            expected.append(sign * 2 * (fm - (fm if last is None else last)))
+            expected.append(sign * 2 * (fm - last))
             last = fm.copy()
             net.step()
             got.append(net.output("P.OUTPUT").copy())

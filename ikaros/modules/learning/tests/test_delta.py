@@ -1,5 +1,6 @@
 """Tests of the Delta module: the delta rule, acquisition only."""
 import numpy as np
+import pytest
 
 from ikaros.testing import load_body
 
@@ -93,18 +94,22 @@ def test_unconnected_us_learns_nothing(tmp_path):
         net.close()
 
 
-def test_inverse_learns_nothing_while_the_us_exceeds_the_prediction(tmp_path):
-    # golden Delta.json case "inverse": with inverse="yes" CR stays 0
+@pytest.mark.parametrize("dialect, expected", [("3", [0, 0, 0]), ("2", [0, 0.25, 0.375])])
+def test_inverse_in_ikaros_3_and_2_files(tmp_path, dialect, expected):
+    # Ikaros 3 (golden Delta.json case "inverse"): with inverse="yes" CR stays 0 while the
+    # US exceeds the prediction; Ikaros 2 (golden-v2 case "inverse") ignores inverse: CR
+    # grows by alpha (US - CR) per tick
     net = load_body(tmp_path, '<module class="Constant" name="CS" data="1"/>'
                     '<module class="Constant" name="US" data="0.5"/>'
                     '<module class="Delta" name="D" alpha="0.5" inverse="yes"/>'
                     '<connection source="CS.OUTPUT" target="D.CS" delay="0"/>'
-                    '<connection source="US.OUTPUT" target="D.US" delay="0"/>')
+                    '<connection source="US.OUTPUT" target="D.US" delay="0"/>',
+                    dialect=dialect)
     try:
         got = []
         for _ in range(3):
             net.step()
             got.append(float(net.output("D.CR")[0]))
-        assert got == [0, 0, 0]
+        assert got == expected
     finally:
         net.close()

@@ -28,9 +28,11 @@ def test_majority_vote(tmp_path):
     assert out.shape == (1,) and out[0] == 2
 
 
-def test_tie_goes_to_the_class_with_the_nearest_member(tmp_path):
-    assert pick(tmp_path, "1 2 2 1", "0.4 0.3 0.9 0.5")[0] == 2
-    assert pick(tmp_path, "1 2 2 1", "0.2 0.3 0.9 0.5")[0] == 1
+def test_tie_goes_to_the_class_listed_last(tmp_path):
+    # golden-v2 KNN_Pick "vector": four classes of one member each give the last
+    assert pick(tmp_path, "1 2 2 1", "0.4 0.3 0.9 0.5")[0] == 1
+    assert pick(tmp_path, "1 2 1 2", "0.2 0.3 0.9 0.5")[0] == 2
+    assert pick(tmp_path, "3 1 2", "0.2 0.3 0.1")[0] == 2
 
 
 def test_weighed_vote(tmp_path):
@@ -50,15 +52,27 @@ def test_mean_plain_and_weighed(tmp_path):
     np.testing.assert_allclose(out, [w @ [1, 2, 6] / w.sum()], rtol=1e-6)
 
 
-def test_zero_distance_gives_that_neighbour(tmp_path):
-    assert pick(tmp_path, "1 1 1 9", "0.5 0.2 0.3 0", 'categorical="no"')[0] == 9
-    assert pick(tmp_path, "1 1 1 9", "0.5 0.2 0.3 0")[0] == 9
+def test_a_neighbour_at_distance_0_is_one_vote(tmp_path):
+    # golden-v2 KNN_Pick "matrix": a class at distance 0 does not win by itself
+    assert pick(tmp_path, "1 1 1 9", "0.5 0.2 0.3 0")[0] == 1
+    np.testing.assert_allclose(pick(tmp_path, "1 1 1 9", "0.5 0.2 0.3 0",
+                                    'categorical="no"'), [3])
 
 
-def test_missing_neighbours_are_left_out(tmp_path):
-    assert pick(tmp_path, "4 0 0", "0.5 -1 -1")[0] == 4
-    np.testing.assert_allclose(pick(tmp_path, "4 2 0", "0.5 1 -1", 'categorical="no"'), [3])
-    assert pick(tmp_path, "4 2 0", "-1 -1 -1")[0] == 0
+def test_missing_neighbours_count_unless_skipped(tmp_path):
+    # Ikaros 2 counts neighbours of negative distance (golden-v2 KNN_Pick "varying")
+    assert pick(tmp_path, "4 0 0", "0.5 -1 -1")[0] == 0
+    np.testing.assert_allclose(pick(tmp_path, "4 2 0", "0.5 1 -1", 'categorical="no"'), [2])
+    assert pick(tmp_path, "4 0 0", "0.5 -1 -1", 'skip_missing="yes"')[0] == 4
+    np.testing.assert_allclose(pick(tmp_path, "4 2 0", "0.5 1 -1",
+                                    'categorical="no" skip_missing="yes"'), [3])
+    assert pick(tmp_path, "4 2 0", "-1 -1 -1", 'skip_missing="yes"')[0] == 0
+
+
+def test_one_class_per_distance_whatever_the_shape(tmp_path):
+    # golden-v2 KNN_Pick "matrix": a 2 x 3 table with six distances is six classes
+    out = pick(tmp_path, "5 6 7; 5 8 9", "1 2 3 4 5 6")
+    assert out.shape == (1,) and out[0] == 5
 
 
 def test_rows_of_several_elements(tmp_path):

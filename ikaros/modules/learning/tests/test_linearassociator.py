@@ -49,14 +49,14 @@ def test_gradient_descent_learns_a_linear_map(tmp_path):
 
 
 def reference_gd(xs, ys, alpha, beta, passes):
-    """Plain NumPy gradient descent with momentum over a memory that never fills up."""
+    """Plain NumPy gradient descent with momentum: each tick one step on the tick's pair,
+    then ``passes`` passes over a memory that never fills up."""
     w, m = np.zeros((2, 3)), np.zeros(2)
     out = []
     for t in range(len(xs)):
-        norms = None
-        for _ in range(passes):
+        for samples in [[(xs[t], ys[t])]] + [list(zip(xs[:t + 1], ys[:t + 1]))] * passes:
             norms = []
-            for x, y in zip(xs[:t + 1], ys[:t + 1]):
+            for x, y in samples:
                 e = y - w @ x
                 norms.append(np.linalg.norm(e))
                 m = beta * m + (1 - beta) * e
@@ -101,23 +101,41 @@ def test_lms_mode_solves_least_squares(tmp_path):
         net.close()
 
 
-def test_learning_input_gates_and_scales_learning(tmp_path):
+def test_learning_input_gates_and_scales_learning_with_use_learning(tmp_path):
+    # x = (1, 0, 0), target (1, 2): each step multiplies the error by 1 - rate, and a tick
+    # takes two steps (the tick's pair, then the memory of one sample)
     xs = np.array([[1, 0, 0]] * 4)
     ys = np.array([[1, 2]] * 4)
     data_file(tmp_path, xs, ys, xs, learning=[0, 0.5, 0, 1])
-    net = load_body(tmp_path, model('alpha="0.5"', learning=True))
+    net = load_body(tmp_path, model('alpha="0.5" use_learning="yes"', learning=True))
     try:
         net.step()          # LEARNING 0: nothing happens
         np.testing.assert_array_equal(net.output("A.MATRIX"), np.zeros((2, 3)))
-        net.step()          # rate 0.5 * 0.5: column 0 becomes 0.25 * (1, 2)
-        np.testing.assert_allclose(net.output("A.MATRIX")[:, 0], [0.25, 0.5])
-        np.testing.assert_allclose(net.output("A.ERROR"), [np.sqrt(5)], rtol=1e-6)
+        net.step()          # rate 0.5 * 0.5: the error becomes 0.75², met at 0.75 in the pass
+        np.testing.assert_allclose(net.output("A.MATRIX")[:, 0], [0.4375, 0.875])
+        np.testing.assert_allclose(net.output("A.ERROR"), [0.75 * np.sqrt(5)], rtol=1e-6)
         net.step()          # LEARNING 0 again: ERROR keeps its value, OUTPUT is computed
-        np.testing.assert_allclose(net.output("A.MATRIX")[:, 0], [0.25, 0.5])
-        np.testing.assert_allclose(net.output("A.OUTPUT"), [0.25, 0.5])
-        np.testing.assert_allclose(net.output("A.ERROR"), [np.sqrt(5)], rtol=1e-6)
-        net.step()          # rate 0.5: error (0.75, 1.5) halves
-        np.testing.assert_allclose(net.output("A.MATRIX")[:, 0], [0.625, 1.25])
+        np.testing.assert_allclose(net.output("A.MATRIX")[:, 0], [0.4375, 0.875])
+        np.testing.assert_allclose(net.output("A.OUTPUT"), [0.4375, 0.875])
+        np.testing.assert_allclose(net.output("A.ERROR"), [0.75 * np.sqrt(5)], rtol=1e-6)
+        net.step()          # rate 0.5: the error 0.5625 (1, 2) falls to a quarter
+        np.testing.assert_allclose(net.output("A.MATRIX")[:, 0], [0.859375, 1.71875])
+    finally:
+        net.close()
+
+
+def test_ikaros_2_ignores_the_learning_input(tmp_path):
+    # golden-v2 LinearAssociator: LEARNING below 0 or 0 does not stop learning
+    xs = np.array([[1, 0, 0]] * 2)
+    ys = np.array([[1, 2]] * 2)
+    data_file(tmp_path, xs, ys, xs, learning=[0, -1])
+    net = load_body(tmp_path, model('alpha="0.5"', learning=True))
+    try:
+        net.step()          # two steps of rate 0.5: the error is a quarter
+        np.testing.assert_allclose(net.output("A.MATRIX")[:, 0], [0.75, 1.5])
+        np.testing.assert_allclose(net.output("A.ERROR"), [0.5 * np.sqrt(5)], rtol=1e-6)
+        net.step()
+        np.testing.assert_allclose(net.output("A.MATRIX")[:, 0], [0.9375, 1.875])
     finally:
         net.close()
 

@@ -165,3 +165,39 @@ def test_missing_training_targets_and_bad_testing_setup(tmp_path):
         net.close()
     with pytest.raises(Exception, match="TESTING_DATA"):
         trainer(tmp_path, 'crossvalidation="input"')
+
+
+# glibc's rand() after srand(1) (the C library's documented generator; these are its first
+# values on any glibc system)
+GLIBC_RAND = [1804289383, 846930886, 1681692777, 1714636915, 1957747793, 424238335,
+              719885386, 1649760492, 596516649, 1189641421]
+
+
+def test_random_order_in_an_ikaros_2_file_is_the_c_library_s(tmp_path):
+    # seed unset: row 0 first, then rand() % 5 on every tick (golden-v2 Trainer "matrix");
+    # a second Trainer in the network shares the sequence, so the two take turns
+    extra = ('<module class="Trainer" name="U"/>'
+             '<connection source="X.OUTPUT" target="U.TRAINING_DATA_X" delay="0"/>')
+    net = trainer(tmp_path, "", extra)
+    try:
+        got_t, got_u = [], []
+        for _ in range(5):
+            net.step()
+            got_t.append(int(net.output("T.TRAIN_X")[0]) // 2)
+            got_u.append(int(net.output("U.TRAIN_X")[0]) // 2)
+    finally:
+        net.close()
+    draws = [v % 5 for v in GLIBC_RAND[:8]]
+    # both send row 0 first; then on each tick the module that ticks first draws first
+    assert got_t[0] == got_u[0] == 0
+    t_first = [a for pair in zip(got_t[1:], got_u[1:]) for a in pair]
+    u_first = [a for pair in zip(got_u[1:], got_t[1:]) for a in pair]
+    assert draws in (t_first, u_first)
+
+
+def test_random_order_alone_follows_rand(tmp_path):
+    net = trainer(tmp_path, "")
+    try:
+        assert rows_sent(net, 11) == [0] + [v % 5 for v in GLIBC_RAND]
+    finally:
+        net.close()

@@ -43,7 +43,7 @@ def test_learns_xor_with_a_fixed_seed(tmp_path):
             errors.append(float(net.output("B.ERROR")[0]))
         out = sweep(net)
         assert np.abs(out - XOR_T).max() < 0.1, out
-        assert errors[-1] < 0.01 and errors[-1] < errors[0]
+        assert errors[-1] < 0.1 and errors[-1] < errors[0]
     finally:
         net.close()
 
@@ -60,14 +60,14 @@ def test_first_ticks_match_numpy(tmp_path):
             x1 = np.append(XOR_X[tick % 4], 1)
             h = np.append(sigmoid(w1 @ x1), 1)
             y = sigmoid(w2 @ h)
+            out = y                                # the response before the tick's step
             t = XOR_T[tick % 4]
-            err = np.mean((t - y) ** 2)
+            err = np.sqrt(np.sum((t - y) ** 2))    # a norm, as in Ikaros 2
             do = (t - y) * y * (1 - y)
             dh = (w2[:, :3].T @ do) * h[:3] * (1 - h[:3])
             d2 = lr * np.outer(do, h) + momentum * d2
             d1 = lr * np.outer(dh, x1) + momentum * d1
             w1, w2 = w1 + d1, w2 + d2
-            out = sigmoid(w2 @ np.append(sigmoid(w1 @ x1), 1))
             net.step()
             assert net.output("B.ERROR")[0] == pytest.approx(err, rel=1e-5)
             assert net.output("B.OUTPUT")[0] == pytest.approx(out[0], rel=1e-5)

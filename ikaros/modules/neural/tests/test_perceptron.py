@@ -146,3 +146,32 @@ def test_same_seed_same_run(tmp_path):
         finally:
             net.close()
     assert np.array_equal(runs[0], runs[1])
+
+
+# glibc's rand() after srand(1) (the C library's documented generator; its first values on
+# any glibc system), over RAND_MAX = 2^31 - 1
+GLIBC_RAND = np.array([1804289383, 846930886, 1681692777, 1714636915, 1957747793,
+                       424238335]) / 2147483647
+
+
+@pytest.mark.parametrize("train", ["0", "0.5"])
+def test_ikaros_2_initial_weights_and_no_learning_unless_train_is_1(tmp_path, train):
+    # seed unset: unit 0's weights are the first three draws (two inputs, then the bias),
+    # unit 1's the next three; TRAIN 0 or 0.5 leaves them unchanged in an Ikaros 2 file
+    net = load(tmp_path, '<module class="Constant" name="X" data="1 0"/>'
+                         '<module class="Constant" name="T" data="1 -1"/>'
+                         f'<module class="Constant" name="L" data="{train}"/>'
+                         '<module class="Perceptron" name="P" activation_type="tanh"/>'
+                         '<connection source="X.OUTPUT" target="P.INPUT" delay="0"/>'
+                         '<connection source="X.OUTPUT" target="P.T_INPUT" delay="0"/>'
+                         '<connection source="T.OUTPUT" target="P.T_TARGET" delay="0"/>'
+                         '<connection source="L.OUTPUT" target="P.TRAIN" delay="0"/>')
+    w = -0.5 + GLIBC_RAND.reshape(2, 3)
+    try:
+        for _ in range(3):
+            net.step()
+            np.testing.assert_allclose(net.output("P.OUTPUT"), np.tanh(w[:, 0] + w[:, 2]),
+                                       rtol=1e-5, atol=1e-7)       # single precision
+            assert net.output("P.ERROR")[0] == 0 and net.output("P.CORRECT")[0] == 0
+    finally:
+        net.close()
