@@ -5,6 +5,7 @@ them."""
 from __future__ import annotations
 
 import os
+from typing import Sequence, cast
 
 from . import notebook
 from .errors import ModelError
@@ -51,7 +52,7 @@ class Network(KernelNetwork):
 
     def record(self, filename: str, only: list[str] | str | None = None, every: int = 1,
                flush_seconds: float = 1.0, on_error: str = "stop",
-               images: list[str] | str = (), joint_states: list[str] | str = ()):
+               images: Sequence[str] | str = (), joint_states: Sequence[str] | str = ()):
         """Record outputs (all, or those matching the glob patterns ``only``) every
         ``every``-th tick into the HDF5 file ``filename``, from the next tick until the
         returned Recorder's ``close()`` or this network's ``close()``. A ``.mcap`` file
@@ -128,4 +129,4 @@ def build_tree(tree, filename: str, *, strict: bool = False, lenient: bool = Fal
 def _network(*built) -> Network:
     """A Network, or one whose groups with a ``process`` attribute run in other kernel
     processes (docs/links.md)."""
-    return make_network(*built, single=Network, split=SplitNetwork)
+    return cast(Network, make_network(*built, single=Network, split=SplitNetwork))

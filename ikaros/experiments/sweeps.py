@@ -353,7 +353,7 @@ def _in_processes(specs, count: int, retries: int, reporter) -> list[dict]:
         rows.append(row)
         reporter.done(row)
     while queue:
-        suspects = []       # runs that were in the pool when one of its processes died
+        suspects: list = []       # runs that were in the pool when one of its processes died
         pool = _pool(count, context, reporter.counters)
         running: dict = {}
         try:
