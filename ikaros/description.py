@@ -106,7 +106,7 @@ class OutputSpec:
                             # rule is then {"capacity": ...}, the largest shape
 
     def to_dict(self) -> dict:
-        d = {"name": self.name, "description": self.description}
+        d: dict[str, Any] = {"name": self.name, "description": self.description}
         d.update(self.rule)
         for key in ("optional", "persistent", "private", "dynamic"):
             if getattr(self, key):

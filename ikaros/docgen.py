@@ -60,7 +60,7 @@ def category(desc: ClassDescription) -> str:
     return parts[0] if len(parts) > 1 else ROOT_CATEGORY
 
 
-def _category_key(name: str) -> tuple:
+def category_key(name: str) -> tuple:
     if name in CATEGORY_ORDER:
         return (0, CATEGORY_ORDER.index(name), name)
     return (1 if name != ROOT_CATEGORY else 2, 0, name)
@@ -125,8 +125,11 @@ def _output_row(o: OutputSpec) -> str:
     return f"| {name} | {rule} | {_cell(o.description)} |"
 
 
-def _class_section(desc: ClassDescription) -> list[str]:
-    lines = [f"### {desc.name}", ""]
+def class_section(desc: ClassDescription, level: int = 3) -> list[str]:
+    """The Markdown lines of one class: a heading of ``level``, its description, tables of
+    its parameters (with their Ikaros 3 defaults where they differ), inputs and outputs,
+    and its source file."""
+    lines = [f"{'#' * level} {desc.name}", ""]
     text = " ".join(desc.description.split())
     lines += [text or "*(no description)*", ""]
     lines += _table("Parameters", "| Name | Type | Default | Options | Description |",
@@ -153,7 +156,7 @@ def module_reference() -> str:
     groups: dict[str, list[ClassDescription]] = {}
     for desc in standard_classes().values():
         groups.setdefault(category(desc), []).append(desc)
-    order = sorted(groups, key=_category_key)
+    order = sorted(groups, key=category_key)
     total = sum(len(v) for v in groups.values())
 
     lines = [
@@ -185,7 +188,7 @@ def module_reference() -> str:
                   f"Classes in `ikaros/modules/{cat}/`." if cat != ROOT_CATEGORY
                   else "Classes directly in `ikaros/modules/`.", ""]
         for desc in groups[cat]:
-            lines += _class_section(desc)
+            lines += class_section(desc)
     while lines and lines[-1] == "":
         lines.pop()
     return "\n".join(lines) + "\n"

@@ -22,7 +22,7 @@ import builtins
 import functools
 import re
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, overload
 
 import numpy as np
 
@@ -98,9 +98,10 @@ class Parameter:
         if isinstance(options, str):
             options = [o.strip() for o in re.split(r"[,/]", options) if o.strip()]
         self.options = list(options or [])
-        self.type = canonical_type(type) if type else _infer_type(default, self.options)
-        if self.type is None:
+        kind = canonical_type(type) if type else _infer_type(default, self.options)
+        if kind is None:
             raise ValueError(f"unknown parameter type {type!r}")
+        self.type: str = kind
         self.default = default
         self.description = description
         self.control = control
@@ -114,8 +115,15 @@ class Parameter:
     def __set_name__(self, owner, name):
         self.name = self.name or name
 
+    if TYPE_CHECKING:       # for type checkers: on a module, the parameter is its value
+        @overload
+        def __get__(self, instance: None, owner: type) -> Parameter: ...
+        @overload
+        def __get__(self, instance: object, owner: type) -> Any: ...
+        def __get__(self, instance, owner): ...
+
     def spec(self) -> ParameterSpec:
-        return ParameterSpec(self.name, self.type, self.default, self.description,
+        return ParameterSpec(self.name or "", self.type, self.default, self.description,
                              self.options, self.control, self.range, self.finite, self.file,
                              fixed=self.fixed, default_v3=self.default_v3)
 
@@ -133,6 +141,13 @@ class Input:
 
     def __set_name__(self, owner, name):
         self.spec_.name = self.spec_.name or name
+
+    if TYPE_CHECKING:       # for type checkers: on a module, the input is its array
+        @overload
+        def __get__(self, instance: None, owner: type) -> Input: ...
+        @overload
+        def __get__(self, instance: object, owner: type) -> np.ndarray: ...
+        def __get__(self, instance, owner): ...
 
     def spec(self) -> InputSpec:
         return self.spec_
@@ -178,6 +193,15 @@ class Output:
 
     def __set_name__(self, owner, name):
         self.spec_.name = self.spec_.name or name
+
+    if TYPE_CHECKING:       # for type checkers: on a module, the output is its array
+        @overload
+        def __get__(self, instance: None, owner: type) -> Output: ...
+        @overload
+        def __get__(self, instance: object, owner: type) -> np.ndarray: ...
+        def __get__(self, instance, owner): ...
+
+        def __set__(self, instance: object, value: np.ndarray) -> None: ...
 
     def spec(self) -> OutputSpec:
         return self.spec_
@@ -328,9 +352,10 @@ class Module:
         for klass in reversed(cls.__mro__):     # name="init")``), as for .ikc classes
             for key, value in vars(klass).items():
                 if isinstance(value, Parameter):
-                    params[value.name] = value.spec()
-                    if key == parameter_attribute(value.name) != value.name:
-                        renamed.add(value.name)
+                    spec = value.spec()
+                    params[spec.name] = spec
+                    if key == parameter_attribute(spec.name) != spec.name:
+                        renamed.add(spec.name)
                 elif isinstance(value, Input):
                     inputs[value.spec().name] = value.spec()
                 elif isinstance(value, Output):
@@ -457,8 +482,8 @@ class Module:
         """Set an output's shape (in ``configure`` or ``set_sizes``)."""
         if name not in self._ik_outputs:
             raise KeyError(f"{self.path or self.name} has no output named {name}")
-        self._ik_output_shapes[name] = (int(shape),) if np.isscalar(shape) else tuple(
-            int(s) for s in shape)
+        self._ik_output_shapes[name] = (int(shape),) if isinstance(shape, (int, float, np.number)) \
+            else tuple(int(s) for s in shape)
 
     def connected(self, name: str) -> bool:
         """Whether an input has at least one connection."""
@@ -545,5 +570,5 @@ def compiled(function: Callable) -> staticmethod:
                 OUTPUT[i] += rate * (INPUT[i] - OUTPUT[i])
 
     See docs/writing-modules.md."""
-    function._ik_compiled = True
+    setattr(function, "_ik_compiled", True)
     return staticmethod(function)

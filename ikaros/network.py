@@ -5,6 +5,7 @@ them."""
 from __future__ import annotations
 
 import os
+from typing import Sequence, cast
 
 from . import notebook
 from .errors import ModelError
@@ -50,15 +51,20 @@ class Network(KernelNetwork):
         return notebook.network_html(self)
 
     def record(self, filename: str, only: list[str] | str | None = None, every: int = 1,
-               flush_seconds: float = 1.0, on_error: str = "stop"):
+               flush_seconds: float = 1.0, on_error: str = "stop",
+               images: Sequence[str] | str = (), joint_states: Sequence[str] | str = ()):
         """Record outputs (all, or those matching the glob patterns ``only``) every
         ``every``-th tick into the HDF5 file ``filename``, from the next tick until the
         returned Recorder's ``close()`` or this network's ``close()``. A ``.mcap`` file
-        holds the outputs as ROS 2 messages (experiments/mcap_recording.py). The rows are
-        flushed at least every ``flush_seconds``; when writing fails the run stops
-        (``on_error="stop"``) or goes on without recording (``"continue"``)."""
+        holds the outputs as ROS 2 messages (experiments/mcap_recording.py): colour images
+        and the gray images the views show as sensor_msgs/Image, the gray ones matching
+        ``images`` too, the joint positions matching ``joint_states`` as
+        sensor_msgs/JointState. The rows are flushed at least every ``flush_seconds``; when
+        writing fails the run stops (``on_error="stop"``) or goes on without recording
+        (``"continue"``)."""
         return open_recorder(self, filename, only=only, every=every,
-                             flush_seconds=flush_seconds, on_error=on_error)
+                             flush_seconds=flush_seconds, on_error=on_error, images=images,
+                             joint_states=joint_states)
 
 
 Builder.network_class = Network       # every build makes one (the kernel does not know it)
@@ -123,4 +129,4 @@ def build_tree(tree, filename: str, *, strict: bool = False, lenient: bool = Fal
 def _network(*built) -> Network:
     """A Network, or one whose groups with a ``process`` attribute run in other kernel
     processes (docs/links.md)."""
-    return make_network(*built, single=Network, split=SplitNetwork)
+    return cast(Network, make_network(*built, single=Network, split=SplitNetwork))

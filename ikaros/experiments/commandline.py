@@ -36,6 +36,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "e.g. 'Arm.*.OUTPUT' (repeatable; default: every output)")
     g.add_argument("--record-every", type=_every, default=1, metavar="K",
                    help="record every K-th tick (default 1: every tick)")
+    g.add_argument("--record-images", action="append", metavar="PATTERN",
+                   help="MCAP: record the gray (rows, cols) outputs matching this pattern "
+                        "as sensor_msgs/Image (besides colour images and the gray images "
+                        "the views show; repeatable)")
+    g.add_argument("--record-joint-states", action="append", metavar="PATTERN",
+                   help="MCAP: record the outputs matching this pattern as "
+                        "sensor_msgs/JointState, in radians (repeatable)")
     g.add_argument("--foxglove", nargs="?", type=int, const=8765, metavar="PORT",
                    help="serve the outputs live to Foxglove on 127.0.0.1:PORT (default "
                         "8765) as ROS 2 messages (needs ikaros[foxglove])")
@@ -57,6 +64,9 @@ def check_arguments(p: argparse.ArgumentParser, opts) -> None:
             opts.record_on_error != "stop") and not opts.record:
         p.error("--record-only, --record-every, --record-flush and --record-on-error need "
                 "--record FILE.h5")
+    if (opts.record_images or opts.record_joint_states) and \
+            not str(opts.record or "").lower().endswith(".mcap"):
+        p.error("--record-images and --record-joint-states need --record FILE.mcap")
 
 
 def start_live_view(net, opts):
@@ -79,6 +89,8 @@ def start_recording(net, opts, argv: list[str]):
     from .recorders import open_recorder
     from .recording import FLUSH_SECONDS
     return open_recorder(net, opts.record, only=opts.record_only, every=opts.record_every,
+                         images=opts.record_images or (),
+                         joint_states=opts.record_joint_states or (),
                          command_line=["ikaros"] + list(argv),
                          flush_seconds=FLUSH_SECONDS if opts.record_flush is None
                          else opts.record_flush, on_error=opts.record_on_error)

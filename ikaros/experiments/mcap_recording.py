@@ -1,12 +1,16 @@
 """Recording a run into an MCAP file as ROS 2 messages, for Foxglove, ``ros2 bag play`` and
 rosbags (``ikaros --record run.mcap``; needs ``pip install 'ikaros[ros2]'``).
 
-Each recorded output is a topic ``/ikaros/<its address with / for .>`` of
-std_msgs/msg/Float32MultiArray messages (schema encoding ``ros2msg``, message encoding
-``cdr``) whose layout gives the output's shape. A message's ``sequence`` is its tick and its
-log and publish times are the model's time (tick × tick_duration) after the wall-clock time
-the recording started. The model file's text is an attachment (``model.ikg``) and the
-parameters' values are metadata (``parameters``). The outputs are taken by an output tap as
+Each recorded output is a topic ``/ikaros/<its address with / for .>`` of ROS 2 messages
+(schema encoding ``ros2msg``, message encoding ``cdr``): images as sensor_msgs/msg/Image,
+joint positions asked for as sensor_msgs/msg/JointState, any other output as
+std_msgs/msg/Float32MultiArray whose layout gives its shape (ros_outputs.py says which is
+which). A message's ``sequence`` is its tick and its log and publish times are the model's
+time (tick × tick_duration) after the wall-clock time the recording started. Each channel
+carries the QoS profile it was offered with (``offered_qos_profiles``, as rosbag2 writes it,
+so that ``ros2 bag play`` replays with it). The model file's text is an attachment
+(``model.ikg``), the parameters' values are metadata (``parameters``), and so is which
+output is which topic and type (``outputs``). The outputs are taken by an output tap as
 for HDF5 recordings (recording.py); a writer thread encodes and writes them. The HDF5
 recording stays the one to analyse runs with (``ikaros.open_recording``).
 """
@@ -21,21 +25,23 @@ import time
 import numpy as np
 
 from .. import priority
-from ..hardware.ros2.messages import float32_array_encoder
 from ..hardware.ros2.msgdefs import DEFINITIONS
 from ..kernel.taps import ROW, SIGNAL
 from ..module import FATAL_ERROR, WARNING, require
 from .recording import FLUSH_SECONDS
+from .ros_outputs import ros_outputs
 from .signals import model_text, module_parameters, select_outputs
 from .writefaults import check_on_error, failure_text, remove_recording
 
-MESSAGE = "std_msgs/msg/Float32MultiArray"
 BLOCK_ROWS = 1024
-
-
-def topic_of(address: str) -> str:
-    """The topic of an output: ``Arm.Joint.OUTPUT`` -> ``/ikaros/Arm/Joint/OUTPUT``."""
-    return "/ikaros/" + address.replace(".", "/")
+# The QoS a recorded topic was offered with, as rosbag2 writes a channel's
+# offered_qos_profiles (YAML, enums as numbers): keep last 10, reliable, volatile, automatic
+# liveliness, no deadline, lifespan or lease (rmw's "infinite": 2147483647 s 4294967295 ns).
+_INFINITE = "{sec: 2147483647, nsec: 4294967295}"
+OFFERED_QOS = (f"- history: 1\n  depth: 10\n  reliability: 1\n  durability: 2\n"
+               f"  deadline: {_INFINITE}\n  lifespan: {_INFINITE}\n  liveliness: 1\n"
+               f"  liveliness_lease_duration: {_INFINITE}\n"
+               f"  avoid_ros_namespace_conventions: false")
 
 
 class McapRecorder:
@@ -47,7 +53,8 @@ class McapRecorder:
 
     def __init__(self, net, filename: str, only: list[str] | str | None = None,
                  every: int = 1, command_line: list[str] | None = None,
-                 flush_seconds: float = FLUSH_SECONDS, on_error: str = "stop"):
+                 flush_seconds: float = FLUSH_SECONDS, on_error: str = "stop",
+                 images: list[str] | str = (), joint_states: list[str] | str = ()):
         mcap_writer = require("mcap.writer", "mcap", extra="ros2")
         self.on_error = check_on_error(on_error)
         if int(every) < 1:
@@ -57,6 +64,7 @@ class McapRecorder:
         self.every = int(every)
         self.flush_seconds = flush_seconds
         self.signals, index = select_outputs(net, only)
+        self.outputs = ros_outputs(net, self.signals, _patterns(images), _patterns(joint_states))
         try:
             self._file = open(self.filename, "wb")
         except OSError as e:
@@ -81,14 +89,16 @@ class McapRecorder:
     def _start(self, net, command_line) -> None:
         w = self._writer
         w.start(profile="ros2", library="ikaros")
-        schema = w.register_schema(MESSAGE, "ros2msg", DEFINITIONS[MESSAGE].encode())
-        self._channels = [w.register_channel(topic_of(s.name), "cdr", schema)
-                          for s in self.signals]
-        self._encoders = [float32_array_encoder(s.shape) for s in self.signals]
+        schemas = {t: w.register_schema(t, "ros2msg", DEFINITIONS[t].encode())
+                   for t in dict.fromkeys(o.type for o in self.outputs)}
+        self._channels = [w.register_channel(o.topic, "cdr", schemas[o.type],
+                                             {"offered_qos_profiles": OFFERED_QOS})
+                          for o in self.outputs]
         self._wall = time.time_ns()
         w.add_attachment(self._wall, self._wall, "model.ikg", "application/xml",
                          model_text(net).encode("utf-8"))
         w.add_metadata("parameters", module_parameters(net))
+        w.add_metadata("outputs", {o.address: o.description() for o in self.outputs})
         w.add_metadata("ikaros", {"file": net.filename or "", "tick_duration":
                                   repr(net.clock.tick_duration),
                                   "command_line": " ".join(command_line or [])})
@@ -133,11 +143,11 @@ class McapRecorder:
             try:
                 for values, tick in zip(rows, ticks):
                     stamp = self._wall + int(round(int(tick) * dt_ns))
-                    for signal, channel, encode in zip(self.signals, self._channels,
-                                                       self._encoders):
-                        self._writer.add_message(channel, stamp,
-                                                 encode(values[signal.start:signal.stop]),
-                                                 stamp, int(tick))
+                    seconds = int(tick) * self.net.clock.tick_duration
+                    for signal, channel, output in zip(self.signals, self._channels,
+                                                       self.outputs):
+                        data = output.encode(values[signal.start:signal.stop], seconds)
+                        self._writer.add_message(channel, stamp, data, stamp, int(tick))
                     self.ticks_recorded += 1
             except Exception as e:      # noqa: BLE001  (a full disk): the run is told
                 self._error = e
@@ -185,3 +195,7 @@ class McapRecorder:
 
     def __exit__(self, *exc):
         self.close()
+
+
+def _patterns(value: list[str] | str) -> list[str]:
+    return [value] if isinstance(value, str) else list(value or ())

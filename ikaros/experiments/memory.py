@@ -7,7 +7,7 @@ from .reading import to_dataset
 from .signals import module_parameters, select_outputs
 
 
-def run_recorded(net, ticks: int, patterns: list[str] | str, every: int = 1,
+def run_recorded(net, ticks: int | None, patterns: list[str] | str, every: int = 1,
                  real_time: bool = False):
     """Run ``ticks`` more ticks keeping the outputs matching ``patterns`` every ``every``-th
     tick; returns them as an xarray Dataset (as ``open_recording`` gives)."""

@@ -26,12 +26,15 @@ PR_SET_PDEATHSIG = 1            # linux/prctl.h
 EXIT_TERMINATED = 128 + signal.SIGTERM
 WATCH_SECONDS = 0.2             # how often the watching thread looks for the parent
 
-_state = {"parent": None, "running": False}
+_state = {"parent": None, "running": False, "counters": None}
 
 
-def start(parent: int) -> None:
-    """The initializer of a worker process of the sweep whose process id is ``parent``."""
+def start(parent: int, counters=None) -> None:
+    """The initializer of a worker process of the sweep whose process id is ``parent``;
+    its runs write the ticks they have done into ``counters`` (sweepprogress.TickCounters)
+    when given."""
     _state["parent"] = parent
+    _state["counters"] = counters
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _terminated)
     if not _die_with_parent():
@@ -42,11 +45,12 @@ def start(parent: int) -> None:
 
 
 def run(function, spec):
-    """``function(spec)`` in a worker; after a run cut off by SIGTERM whose sweep is gone,
-    the worker exits."""
+    """``function(spec, report)`` in a worker, ``report`` recording the ticks done by the
+    run (or None); after a run cut off by SIGTERM whose sweep is gone, the worker exits."""
     _state["running"] = True
+    counters = _state["counters"]
     try:
-        return function(spec)
+        return function(spec, counters.reporter(spec.index) if counters is not None else None)
     finally:
         _state["running"] = False
         if os.getppid() != _state["parent"]:

@@ -16,6 +16,16 @@ def _columns(stream) -> int:
         return 80
 
 
+def terminal_rows(stream=None) -> int:
+    """The terminal's height, 24 when it does not say (a new pseudo-terminal says 0 rows,
+    and tqdm draws no bar at all on a terminal it believes has none)."""
+    stream = stream if stream is not None else sys.stderr
+    try:
+        return os.get_terminal_size(stream.fileno()).lines or 24
+    except (OSError, ValueError, AttributeError):
+        return 24
+
+
 class Progress:
     """Shows a run's progress on ``stream`` (stderr) while ``net`` runs; the bar is only
     shown when ``stream`` is a terminal. Use as a context manager around the run."""
@@ -39,10 +49,13 @@ class Progress:
     def __enter__(self):
         try:
             from tqdm import tqdm
-        except ImportError:
-            return self               # no tqdm: no bar (it is an optional extra)
+        except ImportError:           # an optional extra: say what gives the bar
+            print("ikaros: pip install tqdm (or 'ikaros[progress]') for a progress bar",
+                  file=self.stream)
+            return self
         self._bar = tqdm(total=self.total, unit="tick", file=self.stream,
-                         ncols=_columns(self.stream), smoothing=0.1,
+                         ncols=_columns(self.stream), nrows=terminal_rows(self.stream),
+                         smoothing=0.1,
                          mininterval=1 / UPDATES_PER_SECOND)
         self._start = self.net.tick
         self._last = time.perf_counter()

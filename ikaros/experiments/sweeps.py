@@ -18,9 +18,9 @@ from . import poolworkers
 from .resume import done_before, signature, write_signature
 from .recording import Recorder
 from .signals import select_outputs
+from .sweepprogress import INTERRUPTED, Reporter, TickCounters, run_in_steps
 
 MAX_METRIC_ELEMENTS = 16       # a recorded output this small has its final values in the table
-INTERRUPTED = "interrupted"    # the status of a run that a Ctrl-C or SIGTERM cut off or left
 CUT_OFF_SECONDS = 1.0          # for the runs cut off by Ctrl-C to send their rows
 
 
@@ -84,8 +84,9 @@ class RunSpec:
     every: int = 1
 
 
-def run_one(spec: RunSpec) -> dict:
-    """Build and run one combination; never raises: a failure is the row's status and
+def run_one(spec: RunSpec, report=None) -> dict:
+    """Build and run one combination (telling ``report`` the ticks done as it goes, when
+    given); never raises: a failure is the row's status and
     error (with the traceback's last line for where), a Ctrl-C or SIGTERM the status
     "interrupted" with the ticks run (its recording is left not finished)."""
     started = time.perf_counter()
@@ -93,7 +94,7 @@ def run_one(spec: RunSpec) -> dict:
     net = None
     try:
         net = _build(spec)
-        metrics = _run(net, spec)
+        metrics = _run(net, spec, report)
         row.update(status="ok", error="", ticks=net.tick)
         row.update(metrics)
     except BaseException as e:          # noqa: BLE001: a run's failure is data, not a crash
@@ -157,17 +158,17 @@ def _set_in_tree(tree, path: str, value: str) -> bool:
     return True
 
 
-def _run(net, spec: RunSpec) -> dict:
+def _run(net, spec: RunSpec, report=None) -> dict:
     """Run (recording when asked); the final values of the recorded outputs."""
     if not spec.record:
-        net.run(ticks=spec.ticks)
+        run_in_steps(net, spec.ticks, report)
         return {}
     signals, index = select_outputs(net, spec.record)
     if spec.recording:
         with Recorder(net, spec.recording, only=spec.record, every=spec.every):
-            net.run(ticks=spec.ticks)
+            run_in_steps(net, spec.ticks, report)
     else:
-        net.run(ticks=spec.ticks)
+        run_in_steps(net, spec.ticks, report)
     return final_metrics(signals, net.arena.block[index])
 
 
@@ -244,7 +245,8 @@ def sweep(model: str, settings: dict[str, list | str], ticks: int,
         if before and progress is not False:
             print(f"ikaros sweep: {len(before)} of {len(specs)} runs were done before in "
                   f"{out}; running the others", file=sys.stderr, flush=True)
-    reporter = _Reporter(len(specs) - len(before), progress, on_failure)
+    reporter = Reporter(len(specs) - len(before), progress, on_failure,
+                        TickCounters(len(specs)) if kind == "local" else None)
     try:
         runner([s for s in specs if s.index not in before], retries, reporter)
     except KeyboardInterrupt:
@@ -308,58 +310,20 @@ def _backend(backend: str, workers, address) -> str:
     return "local"
 
 
-class _Reporter:
-    """Progress over the runs (a bar on a terminal) and the report of each failure."""
-
-    def __init__(self, total: int, progress: bool | None, on_failure):
-        self.on_failure = on_failure or _print_failure
-        self.rows: list[dict] = []      # of the runs done, and those cut off
-        self.bar = None
-        if progress is None:
-            progress = sys.stderr.isatty()
-        if progress:
-            try:
-                from tqdm import tqdm
-            except ImportError:
-                return
-
-            class Bar(tqdm):
-                monitor_interval = 0        # no monitor thread: workers are forked
-            self.bar = Bar(total=total, unit="run", file=sys.stderr)
-
-    def done(self, row: dict) -> None:
-        self.rows.append(row)
-        if row["status"] == INTERRUPTED:
-            return
-        if row["status"] != "ok":
-            self.on_failure(row)
-        if self.bar is not None:
-            self.bar.update(1)
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.close()
-
-
-def _print_failure(row: dict) -> None:
-    settings = ", ".join(f"{k}={v}" for k, v in row.items()
-                         if k not in ("run", "status", "error", "ticks", "seconds",
-                                      "recording", "attempts"))
-    print(f"ikaros sweep: run {row['run']} ({settings}) failed after {row['attempts']} "
-          f"attempt(s): {row['error']}", file=sys.stderr, flush=True)
-
-
 def local_runner(workers: int | None):
     """Runs the specs in ``workers`` local processes (in this process when 1). A worker
     process that dies (killed, out of memory) fails only the run that was in it (each run
     of the broken pool is run again alone to find it), which is tried again while it has
     retries left."""
-    def run(specs: list[RunSpec], retries: int, reporter: _Reporter) -> list[dict]:
+    def run(specs: list[RunSpec], retries: int, reporter: Reporter) -> list[dict]:
         count = workers or os.cpu_count() or 1
         try:
             if count == 1:
                 for spec in specs:
-                    row = _with_retries(lambda s=spec: run_one(s), retries)
+                    reporter.started(spec)
+                    report = reporter.counters.reporter(spec.index) \
+                        if reporter.counters is not None else None
+                    row = _with_retries(lambda s=spec: run_one(s, report), retries)
                     reporter.done(row)
                     if row["status"] == INTERRUPTED:
                         raise KeyboardInterrupt
@@ -389,13 +353,14 @@ def _in_processes(specs, count: int, retries: int, reporter) -> list[dict]:
         rows.append(row)
         reporter.done(row)
     while queue:
-        suspects = []       # runs that were in the pool when one of its processes died
-        pool = _pool(count, context)
+        suspects: list = []       # runs that were in the pool when one of its processes died
+        pool = _pool(count, context, reporter.counters)
         running: dict = {}
         try:
             while (queue and not suspects) or running:
                 while queue and len(running) < count and not suspects:
                     spec, attempt = queue.pop()
+                    reporter.started(spec)
                     running[pool.submit(poolworkers.run, run_one, spec)] = (spec, attempt)
                 done, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
                 for future in done:
@@ -417,11 +382,13 @@ def _in_processes(specs, count: int, retries: int, reporter) -> list[dict]:
     return rows
 
 
-def _pool(count: int, context):
-    """A process pool whose workers end with this process (poolworkers.py)."""
+def _pool(count: int, context, counters: TickCounters):
+    """A process pool whose workers end with this process (poolworkers.py) and write the
+    ticks their runs have done into ``counters``."""
     import concurrent.futures as cf
     return cf.ProcessPoolExecutor(max_workers=count, mp_context=context,
-                                  initializer=poolworkers.start, initargs=(os.getpid(),))
+                                  initializer=poolworkers.start,
+                                  initargs=(os.getpid(), counters))
 
 
 def _end_workers(pool, running: dict, reporter) -> None:
@@ -449,7 +416,8 @@ def _end_workers(pool, running: dict, reporter) -> None:
 def _alone(spec: RunSpec, context, reporter) -> dict:
     """Run one spec in a process of its own; a process that dies fails the run."""
     import concurrent.futures as cf
-    pool = _pool(1, context)
+    pool = _pool(1, context, reporter.counters)
+    reporter.started(spec)
     future = pool.submit(poolworkers.run, run_one, spec)
     try:
         return future.result()
@@ -479,7 +447,7 @@ def _with_retries(attempt, retries: int) -> dict:
 def ray_runner(address: str | None, workers: int | None):
     """Runs the specs as Ray tasks: on a local Ray instance (``workers`` CPUs, the machine's
     by default), or on the cluster at ``address`` ("auto" finds a running one)."""
-    def run(specs: list[RunSpec], retries: int, reporter: _Reporter) -> list[dict]:
+    def run(specs: list[RunSpec], retries: int, reporter: Reporter) -> list[dict]:
         try:
             import ray
         except ImportError:

@@ -8,7 +8,8 @@ from __future__ import annotations
 import functools
 import os
 import sys
-from typing import Any, Iterator
+from types import FrameType
+from typing import Any, Iterator, cast
 
 from ..errors import ModelError
 from ..language.node import Node
@@ -22,7 +23,7 @@ _HERE = os.path.dirname(os.path.abspath(__file__))
 
 def caller() -> tuple[str | None, int | None]:
     """The file and line of the user's code that called into this package."""
-    frame = sys._getframe(1)
+    frame: FrameType | None = sys._getframe(1)
     while frame is not None and _is_ours(frame.f_code.co_filename):
         frame = frame.f_back
     if frame is None:
@@ -70,7 +71,7 @@ def _node(tag: str, attrs: dict) -> Node:
 class Element:
     """An element of the model: its attributes are those of the XML element."""
 
-    def __init__(self, node: Node, parent: "Group | None"):
+    def __init__(self, node: Node, parent: "Element | None"):
         self.node = node
         self.parent = parent
 
@@ -109,7 +110,7 @@ class Element:
 
     def path(self) -> str:
         """The dotted path from the top group (without its name), as in the network."""
-        names = []
+        names: list[str] = []
         element = self
         while element.parent is not None:
             names.append(element.name or "")
@@ -137,13 +138,13 @@ class Port:
         """The port as a connection in group ``seen_from`` names it."""
         if self.owner is seen_from:
             return self.name + self.selector
-        names = []
+        names: list[str] = []
         element = self.owner
         while element is not seen_from:
             if element.parent is None:
                 raise ModelError(f'{self} is not inside group "{seen_from.name}": connect it '
                                  f'in a group that holds both ends', *caller())
-            names.append(element.name)
+            names.append(element.name or "")
             element = element.parent
         return ".".join(reversed(names)) + "." + self.name + self.selector
 
@@ -171,10 +172,10 @@ class _Ports:
     def __getattr__(self, name: str) -> Port:
         if name.startswith("_"):
             raise AttributeError(name)
-        return Port(self, name)
+        return Port(cast(Element, self), name)
 
     def port(self, name: str) -> Port:
-        return Port(self, name)
+        return Port(cast(Element, self), name)
 
     def __dir__(self):
         return sorted(set(super().__dir__()) | set(self._port_names()))
@@ -194,7 +195,7 @@ class ModuleElement(_Ports, Element):
     def _port_names(self) -> list[str]:
         """The ports its class declares (for completion in notebooks), when it is found."""
         from ..kernel.classes import ClassRegistry
-        top = self.parent._top() if self.parent is not None else None
+        top = cast("Group", self.parent)._top() if self.parent is not None else None
         cls = top._classes.get(self.class_name) if top is not None else None
         try:
             if cls is None:
@@ -219,7 +220,7 @@ class View(Element):
     def widget(self, kind: str, **attrs: Any) -> Element:
         """Add a widget (``plot``, ``bar-graph``, ``image``, ``table`` ...). A port given as
         an attribute (``source=pid.OUTPUT``) is named as the view's group sees it."""
-        group = self.parent
+        group = cast("Group", self.parent)
         attrs = {k: (v.address(group) if isinstance(v, Port) else v) for k, v in attrs.items()}
         node = _node(kind, attrs)
         self.node.children.append(node)
@@ -424,7 +425,7 @@ class Group(_Ports, Element):
         if not _detach(self.node, element.node):
             raise KeyError(f"{element} is not in group \"{self.name}\"")
         if element.node.tag in ("module", "group"):
-            prefix = element.name + "."
+            prefix = (element.name or "") + "."
             for node in list(self.node.elements("connection")):
                 ends = (node.attrs.get("source", ""), node.attrs.get("target", ""))
                 if any(end.startswith(prefix) for end in ends):
@@ -441,10 +442,10 @@ class Group(_Ports, Element):
 
     # --- running -------------------------------------------------------------------------
     def _top(self) -> "Group":
-        group = self
+        group: Element = self
         while group.parent is not None:
             group = group.parent
-        return group
+        return cast("Group", group)
 
     def build(self, *, strict: bool = False, lenient: bool = False, quiet: bool = False,
               max_memory: int | str | None = None, **overrides: Any):

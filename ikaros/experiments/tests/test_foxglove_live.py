@@ -20,9 +20,9 @@ MODEL = """<group tick_duration="0.01">
 STORE = get_typestore(Stores.ROS2_HUMBLE)
 
 
-async def _listen(port, channels_wanted, ticking):
-    async with websockets.connect(f"ws://127.0.0.1:{port}",
-                                  subprotocols=["foxglove.sdk.v1"]) as ws:
+async def _listen(port, channels_wanted, ticking, protocol="foxglove.sdk.v1"):
+    async with websockets.connect(f"ws://127.0.0.1:{port}", subprotocols=[protocol]) as ws:
+        assert ws.subprotocol == protocol
         channels = {}
         while len(channels) < channels_wanted:
             message = json.loads(await ws.recv())
@@ -44,16 +44,21 @@ async def _listen(port, channels_wanted, ticking):
         return channels, got
 
 
-def test_the_outputs_are_channels_of_ros_2_messages(tmp_path):
+def _view_of_model(tmp_path, protocol="foxglove.sdk.v1"):
+    """The channels and a message of each that a client naming ``protocol`` gets."""
     path = tmp_path / "m.ikg"
     path.write_text(MODEL)
     with ikaros.load(str(path)) as net:
         view = FoxgloveView(net, port=0, interval=0.0)
         try:
-            channels, got = asyncio.run(asyncio.wait_for(
-                _listen(view.port, 2, lambda: net.run(ticks=1)), 30))
+            return asyncio.run(asyncio.wait_for(
+                _listen(view.port, 2, lambda: net.run(ticks=1), protocol), 30))
         finally:
             view.close()
+
+
+def test_the_outputs_are_channels_of_ros_2_messages(tmp_path):
+    channels, got = _view_of_model(tmp_path)
     assert sorted((c["topic"], c["encoding"], c["schemaName"], c["schemaEncoding"])
                   for c in channels.values()) == [
         ("/ikaros/A/OUTPUT", "cdr", "std_msgs/msg/Float32MultiArray", "ros2msg"),
@@ -94,3 +99,13 @@ def test_colour_images_and_what_publishers_send_keep_their_ros_types(tmp_path, m
     joints = STORE.deserialize_cdr(got["/joint_states"], "sensor_msgs/msg/JointState")
     assert joints.name == ["shoulder", "elbow"]
     np.testing.assert_array_equal(joints.position, [0.5, -0.25])
+
+
+def test_a_client_of_the_protocols_old_name_connects_too(tmp_path):
+    # Foxglove's WebSocket protocol was named foxglove.websocket.v1; older Foxglove and
+    # Lichtblick versions offer only that name, which the Foxglove SDK refuses (HTTP 400)
+    channels, got = _view_of_model(tmp_path, "foxglove.websocket.v1")
+    assert sorted(c["topic"] for c in channels.values()) == ["/ikaros/A/OUTPUT",
+                                                            "/ikaros/B/OUTPUT"]
+    message = STORE.deserialize_cdr(got["/ikaros/A/OUTPUT"], "std_msgs/msg/Float32MultiArray")
+    np.testing.assert_array_equal(message.data, [1, 2, 3])
