@@ -13,18 +13,26 @@ cv2 = pytest.importorskip("cv2")
 def test_change_detector_gives_the_absolute_difference_inside_the_border(tmp_path):
     rng = np.random.default_rng(1)
     frames = rng.random((3, 10, 12)).astype(np.float32)
-    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M" border="2"/>',
-                       "OUTPUT")
+    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M" border="2" '
+                       'difference="exact"/>', "OUTPUT")
     assert out[0][0].shape == (6, 8)
-    assert np.array_equal(out[0][0], np.zeros((6, 8)))
+    assert np.array_equal(out[0][0], frames[0][2:-2, 2:-2])   # the previous image is 0
     for k in (1, 2):
         assert np.allclose(out[k][0], np.abs(frames[k] - frames[k - 1])[2:-2, 2:-2], atol=0)
+
+
+def test_change_detector_truncates_the_difference_as_ikaros2(tmp_path):
+    frames = np.array([[[0.5, -1.0, 2.7, 0.25]], [[1.75, -1.0, 0.5, -3.5]]], np.float32)
+    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M"/>', "OUTPUT")
+    assert np.array_equal(out[0][0], [[0, 1, 2, 0]])          # the golden files' first tick
+    assert np.array_equal(out[1][0], [[1, 0, 2, 3]])          # 1.25, 0, 2.2, 3.75
 
 
 def test_change_detector_on_colour(tmp_path):
     frames = np.zeros((2, 3, 4, 5), np.float32)
     frames[1, 1, 2, 3] = 0.75
-    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M"/>', "OUTPUT")
+    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M" '
+                       'difference="exact"/>', "OUTPUT")
     assert out[1][0].shape == (3, 4, 5) and out[1][0].sum() == 0.75 and out[1][0][1, 2, 3] == 0.75
 
 
