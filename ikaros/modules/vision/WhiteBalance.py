@@ -6,11 +6,6 @@ from ikaros.module import Parameter
 from ._colour import ThreePlanes
 from ._cv import warn_here
 
-# The defaults of the Ikaros 3 class (its golden outputs show them), used in a model file
-# of that version for the parameters the module's element does not set.
-IKAROS3_DEFAULTS = {"red_target": 1.0, "green_target": 1.0, "blue_target": 1.0,
-                    "x0": 0, "x1": 1, "y0": 0, "y1": 1}
-
 
 class WhiteBalance(ThreePlanes):
     """Von Kries white balance, as Ikaros 2 and 3 compute it: each of the red, green and
@@ -35,13 +30,17 @@ class WhiteBalance(ThreePlanes):
     defaults are known, so what they do is this project's reading: a region whose colour is
     logged."""
 
-    red_target = Parameter(255.0, "the red value the region's mean is brought to")
-    green_target = Parameter(255.0, "the green value the region's mean is brought to")
-    blue_target = Parameter(255.0, "the blue value the region's mean is brought to")
-    x0 = Parameter(10, "first column of the reference region")
-    x1 = Parameter(10, "the column after the reference region's last")
-    y0 = Parameter(20, "first row of the reference region")
-    y1 = Parameter(20, "the row after the reference region's last")
+    # Ikaros 3's defaults (default_v3) are those its golden outputs show
+    red_target = Parameter(255.0, "the red value the region's mean is brought to",
+                           default_v3=1.0)
+    green_target = Parameter(255.0, "the green value the region's mean is brought to",
+                             default_v3=1.0)
+    blue_target = Parameter(255.0, "the blue value the region's mean is brought to",
+                            default_v3=1.0)
+    x0 = Parameter(10, "first column of the reference region", default_v3=0)
+    x1 = Parameter(10, "the column after the reference region's last", default_v3=1)
+    y0 = Parameter(20, "first row of the reference region", default_v3=0)
+    y1 = Parameter(20, "the row after the reference region's last", default_v3=1)
     log_x0 = Parameter(0, "first column of the region whose colour is printed")
     log_x1 = Parameter(0, "the column after its last (log_x1 = log_x0: no logging)")
     log_y0 = Parameter(0, "first row of the region whose colour is printed")
@@ -49,11 +48,6 @@ class WhiteBalance(ThreePlanes):
 
     def init(self):
         super().init()
-        if self.dialect == "3":
-            given = getattr(self.element, "attrs", {})
-            for name, value in IKAROS3_DEFAULTS.items():
-                if name not in given:
-                    setattr(self, name, value)
         if self._region(self.x0, self.x1, self.y0, self.y1) is None:
             rows, cols = self.OUTPUT.shape[1:]
             warn_here(self, f"the reference region (columns x0={self.x0} to x1={self.x1}, "

@@ -4,8 +4,8 @@ import pytest
 from numpy.lib.stride_tricks import sliding_window_view
 
 import ikaros
-from ikaros.module import Module
-from vision_models import outputs, run
+from ikaros.testing import load_body
+from vision_models import literal, outputs, run
 
 RNG = np.random.default_rng(3)
 GRAY = RNG.random((9, 12)).astype(np.float32)
@@ -121,9 +121,13 @@ def test_white_balance_logs_the_colour_of_its_log_region(tmp_path, capsys):
     assert " ".join(f"{v:.6g}" for v in after) in text
 
 
-def test_white_balance_in_an_ikaros3_file_has_ikaros3_defaults(tmp_path, monkeypatch):
-    monkeypatch.setattr(Module, "dialect", property(lambda self: "3", lambda self, v: None))
-    out, = outputs(tmp_path, "WhiteBalance", {"INPUT": COLOUR}, "OUTPUT", x1=3)
+def test_white_balance_in_an_ikaros3_file_has_ikaros3_defaults(tmp_path):
+    body = (f'<module class="Constant" name="C" data="{literal(COLOUR)}"/>'
+            '<module class="WhiteBalance" name="M" x1="3"/>'
+            '<connection source="C.OUTPUT" target="M.INPUT" delay="0"/>')
+    with load_body(tmp_path, body, dialect=3) as net:
+        net.step()
+        out = net.output("M.OUTPUT")
     # targets 1, region row 0 (y0 = 0, y1 = 1), columns 0..2 (x0 = 0 by default, x1 set)
     means = COLOUR[:, 0:1, 0:3].mean(axis=(1, 2))[:, None, None]
     assert np.allclose(out, COLOUR / means, rtol=1e-5)
