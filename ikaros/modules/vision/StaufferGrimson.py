@@ -78,9 +78,15 @@ class StaufferGrimson(Module):
         image = as_image(self.INPUT)
         self._image = image if is_colour(image.shape) else image[None]
         shape = self._image.shape
-        self._w, self._m, self._v = (a.reshape(shape + (self._k,)) for a in (
-            self.WEIGHTS, self.MEANS, self.VARIANCES))
-        self._foreground = np.zeros(shape, bool)
+        # the model, one contiguous plane per Gaussian (fast to compute on), copied into
+        # the outputs (K values per pixel) after each tick
+        self._w, self._m, self._v = (np.zeros((self._k,) + shape, np.float32)
+                                     for _ in range(3))
+        self._views = [(np.moveaxis(out.reshape(shape + (self._k,)), -1, 0), state)
+                       for out, state in zip((self.WEIGHTS, self.MEANS, self.VARIANCES),
+                                             (self._w, self._m, self._v))]
+        self._foreground = np.zeros(shape[1:], bool)
+        self._buffers = _Buffers(shape)
         self._started = False
 
     def _rates(self) -> tuple[float, float]:
@@ -91,45 +97,108 @@ class StaufferGrimson(Module):
 
     def tick(self):
         rate, variance = self._rates()
-        x = self._image[..., None]
+        x = self._image
         w, m, v = self._w, self._m, self._v
         if not self._started:
             self._started = True
             w.fill(0.0)
-            w[..., 0] = 1.0
-            m[...] = 0.0
-            m[..., 0] = self._image
+            w[0] = 1.0
+            m.fill(0.0)
+            m[0] = x
             v.fill(variance)
             self.OUTPUT.fill(0.0)
+            self._publish()
             return
-        rank = w / np.sqrt(v)
-        distance2 = np.square(x - m)
-        matched = distance2 <= (self.threshold ** 2) * v
-        any_match = matched.any(axis=-1)
-        # the matching Gaussian ranked first, or else the one ranked last (replaced)
-        best = np.where(matched, rank, -np.inf).argmax(axis=-1)
-        worst = rank.argmin(axis=-1)
-        chosen = np.where(any_match, best, worst)[..., None]
-        w *= np.float32(1.0 - rate)
-        mc = np.take_along_axis(m, chosen, -1)
-        vc = np.take_along_axis(v, chosen, -1)
-        learned_m = mc + rate * (x - mc)
-        learned_v = vc + rate * (np.square(x - learned_m) - vc)
-        hit = any_match[..., None]
-        np.put_along_axis(m, chosen, np.where(hit, learned_m, x), -1)
-        np.put_along_axis(v, chosen, np.where(hit, learned_v, variance), -1)
-        np.put_along_axis(w, chosen, np.take_along_axis(w, chosen, -1) + rate, -1)
-        w /= w.sum(axis=-1, keepdims=True)
-        self._classify(chosen[..., 0], any_match)
+        b = self._buffers
+        limit = np.float32(self.threshold ** 2)
+        rate32, keep = np.float32(rate), np.float32(1.0 - rate)
+        # the matching Gaussian ranked first, and the Gaussian ranked last (first on ties)
+        b.best_rank.fill(-np.inf)
+        b.best.fill(-1)
+        b.worst_rank.fill(np.inf)
+        b.worst.fill(0)
+        for k in range(self._k):
+            self._rank(k, b.rank)
+            np.subtract(x, m[k], out=b.d2)
+            np.square(b.d2, out=b.d2)
+            np.multiply(v[k], limit, out=b.t)
+            np.less_equal(b.d2, b.t, out=b.match)
+            np.greater(b.rank, b.best_rank, out=b.flag)
+            b.flag &= b.match
+            np.copyto(b.best_rank, b.rank, where=b.flag)
+            np.copyto(b.best, k, where=b.flag)
+            np.less(b.rank, b.worst_rank, out=b.flag)
+            np.copyto(b.worst_rank, b.rank, where=b.flag)
+            np.copyto(b.worst, k, where=b.flag)
+        np.greater_equal(b.best, 0, out=b.matched)
+        np.copyto(b.chosen, b.best)
+        np.copyto(b.chosen, b.worst, where=~b.matched)
+        b.total.fill(0.0)
+        for k in range(self._k):
+            wk, mk, vk = w[k], m[k], v[k]
+            np.equal(b.chosen, k, out=b.flag)
+            wk *= keep
+            np.add(wk, rate32, out=wk, where=b.flag)
+            b.total += wk
+            np.logical_and(b.flag, b.matched, out=b.match)     # learns
+            np.subtract(x, mk, out=b.t)
+            b.t *= rate32
+            np.add(mk, b.t, out=mk, where=b.match)
+            np.subtract(x, mk, out=b.d2)
+            np.square(b.d2, out=b.d2)
+            b.d2 -= vk
+            b.d2 *= rate32
+            np.add(vk, b.d2, out=vk, where=b.match)
+            b.flag &= ~b.matched                                # replaced
+            np.copyto(mk, x, where=b.flag)
+            np.copyto(vk, np.float32(variance), where=b.flag)
+        w /= b.total
+        self._classify()
+        self._publish()
 
-    def _classify(self, chosen, any_match):
-        """OUTPUT: 1 where the value matched no background Gaussian."""
-        w = self._w
-        order = np.argsort(-(w / np.sqrt(self._v)), axis=-1, kind="stable")
-        ranked = np.take_along_axis(w, order, -1)
-        before = np.cumsum(ranked, axis=-1) - ranked     # weight ranked above each
-        background = np.zeros_like(w, dtype=bool)
-        np.put_along_axis(background, order, before <= self.T, -1)
-        in_background = np.take_along_axis(background, chosen[..., None], -1)[..., 0]
-        np.logical_not(any_match & in_background, out=self._foreground)
-        np.copyto(as_image(self.OUTPUT), self._foreground.any(axis=0))
+    def _publish(self):
+        """Copy the model into WEIGHTS, MEANS and VARIANCES."""
+        for out, state in self._views:
+            np.copyto(out, state)
+
+    def _rank(self, k, out):
+        """weight / standard deviation of the k-th Gaussians, into ``out``."""
+        np.sqrt(self._v[k], out=out)
+        np.divide(self._w[k], out, out=out)
+
+    def _classify(self):
+        """OUTPUT: 1 where the value matched no background Gaussian: the chosen Gaussian is
+        background when the weights ranked above it (by weight / standard deviation, the
+        lower index first on ties) add up to at most T."""
+        b, w = self._buffers, self._w
+        b.best_rank.fill(0.0)
+        for k in range(self._k):                    # the rank of the chosen Gaussian
+            self._rank(k, b.rank)
+            np.equal(b.chosen, k, out=b.flag)
+            np.copyto(b.best_rank, b.rank, where=b.flag)
+        b.total.fill(0.0)
+        for k in range(self._k):
+            self._rank(k, b.rank)
+            np.greater(b.rank, b.best_rank, out=b.flag)
+            np.equal(b.rank, b.best_rank, out=b.match)
+            np.less(k, b.chosen, out=b.ahead)
+            b.match &= b.ahead
+            b.flag |= b.match
+            np.add(b.total, w[k], out=b.total, where=b.flag)
+        np.less_equal(b.total, np.float32(self.T), out=b.flag)
+        b.flag &= b.matched
+        np.logical_not(b.flag, out=b.flag)
+        np.logical_or.reduce(b.flag, axis=0, out=self._foreground)
+        np.copyto(as_image(self.OUTPUT), self._foreground)
+
+
+class _Buffers:
+    """The per-pixel arrays of one tick, made once."""
+
+    def __init__(self, shape):
+        for name in ("rank", "best_rank", "worst_rank", "d2", "t", "total"):
+            setattr(self, name, np.zeros(shape, np.float32))
+        for name in ("best", "worst", "chosen"):
+            setattr(self, name, np.zeros(shape, np.int16))
+        for name in ("match", "flag", "matched", "ahead"):
+            setattr(self, name, np.zeros(shape, bool))
