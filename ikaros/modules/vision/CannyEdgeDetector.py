@@ -3,9 +3,10 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from ._cv import GrayImage, as_image, image_shape, opencv, shrunk, warn_here
+from ._cv import GrayImage, as_image, image_shape, opencv, shrunk, warn_other_version
 from ._edges import gaussian_derivative_kernels, non_maximum_suppression
-from ._gaussian_edges import Suppression, ValidGradient, hysteresis, ikaros2_kernels
+from ._gaussian_edges import (Suppression, ValidGradient, hysteresis, ikaros2_kernels,
+                              warn_scale)
 
 IKAROS2_PARAMETERS = ("scale", "T0", "T1", "T2")
 IKAROS3_PARAMETERS = ("sigma", "low_threshold", "high_threshold")
@@ -85,16 +86,9 @@ class CannyEdgeDetector(Module):
         self.set_output_shape("dGy", self._ky.shape)
 
     def init(self):
-        given = getattr(self.element, "attrs", {})
-        unused = [p for p in (IKAROS2_PARAMETERS if self._v3 else IKAROS3_PARAMETERS)
-                  if p in given]
-        if unused:
-            warn_here(self, f"{', '.join(unused)}: not used in an Ikaros "
-                      f"{'3' if self._v3 else '2'} file (see the class description)")
-        if not self._v3 and self.scale != 1:
-            warn_here(self, f"scale {self.scale}: the original runs only scale 1 (with "
-                      f"another its output sizes are unresolved); this kernel is this "
-                      f"project's reading")
+        warn_other_version(self, IKAROS2_PARAMETERS, IKAROS3_PARAMETERS)
+        if not self._v3:
+            warn_scale(self)
         image = as_image(self.INPUT)
         self._gray = GrayImage(image)
         self.dGx[...] = self._kx

@@ -3,8 +3,8 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from ._cv import GrayImage, as_image, image_shape, opencv, shrunk, warn_here
-from ._gaussian_edges import Suppression, ValidGradient, ikaros2_kernels
+from ._cv import GrayImage, as_image, image_shape, opencv, shrunk
+from ._gaussian_edges import Suppression, ValidGradient, ikaros2_kernels, warn_scale
 
 
 class GaussianEdgeDetector(Module):
@@ -55,10 +55,7 @@ class GaussianEdgeDetector(Module):
         self.set_output_shape("dGy", self._ky.shape)
 
     def init(self):
-        if self.scale != 1:
-            warn_here(self, f"scale {self.scale}: the original runs only scale 1 (with "
-                      f"another its output sizes are unresolved); this kernel is this "
-                      f"project's reading")
+        warn_scale(self)
         image = as_image(self.INPUT)
         self._gray = GrayImage(image)
         self._gradient = ValidGradient(self.cv2, self._kx, self._ky, image.shape[-2:])

@@ -3,7 +3,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from ._cv import as_image, image_shape, is_colour, warn_here
+from ._cv import as_image, image_shape, is_colour, warn_other_version
 
 IKAROS2_PARAMETERS = ("alpha", "gaussPerPixel", "initialStandardDeviation")
 IKAROS3_PARAMETERS = ("learning_rate", "max_gaussians", "initial_variance")
@@ -69,12 +69,7 @@ class StaufferGrimson(Module):
                 self.set_output_shape(name, shape + (self._k,))
 
     def init(self):
-        given = getattr(self.element, "attrs", {})
-        unused = [p for p in (IKAROS2_PARAMETERS if self._v3 else IKAROS3_PARAMETERS)
-                  if p in given]
-        if unused:
-            warn_here(self, f"{', '.join(unused)}: not used in an Ikaros "
-                      f"{'3' if self._v3 else '2'} file (see the class description)")
+        warn_other_version(self, IKAROS2_PARAMETERS, IKAROS3_PARAMETERS)
         image = as_image(self.INPUT)
         self._image = image if is_colour(image.shape) else image[None]
         shape = self._image.shape

@@ -53,6 +53,17 @@ def warn_here(module, message: str) -> None:
     module.warning(where + message)
 
 
+def warn_other_version(module, ikaros2: tuple, ikaros3: tuple) -> None:
+    """Warn (from ``init``) when the module's element sets parameters of the other Ikaros
+    version than its file's, which a class with both versions' interfaces does not use."""
+    v3 = module.dialect == "3"
+    given = getattr(module.element, "attrs", {})
+    unused = [p for p in (ikaros2 if v3 else ikaros3) if p in given]
+    if unused:
+        warn_here(module, f"{', '.join(unused)}: not used in an Ikaros {'3' if v3 else '2'} "
+                  f"file (see the class description)")
+
+
 def warn_one_row(module, port: str = "INPUT", result: str = "the output is always 0") -> None:
     """Warn (from ``init``) when a one-row image reaches a class whose result is then
     meaningless; the original runs it alike."""

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from ._cv import interior
+from ._cv import interior, warn_here
 
 # (column, row) offsets of the neighbour ahead for the directions k · 45°, k = 0 .. 7
 # (y pointing down, as the rows)
@@ -27,6 +27,14 @@ def ikaros2_kernels(scale: float) -> tuple[np.ndarray, np.ndarray]:
     x, y = r[None, :], r[:, None]
     kx = -2.0 * x / (scale * scale) * np.exp(-(x * x + y * y) / (scale * scale))
     return kx.astype(np.float32), np.ascontiguousarray(kx.T, np.float32)
+
+
+def warn_scale(module) -> None:
+    """Warn (from ``init``) when ``scale`` is not 1, which the original cannot run."""
+    if module.scale != 1:
+        warn_here(module, f"scale {module.scale}: the original runs only scale 1 (with "
+                  f"another its output sizes are unresolved); this kernel is this project's "
+                  f"reading")
 
 
 class ValidGradient:
