@@ -68,7 +68,7 @@ class Overlay(Module):
 MODEL = '''<?xml version="1.0"?>
 <group name="VisionBenchmark" tick_duration="{tick}">
     <module class="SyntheticCamera" name="Camera" size_x="{cols}" size_y="{rows}" blobs="3" />
-    <module class="ColorTransform" name="Chromaticity" transform="RGB->rgI" />
+    <module class="ColorTransform" name="Chromaticity" transform="RGB->rgI" ignore_transform="no" />
     <module class="GaussianFilter" name="BlurR" sigma="1" kernel_size="5" />
     <module class="GaussianFilter" name="BlurG" sigma="1" kernel_size="5" />
     <module class="GaussianFilter" name="BlurI" sigma="1" kernel_size="5" />

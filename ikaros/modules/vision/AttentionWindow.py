@@ -3,7 +3,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from ._cv import check_image, opencv, planes, with_size
+from ._cv import as_image, image_shape, opencv, planes, with_size
 
 
 class AttentionWindow(Module):
@@ -16,7 +16,11 @@ class AttentionWindow(Module):
     FACE_BOUNDS, all as fractions of the image's width and height. Around a position the
     window is ``window_size_x`` x ``window_size_y`` pixels when both are set, otherwise a
     square of 2·window_radius + 1 pixels. Bounds with no area are ignored. When nothing
-    gives a window, OUTPUT is 0."""
+    gives a window, OUTPUT is 0. A vector is a one-row image. (The reference gives Ikaros
+    2's interface and purpose; its one golden case, with one-row images, is a record that
+    stops inside tick 0, 61 of the 64 rows of OUTPUT with the last partly empty and no
+    later tick, which no computation gives. The window rules here are this project's
+    reading.)"""
 
     window_radius = Parameter(15, "half the side of the square window around a position, "
                               "in pixels")
@@ -43,12 +47,13 @@ class AttentionWindow(Module):
         if self.output_size_x < 1 or self.output_size_y < 1:
             raise ValueError("output_size_x and output_size_y must be at least 1")
         if shape:
-            check_image(shape)
+            shape = image_shape(shape)
             self.set_output_shape("OUTPUT", with_size(shape, self.output_size_y,
                                                       self.output_size_x))
 
     def init(self):
-        self._pairs = list(zip(planes(self.INPUT), planes(self.OUTPUT)))
+        self._image = as_image(self.INPUT)
+        self._pairs = list(zip(planes(self._image), planes(self.OUTPUT)))
         self._size = (self.output_size_x, self.output_size_y)
 
     def tick(self):
@@ -70,7 +75,7 @@ class AttentionWindow(Module):
 
     def window(self):
         """The window (x0, y0, x1, y1) in pixels, or None."""
-        rows, cols = self.INPUT.shape[-2:]
+        rows, cols = self._image.shape[-2:]
         bottom_up = self.BOTTOM_UP_COUNT is None or self.BOTTOM_UP_COUNT.flat[0] >= 1
         for values, is_box, active in ((self.TOP_DOWN_BOUNDS, True, True),
                                        (self.TOP_DOWN_POSITION, False, True),

@@ -15,7 +15,11 @@ class BlockMatching(Module):
     row beyond NO-OF-POINTS, gives 0 0 0 0. `metric` 0 is the sum of squared differences,
     1 the normalised correlation coefficient. `search_method` is read for compatibility: the
     search is always exhaustive. A colour image is matched on its intensity. DEBUG is the
-    intensity of INPUT at 320 × 240 with the motion of each point drawn as a white line."""
+    intensity of INPUT at 320 × 240 with the motion of each point drawn as a white line.
+    (The reference gives Ikaros 2's interface and purpose, not its formulas, and no golden
+    output reaches the class: the matching and the layout of FLOW are this project's
+    reading. Ikaros 2's DirectionDetector, which reads FLOW, computes as if its rows were
+    (x0, y0, x1, y1).)"""
 
     block_radius = Parameter(5, "the block is 2 · block_radius + 1 pixels square", type="int")
     search_window_radius = Parameter(32, "largest motion searched, in pixels, in each "

@@ -17,9 +17,12 @@ class CircleDetector(Module):
     EDGE_LIST) and the fraction of the elements that support the circle; DIAMETER is in
     pixels; all are 0 when no element is given. HISTX and HISTDX are 15-bin histograms of
     the elements' x positions (over their range) and of the x component of their gradient
-    direction (over -1..1), for display. The Ikaros 2 class found the circle from
-    histograms of positions and orientations, by formulas the reference does not give; this
-    one votes, which also works with several objects in view."""
+    direction (over -1..1), for display. With fewer than 3 elements (too few for a circle)
+    every output is 0: in all the golden cases of Ikaros 2 (at most one element) its
+    outputs, histograms included, are 0. The Ikaros 2 class found the circle from
+    histograms of positions and orientations, by formulas the reference does not give;
+    this one votes, which also works with several objects in view, and so its values are
+    this project's reading throughout."""
 
     min_radius = Parameter(20.0, "smallest radius searched, in pixels")
     max_radius = Parameter(100.0, "largest radius searched, in pixels")
@@ -31,7 +34,9 @@ class CircleDetector(Module):
     DIAMETER = Output("the circle's diameter in pixels", shape="1")
 
     def init(self):
-        shape = self.EDGE_LIST.shape
+        self._edges = self.EDGE_LIST.reshape(1, -1) if self.EDGE_LIST.ndim == 1 \
+            else self.EDGE_LIST
+        shape = self._edges.shape
         if len(shape) != 2 or shape[1] < 3:
             raise ValueError(f"EDGE_LIST must have rows of x, y, orientation (at least 3 "
                              f"columns), not shape {shape}")
@@ -39,15 +44,18 @@ class CircleDetector(Module):
             raise ValueError("min_radius must be above 0 and at most max_radius")
 
     def tick(self):
-        edges = self.EDGE_LIST
-        n = edges.shape[0] if self.EDGE_LIST_SIZE is None else int(self.EDGE_LIST_SIZE.flat[0])
-        x, y, angle = (edges[:n, i].astype(np.float64) for i in range(3))
-        self.POSITION.fill(0.0)
-        self.DIAMETER.fill(0.0)
-        self.HISTX[...] = np.histogram(x, 15, (x.min(), x.max() + 1e-9) if n else (0, 1))[0]
-        self.HISTDX[...] = np.histogram(np.cos(angle), 15, (-1.0, 1.0))[0]
-        if n == 0:
+        edges = self._edges
+        n = edges.shape[0]
+        if self.EDGE_LIST_SIZE is not None:
+            given = float(self.EDGE_LIST_SIZE.flat[0])
+            n = int(min(max(given, 0), n)) if np.isfinite(given) else 0
+        for out in (self.POSITION, self.DIAMETER, self.HISTX, self.HISTDX):
+            out.fill(0.0)
+        if n < 3:
             return
+        x, y, angle = (edges[:n, i].astype(np.float64) for i in range(3))
+        self.HISTX[...] = np.histogram(x, 15, (x.min(), x.max() + 1e-9))[0]
+        self.HISTDX[...] = np.histogram(np.cos(angle), 15, (-1.0, 1.0))[0]
         cx, cy = self._centre(x, y, np.cos(angle), np.sin(angle))
         dx, dy = x - cx, y - cy
         distance = np.hypot(dx, dy)

@@ -13,7 +13,7 @@ MAX_BLOBS = 10
 class DepthBlobList(Module):
     """Finds objects in a depth image (in mm) on a 100 × 100 map of the floor seen from
     above. Every pixel with a depth becomes a point in the camera's frame (x forward, y
-    left, z up; the fields of view fov_h and fov_v as in DepthTransform), turned by `tilt`
+    left, z up; each pixel looks along the angles DepthPointList gives it), turned by `tilt`
     (up) and `pan` (left), in degrees, and placed by the camera pose POSITION (a 4 × 4
     matrix, 16 values; the camera at the origin when it is not connected). GRID is 1 for the
     cells of `range` / 100 mm that hold at least `min_points` points: row 0 is the far edge

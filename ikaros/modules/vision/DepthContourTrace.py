@@ -15,7 +15,9 @@ class DepthContourTrace(Module):
     the region's bounding box as its four corners (x, y) in pixels, clockwise from the
     top-left.
     DEBUG is half the input with the segments drawn at 1; it has the input's size (Ikaros 2
-    fixed it at 640 × 480)."""
+    fixed it at 640 × 480). (The reference describes Ikaros 2's tracing in a sentence and no
+    golden output reaches the class: the tracing, smoothing and cutting are this project's
+    reading.)"""
 
     segment_length = Parameter(15.0, "length of a segment, in pixels")
     segment_count = Parameter(250, "the largest number of segments", type="int")

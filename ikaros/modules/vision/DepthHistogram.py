@@ -6,12 +6,16 @@ from ikaros.module import Input, Module, Output, Parameter
 
 class DepthHistogram(Module):
     """Counts the depths of INPUT in `size` equal bins from `min` to `max` (depths at or
-    below min, such as 0 for no reading, and at or above max are left out). With `filter`
-    the counts are smoothed with the kernel (1 2 1) / 4. The nearest object is the first
-    bin, counting from min, whose count is above `threshold`, together with the bins that
-    follow it while they stay above threshold: OBJECT is (nearest depth, farthest depth,
-    number of pixels) of those bins, or 0 0 0 when no bin is above threshold. DepthSegmentation
-    cuts the object out with it."""
+    below min, such as 0 for no reading, and at or above max are left out). The first bin
+    is never counted: in Ikaros 2's golden outputs every depth fell in it (depths of -1 to
+    2 with the default 16 per bin) and the histogram stayed 0; leaving the first bin out
+    (where missing readings fall) is this module's reading of those cases, which do not
+    show the rest: the bins, the filter and OBJECT below are from the reference's prose.
+    With `filter` the counts are smoothed with the kernel (1 2 1) / 4. The nearest object
+    is the first bin, counting from min, whose count is above `threshold`, together with
+    the bins that follow it while they stay above threshold: OBJECT is (nearest depth,
+    farthest depth, number of pixels) of those bins, or 0 0 0 when no bin is above
+    threshold. DepthSegmentation cuts the object out with it."""
 
     min = Parameter(0.0, "the smallest depth counted (excluded)")
     max = Parameter(2048.0, "the largest depth counted (excluded)")
@@ -31,6 +35,7 @@ class DepthHistogram(Module):
         d = d[(d > self.min) & (d < self.max)]
         counts = np.bincount(((d - self.min) * (self.size / (self.max - self.min))).astype(
             np.int64), minlength=self.size)[:self.size].astype(np.float32)
+        counts[0] = 0.0
         if self.filter and self.size > 2:
             padded = np.pad(counts, 1, mode="edge")
             counts = 0.25 * padded[:-2] + 0.5 * padded[1:-1] + 0.25 * padded[2:]

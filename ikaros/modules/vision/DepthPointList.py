@@ -13,7 +13,11 @@ class DepthPointList(Module):
     e.g. mm), followed by the pixel's red, green and blue. Pixel (row r, column c) looks
     along the angles ((c + 0.5) / cols - 0.5) · fov_h to the right and
     (0.5 - (r + 0.5) / rows) · fov_v up. A pixel without a depth reading (0) gives a point
-    at the camera."""
+    at the camera. (The reference gives Ikaros 2's output size, 19 × 307200 for a 640 × 480
+    image, and purpose; no golden output reaches the class, so the angles and the order of
+    the values are this project's reading. Ikaros 2's DepthTransform places points by a
+    pinhole model instead, its golden outputs show: (x_res/2 - x) / f with f = (x_res/2) /
+    tan(fov_h/2).)"""
 
     fov_h = Parameter(1.1, "horizontal field of view, radians")
     fov_v = Parameter(1.1, "vertical field of view, radians")

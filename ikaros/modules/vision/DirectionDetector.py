@@ -15,7 +15,13 @@ class DirectionDetector(Module):
     the number of rows used. LOOMING is the mean speed away from the centroid of the points
     (positive when the image expands, as when something approaches). LEFT-FIELD-MOTION and
     RIGHT-FIELD-MOTION are the mean dx of the points left and right of the centroid.
-    MOTION-VECTOR-DRAW is a line (x0, y0, x1, y1) from the centroid along the mean vector."""
+    MOTION-VECTOR-DRAW is a line (x0, y0, x1, y1) from the centroid along the mean vector.
+    All of this is this project's reading of the reference's one sentence, and it is not
+    Ikaros 2's computation: its one golden case (an 8 x 8 INPUT) reads each row as
+    (x0, y0, x1, y1), sums (x1 - x0, y1 - y0) over all rows into MOTION-VECTOR with the
+    previous tick's value times 0.7 added, draws MOTION-VECTOR-DRAW from (0.5, 0.5), and
+    gives left and right field motions that one case does not explain; this module does
+    not reproduce it."""
 
     no_of_directions = Parameter(8, "sectors the direction is quantised to", type="int")
     crop = Parameter(0.0, "vectors longer than this (pixels) are ignored; 0: none")

@@ -7,16 +7,15 @@ from ._cv import check_image, opencv, planes, with_size
 
 
 class Downsample(Module):
-    """Halves the width and height of the image. As Ikaros 2 describes its class, without
-    interpolation (the default ``method="subsample"``): the output pixel (r, c) is the
-    input pixel (2r, 2c), the top-left of its 2 x 2 block (which pixel of the block Ikaros
-    2 takes is not in the reference; the top-left is this module's reading). With
-    ``method="mean"`` (this project's option) it is the mean of the block (OpenCV's area
-    resize), which does not alias fine patterns. An odd last row or column is dropped. A
-    colour image is halved plane by plane."""
+    """Halves the width and height of the image: the output pixel (r, c) is the mean of
+    the 2 x 2 block of input pixels (2r .. 2r + 1, 2c .. 2c + 1), as Ikaros 2 and Ikaros 3
+    compute it (their golden outputs show the block mean; OpenCV's area resize). An odd last
+    row or column is dropped. A colour image is halved plane by plane. With
+    ``method="subsample"`` (this project's option) the output pixel is the top-left pixel
+    of its block, (2r, 2c), without interpolation."""
 
-    method = Parameter("subsample", "subsample: every second pixel, as in Ikaros 2; mean: "
-                       "the mean of each 2 x 2 block", options="subsample/mean")
+    method = Parameter("mean", "mean: the mean of each 2 x 2 block, as the original; "
+                       "subsample: the top-left pixel of each block", options="mean/subsample")
 
     INPUT = Input("the image: gray (rows, cols) or colour (3, rows, cols)")
     OUTPUT = Output("the image at half the size (rows // 2, cols // 2)")

@@ -15,7 +15,9 @@ class EdgeSegmentation(Module):
     row, the gradient direction atan2(DY, DX) in radians (y points down) and the
     (normalised) edge value. EDGE_ELEMENTS has the same elements as line segments
     (x0, y0, x1, y1) along the edge (across the gradient), ``grid`` pixels long, for
-    drawing. Rows after EDGE_LIST_SIZE are 0; at most ``max_edges`` elements are kept."""
+    drawing. Rows after EDGE_LIST_SIZE are 0; at most ``max_edges`` elements are kept.
+    (The reference describes Ikaros 2's class in a sentence, and no golden output reaches
+    it: the layout of the lists and the normalisation are this project's reading.)"""
 
     threshold = Parameter(0.1, "edge values above this are selected")
     max_edges = Parameter(1000, "the most elements listed")

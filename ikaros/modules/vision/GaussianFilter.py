@@ -12,13 +12,14 @@ class GaussianFilter(ValidFilter):
     ``getGaussianKernel``; the filter is applied as two 1-D passes). As in Ikaros 2 the
     output is the part of the image where the whole kernel fits: kernel_size - 1 rows and
     columns smaller. A colour image is filtered plane by plane. KERNEL is the 2-D kernel and
-    PROFILE the 1-D kernel of each pass. ``sigma`` may change while the model runs;
+    PROFILE its middle row, as in Ikaros 2 (its golden outputs show it; the middle row sums
+    to less than 1). ``sigma`` may change while the model runs;
     ``sigma`` <= 0 takes it from the kernel size (0.3 * ((kernel_size - 1) / 2 - 1) + 0.8)."""
 
     sigma = Parameter(1.0, "standard deviation of the Gaussian, in pixels")
     kernel_size = Parameter(5, "width and height of the kernel, a positive odd number")
     KERNEL = Output("the 2-D kernel (sums to 1)", shape="@kernel_size, @kernel_size")
-    PROFILE = Output("the 1-D kernel of each pass (sums to 1)", shape="1, @kernel_size")
+    PROFILE = Output("the middle row of KERNEL", shape="1, @kernel_size")
 
     def kernel_shape(self):
         k = odd_kernel_size(self.kernel_size)
@@ -30,8 +31,8 @@ class GaussianFilter(ValidFilter):
     def make_kernel(self):
         self._profile = self.cv2.getGaussianKernel(self.kernel_rows, self.sigma,
                                                    self.cv2.CV_32F)
-        self.PROFILE[0] = self._profile[:, 0]
         np.multiply(self._profile, self._profile.T, out=self.KERNEL)
+        self.PROFILE[0] = self.KERNEL[self.kernel_rows // 2]
 
     def filter(self, src, dst):
         self.cv2.sepFilter2D(src, -1, self._profile, self._profile, dst=dst,

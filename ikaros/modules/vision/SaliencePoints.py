@@ -7,7 +7,8 @@ from ikaros.module import Input, Module, Output, Parameter
 class SaliencePoints(Module):
     """Turns a list of points into a saliency map of ``size_x`` x ``size_y``: each point
     adds a Gaussian blob of standard deviation ``sigma`` pixels whose height is ``scale``
-    times its salience, as in Ikaros 2. INPUT has one point per row (a single row may be
+    times its salience, as the reference describes Ikaros 2's class (no golden output
+    reaches it). INPUT has one point per row (a single row may be
     given as a vector); columns ``select`` and ``select`` + 1 hold x and y, positions in
     fractions of the map's width and height (docs/images.md: x from 0 at the left edge to
     1 at the right, y from 0 at the top to 1 at the bottom), so a point sits at

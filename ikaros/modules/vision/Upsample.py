@@ -1,12 +1,13 @@
 """Upsample: doubles the image size."""
 from ikaros.module import Input, Module, Output
 
-from ._cv import check_image, opencv, planes, with_size
+from ._cv import as_image, image_shape, opencv, planes, with_size
 
 
 class Upsample(Module):
     """Doubles the width and height of the image by repeating each pixel in a 2 x 2 block
-    (OpenCV's nearest-neighbour resize). A colour image is doubled plane by plane."""
+    (OpenCV's nearest-neighbour resize), as Ikaros 2 does (its golden outputs). A colour
+    image is doubled plane by plane; a vector is a one-row image and gives two rows."""
 
     INPUT = Input("the image: gray (rows, cols) or colour (3, rows, cols)")
     OUTPUT = Output("the image at twice the size (2 rows, 2 cols)")
@@ -17,11 +18,11 @@ class Upsample(Module):
     def set_sizes(self):
         shape = self.input_shape("INPUT")
         if shape:
-            check_image(shape)
+            shape = image_shape(shape)
             self.set_output_shape("OUTPUT", with_size(shape, 2 * shape[-2], 2 * shape[-1]))
 
     def init(self):
-        self._pairs = list(zip(planes(self.INPUT), planes(self.OUTPUT)))
+        self._pairs = list(zip(planes(as_image(self.INPUT)), planes(self.OUTPUT)))
         self._size = self.OUTPUT.shape[:-3:-1]
 
     def tick(self):

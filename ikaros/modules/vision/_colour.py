@@ -7,14 +7,14 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output
 
-from ._cv import check_gray, is_colour
+from ._cv import as_image, image_shape, is_colour
 
 
 def plane_inputs_shape(module: Module, prefix: str = "INPUT",
                        optional: bool = False) -> tuple | None:
     """The (rows, cols) of the planes connected to ``prefix`` (a colour image) or to
-    ``prefix``0..2; None while unknown, or when nothing is connected and ``optional``.
-    ValueError for a wrong mix of connections or shapes."""
+    ``prefix``0..2 (a vector is a one-row plane); None while unknown, or when nothing is
+    connected and ``optional``. ValueError for a wrong mix of connections or shapes."""
     names = [f"{prefix}{i}" for i in range(3)]
     separate = [module.connected(n) for n in names]
     whole = module.connected(prefix)
@@ -31,8 +31,7 @@ def plane_inputs_shape(module: Module, prefix: str = "INPUT",
     shapes = [module.input_shape(n) for n in names]
     if not all(shapes):
         return None
-    for name, shape in zip(names, shapes):
-        check_gray(shape, name)
+    shapes = [image_shape(shape, name, gray=True) for name, shape in zip(names, shapes)]
     if len(set(shapes)) > 1:
         raise ValueError(f"{', '.join(names)} must have the same size, not "
                          f"{', '.join(map(str, shapes))}")
@@ -45,7 +44,7 @@ def plane_inputs(module: Module, prefix: str = "INPUT") -> list[np.ndarray] | No
     if whole is not None:
         return list(whole)
     planes = [getattr(module, f"{prefix}{i}") for i in range(3)]
-    return None if planes[0] is None else planes
+    return None if planes[0] is None else [as_image(p) for p in planes]
 
 
 class ThreePlanes(Module):

@@ -25,6 +25,54 @@ def is_colour(shape: tuple) -> bool:
     return len(shape) == 3 and shape[0] == 3
 
 
+def image_shape(shape: tuple | None, port: str = "INPUT", gray: bool = False) -> tuple:
+    """The image shape of an input as the original reads it: a gray ``(rows, cols)`` or
+    (unless ``gray``) colour ``(3, rows, cols)`` shape as it is, and a vector ``(n,)`` as
+    the one-row image ``(1, n)`` (Ikaros 2 holds every array as a matrix). ``ValueError``
+    for anything else."""
+    if shape is not None and len(shape) == 1 and shape[0] > 0:
+        return (1, int(shape[0]))
+    if gray:
+        check_gray(shape, port)
+    else:
+        check_image(shape, port)
+    return tuple(shape)
+
+
+def as_image(array: np.ndarray) -> np.ndarray:
+    """A 2-D (or colour 3-D) view of an array that ``image_shape`` accepts: a vector is
+    viewed as one row, without a copy, so that writing to the view writes the array."""
+    return array.reshape(1, -1) if array.ndim == 1 else array
+
+
+def warn_here(module, message: str) -> None:
+    """A warning from a module (in ``init`` or later) that names the file and line of its
+    element."""
+    node = module.element
+    where = f"{node.file}:{node.line}: " if getattr(node, "file", None) else ""
+    module.warning(where + message)
+
+
+def warn_other_version(module, ikaros2: tuple, ikaros3: tuple) -> None:
+    """Warn (from ``init``) when the module's element sets parameters of the other Ikaros
+    version than its file's, which a class with both versions' interfaces does not use."""
+    v3 = module.dialect == "3"
+    given = getattr(module.element, "attrs", {})
+    unused = [p for p in (ikaros2 if v3 else ikaros3) if p in given]
+    if unused:
+        warn_here(module, f"{', '.join(unused)}: not used in an Ikaros {'3' if v3 else '2'} "
+                  f"file (see the class description)")
+
+
+def warn_one_row(module, port: str = "INPUT", result: str = "the output is always 0") -> None:
+    """Warn (from ``init``) when a one-row image reaches a class whose result is then
+    meaningless; the original runs it alike."""
+    shape = getattr(module, port.replace("-", "_")).shape
+    if len(shape) == 1 or shape[-2] == 1:
+        warn_here(module, f"{port} is a one-row image {tuple(shape)}: {result}, as in the "
+                  f"original")
+
+
 def check_image(shape: tuple | None, port: str = "INPUT") -> None:
     """Raise ``ValueError`` unless ``shape`` is a gray or colour image."""
     if shape is None or not (len(shape) == 2 or is_colour(shape)) or 0 in shape:

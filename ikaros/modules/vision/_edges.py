@@ -8,13 +8,16 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output
 
-from ._cv import GrayImage, check_image, interior, opencv, shrunk
+from ._cv import GrayImage, as_image, image_shape, interior, opencv, shrunk
 
 
 class GradientOperator(Module):
     """Base of Sobel, Prewitt and Roberts: correlates the gray image (the intensity of a
-    colour one) with the fixed kernels ``kx`` and ``ky`` and writes ``combine(dx, dy)`` for
-    the part of the image where the kernels fit (kernel size - 1 smaller, as in Ikaros 2)."""
+    colour one; a vector is a one-row image) with the fixed kernels ``kx`` and ``ky`` (or
+    those ``kernels()`` gives) and writes ``combine(dx, dy)`` for the part of the image
+    where the kernels fit (kernel size - 1 smaller, as in Ikaros 2), or for every pixel when
+    ``full_size()`` (the border filled by reflection). ``smoothing()`` above 0 blurs the
+    image with a Gaussian of that standard deviation first."""
 
     kx: np.ndarray
     ky: np.ndarray
@@ -26,29 +29,57 @@ class GradientOperator(Module):
     def configure(self):
         self.cv2 = opencv()
 
+    def kernel_pair(self) -> tuple[np.ndarray, np.ndarray]:
+        """The correlation kernels of dx and dy (float32, of one shape)."""
+        return self.kx, self.ky
+
+    def full_size(self) -> bool:
+        """Whether OUTPUT has the size of INPUT rather than the valid part."""
+        return False
+
+    def smoothing(self) -> float:
+        """The standard deviation of a Gaussian blur before the gradient; 0: none."""
+        return 0.0
+
     def set_sizes(self):
         shape = self.input_shape("INPUT")
         if shape:
-            check_image(shape)
-            self.set_output_shape("OUTPUT", shrunk(shape[-2:], *self.kx.shape))
+            shape = image_shape(shape)
+            size = shape[-2:] if self.full_size() else shrunk(shape[-2:],
+                                                              *self.kernel_pair()[0].shape)
+            self.set_output_shape("OUTPUT", size)
 
     def init(self):
-        self._gray = GrayImage(self.INPUT)
-        rows, cols = self.kx.shape
-        full = self.INPUT.shape[-2:]
+        image = as_image(self.INPUT)
+        self._gray = GrayImage(image)
+        self._kx, self._ky = self.kernel_pair()
+        rows, cols = self._kx.shape
+        full = image.shape[-2:]
+        self._smooth = np.zeros(full, np.float32)
         self._dx, self._dy = np.zeros(full, np.float32), np.zeros(full, np.float32)
-        self.dx = interior(self._dx, rows // 2, cols // 2, *self.OUTPUT.shape)
-        self.dy = interior(self._dy, rows // 2, cols // 2, *self.OUTPUT.shape)
+        out = as_image(self.OUTPUT)
+        if self.full_size():
+            self.dx, self.dy = self._dx, self._dy
+        else:
+            self.dx = interior(self._dx, rows // 2, cols // 2, *out.shape)
+            self.dy = interior(self._dy, rows // 2, cols // 2, *out.shape)
+        self.out = out
 
     def tick(self):
-        gray = self._gray()
-        self.cv2.filter2D(gray, -1, self.kx, dst=self._dx, borderType=self.cv2.BORDER_REFLECT)
-        self.cv2.filter2D(gray, -1, self.ky, dst=self._dy, borderType=self.cv2.BORDER_REFLECT)
+        cv2, gray = self.cv2, self._gray()
+        sigma = self.smoothing()
+        if sigma > 0:
+            cv2.GaussianBlur(gray, (0, 0), sigma, dst=self._smooth,
+                             borderType=cv2.BORDER_REFLECT)
+            gray = self._smooth
+        cv2.filter2D(gray, -1, self._kx, dst=self._dx, borderType=cv2.BORDER_REFLECT)
+        cv2.filter2D(gray, -1, self._ky, dst=self._dy, borderType=cv2.BORDER_REFLECT)
         self.combine(self.dx, self.dy)
 
     def combine(self, dx: np.ndarray, dy: np.ndarray) -> None:
-        """Write OUTPUT from the valid parts of the gradients; the magnitude by default."""
-        self.cv2.magnitude(dx, dy, magnitude=self.OUTPUT)
+        """Write OUTPUT (``self.out``, a 2-D view) from the gradients; the magnitude by
+        default."""
+        self.cv2.magnitude(dx, dy, magnitude=self.out)
 
 
 def gaussian_derivative_kernels(sigma: float) -> tuple[np.ndarray, np.ndarray]:

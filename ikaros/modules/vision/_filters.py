@@ -7,7 +7,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output
 
-from ._cv import check_image, interior, opencv, planes, shrunk
+from ._cv import as_image, image_shape, interior, opencv, planes, shrunk
 
 
 class ValidFilter(Module):
@@ -16,7 +16,8 @@ class ValidFilter(Module):
     kernel that depends on parameters give ``kernel_key`` and ``make_kernel``, and the
     kernel is made again when the key changes between ticks."""
 
-    INPUT = Input("the image: gray (rows, cols) or colour (3, rows, cols)")
+    INPUT = Input("the image: gray (rows, cols), colour (3, rows, cols) or a vector (one "
+                  "row)")
     OUTPUT = Output("the filtered image, gray or colour as INPUT, kernel size - 1 rows and "
                     "columns smaller (the pixels where the whole kernel fits)")
 
@@ -42,7 +43,7 @@ class ValidFilter(Module):
     def set_sizes(self):
         shape = self.input_shape("INPUT")
         if shape:
-            check_image(shape)
+            shape = image_shape(shape)
             rows, cols = self.kernel_shape()
             if rows < 1 or cols < 1:
                 raise ValueError(f"the kernel size must be at least 1, not {rows} x {cols}")
@@ -50,9 +51,10 @@ class ValidFilter(Module):
 
     def init(self):
         rows, cols = self.kernel_rows, self.kernel_cols = self.kernel_shape()
-        self._full = np.zeros(self.INPUT.shape[-2:], np.float32)
-        self._valid = interior(self._full, rows // 2, cols // 2, *self.OUTPUT.shape[-2:])
-        self._pairs = list(zip(planes(self.INPUT), planes(self.OUTPUT)))
+        image, out = as_image(self.INPUT), as_image(self.OUTPUT)
+        self._full = np.zeros(image.shape[-2:], np.float32)
+        self._valid = interior(self._full, rows // 2, cols // 2, *out.shape[-2:])
+        self._pairs = list(zip(planes(image), planes(out)))
         self._key = self.kernel_key()
         self.make_kernel()
 

@@ -10,7 +10,7 @@ from ikaros import Module, Output, Parameter
 
 
 class Frames(Module):
-    """Plays the frames of a .npy file, frame k on tick k."""
+    """Plays the frames of a .npy file, frame k on the (k+1)-th tick (in either dialect)."""
     file = Parameter("", "the .npy file")
     OUTPUT = Output("the frame")
 
@@ -20,9 +20,11 @@ class Frames(Module):
 
     def init(self):
         self.OUTPUT[...] = self._frames[0]
+        self._played = 0
 
     def tick(self):
-        self.OUTPUT[...] = self._frames[min(self.clock.tick, len(self._frames) - 1)]
+        self.OUTPUT[...] = self._frames[min(self._played, len(self._frames) - 1)]
+        self._played += 1
 '''
 
 
@@ -35,11 +37,11 @@ def load_sequence(tmp_path, frames, body: str, **overrides):
                      f'\n{body}', **overrides)
 
 
-def run_sequence(tmp_path, frames, module: str, *names: str, connect="INPUT"):
+def run_sequence(tmp_path, frames, module: str, *names: str, connect="INPUT", **overrides):
     """Run ``module`` (an element named M) on the frames, input ``connect`` fed with delay 0,
-    and return, per tick, copies of the named outputs of M."""
+    and return, per tick, copies of the named outputs of M (``overrides`` as load_body's)."""
     net = load_sequence(tmp_path, frames, module + f'\n<connection source="F.OUTPUT" '
-                        f'target="M.{connect}" delay="0"/>')
+                        f'target="M.{connect}" delay="0"/>', **overrides)
     results = []
     with net:
         for _ in range(len(frames)):

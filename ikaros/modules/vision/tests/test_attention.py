@@ -20,10 +20,26 @@ def test_attention_focus_cuts_the_square_around_the_focus(tmp_path):
 
 def test_attention_focus_pads_outside_the_image_with_zeros(tmp_path):
     out, = outputs(tmp_path, "AttentionFocus", {"INPUT": IMAGE[0], "FOCUS": [0.0, 0.99]},
-                   "OUTPUT", output_radius=2)
+                   "OUTPUT", output_radius=2, edge="copied")
     expected = np.zeros((5, 5), np.float32)
     expected[:3, 2:] = IMAGE[0, 17:20, 0:3]           # row 19, column 0 is the centre
     assert np.array_equal(out, expected)
+    # Ikaros 2 (its golden outputs) never copies the first row and column
+    out, = outputs(tmp_path, "AttentionFocus", {"INPUT": IMAGE[0], "FOCUS": [0.0, 0.99]},
+                   "OUTPUT", output_radius=2)
+    expected[:, 2] = 0
+    assert np.array_equal(out, expected)
+    out, = outputs(tmp_path, "AttentionFocus", {"INPUT": IMAGE[0], "FOCUS": [0.99, 0.0]},
+                   "OUTPUT", output_radius=1)
+    assert not out[:2].any() and np.array_equal(out[2, :2], IMAGE[0, 1, 28:30])
+
+
+def test_attention_focus_default_is_a_square_of_31(tmp_path):
+    out, = outputs(tmp_path, "AttentionFocus", {"INPUT": IMAGE[0], "FOCUS": [0.5, 0.5]},
+                   "OUTPUT")
+    assert out.shape == (31, 31)
+    assert np.array_equal(out[6:25, 1:30], IMAGE[0, 1:20, 1:30])   # centre row 10, col 15
+    assert not out[:6].any() and not out[25:].any() and not out[:, 0].any()
 
 
 def test_attention_window_resamples_the_top_down_bounds(tmp_path):

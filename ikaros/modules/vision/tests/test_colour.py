@@ -54,7 +54,7 @@ def test_gamma_srgb_is_the_srgb_conversion(tmp_path):
     assert out[0, 0, 1] == pytest.approx(53.39, abs=0.01)
     assert np.allclose(out, lab(image, srgb=True), atol=2e-3)
     back, = outputs(tmp_path, "ColorTransform", {"INPUT": out}, "OUTPUT", gamma="srgb",
-                    transform="Lab->RGB")
+                    transform="Lab->RGB", ignore_transform="no")
     assert np.allclose(back, image, atol=1e-4)
 
 
@@ -62,7 +62,7 @@ def test_lab_to_rgb_is_the_inverse_clamped_to_0_1(tmp_path):
     image = RNG.uniform(0.05, 0.95, (3, 1, 4))
     colours = np.concatenate([lab(image), lab(pixels((1.5, 0.5, -0.2)))], axis=2)
     out, = outputs(tmp_path, "ColorTransform", {"INPUT": colours}, "OUTPUT",
-                   transform="Lab->RGB")
+                   transform="Lab->RGB", ignore_transform="no")
     assert np.allclose(out[:, :, :4], image, atol=1e-4)  # no gamma compression
     assert np.allclose(out[:, 0, 4], (1, 0.5, 0), atol=1e-4)
 
@@ -71,24 +71,59 @@ def test_rgb_to_xyz_is_linear_and_planes_are_outputs_too(tmp_path):
     image = RNG.random((3, 4, 5)).astype(np.float32)
     planes = {f"INPUT{i}": image[i] for i in range(3)}
     out, x, y, z = outputs(tmp_path, "ColorTransform", planes, "OUTPUT", "OUTPUT0", "OUTPUT1",
-                           "OUTPUT2", transform="RGB->XYZ", scale=0.5)
+                           "OUTPUT2", transform="RGB->XYZ", scale=0.5,
+                           ignore_transform="no")
     expected = 2 * np.einsum("ij,jrc->irc", M, image)
     assert np.allclose(out, expected, atol=1e-4)
     assert np.array_equal(x, out[0]) and np.array_equal(y, out[1]) and np.array_equal(z, out[2])
     back, = outputs(tmp_path, "ColorTransform", {"INPUT": expected}, "OUTPUT",
-                    transform="XYZ->RGB", scale=2)
+                    transform="XYZ->RGB", scale=2, ignore_transform="no")
     assert np.allclose(back, image, atol=1e-4)
 
 
 def test_rgb_to_rgi(tmp_path):
     image = pixels((0.6, 0.3, 0.3), (0, 0, 0), (0.1, 0.2, 0.7))
-    out, = outputs(tmp_path, "ColorTransform", {"INPUT": image}, "OUTPUT", transform="RGB->rgI")
+    out, = outputs(tmp_path, "ColorTransform", {"INPUT": image}, "OUTPUT", transform="RGB->rgI",
+                   ignore_transform="no")
     assert np.allclose(out[0, 0], [0.5, 1 / 3, 0.1], atol=1e-6)   # black: 1/3
     assert np.allclose(out[1, 0], [0.25, 1 / 3, 0.2], atol=1e-6)
     assert np.allclose(out[2, 0], [1.2, 0, 1.0], atol=1e-6)       # I = R + G + B
     out, = outputs(tmp_path, "ColorTransform", {"INPUT": image * 255}, "OUTPUT",
-                   transform="RGB->rgI", scale=255)
+                   transform="RGB->rgI", scale=255, ignore_transform="no")
     assert np.allclose(out[2, 0], [1.2, 0, 1.0], atol=1e-6)
+
+
+def test_ikaros2_ignores_transform_and_ikaros3_uses_it(tmp_path):
+    """Ikaros 2's golden outputs: every transform gives RGB->Lab; Ikaros 3's: the one named."""
+    image = RNG.random((3, 2, 3)).astype(np.float32)
+    out, = outputs(tmp_path, "ColorTransform", {"INPUT": image}, "OUTPUT",
+                   transform="RGB->XYZ")
+    assert np.allclose(out, lab(image), atol=2e-3)
+    body = (f'<module class="Constant" name="C" data="{literal(image)}"/>'
+            '<module class="ColorTransform" name="T" transform="RGB->XYZ"/>'
+            '<connection source="C.OUTPUT" target="T.INPUT" delay="0"/>')
+    with load_body(tmp_path, body, dialect=3) as net:
+        net.step()
+        assert np.allclose(net.output("T.OUTPUT"), np.einsum("ij,jrc->irc", M, image),
+                           atol=1e-5)
+
+
+def test_lab_is_single_precision_as_the_original(tmp_path):
+    """A grey's a and b come from the float rounding of its X, Y and Z: computed here in
+    float32 with the original's matrix (whose rows sum to the white) over the white, they
+    are the golden files' values (a of 0.3 grey 0.0002086 in Ikaros 2, of 0.5 grey
+    0.0002682 in Ikaros 3)."""
+    grey = pixels((0.3, 0.3, 0.3), (0.5, 0.5, 0.5))
+    out, = outputs(tmp_path, "ColorTransform", {"INPUT": grey}, "OUTPUT")
+    original = np.array([[0.412453, 0.357581, 0.180423], [0.212670, 0.715160, 0.072169],
+                         [0.019334, 0.119193, 0.950227]])
+    m = (original / WHITE[:, None]).astype(np.float32)
+    v = grey.astype(np.float32)
+    xyz = [(v[0] * m[k, 0] + v[1] * m[k, 1]) + v[2] * m[k, 2] for k in range(3)]
+    f = [np.cbrt(t) for t in xyz]                       # all above 0.008856
+    a, b = (f[0] - f[1]) * np.float32(500), (f[1] - f[2]) * np.float32(200)
+    assert np.array_equal(out[1], a) and np.array_equal(out[2], b)
+    assert np.allclose(out[1, 0], [0.0002086163, 0.0002682209], rtol=1e-6)
 
 
 def test_partial_plane_inputs_are_a_model_error(tmp_path):
@@ -100,7 +135,8 @@ def classify(tmp_path, image, **params):
     """rgI through ColorTransform, then ColorClassifier."""
     attrs = " ".join(f'{k}="{v}"' for k, v in params.items())
     body = (f'<module class="Constant" name="C" data="{literal(image)}"/>'
-            '<module class="ColorTransform" name="T" transform="RGB->rgI"/>'
+            '<module class="ColorTransform" name="T" transform="RGB->rgI" '
+            'ignore_transform="no"/>'
             f'<module class="ColorClassifier" name="K" {attrs}/>'
             '<connection source="C.OUTPUT" target="T.INPUT" delay="0"/>'
             '<connection source="T.OUTPUT0" target="K.R" delay="0"/>'
@@ -177,7 +213,8 @@ def test_color_match_similarity(tmp_path):
     image[:, 0, 0] = (0.1, 0.1, 0.1)                     # sum 0.3: not above the threshold
     image[:, 0, 1] = (5, 10, 15)                         # the target's chromaticity
     out, = outputs(tmp_path, "ColorMatch", {"INPUT": image}, "OUTPUT", target0=50,
-                   target1=100, target2=150, sigma=3, gain=2, threshold=0.5)
+                   target1=100, target2=150, sigma=3, gain=2, threshold=0.5,
+                   similarity="graded")
     expected = 2 * np.exp(-3 * chroma_distance(image, (50, 100, 150)))
     expected[0, 0] = 0
     assert out[0, 1] == pytest.approx(2, abs=1e-5)
@@ -191,7 +228,7 @@ def test_color_match_learns_the_colour_at_the_focus(tmp_path):
     inputs = {"INPUT0": image[0], "INPUT1": image[1], "INPUT2": image[2],
               "FOCUS": [0.9, 0.3], "REINFORCEMENT": [0.5]}
     with run(tmp_path, "ColorMatch", inputs, ticks=0, alpha=0.2, sigma=10, target0=4,
-             target1=2, target2=2) as net:
+             target1=2, target2=2, similarity="graded") as net:
         net.step()                                     # OUTPUT from the starting prototype
         assert np.allclose(net.output("M.OUTPUT"),
                            np.exp(-10 * chroma_distance(image, (4, 2, 2))), atol=1e-6)
@@ -202,3 +239,21 @@ def test_color_match_learns_the_colour_at_the_focus(tmp_path):
                            np.exp(-10 * chroma_distance(image, learned)), atol=1e-6)
         net.run(ticks=50)
         assert net.output("M.OUTPUT")[1, 3] == pytest.approx(1.0, abs=1e-5)
+
+
+def test_color_match_binary_as_ikaros2(tmp_path):
+    """Ikaros 2 (the default in its files): gain where the sum is above the threshold and
+    exp(-sigma · d²) is a normal float32 above it, d² the squared distance of the colours
+    divided by their sums."""
+    image = RNG.uniform(-0.5, 1.0, (3, 5, 6)).astype(np.float32)
+    image[:, 0, 0] = (0.1, 0.0, -0.1)                  # sum 0
+    out, = outputs(tmp_path, "ColorMatch", {"INPUT": image}, "OUTPUT", target0=0.3,
+                   target1=0.6, target2=0.4, sigma=25, gain=3)
+    total = image.sum(axis=0, dtype=np.float64)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d2 = chroma_distance(image, (0.3, 0.6, 0.4)) ** 2
+        expected = np.where((total > 0) & (25 * d2 < -np.log(np.finfo(np.float32).tiny)),
+                            3.0, 0.0)
+    assert set(np.unique(out)) <= {0.0, 3.0}
+    assert out[0, 0] == 0
+    assert np.array_equal(out, expected)

@@ -14,15 +14,40 @@ from vision_models import run
 cv2 = pytest.importorskip("cv2")
 
 
-def test_depth_transform_turns_pixels_into_points(tmp_path):
-    table = np.array([[319.5, 239.5, 1000, 7],       # the centre of a 640 x 480 image
-                      [479.5, 239.5, 2000, 8],       # a quarter of the width right
-                      [319.5, 59.5, 500, 9]], np.float32)   # three eighths up
+def matrix_row(x, y, depth):
+    """A point as Ikaros 2's DepthTransform reads it: a 3 x 4 matrix, x, y, depth at 3, 7,
+    11."""
+    return [1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, depth]
+
+
+def test_depth_transform_turns_image_points_into_points(tmp_path):
+    table = np.array([matrix_row(320, 240, 1000),     # the centre of a 640 x 480 image
+                      matrix_row(480, 240, 2000),     # a quarter of the width right
+                      matrix_row(320, 60, 500)], np.float32)   # three eighths up
     with run(tmp_path, "DepthTransform", {"INPUT": table}) as net:
         out = net.output("M.OUTPUT")
-    assert np.allclose(out[0], [1000, 0, 0, 7], atol=1e-3)
-    assert np.allclose(out[1], [2000, -2000 * math.tan(0.25 * 1.1), 0, 8], atol=1e-2)
-    assert np.allclose(out[2], [500, 0, 500 * math.tan(0.375 * 1.1), 9], atol=1e-2)
+    f = 320 / math.tan(0.55)                           # (x_res / 2) / tan(fov_h / 2)
+    g = 240 / math.tan(0.55)
+    assert np.allclose(out[0], matrix_row(1000, 0, 0), atol=1e-3)
+    assert np.allclose(out[1], matrix_row(2000, 2000 * (320 - 480) / f, 0), atol=1e-2)
+    assert np.allclose(out[2], matrix_row(500, 0, 500 * (60 - 240) / g), atol=1e-2)
+
+
+def test_depth_transform_reads_rows_of_other_widths_as_the_original(tmp_path):
+    """Ikaros 2's golden outputs: INPUT.size // 12 points, each read from the start of its
+    row on and written as 16 values from the start of its output row on."""
+    data = np.arange(40, dtype=np.float32).reshape(5, 8) / 10
+    with run(tmp_path, "DepthTransform", {"INPUT": data}) as net:
+        out = net.output("M.OUTPUT")
+        assert any("rows are 8 wide" in m for *_, m in net.log)
+    expected = np.zeros(40)
+    f, g = 320 / math.tan(0.55), 240 / math.tan(0.55)
+    for i in range(40 // 12):                           # 3 points
+        x, y, d = data.ravel()[i * 8 + np.array([3, 7, 11])]
+        m = np.eye(4)
+        m[:3, 3] = d, d * (320 - x) / f, d * (y - 240) / g
+        expected[i * 8:i * 8 + 16] = m.ravel()
+    assert np.allclose(out.ravel(), expected, atol=1e-5)
 
 
 def planes_image():

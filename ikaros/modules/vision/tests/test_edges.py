@@ -42,8 +42,10 @@ SOBEL_X = np.array([[-1, 0, 1], [-2, 0, 2], [-1, 0, 1]])
     ("abs(dy)", lambda dx, dy: abs(dy)),
 ])
 def test_sobel_types(tmp_path, kind, expected):
+    """dx and dy are convolutions with the Sobel kernels, as Ikaros 2's golden outputs."""
     out, = outputs(tmp_path, "SobelEdgeDetector", {"INPUT": GRAY}, "OUTPUT", type=kind)
-    dx, dy = correlate(GRAY, SOBEL_X), correlate(GRAY, SOBEL_X.T)
+    dx = signal.convolve2d(GRAY.astype(np.float64), SOBEL_X, mode="valid")
+    dy = signal.convolve2d(GRAY.astype(np.float64), SOBEL_X.T, mode="valid")
     assert out.shape == (8, 10)
     assert np.allclose(out, expected(dx, dy), atol=1e-5)
 
@@ -59,8 +61,36 @@ def test_sobel_of_a_square_is_on_its_edges_and_uses_the_intensity(tmp_path):
     assert full[12, 6] == pytest.approx(4 * 2 / 3, abs=1e-5)
 
 
+def test_sobel_sigma_blurs_first_and_ikaros3_keeps_the_size(tmp_path):
+    blurred = ndimage.gaussian_filter(GRAY.astype(np.float64), 1.5, mode="reflect",
+                                      truncate=4.0)
+    out, = outputs(tmp_path, "SobelEdgeDetector", {"INPUT": GRAY}, "OUTPUT", sigma=1.5)
+    assert np.allclose(out, np.hypot(correlate(blurred, SOBEL_X),
+                                     correlate(blurred, SOBEL_X.T)), atol=1e-5)
+    # Ikaros 3: sigma 1 by default, the output of the input's size (reflected border)
+    blurred = ndimage.gaussian_filter(GRAY.astype(np.float64), 1.0, mode="reflect",
+                                      truncate=4.0)
+    body = (f'<module class="Constant" name="I" data="{literal(GRAY)}"/>'
+            '<module class="SobelEdgeDetector" name="S"/>'
+            '<connection source="I.OUTPUT" target="S.INPUT" delay="0"/>')
+    with load_body(tmp_path, body, dialect=3) as net:
+        net.step()
+        out = net.output("S.OUTPUT")
+    dx = ndimage.correlate(blurred, SOBEL_X, mode="reflect")
+    dy = ndimage.correlate(blurred, SOBEL_X.T, mode="reflect")
+    assert out.shape == GRAY.shape
+    assert np.allclose(out, np.hypot(dx, dy), atol=1e-5)
+
+
 def test_prewitt_and_roberts_magnitudes(tmp_path):
+    # Ikaros 2's kernels (its golden outputs), and Prewitt's as the option
     prewitt, = outputs(tmp_path, "PrewittEdgeDetector", {"INPUT": GRAY}, "OUTPUT")
+    k1 = np.array([[-2, 0, 1], [-1, 0, 1], [0, 0, 1]])
+    k2 = np.array([[0, -1, -1], [0, 0, 0], [0, 1, 1]])
+    assert np.allclose(prewitt, np.hypot(correlate(GRAY, k1), correlate(GRAY, k2)),
+                       atol=1e-5)
+    prewitt, = outputs(tmp_path, "PrewittEdgeDetector", {"INPUT": GRAY}, "OUTPUT",
+                       kernels="prewitt")
     kx = np.array([[-1, 0, 1]] * 3)
     assert np.allclose(prewitt, np.hypot(correlate(GRAY, kx), correlate(GRAY, kx.T)),
                        atol=1e-5)
@@ -71,62 +101,151 @@ def test_prewitt_and_roberts_magnitudes(tmp_path):
     assert np.allclose(roberts, np.hypot(d1, d2), atol=1e-6)
 
 
-def test_gaussian_edge_detector_on_a_ramp_and_a_square(tmp_path):
-    ramp = np.tile(np.arange(16, dtype=np.float32) * 0.05, (16, 1))
-    dx, dy, orientation, kx = outputs(tmp_path, "GaussianEdgeDetector", {"INPUT": ramp},
-                                      "dx", "dy", "ORIENTATION", "dGx", scale=1.5)
-    assert kx.shape == (11, 11)
-    assert np.allclose(dx[5:-5, 5:-5], 0.05, atol=1e-6)       # slope 0.05 per pixel
-    assert np.allclose(dy, 0.0, atol=1e-6)
-    assert np.allclose(orientation[5:-5, 5:-5], 0.0, atol=1e-4)
-    image = square()
-    out, maxima, dx, kx, ky = outputs(tmp_path, "GaussianEdgeDetector", {"INPUT": image},
-                                      "OUTPUT", "MAXIMA", "dx", "dGx", "dGy")
-    assert np.allclose(ky, kx.T)
-    assert np.allclose(dx[3:-3, 3:-3], correlate(image, kx), atol=1e-5)
-    # maxima lie on the boundary, and every side of the square has them
-    assert np.all(maxima[~boundary()] == 0)
-    assert maxima[12, 5:7].max() > 0 and maxima[12, 17:19].max() > 0
-    assert maxima[5:7, 12].max() > 0 and maxima[17:19, 12].max() > 0
-    assert np.count_nonzero(maxima[12]) == 2           # one pixel thick across each side
+def ikaros2_kernel():
+    """dGx of Ikaros 2 (its golden outputs): -2x · exp(-(x² + y²)) on 5 x 5 offsets."""
+    r = np.arange(-2, 3)
+    x, y = r[None, :], r[:, None]
+    return -2 * x * np.exp(-(x * x + y * y))
 
 
-def test_canny_finds_the_square(tmp_path):
+OFFSETS = [(1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1)]
+
+
+def suppressed(magnitude, dx, dy):
+    """Ikaros 2's non-maximum suppression, pixel by pixel: the direction rounded to one of
+    8 neighbours; an inner pixel stays when above the one behind and not below the one
+    ahead; the border stays."""
+    out = magnitude.copy()
+    rows, cols = magnitude.shape
+    for r in range(1, rows - 1):
+        for c in range(1, cols - 1):
+            k = int(np.rint(np.arctan2(dy[r, c], dx[r, c]) / (np.pi / 4))) % 8
+            oc, orow = OFFSETS[k]
+            m = magnitude[r, c]
+            if not (m > magnitude[r - orow, c - oc] and m >= magnitude[r + orow, c + oc]):
+                out[r, c] = 0
+    return out
+
+
+def test_gaussian_edge_detector_as_ikaros2(tmp_path):
+    noise = np.random.default_rng(3).random((16, 16)).astype(np.float32)
+    image = square(16, 4, 11) + noise * 0.1
+    out, maxima, dx, dy, orientation, kx, ky = outputs(
+        tmp_path, "GaussianEdgeDetector", {"INPUT": image}, "OUTPUT", "MAXIMA", "dx", "dy",
+        "ORIENTATION", "dGx", "dGy")
+    assert np.allclose(kx, ikaros2_kernel(), atol=1e-6) and np.allclose(ky, kx.T)
+    gx, gy = correlate(image, ikaros2_kernel()), correlate(image, ikaros2_kernel().T)
+    assert dx.shape == (12, 12)                          # 16 - 4: where the kernel fits
+    assert np.allclose(dx, gx, atol=1e-5) and np.allclose(dy, gy, atol=1e-5)
+    assert np.allclose(out, np.hypot(gx, gy), atol=1e-5)
+    assert np.allclose(orientation, np.arctan2(gx, gy), atol=1e-5)
+    assert np.allclose(maxima, suppressed(np.hypot(gx, gy), gx, gy), atol=1e-5)
+    assert np.array_equal(maxima[0], out[0])             # the border is not suppressed
+    assert np.count_nonzero(maxima[1:-1, 1:-1]) < np.count_nonzero(out[1:-1, 1:-1]) / 2
+
+
+def test_canny_as_ikaros2(tmp_path):
+    noise = np.random.default_rng(4).random((16, 16)).astype(np.float32)
+    image = square(16, 4, 11) + noise * 0.1
+    edges, maxima, out, dx, dy = outputs(tmp_path, "CannyEdgeDetector", {"INPUT": image},
+                                         "EDGES", "MAXIMA", "OUTPUT", "dx", "dy",
+                                         T0=0.2, T1=0.5, T2=0.9)
+    gx, gy = correlate(image, ikaros2_kernel()), correlate(image, ikaros2_kernel().T)
+    magnitude = np.hypot(gx, gy)
+    above = magnitude > 0.2
+    assert np.allclose(edges, magnitude * above, atol=1e-5)
+    k = np.rint(np.arctan2(gy, gx) / (np.pi / 4)).astype(int) % 8
+    offsets = np.array(OFFSETS)[k]
+    assert np.array_equal(dx, offsets[..., 0] * above)
+    assert np.array_equal(dy, offsets[..., 1] * above)
+    assert np.allclose(maxima, suppressed(magnitude * above, gx, gy), atol=1e-5)
+    # edges: inner maxima above T2, and those above T1 connected to them
+    inner = np.zeros_like(maxima, bool)
+    inner[1:-1, 1:-1] = True
+    labels, _ = ndimage.label((maxima > 0.5) & inner, np.ones((3, 3)))
+    strong = np.unique(labels[(maxima > 0.9) & inner])
+    expected = np.isin(labels, strong[strong > 0])
+    assert expected.any() and np.array_equal(out, expected)
+    assert not out[0].any() and not out[:, -1].any()
+
+
+def test_canny_defaults_need_large_values(tmp_path):
+    # a step of 1 gives the sum of dGx's positive half, about 1.43: below T0 = 100, and a
+    # step of 255 (366) is above T0 and T1 but below T2 = 800
+    image = square(16, 4, 11)
+    step = ikaros2_kernel()[:, :2].sum()
+    edges, out = outputs(tmp_path, "CannyEdgeDetector", {"INPUT": image}, "EDGES", "OUTPUT")
+    assert not edges.any() and not out.any()
+    edges, out = outputs(tmp_path, "CannyEdgeDetector", {"INPUT": image * 255}, "EDGES",
+                         "OUTPUT")
+    assert edges[5].max() == pytest.approx(255 * step, rel=1e-5) and not out.any()
+
+
+def test_canny_as_ikaros3(tmp_path):
     image = square(32, 8, 24)
-    edges, dx, out, maxima, kx = outputs(tmp_path, "CannyEdgeDetector", {"INPUT": image},
-                                         "EDGES", "dx", "OUTPUT", "MAXIMA", "dGx")
-    assert kx.shape == (7, 7) and kx[kx > 0].sum() == pytest.approx(1020, rel=1e-5)
-    assert np.allclose(dx[3:-3, 3:-3], correlate(image, kx), rtol=1e-4, atol=1e-2)
-    assert dx[16, 7] == pytest.approx(1020, rel=1e-5) and dx[16, 8] == dx[16, 7]
-    assert set(np.unique(edges)) == {0.0, 1.0}
-    near = boundary(32, 8, 24)
-    assert np.all(edges[~near] == 0)
-    assert np.all(edges[8:24, 7:9].max(axis=1) == 1)   # the left side, every row
-    assert np.all(maxima[maxima > 0] > 100) and np.all(maxima <= out)
+    body = (f'<module class="Constant" name="I" data="{literal(image)}"/>'
+            '<module class="CannyEdgeDetector" name="C" {}/>'
+            '<connection source="I.OUTPUT" target="C.INPUT" delay="0"/>')
+    with load_body(tmp_path, body.format(""), dialect=3) as net:
+        net.step()
+        out, dx, kx = (net.output(f"C.{n}") for n in ("OUTPUT", "dx", "dGx"))
+    assert out.shape == image.shape and set(np.unique(out)) == {0.0, 1.0}
+    # the derivative of the image blurred with sigma 1: a ramp of slope 1 gives 1
+    x = np.arange(-3, 4)
+    g = np.exp(-(x[None, :] ** 2 + x[:, None] ** 2) / 2.0) * x[None, :]
+    assert np.allclose(kx, g / (g * x[None, :]).sum(), atol=1e-6)
+    assert np.allclose(dx, ndimage.correlate(image.astype(np.float64), kx, mode="reflect"),
+                       atol=1e-5)
+    assert np.all(out[~boundary(32, 8, 24)] == 0)
+    assert np.all(out[8:24, 7:9].max(axis=1) == 1)       # the left side, every row
+    # the step's gradient is about 0.4: a high threshold above it finds nothing
+    with load_body(tmp_path, body.format('high_threshold="0.5"'), dialect=3) as net:
+        net.step()
+        assert not net.output("C.OUTPUT").any()
 
 
-def test_canny_thresholds_drop_weak_edges(tmp_path):
-    faint = square(32, 8, 24, value=0.5)               # magnitude 510 beside the edge
-    edges, = outputs(tmp_path, "CannyEdgeDetector", {"INPUT": faint}, "EDGES")
-    assert not edges.any()
-    edges, = outputs(tmp_path, "CannyEdgeDetector", {"INPUT": faint}, "EDGES", T2=500)
-    assert edges.any()
-    # a faint square touching a strong one is followed from it
-    image = square(32, 8, 24, value=0.5)
-    image[8:24, 8:12] = 1.0
-    edges, = outputs(tmp_path, "CannyEdgeDetector", {"INPUT": image}, "EDGES", scale=2)
-    assert np.all(edges[9:23, 23:25].max(axis=1) == 1)   # the faint right side
+def raster_hysteresis(image, t1, t2, reach, iterations):
+    """Ikaros 2's hysteresis, pixel by pixel: passes over the inner pixels in raster order;
+    a strong or marked pixel marks the weak pixels of its square."""
+    rows, cols = image.shape
+    out = np.zeros((rows, cols))
+    for _ in range(iterations):
+        for r in range(reach, rows - reach):
+            for c in range(reach, cols - reach):
+                if image[r, c] > t2 or out[r, c]:
+                    window = (slice(r - reach, r + reach + 1), slice(c - reach, c + reach + 1))
+                    out[window][image[window] > t1] = 1
+    return out
 
 
-def test_hysteresis_follows_weak_edges_from_strong_ones(tmp_path):
-    row = np.array([[0.7, 0.4, 0.4, 0.4, 0.1, 0.4, 0.4]], np.float32)
+def test_hysteresis_follows_weak_edges_by_raster_passes(tmp_path):
+    image = np.random.default_rng(5).random((9, 11)).astype(np.float32)
+    for params in (dict(), dict(range=2, iterations=2, T1=0.2, T2=0.9)):
+        out, = outputs(tmp_path, "HysteresisThresholding", {"INPUT": image}, "OUTPUT",
+                       **params)
+        t1, t2 = np.float32(params.get("T1", 0.3)), np.float32(params.get("T2", 0.6))
+        assert np.array_equal(out, raster_hysteresis(image, t1, t2, params.get("range", 1),
+                                                     params.get("iterations", 1)))
+    # along the scan a weak edge is followed at once, against it one pixel per pass
+    row = np.array([[0.1] * 7, [0.4, 0.4, 0.4, 0.7, 0.4, 0.4, 0.4], [0.1] * 7], np.float32)
     out, = outputs(tmp_path, "HysteresisThresholding", {"INPUT": row}, "OUTPUT")
+    assert np.array_equal(out[1], [0, 0, 1, 1, 1, 1, 1])
+
+
+def test_hysteresis_dilation_option(tmp_path):
+    row = np.array([[0.7, 0.4, 0.4, 0.4, 0.1, 0.4, 0.4]], np.float32)
+    out, = outputs(tmp_path, "HysteresisThresholding", {"INPUT": row}, "OUTPUT",
+                   method="dilation")
     assert np.array_equal(out, [[1, 1, 0, 0, 0, 0, 0]])
-    out, = outputs(tmp_path, "HysteresisThresholding", {"INPUT": row}, "OUTPUT", iterations=5)
+    out, = outputs(tmp_path, "HysteresisThresholding", {"INPUT": row}, "OUTPUT",
+                   iterations=5, method="dilation")
     assert np.array_equal(out, [[1, 1, 1, 1, 0, 0, 0]])
-    out, = outputs(tmp_path, "HysteresisThresholding", {"INPUT": row}, "OUTPUT", iterations=3,
-                   range=2)
+    out, = outputs(tmp_path, "HysteresisThresholding", {"INPUT": row}, "OUTPUT",
+                   iterations=3, range=2, method="dilation")
     assert np.array_equal(out, [[1, 1, 1, 1, 0, 1, 0]])   # 2 further per iteration
+    # with the original's scan a one-row image has no inner pixel: 0
+    out, = outputs(tmp_path, "HysteresisThresholding", {"INPUT": row}, "OUTPUT")
+    assert not out.any()
 
 
 def test_zero_crossings(tmp_path):
@@ -248,9 +367,11 @@ def test_circle_detector_finds_centre_and_diameter(tmp_path):
 
 def test_circle_from_an_image_through_the_edge_modules(tmp_path):
     rows, cols = np.mgrid[0:80, 0:90]
-    disc = (np.hypot(cols - 47, rows - 38) <= 22).astype(np.float32)
+    # a soft disc: the 5 x 5 kernels of Ikaros 2's GaussianEdgeDetector give good
+    # orientations on it
+    disc = ndimage.gaussian_filter((np.hypot(cols - 47, rows - 38) <= 22).astype(float), 2)
     body = (f'<module class="Constant" name="I" data="{literal(disc)}"/>'
-            '<module class="GaussianEdgeDetector" name="E" scale="1.5"/>'
+            '<module class="GaussianEdgeDetector" name="E"/>'
             '<module class="EdgeSegmentation" name="S" threshold="0.3" max_edges="2000"/>'
             '<module class="CircleDetector" name="C"/>'
             '<connection source="I.OUTPUT" target="E.INPUT" delay="0"/>'
@@ -264,7 +385,8 @@ def test_circle_from_an_image_through_the_edge_modules(tmp_path):
         n = int(net.output("S.EDGE_LIST_SIZE")[0])
         position, diameter = net.output("C.POSITION"), net.output("C.DIAMETER")
     assert n > 100
-    assert position[0] == pytest.approx(47, abs=1) and position[1] == pytest.approx(38, abs=1)
+    # in the detector's output, 2 rows and columns in from the image's
+    assert position[0] == pytest.approx(45, abs=1) and position[1] == pytest.approx(36, abs=1)
     assert diameter[0] == pytest.approx(44, abs=2)
 
 

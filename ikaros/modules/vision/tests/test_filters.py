@@ -28,10 +28,12 @@ def test_gaussian_kernel_sums_to_one_with_a_gaussian_profile(tmp_path):
                                    "KERNEL", "PROFILE", sigma=1.5, kernel_size=7)
     x = np.arange(7) - 3
     expected = np.exp(-x ** 2 / (2 * 1.5 ** 2))
+    expected /= expected.sum()
     assert profile.shape == (1, 7) and kernel.shape == (7, 7)
-    assert np.allclose(profile[0], expected / expected.sum(), atol=1e-6)
     assert kernel.sum() == pytest.approx(1.0, abs=1e-5)
-    assert np.allclose(kernel, np.outer(profile, profile), atol=1e-7)
+    assert np.allclose(kernel, np.outer(expected, expected), atol=1e-7)
+    # PROFILE is the middle row of KERNEL, as Ikaros 2's golden outputs show
+    assert np.allclose(profile[0], expected * expected[3], atol=1e-7)
     assert out.shape == (6, 8)                      # 12 - 7 + 1, 14 - 7 + 1
     assert np.allclose(out, valid(GRAY, kernel), atol=1e-5)
 
@@ -48,7 +50,7 @@ def test_gaussian_keeps_a_flat_image_and_follows_sigma_changes(tmp_path):
         net.step()
         x = np.arange(5) - 2
         g = np.exp(-x ** 2 / (2 * 0.7 ** 2))
-        assert np.allclose(net.output("M.PROFILE")[0], g / g.sum(), atol=1e-6)
+        assert np.allclose(net.output("M.PROFILE")[0], g * g[2] / g.sum() ** 2, atol=1e-6)
         assert np.allclose(net.output("M.OUTPUT"), valid(GRAY, np.outer(g, g) / g.sum() ** 2),
                            atol=1e-5)
     (flat,) = outputs(tmp_path, "GaussianFilter", {"INPUT": np.full((6, 6), 0.25)}, "OUTPUT")
@@ -65,14 +67,19 @@ def test_kernel_larger_than_the_image_is_a_model_error(tmp_path):
         run(tmp_path, "GaussianFilter", {"INPUT": GRAY[:3, :3]})
 
 
-def test_a_vector_is_not_an_image(tmp_path):
-    with pytest.raises(ikaros.ModelError, match="gray \\(rows, cols\\) or colour"):
+def test_a_vector_is_a_one_row_image(tmp_path):
+    # as in Ikaros 2, where every array is a matrix: here too small for the 5 x 5 kernel
+    with pytest.raises(ikaros.ModelError, match="the image \\(1 x 8\\) is smaller than"):
         run(tmp_path, "GaussianFilter", {"INPUT": np.arange(8.0)})
+    out, = outputs(tmp_path, "GaussianFilter", {"INPUT": np.arange(8.0)}, "OUTPUT",
+                   kernel_size=1)
+    assert np.allclose(out, [np.arange(8.0)])
 
 
-def gaussian(r2, sigma):
-    """A Gaussian with the 1-D constant 1 / (sigma sqrt(2 pi)), as Ikaros 2's DoGFilter."""
-    return np.exp(-r2 / (2 * sigma ** 2)) / (sigma * math.sqrt(2 * math.pi))
+def gaussian(r2, sigma, pi=math.pi):
+    """A Gaussian with the 1-D constant 1 / (sigma sqrt(2 pi)); Ikaros 2's DoGFilter takes
+    pi as 3 (its golden outputs)."""
+    return np.exp(-r2 / (2 * sigma ** 2)) / (sigma * math.sqrt(2 * pi))
 
 
 def grid(size):
@@ -98,8 +105,14 @@ def test_dog_normalize_scales_positive_and_negative_parts_apart(tmp_path):
     assert out.shape == (8, 10) and np.allclose(out, valid(GRAY, expected), atol=1e-5)
 
 
-def test_dog_without_normalize_uses_the_1d_constant(tmp_path):
+def test_dog_without_normalize_uses_the_1d_constant_with_pi_3(tmp_path):
     (kernel,) = outputs(tmp_path, "DoGFilter", {"INPUT": GRAY}, "KERNEL", normalize="no")
+    # at the centre: 1/sqrt(6) - 1/(0.5 sqrt(6)) = -0.408248
+    assert kernel[2, 2] == pytest.approx(-1 / math.sqrt(6), abs=1e-6)
+    assert np.allclose(kernel, gaussian(grid(5), 1, 3) - gaussian(grid(5), 0.5, 3),
+                       atol=1e-6)
+    (kernel,) = outputs(tmp_path, "DoGFilter", {"INPUT": GRAY}, "KERNEL", normalize="no",
+                        pi="exact")
     # at the centre: 1/sqrt(2 pi) - 1/(0.5 sqrt(2 pi)) = -0.398942
     assert kernel[2, 2] == pytest.approx(-0.398942, abs=1e-6)
     assert np.allclose(kernel, gaussian(grid(5), 1) - gaussian(grid(5), 0.5), atol=1e-6)
@@ -169,12 +182,12 @@ def test_median_removes_salt_noise(tmp_path):
     assert np.array_equal(out, np.full((6, 6), 0.5, np.float32))
 
 
-def test_convolution_flips_the_kernel_and_scales_biases_rectifies_to_abs(tmp_path):
+def test_convolution_applies_the_kernel_as_written_scales_biases_rectifies(tmp_path):
+    # not flipped, as Ikaros 2's golden outputs show
     kernel = np.array([[1, 2, 0], [0, -1, 3]], np.float32)
     (out,) = outputs(tmp_path, "ImageConvolution", {"INPUT": COLOUR}, "OUTPUT",
                      kernel="1 2 0; 0 -1 3", scale=2, bias=-1.5, rectify="yes")
-    expected = np.stack([signal.convolve2d(p.astype(np.float64), kernel, mode="valid")
-                         for p in COLOUR])
+    expected = valid(COLOUR, kernel)
     assert out.shape == (3, 9, 9)
     assert ((2 * expected - 1.5) < -0.5).any()          # negatives become positive
     assert np.allclose(out, np.abs(2 * expected - 1.5), atol=1e-5)
@@ -182,14 +195,21 @@ def test_convolution_flips_the_kernel_and_scales_biases_rectifies_to_abs(tmp_pat
 
 def test_convolution_kernel_can_change_but_not_its_size(tmp_path):
     with run(tmp_path, "ImageConvolution", {"INPUT": GRAY}, kernel="1 0; 0 0") as net:
-        assert np.allclose(net.output("M.OUTPUT"), GRAY[1:, 1:])
+        assert np.allclose(net.output("M.OUTPUT"), GRAY[:-1, :-1])
         net.set_parameter("M.kernel", "0 0; 0 2")
         net.step()
-        assert np.allclose(net.output("M.OUTPUT"), 2 * GRAY[:-1, :-1])
+        assert np.allclose(net.output("M.OUTPUT"), 2 * GRAY[1:, 1:])
         net.set_parameter("M.kernel", "1 0 0")
         net.step()
-        assert np.allclose(net.output("M.OUTPUT"), 2 * GRAY[:-1, :-1])
+        assert np.allclose(net.output("M.OUTPUT"), 2 * GRAY[1:, 1:])
         assert any("cannot change while the model runs" in m for *_, m in net.log)
+
+
+def test_convolution_without_a_kernel_is_empty_as_the_original(tmp_path):
+    # Ikaros 2 gives kernel no default: an empty kernel, an output one larger, holding bias
+    with run(tmp_path, "ImageConvolution", {"INPUT": GRAY}, bias=-0.5, rectify="yes") as net:
+        assert np.array_equal(net.output("M.OUTPUT"), np.full((13, 15), 0.5))
+        assert any("no kernel is set" in m for *_, m in net.log)
 
 
 def test_missing_opencv_names_the_install(tmp_path, monkeypatch):

@@ -4,8 +4,8 @@ import pytest
 from numpy.lib.stride_tricks import sliding_window_view
 
 import ikaros
-from ikaros.module import Module
-from vision_models import outputs, run
+from ikaros.testing import load_body
+from vision_models import literal, outputs, run
 
 RNG = np.random.default_rng(3)
 GRAY = RNG.random((9, 12)).astype(np.float32)
@@ -48,20 +48,20 @@ def test_integral_image_is_the_summed_area_table(tmp_path):
         float(GRAY[3:8, 5:11].sum()), abs=1e-4)
 
 
-def test_downsample_takes_every_second_pixel_by_default(tmp_path):
+def test_downsample_subsample_takes_every_second_pixel(tmp_path):
     image = np.arange(35, dtype=np.float32).reshape(5, 7)
-    out, = outputs(tmp_path, "Downsample", {"INPUT": image}, "OUTPUT")
+    out, = outputs(tmp_path, "Downsample", {"INPUT": image}, "OUTPUT", method="subsample")
     assert np.array_equal(out, [[0, 2, 4], [14, 16, 18]])   # rows 0, 2; columns 0, 2, 4
-    out, = outputs(tmp_path, "Downsample", {"INPUT": COLOUR}, "OUTPUT")
+    out, = outputs(tmp_path, "Downsample", {"INPUT": COLOUR}, "OUTPUT", method="subsample")
     assert np.array_equal(out, COLOUR[:, 0:6:2, 0:8:2])
 
 
-def test_downsample_mean_takes_the_mean_of_2x2_blocks(tmp_path):
-    out, = outputs(tmp_path, "Downsample", {"INPUT": GRAY[:, :11]}, "OUTPUT", method="mean")
+def test_downsample_takes_the_mean_of_2x2_blocks_by_default(tmp_path):
+    out, = outputs(tmp_path, "Downsample", {"INPUT": GRAY[:, :11]}, "OUTPUT")
     assert out.shape == (4, 5)
     blocks = GRAY[:8, :10].reshape(4, 2, 5, 2).mean(axis=(1, 3))
     assert np.allclose(out, blocks, atol=1e-6)
-    out, = outputs(tmp_path, "Downsample", {"INPUT": COLOUR}, "OUTPUT", method="mean")
+    out, = outputs(tmp_path, "Downsample", {"INPUT": COLOUR}, "OUTPUT")
     assert out.shape == (3, 3, 4)
     assert np.allclose(out, COLOUR[:, :6, :8].reshape(3, 3, 2, 4, 2).mean(axis=(2, 4)),
                        atol=1e-6)
@@ -97,19 +97,37 @@ def test_white_balance_region_ends_are_exclusive(tmp_path):
     assert np.allclose(out2, 255 * COLOUR[2] / COLOUR[2, 1:3, 2:4].mean(), rtol=1e-5)
 
 
-def test_white_balance_zero_mean_gives_zero_and_empty_region_is_an_error(tmp_path):
+def test_white_balance_zero_mean_gives_zero_and_empty_region_nan(tmp_path):
     image = np.stack([np.full((4, 4), v, np.float32) for v in (0.5, 0.0, 0.25)])
     image[1, 3, 3] = 0.7                             # green is 0 in the region only
     out, = outputs(tmp_path, "WhiteBalance", {"INPUT": image}, "OUTPUT", x0=0, x1=2, y0=0,
                    y1=2, red_target=1, green_target=1, blue_target=1)
     assert np.allclose(out[0], 1) and np.allclose(out[2], 1) and not out[1].any()
-    with pytest.raises(ikaros.ModelError, match="no pixel"):
-        run(tmp_path, "WhiteBalance", {"INPUT": image})   # Ikaros 2's defaults: empty
+    with run(tmp_path, "WhiteBalance", {"INPUT": image}) as net:   # Ikaros 2's defaults:
+        assert np.isnan(net.output("M.OUTPUT")).all()             # an empty region
+        assert any("has no pixel" in m for *_, m in net.log)
 
 
-def test_white_balance_in_an_ikaros3_file_has_ikaros3_defaults(tmp_path, monkeypatch):
-    monkeypatch.setattr(Module, "dialect", property(lambda self: "3", lambda self, v: None))
-    out, = outputs(tmp_path, "WhiteBalance", {"INPUT": COLOUR}, "OUTPUT", x1=3)
+def test_white_balance_logs_the_colour_of_its_log_region(tmp_path, capsys):
+    planes = {f"INPUT{i}": COLOUR[i] for i in range(3)}
+    with run(tmp_path, "WhiteBalance", planes, x0=0, x1=2, y0=0, y1=2, red_target=1,
+             green_target=1, blue_target=1, log_x0=1, log_x1=3, log_y0=2,
+             log_y1=4) as net:
+        out = net.output("M.OUTPUT")
+    before = COLOUR[:, 2:4, 1:3].mean(axis=(1, 2))
+    after = out[:, 2:4, 1:3].mean(axis=(1, 2))
+    text = capsys.readouterr().out
+    assert "log region RGB " + " ".join(f"{v:.6g}" for v in before) in text
+    assert " ".join(f"{v:.6g}" for v in after) in text
+
+
+def test_white_balance_in_an_ikaros3_file_has_ikaros3_defaults(tmp_path):
+    body = (f'<module class="Constant" name="C" data="{literal(COLOUR)}"/>'
+            '<module class="WhiteBalance" name="M" x1="3"/>'
+            '<connection source="C.OUTPUT" target="M.INPUT" delay="0"/>')
+    with load_body(tmp_path, body, dialect=3) as net:
+        net.step()
+        out = net.output("M.OUTPUT")
     # targets 1, region row 0 (y0 = 0, y1 = 1), columns 0..2 (x0 = 0 by default, x1 set)
     means = COLOUR[:, 0:1, 0:3].mean(axis=(1, 2))[:, None, None]
     assert np.allclose(out, COLOUR / means, rtol=1e-5)

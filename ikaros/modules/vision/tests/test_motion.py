@@ -13,18 +13,26 @@ cv2 = pytest.importorskip("cv2")
 def test_change_detector_gives_the_absolute_difference_inside_the_border(tmp_path):
     rng = np.random.default_rng(1)
     frames = rng.random((3, 10, 12)).astype(np.float32)
-    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M" border="2"/>',
-                       "OUTPUT")
+    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M" border="2" '
+                       'difference="exact"/>', "OUTPUT")
     assert out[0][0].shape == (6, 8)
-    assert np.array_equal(out[0][0], np.zeros((6, 8)))
+    assert np.array_equal(out[0][0], frames[0][2:-2, 2:-2])   # the previous image is 0
     for k in (1, 2):
         assert np.allclose(out[k][0], np.abs(frames[k] - frames[k - 1])[2:-2, 2:-2], atol=0)
+
+
+def test_change_detector_truncates_the_difference_as_ikaros2(tmp_path):
+    frames = np.array([[[0.5, -1.0, 2.7, 0.25]], [[1.75, -1.0, 0.5, -3.5]]], np.float32)
+    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M"/>', "OUTPUT")
+    assert np.array_equal(out[0][0], [[0, 1, 2, 0]])          # the golden files' first tick
+    assert np.array_equal(out[1][0], [[1, 0, 2, 3]])          # 1.25, 0, 2.2, 3.75
 
 
 def test_change_detector_on_colour(tmp_path):
     frames = np.zeros((2, 3, 4, 5), np.float32)
     frames[1, 1, 2, 3] = 0.75
-    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M"/>', "OUTPUT")
+    out = run_sequence(tmp_path, frames, '<module class="ChangeDetector" name="M" '
+                       'difference="exact"/>', "OUTPUT")
     assert out[1][0].shape == (3, 4, 5) and out[1][0].sum() == 0.75 and out[1][0][1, 2, 3] == 0.75
 
 
@@ -142,3 +150,56 @@ def test_direction_detector_crop_ignores_long_vectors(tmp_path):
     points = np.array([[10, 10], [30, 10]])
     out = direction(tmp_path, flow_table(points, [[1, 0], [40, 0]]), crop=10)
     assert np.allclose(out["MOTION-VECTOR"], [1, 0])
+
+
+def mixture(values, rate, variance, k, t, threshold):
+    """The mixture of one pixel, value by value, as StaufferGrimson's description says:
+    returns the foreground flags and the last weights, means and variances."""
+    w, m, v = [1.0] + [0.0] * (k - 1), [values[0]] + [0.0] * (k - 1), [variance] * k
+    flags = [0]
+    for x in values[1:]:
+        rank = [w[i] / v[i] ** 0.5 for i in range(k)]
+        matches = [i for i in range(k) if (x - m[i]) ** 2 <= threshold ** 2 * v[i]]
+        chosen = max(matches, key=lambda i: rank[i]) if matches else min(range(k),
+                                                                          key=lambda i: rank[i])
+        w = [(1 - rate) * wi for wi in w]
+        if matches:
+            m[chosen] += rate * (x - m[chosen])
+            v[chosen] += rate * ((x - m[chosen]) ** 2 - v[chosen])
+        else:
+            m[chosen], v[chosen] = x, variance
+        w[chosen] += rate
+        w = [wi / sum(w) for wi in w]
+        order = sorted(range(k), key=lambda i: -w[i] / v[i] ** 0.5)
+        background, total = set(), 0.0
+        for i in order:
+            if total > t:
+                break
+            background.add(i)
+            total += w[i]
+        flags.append(0 if matches and chosen in background else 1)
+    return flags, w, m, v
+
+
+def test_stauffer_grimson_with_ikaros3_parameters_and_model_outputs(tmp_path):
+    """An Ikaros 3 file: learning_rate, max_gaussians and initial_variance (images of
+    0..255), and the WEIGHTS, MEANS and VARIANCES of each pixel."""
+    rng = np.random.default_rng(6)
+    frames = (rng.normal(100, 4, (12, 2, 3)) + np.arange(12)[:, None, None] * 3).astype(
+        np.float32)
+    frames[6:9, 1, 2] = 220                            # something passes pixel (1, 2)
+    body = ('<module class="StaufferGrimson" name="M" learning_rate="0.05" max_gaussians="3" '
+            'initial_variance="64"/>')
+    names = ("OUTPUT", "WEIGHTS", "MEANS", "VARIANCES")
+    out = run_sequence(tmp_path, frames, body, *names, dialect=3)
+    for r in range(2):
+        for c in range(3):
+            flags, w, m, v = mixture(frames[:, r, c].astype(np.float64), 0.05, 64.0, 3, 0.8,
+                                     2.5)
+            assert [o[0][r, c] for o in out] == flags, (r, c)
+            last = out[-1]
+            assert last[1].shape == (2, 3, 3)
+            assert np.allclose(last[1][r, c], w, atol=1e-5)
+            assert np.allclose(last[2][r, c], m, rtol=1e-5)
+            assert np.allclose(last[3][r, c], v, rtol=1e-4)
+    assert [o[0][1, 2] for o in out][6:9] == [1, 1, 1]

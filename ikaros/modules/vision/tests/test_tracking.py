@@ -20,12 +20,15 @@ def disc_map(rows, cols, discs):
 
 
 def centre(x, y, rows, cols):
-    return [(x + 0.5) / cols, (y + 0.5) / rows]
+    """The position SpatialClustering gives the pixel (x, y): column / cols and row / rows,
+    as Ikaros 2's golden outputs (column 3 of 4 is 0.75)."""
+    return [x / cols, y / rows]
 
 
 def raster_clusters(image, threshold, radius, limit):
-    """The issue's clustering, written out: pixels above threshold in raster order join the
-    nearest cluster whose running centroid is within ``radius`` pixels, or start one."""
+    """The clustering, written out: pixels above threshold in raster order join the nearest
+    cluster whose running centroid is within ``radius`` pixels, or start one; when there are
+    ``limit`` clusters already, the last one starts anew (Ikaros 2's golden outputs)."""
     clusters = []                                     # lists of (col, row)
     for r in range(image.shape[0]):
         for c in range(image.shape[1]):
@@ -38,13 +41,15 @@ def raster_clusters(image, threshold, radius, limit):
                 clusters[min(near)[1]].append((c, r))
             elif len(clusters) < limit:
                 clusters.append([(c, r)])
+            else:
+                clusters[-1] = [(c, r)]
     return clusters
 
 
 def test_clusters_by_raster_order_and_area_of_the_image(tmp_path):
     image = disc_map(60, 80, [(15, 20, 6, 1.0), (60, 40, 4, 1.0), (40, 10, 1, 0.5)])
     with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters="3",
-             cluster_radius="0.1", min_cluster_area="0.005") as net:
+             cluster_radius="0.1", min_cluster_area="0.005", positions="current") as net:
         out, conf = net.output("M.OUTPUT"), net.output("M.CONFIDENCE")
     # r = 0.1 * 80 = 8 pixels; kept when more than 0.005 * 4800 = 24 pixels
     clusters = raster_clusters(image, 0.1, 8.0, 3)
@@ -52,7 +57,7 @@ def test_clusters_by_raster_order_and_area_of_the_image(tmp_path):
     assert out.shape == (3, 2) and conf.shape == (3,)
     for row, k in zip(out, clusters[1:]):
         c, r = np.mean(k, axis=0)
-        assert np.allclose(row, [(c + 0.5) / 80, (r + 0.5) / 60], atol=1e-6)
+        assert np.allclose(row, [c / 80, r / 60], atol=1e-6)
     assert np.allclose(out[0], centre(15, 20, 60, 80), atol=1e-6)   # the disc's centre
     area = 2 * np.pi * 8 ** 2
     assert np.allclose(conf, [113 / area, 49 / area, 0], atol=1e-6)
@@ -67,21 +72,22 @@ def test_running_centroid_and_capped_confidence(tmp_path):
     image[1, 0:5] = 1
     image[1, 8] = 1
     with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters="3",
-             cluster_radius="0.2", min_cluster_area="0") as net:
+             cluster_radius="0.2", min_cluster_area="0", positions="current") as net:
         out, conf = net.output("M.OUTPUT"), net.output("M.CONFIDENCE")
-    assert np.allclose(out, [[2 / 10, 0.5], [4.5 / 10, 0.5], [8.5 / 10, 0.5]], atol=1e-6)
+    assert np.allclose(out, [[1.5 / 10, 1 / 3], [4 / 10, 1 / 3], [8 / 10, 1 / 3]], atol=1e-6)
     assert np.allclose(conf, np.array([4, 1, 1]) / (2 * np.pi * 4), atol=1e-6)
     with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters="3",
-             cluster_radius="0", min_cluster_area="0") as net:   # 1 / 0 pixels: capped
+             cluster_radius="0", min_cluster_area="0", positions="current") as net:
+        # 1 / 0 pixels: capped; the fourth and later isolated pixels restart the last
         assert np.array_equal(net.output("M.CONFIDENCE"), [1, 1, 1])
-        assert np.allclose(net.output("M.OUTPUT")[:, 0], [0.05, 0.15, 0.25])
+        assert np.allclose(net.output("M.OUTPUT")[:, 0], [0.0, 0.1, 0.8])
 
 
 def test_threshold_is_strict(tmp_path):
     image = disc_map(40, 40, [(20, 20, 5, 0.1)])
     image[10, 30] = 1.0
     with run(tmp_path, "SpatialClustering", {"INPUT": image}, threshold="0.1",
-             min_cluster_area="0") as net:
+             min_cluster_area="0", positions="current") as net:
         assert np.allclose(net.output("M.OUTPUT")[0], centre(30, 10, 40, 40))
 
 
@@ -101,7 +107,7 @@ def test_clusters_keep_their_rows_while_they_move(tmp_path):
                                          (80 - 15 * k, 35, 5, 1.0)]))
     out = run_sequence(tmp_path, np.array(frames), '<module class="SpatialClustering" '
                        'name="M" no_of_clusters="2" cluster_radius="0.08" '
-                       'min_cluster_area="0.005"/>', "OUTPUT")
+                       'min_cluster_area="0.005" positions="current"/>', "OUTPUT")
     first = out[0][0]
     a_row = int(np.argmin(first[:, 0]))
     for k, (positions,) in enumerate(out):
@@ -112,22 +118,30 @@ def test_clusters_keep_their_rows_while_they_move(tmp_path):
 def test_sorting_orders_by_confidence(tmp_path):
     image = disc_map(40, 80, [(10, 20, 3, 1.0), (60, 20, 6, 1.0)])
     with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters="2",
-             sorting="yes", min_cluster_area="0.001") as net:
+             sorting="yes", min_cluster_area="0.001", positions="current") as net:
         assert np.allclose(net.output("M.OUTPUT"), [centre(60, 20, 40, 80),
                                                    centre(10, 20, 40, 80)], atol=1e-6)
 
 
-def test_synthetic_camera_discs_are_found(tmp_path):
+def test_synthetic_camera_discs_are_found_a_tick_late_as_ikaros2(tmp_path):
     net = load_body(tmp_path, '''
         <module class="SyntheticCamera" name="C" blobs="1" size_x="320" size_y="240"/>
         <module class="SpatialClustering" name="S" threshold="0.8" cluster_radius="0.05"
                 min_cluster_area="0.001"/>
-        <connection source="C.RED" target="S.INPUT" delay="0"/>''')
+        <module class="SpatialClustering" name="Now" threshold="0.8" cluster_radius="0.05"
+                min_cluster_area="0.001" positions="current"/>
+        <connection source="C.RED" target="S.INPUT" delay="0"/>
+        <connection source="C.RED" target="Now.INPUT" delay="0"/>''')
     with net:
+        before = np.zeros(2)
         for _ in range(4):
             net.step()
-            assert np.allclose(net.output("S.OUTPUT")[0], net.output("C.POSITIONS")[0],
-                               atol=1e-6)
+            # the camera's positions are pixel centres; the clusters' pixel corners
+            truth = net.output("C.POSITIONS")[0] - 0.5 / np.array([320, 240])
+            assert np.allclose(net.output("Now.OUTPUT")[0], truth, atol=1e-6)
+            assert np.allclose(net.output("S.OUTPUT")[0], before, atol=1e-6)
+            assert net.output("S.CONFIDENCE")[0] == net.output("Now.CONFIDENCE")[0] > 0
+            before = truth
 
 
 CALIBRATION = "640 480 320 240 600 600 0 0 0 0"
@@ -261,7 +275,7 @@ def test_dtracker_starts_at_a_box_input(tmp_path):
 def test_a_large_cluster_radius_counts_in_floats(tmp_path):
     image = disc_map(60, 600, [(300, 30, 20, 1.0)])          # radius 0.5: a 601-pixel square
     with run(tmp_path, "SpatialClustering", {"INPUT": image}, cluster_radius="0.5",
-             min_cluster_area="0.01") as net:
+             min_cluster_area="0.01", positions="current") as net:
         assert np.allclose(net.output("M.OUTPUT")[0], centre(300, 30, 60, 600), atol=1e-6)
 
 
