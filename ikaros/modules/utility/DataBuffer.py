@@ -1,8 +1,6 @@
 """DataBuffer: a matrix of past inputs."""
 import math
 
-import numpy as np
-
 from ikaros.module import Input, Module, Output, Parameter
 
 from ._crand import CRand

@@ -62,7 +62,7 @@ class MatrixMultiply(Module):
     def tick(self):
         a, b = self.INPUT1, self.INPUT2
         if self._trans and a.ndim == b.ndim == 2 and self.trans_2_result == "original":
-            (m, k), n = a.shape, b.shape[0]
+            k, n = a.shape[1], b.shape[0]
             product = np.matmul(a, b.reshape(k, n))         # B's values in K rows of N
             self.OUTPUT.reshape(-1)[...] = product.T.reshape(-1)   # written column by column
             return
