@@ -293,9 +293,11 @@ class InputPart:
 class Clock:
     """The kernel's clock as modules see it: read ``tick`` and ``time`` inside ``tick()``.
     ``lag`` is how many seconds late the tick started in real-time mode (its deadline is
-    ``tick * tick_duration`` after the time base started); 0 in the other modes."""
+    ``tick * tick_duration`` after the time base started); 0 in the other modes. ``run``
+    is what the kernel tells about the run (its mode, stop tick, module and class counts,
+    the last tick's compute time: see System), or None outside a network."""
     # (__weakref__: a standard module may keep per-network state keyed by the shared clock)
-    __slots__ = ("tick", "tick_duration", "time", "real_time", "lag", "__weakref__")
+    __slots__ = ("tick", "tick_duration", "time", "real_time", "lag", "run", "__weakref__")
 
     def __init__(self, tick_duration: float = 0.0):
         self.tick = -1                  # first tick 0 (Ikaros 3 file: 1); one less in init
@@ -303,6 +305,7 @@ class Clock:
         self.time = 0.0                 # nominal time: tick * tick_duration
         self.real_time = 0.0            # seconds since the run started
         self.lag = 0.0                  # seconds behind the real-time deadline
+        self.run = None                 # the kernel's RunFacts
 
 
 # Names the module API uses: a Python class may not give them to a parameter or port; one

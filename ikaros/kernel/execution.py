@@ -88,7 +88,7 @@ class AsyncModule:
         self.take_inputs()
         clock, mine = self.shared_clock, self.module.clock
         mine.tick, mine.time, mine.real_time = clock.tick, clock.time, clock.real_time
-        mine.lag = clock.lag
+        mine.lag, mine.run = clock.lag, clock.run
         self.future = self.executor.submit(self.module.tick)
 
     def apply(self, change) -> None:

@@ -37,6 +37,7 @@ from .limits import check_memory as _check_memory
 from .ranges import check_parameter, fit_shape
 from .taps import OutputTap
 from .threadpools import ThreadPools, parse_setting as parse_threadpool_setting
+from .runfacts import RunFacts
 from .timing import Timing
 from .watchdog import Watchdog, task_timeout
 from .scope import VariableError, from_python
@@ -100,6 +101,7 @@ class Network:
         self._stopped = False
         self._buffers = builder.buffers
         self.modules = {inst.path: inst for inst in order}
+        self.clock.run = RunFacts(self)
         # Observers of the run (recordings): each must be quick and must not raise.
         self.parameter_hooks: list = []    # hook(path, value) after set_parameter
         self.close_hooks: list = []        # hook() when close() is called

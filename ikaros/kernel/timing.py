@@ -68,6 +68,7 @@ class Timing:
         self.lag_count = 0
         self.idle = 0.0
         self.busy = 0.0
+        self.last_spent = 0.0           # seconds the last tick took
         self.resyncs = 0
         self._cpu_sample = (now, time.process_time())
         self._sampled = False
@@ -87,6 +88,7 @@ class Timing:
     def tick_done(self, spent: float) -> None:
         self.ticks += 1
         self.busy += spent
+        self.last_spent = spent
 
     def figures(self) -> dict:
         """The figures now (CPU usage is measured since the previous call)."""

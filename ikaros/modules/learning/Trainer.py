@@ -2,7 +2,7 @@
 import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
-from ikaros.modules.neural._crand import random_rows
+from .._crand import random_rows
 
 
 class Trainer(Module):

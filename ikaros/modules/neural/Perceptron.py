@@ -5,7 +5,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from ._crand import network_rand, numpy_generator, uses_crand
+from .._crand import network_rand, numpy_generator, uses_crand
 
 _ZERO_ONE = ("step", "sigmoid")          # activations whose targets are 0/1 (the others -1/1)
 

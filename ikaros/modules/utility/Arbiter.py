@@ -16,9 +16,11 @@ class Arbiter(Module):
     (subsumption), else INPUT_1. The arbitration state is smoothed over time, SMOOTHED <-
     (1-a) SMOOTHED + a ARBITRATION with a = 1/switch_time when switch_time is set and
     ``alpha`` otherwise (a = 1: no smoothing), then divided by the sum of its absolute values
-    to give NORMALIZED, the weights of the convex combination of the inputs on OUTPUT. VALUE
-    is the sum of the absolute values of SMOOTHED, which without smoothing is the winner's
-    amplitude. With ``by_row`` every row of the inputs is arbitrated on its own, as if there
+    to give NORMALIZED, the weights of the convex combination of the inputs on OUTPUT.
+    Ikaros 2 declares the output VALUE but never writes it: it is 0 (golden files), and so
+    it is here; ``value_output="strength"`` (this project's) makes it the sum of the
+    absolute values of SMOOTHED, which without smoothing is the winner's amplitude. With
+    ``by_row`` every row of the inputs is arbitrated on its own, as if there
     were one arbiter per row: the state outputs get one row per input row and VALUE_k gives
     one value per row (a single value is used for every row).
 
@@ -49,6 +51,9 @@ class Arbiter(Module):
                             "1/switch_time); 0 uses alpha", type="int")
     alpha = Parameter(1.0, "the smoothing constant: the weight of the new arbitration state; "
                       "1 means no smoothing")
+    value_output = Parameter("zero", "Ikaros 2 file: what the VALUE output holds: zero (the "
+                             "original never writes it) or strength (the sum of the absolute "
+                             "smoothed state)", options="zero/strength")
     debug = Parameter(False, "print the state on every tick")
     stack_inputs = Parameter(True, "Ikaros 3: each connection to INPUT is one candidate "
                              "(always so here)")
@@ -69,8 +74,8 @@ class Arbiter(Module):
                            description="one value per candidate; without it the "
                            "candidates' norms are used")
             return
-        self.add_output("VALUE", description="the strength of the output: the sum of the "
-                        "absolute smoothed state")
+        self.add_output("VALUE", description="0, as in Ikaros 2; with value_output=strength "
+                        "the sum of the absolute smoothed state")
         if self.no_of_inputs < 1:
             raise ValueError(f"no_of_inputs must be at least 1, not {self.no_of_inputs}")
         for k in range(1, self.no_of_inputs + 1):
@@ -216,7 +221,7 @@ class Arbiter(Module):
         self._norm[empty[:, 0]] = 0
         np.einsum("rk,krc->rc", self._norm, self._x, out=self._out)
         if not self._v3:
-            self.VALUE[...] = total[:, 0]
+            self.VALUE[...] = total[:, 0] if self.value_output == "strength" else 0
         if self.debug:
             self.print(f"amplitudes {self.AMPLITUDES.tolist()} normalized "
                        f"{self.NORMALIZED.tolist()} output {self.OUTPUT.tolist()}")

@@ -10,10 +10,10 @@ class FanOut(Module):
     one position inside every cell. Positions are numbered row by row inside the cell, so
     OUTPUTk holds INPUT[r::cell_size_y, c::cell_size_x] with k - 1 = r * cell_size_x + c;
     each output has rows/cell_size_y rows and cols/cell_size_x columns (partial cells at
-    the right and bottom edges are left out). A 1-D input is one row. Unlike Ikaros 2, which
-    wrote past its outputs when ``outputs`` was smaller than the number of cell positions,
-    only the first ``outputs`` positions are used, and outputs beyond the number of positions
-    stay 0 (a warning says so)."""
+    the right and bottom edges are left out). A 1-D input is one row. Only the first ``outputs``
+    positions are used, and outputs beyond the number of positions stay 0 (a warning says
+    so); what Ikaros 2 does when ``outputs`` differs from the number of positions no
+    reference or golden file gives, so this is this project's reading."""
 
     outputs = Parameter(1, "number of outputs, OUTPUT1 .. OUTPUTn; normally cell_size_x * "
                         "cell_size_y", type="int")

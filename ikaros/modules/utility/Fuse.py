@@ -16,8 +16,9 @@ class Fuse(Module):
     decomposition, keeping the determinant +1). The fused entries are written to the first
     rows of MATRIX, OBJECT_ID and FRAME_ID, sorted by object id and then frame id; the
     remaining rows are 0 (and so invalid). The outputs have as many rows as all streams
-    together. Ikaros 2 sorted by object id alone, so the same pair could come out on several
-    rows; here each pair comes out once."""
+    together. The reference says only that the original combines the entries with the same
+    object and frame ids (no golden file holds Fuse): the averaging, the nearest rotation
+    and the order of the rows are this project's reading."""
 
     no_of_inputs = Parameter(2, "number of streams: inputs MATRIX_k, OBJECT_ID_k and "
                              "FRAME_ID_k for k = 1 .. no_of_inputs", type="int")

@@ -5,14 +5,16 @@ from ikaros.module import Input, Module, Output, Parameter
 
 
 class Histogram(Module):
-    """Counts the values of INPUT into ``size`` equal bins over ``min`` .. ``max`` and adds the
-    counts up over the ticks: OUTPUT[k] is the number of values seen so far in bin k, which
-    holds min + k * w <= x < min + (k + 1) * w with w = (max - min) / size, and the last bin
-    also holds x = max. Values outside min .. max are ignored when ``ignore_outliers`` is
-    set, and otherwise counted in the first or last bin; NaN values are never counted. When
-    TRIG is connected, values are counted only on ticks where its first element is above 0.
-    Every element of INPUT is counted (Ikaros 2 counted only the first one, and put values
-    just below min in the first bin). With max equal to min nothing is counted and a warning
+    """Counts the first element of INPUT into ``size`` equal bins over ``min`` .. ``max`` and
+    adds the counts up over the ticks, never clearing them, as Ikaros 2 does (golden files):
+    OUTPUT[k] is the number of values seen so far in bin k, which holds min + k * w <= x <
+    min + (k + 1) * w with w = (max - min) / size. ``elements="all"`` (this project's)
+    counts every element of INPUT instead. Values outside min .. max are ignored when
+    ``ignore_outliers`` is set, and otherwise counted in the first or last bin; NaN values
+    are never counted. When TRIG is connected, values are counted only on ticks where its
+    first element is above 0. The golden files settle the bins inside min .. max; at the
+    edges this is this project's reading: a value equal to max goes in the last bin, one
+    just below min is an outlier. With max equal to min nothing is counted and a warning
     is given once. The command ``reset`` sets all counts to 0."""
 
     size = Parameter(15, "number of bins", type="int", range=(1, None))
@@ -20,7 +22,10 @@ class Histogram(Module):
     max = Parameter(1.0, "the upper end of the last bin")
     ignore_outliers = Parameter(True, "ignore values outside min .. max; otherwise count them "
                                 "in the first or last bin")
-    INPUT = Input("the values to count; every element is counted")
+    elements = Parameter("first", "which elements of INPUT are counted: first (Ikaros 2) or "
+                         "all (this project's)", options="first/all")
+    INPUT = Input("the values to count: its first element (or every element, with "
+                  "elements=all)")
     TRIG = Input("when connected, values are counted only while its first element is above 0",
                  optional=True)
     OUTPUT = Output("the count of each bin", size_param="size")
@@ -43,6 +48,8 @@ class Histogram(Module):
                 self.warning("max equals min: nothing is counted")
             return
         x = self.INPUT.reshape(-1).astype(np.float64)
+        if self.elements == "first":
+            x = x[:1]
         x = x[~np.isnan(x)]
         position = (x - low) / (high - low) * n
         index = np.floor(position)

@@ -10,8 +10,10 @@ class InitialValue(Module):
     tick where UPDATE is on (its first element is 1 or more; always, when UPDATE is not
     connected), INPUT is added to the output (mode ``accumulate``) or copied to it (mode
     ``copy``). The output has ``outputsize`` elements, or as many as ``data`` when
-    outputsize is not given; ``data`` fills it in order and missing values are 0. INPUT must
-    have as many elements as the output."""
+    outputsize is not given; ``data`` fills it in order and missing values are 0. An INPUT
+    with more elements than the output is used for its first elements only, as Ikaros 2
+    does (golden files), with a warning; one with fewer is an error (Ikaros 2 would read
+    past its end)."""
 
     outputsize = Parameter(None, "number of elements of the output; unset: the number of "
                            "values in data", type="int")
@@ -27,11 +29,15 @@ class InitialValue(Module):
     OUTPUT = Output("the stock", size_param="outputsize", shape="data.size")
 
     def init(self):
-        if self.INPUT.size != self.OUTPUT.size:
-            self.fatal_error(f"INPUT has {self.INPUT.size} elements but the output has "
-                             f"{self.OUTPUT.size}; they must be the same")
+        n = self.OUTPUT.size
+        if self.INPUT.size < n:
+            self.fatal_error(f"INPUT has {self.INPUT.size} elements but the output has {n}; "
+                             f"it needs at least as many")
             return
-        self._input = self.INPUT.reshape(self.OUTPUT.shape)
+        if self.INPUT.size > n:
+            self.warning(f"INPUT has {self.INPUT.size} elements and the output {n}: only "
+                         f"the first {n} are used, as in Ikaros 2")
+        self._input = self.INPUT.reshape(-1)[:n].reshape(self.OUTPUT.shape)
         self._wait = self.wait
         self._write_data()
 

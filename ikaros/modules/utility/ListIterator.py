@@ -10,9 +10,12 @@ class ListIterator(Module):
     list is INPUT when that is connected (read anew at each step, so it may change), and
     otherwise ``listdata``. A list of several rows is stepped row by row and OUTPUT has one
     row's elements; a single row is stepped element by element and OUTPUT has one element.
-    SYNC_OUT is 1 on the ticks where the first entry is output, the start of each pass, and 0
-    otherwise (Ikaros 2 also pulsed it once after a last pass that does not repeat). After the last entry the list starts over when ``repeat`` is set; otherwise the
-    output keeps the last entry. OUTPUT is 0 until the first step."""
+    SYNC_OUT is 1 on the first tick (whatever SYNC_IN is), and on the tick after a step
+    that output the last entry (when a repeating list starts again, the tick that outputs
+    the first entry), unless that step also output the first entry (a list of one entry);
+    0 otherwise. This is Ikaros 2's SYNC_OUT as the golden files show it. After the last
+    entry the list starts over when ``repeat`` is set; otherwise the output keeps the last
+    entry and further steps do nothing. OUTPUT is 0 until the first step."""
 
     repeat = Parameter(False, "start over after the last entry")
     listdata = Parameter("0", "the list, when INPUT is not connected: one entry per row, or "
@@ -21,7 +24,8 @@ class ListIterator(Module):
     INPUT = Input("a list to step through instead of listdata", optional=True)
     SYNC_IN = Input("steps to the next entry when its first element is not 0; unconnected: "
                     "every tick", optional=True)
-    SYNC_OUT = Output("1 when the first entry is output, otherwise 0", size="1")
+    SYNC_OUT = Output("1 on the first tick and on the tick after a pass ends, otherwise 0",
+                      size="1")
     OUTPUT = Output("the current entry")
 
     def _list_shape(self):
@@ -44,6 +48,7 @@ class ListIterator(Module):
     def init(self):
         self._index = 0
         self._stopped = False
+        self._pulse = True          # SYNC_OUT of the next tick
         self.OUTPUT.fill(0)
         self.SYNC_OUT.fill(0)
 
@@ -57,7 +62,12 @@ class ListIterator(Module):
         return source.reshape(-1, 1)                              # one entry per element
 
     def tick(self):
-        self.SYNC_OUT[0] = 0
+        self.SYNC_OUT[0] = 1 if self._pulse else 0
+        before = self._index
+        self._step()
+        self._pulse = self._index == 0 and before != 0
+
+    def _step(self):
         step = self.SYNC_IN is None or self.SYNC_IN.flat[0] != 0
         if not step or self._stopped:
             return
@@ -68,8 +78,6 @@ class ListIterator(Module):
         if self._index >= len(entries):
             self._index = 0
         self.OUTPUT[...] = entries[self._index].reshape(self.OUTPUT.shape)
-        if self._index == 0:
-            self.SYNC_OUT[0] = 1
         if self.debug:
             self.print(f"index {self._index}: {np.array2string(self.OUTPUT)}")
         self._index += 1

@@ -3,7 +3,7 @@ import math
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from ._resample import centre_offsets, resample
+from ._resample import CENTRE_HELP, CENTRES, centre_offsets, resample
 
 
 class MatrixRotation(Module):
@@ -11,20 +11,23 @@ class MatrixRotation(Module):
     first element), in degrees or radians as ``angle_format`` says. A positive angle turns
     the content counterclockwise as seen with row 0 at the top (90 degrees is Flip's
     rotate-left for a square matrix). Each output element takes the input element nearest to
-    the point that the turn brings to it; elements that come from outside the input are 0.
-    The centre is the middle of the matrix, ((cols - 1) / 2, (rows - 1) / 2), so a half turn
-    maps the matrix exactly onto itself (Ikaros 2 used (cols / 2, rows / 2), which shifted
-    it by one element). Works on the last two axes, so a colour image (3, rows, cols) turns
-    as a whole; a 1-D input is one row."""
+    the point that the turn brings to it (rounded to the nearest element); elements that
+    come from outside the input are 0. The centre is (cols / 2, rows / 2), as in Ikaros 2
+    (golden files), which for an even size is half an element right of and below the
+    middle, so that a half turn shifts the matrix by one element; ``centre="middle"``
+    (this project's) turns about ((cols - 1) / 2, (rows - 1) / 2), so a half turn maps the
+    matrix exactly onto itself. Works on the last two axes, so a colour image (3, rows,
+    cols) turns as a whole; a 1-D input is one row."""
 
     angle_format = Parameter("deg", "the unit of ANGLE", options="deg/rad")
+    centre = Parameter("half", CENTRE_HELP, options=CENTRES)
     debug = Parameter(False, "print the angle on every tick")
     INPUT = Input("the matrix to turn")
     ANGLE = Input("the angle; its first element is used")
     OUTPUT = Output("the turned matrix", size_set="INPUT")
 
     def init(self):
-        self._cx, self._cy, self._dx, self._dy = centre_offsets(self.INPUT)
+        self._cx, self._cy, self._dx, self._dy = centre_offsets(self.INPUT, self.centre)
 
     def tick(self):
         angle = float(self.ANGLE.flat[0])

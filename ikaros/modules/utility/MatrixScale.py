@@ -3,7 +3,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from ._resample import centre_offsets, resample
+from ._resample import CENTRE_HELP, CENTRES, centre_offsets, resample
 
 
 class MatrixScale(Module):
@@ -12,12 +12,14 @@ class MatrixScale(Module):
     half of the input twice as large, 0.5 shrinks the whole input to half size in the
     middle. Each output element takes the input element nearest to the point that maps to
     it, the point centre + (offset from the centre) / factor; elements that come from
-    outside the input are 0, and a negative factor mirrors. The centre is ((cols - 1) / 2,
-    (rows - 1) / 2), so a factor of 1 (or -1) maps the matrix exactly onto itself (Ikaros 2
-    used (cols / 2, rows / 2)). A factor of 0 gives an output of 0 and a warning once.
+    outside the input are 0, and a negative factor mirrors. The centre is (cols / 2, rows /
+    2), as in Ikaros 2 (golden files); ``centre="middle"`` (this project's) scales about
+    ((cols - 1) / 2, (rows - 1) / 2), so that a factor of -1 maps the matrix exactly onto
+    itself. A factor of 0 gives an output of 0 and a warning once.
     Works on the last two axes, so a colour image (3, rows, cols) scales as a whole; a 1-D
     input is one row."""
 
+    centre = Parameter("half", CENTRE_HELP, options=CENTRES)
     debug = Parameter(False, "print the factors on every tick")
     INPUT = Input("the matrix to scale")
     X = Input("the horizontal factor; its first element is used")
@@ -25,7 +27,7 @@ class MatrixScale(Module):
     OUTPUT = Output("the scaled matrix", size_set="INPUT")
 
     def init(self):
-        self._cx, self._cy, self._dx, self._dy = centre_offsets(self.INPUT)
+        self._cx, self._cy, self._dx, self._dy = centre_offsets(self.INPUT, self.centre)
         self._warned = False
 
     def tick(self):

@@ -8,17 +8,23 @@ class Maxima(Module):
     """Marks the local maxima of the input with 1 in OUTPUT (0 elsewhere) and lists them in
     POINTS. An element is a local maximum when it is at least ``threshold`` and not smaller
     than any of its 8 neighbours; as in Ikaros 2, elements on the border of the matrix are
-    never maxima. A 1-D input is searched along its length (2 neighbours each; the first and
-    last elements are the border). Each row of POINTS is x, y, value, with x = (column + 0.5)
-    / columns and y = (row + 0.5) / rows, so both lie in 0..1; rows after the last listed
-    point are 0 and POINT_COUNT gives the number listed. At most ``max_points`` maxima are
-    listed: the first ones in row-major order, or, with ``sort_points``, the largest ones in
-    order of decreasing value (Ikaros 2 sorted the first ones in increasing order)."""
+    never maxima. A 1-D input is one row, all border, so it has no maxima, as in Ikaros 2
+    (golden files); ``vectors="along"`` (this project's) searches it along its length (2
+    neighbours each; the first and last elements are the border). Each row of POINTS is x,
+    y, value, with x = (column + 0.5) / columns and y = (row + 0.5) / rows, so both lie in
+    0..1; rows after the last listed point are 0 and POINT_COUNT gives the number listed.
+    At most ``max_points`` maxima are listed: the first ones in row-major order, or, with
+    ``sort_points``, the largest ones in order of decreasing value, those of equal value in
+    row-major order (the golden files show that order for equal values; for different
+    values the order is this project's reading)."""
 
     max_points = Parameter(10, "the largest number of maxima listed in POINTS", type="int")
     threshold = Parameter(0.0, "elements below this value are never maxima")
     sort_points = Parameter(False, "list the largest maxima, largest first, instead of the "
                             "first ones in row-major order")
+    vectors = Parameter("border", "a 1-D input: border (Ikaros 2: one row, all border, no "
+                        "maxima) or along (searched along its length)",
+                        options="border/along")
     INPUT = Input("the matrix to search")
     OUTPUT = Output("1 at each local maximum, 0 elsewhere", size_set="INPUT")
     POINTS = Output("one row x, y, value per listed maximum (x and y in 0..1)",
@@ -41,6 +47,9 @@ class Maxima(Module):
         marks = self._marks
         marks.fill(0)
         self.POINTS.fill(0)
+        if self._one_d and self.vectors == "border":
+            self.POINT_COUNT[0] = 0
+            return
         if self._one_d:
             if cols < 3:
                 self.POINT_COUNT[0] = 0

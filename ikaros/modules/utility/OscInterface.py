@@ -206,7 +206,8 @@ class OscInterface(Module):
     (printed with ``show_unhandled``). A port that cannot be opened is reported as an error
     and the run goes on without it. The sockets are closed when the run stops. (Ikaros 2
     spelled the address parameters ``inadresses`` and ``outadresses``; ``inaddresses`` and
-    ``outaddresses`` are accepted too. Its sending side was unfinished.)"""
+    ``outaddresses`` are accepted too. No golden file holds OscInterface: the message
+    handling is this project's reading of the reference.)"""
 
     outhost = Parameter("127.0.0.1", "the host messages are sent to")
     outport = Parameter(12001, "the UDP port messages are sent to", type="int")

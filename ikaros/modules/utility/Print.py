@@ -10,10 +10,10 @@ class Print(Module):
     formatted with ``format`` (printf style); the values of a row are separated by spaces and
     rows by ``;``; higher ranks are printed as their flattened rows.
 
-    INPUT is optional, as in Ikaros 3 (in Ikaros 2 it had to be connected): a Print whose
-    INPUT is not connected prints nothing. INPUT uses labels (Ikaros 3 ``use_label``): when
-    exactly one of its connections has a ``label``, the values are printed after it, as
-    ``signal = 7``."""
+    INPUT is optional, as in Ikaros 3 (Print is not in the reference's Ikaros 2 catalogue):
+    a Print whose INPUT is not connected prints nothing. INPUT uses labels (Ikaros 3
+    ``use_label``): when exactly one of its connections has a ``label``, the values are
+    printed after it, as ``signal = 7``."""
 
     format = Parameter("%.4g", "printf-style format of each value")
     interval = Parameter(1, "ticks between printouts", type="int")

@@ -16,19 +16,31 @@ class ReactionTimeStatistics(Module):
     first response) are updated. STOP is checked before START, so the same signal can go to
     both to time the intervals between events; the counter keeps running after a response,
     so several responses per trial are possible. STARTBALANCE is the number of starts minus
-    the number of responses. Reaction times and ``max_rt`` are in ticks. Responses before
-    the first start are ignored (Ikaros 2 timed them from an undefined origin), and outliers
-    go to RT-OUTLIER (Ikaros 2 added them to CHOICE-COUNT). The command ``reset`` clears the
-    statistics."""
+    the number of responses. Reaction times and ``max_rt`` are in ticks. The command
+    ``reset`` clears the statistics.
+
+    As Ikaros 2 computes it (golden files), the default: the reaction time of a response
+    before the first start counts from tick 0; an outlier is counted in CHOICE-COUNT a
+    second time instead of in RT-OUTLIER (which stays 0), so RT-MEAN, the sum of the
+    reaction times divided by CHOICE-COUNT, and CHOICE-PROBABILITY count it twice; and
+    RT-HISTOGRAM has one column per column of STOP (a matrix STOP's channels are its
+    elements in row-major order, and channel c's bin b is the element at b * columns + c
+    of the histogram, read row by row, left out past its end). ``counting="corrected"``
+    (this project's) ignores responses before the first start, counts outliers once, in
+    RT-OUTLIER, and gives RT-HISTOGRAM one column per channel."""
 
     bins = Parameter(40, "number of bins of the reaction-time histogram", type="int",
                      range=(1, None))
     max_rt = Parameter(1.0, "the reaction time, in ticks, at the upper end of the last bin")
+    counting = Parameter("original", "original: as Ikaros 2 (outliers counted twice in "
+                         "CHOICE-COUNT, times from tick 0 before the first start); corrected: "
+                         "outliers in RT-OUTLIER, responses before the first start ignored",
+                         options="original/corrected", fixed=True)
     START = Input("a trial starts when any element is above 0")
     STOP = Input("one element per response channel; a response is recorded for the channel "
                  "that is above 0 (the largest one)")
-    RT_HISTOGRAM = Output("reaction-time histogram: one row per bin, one column per channel",
-                          name="RT-HISTOGRAM", shape="@bins, STOP.size")
+    RT_HISTOGRAM = Output("reaction-time histogram: one row per bin, one column per channel "
+                          "(original: per column of STOP)", name="RT-HISTOGRAM")
     RT_OUTLIER = Output("per channel, the number of reaction times outside the histogram",
                         name="RT-OUTLIER", size_set="STOP")
     RT_MEAN = Output("per channel, the mean reaction time in ticks", name="RT-MEAN",
@@ -40,7 +52,16 @@ class ReactionTimeStatistics(Module):
     STARTBALANCE = Output("starts minus responses", size="1")
     REACTIONTIME = Output("the reaction time of the latest response, in ticks", size="1")
 
+    def set_sizes(self):
+        shape = self.input_shape("STOP")
+        if shape is None:
+            return
+        columns = shape[-1] if self.counting == "original" and shape else int(np.prod(shape))
+        self.set_output_shape("RT-HISTOGRAM", (self.bins, columns))
+
     def init(self):
+        self._original = self.counting == "original"
+        self._histogram = self.RT_HISTOGRAM.reshape(-1)
         self._stop = self.STOP.reshape(-1)
         self._outlier = self.RT_OUTLIER.reshape(-1)
         self._mean = self.RT_MEAN.reshape(-1)
@@ -48,7 +69,7 @@ class ReactionTimeStatistics(Module):
         self._prob = self.CHOICE_PROBABILITY.reshape(-1)
         self._sum = np.zeros(self._stop.size, dtype=np.float64)
         self._rt = 0
-        self._started = False
+        self._started = self._original         # Ikaros 2 times from tick 0
         self._balance = 0
         self._warned = False
         self._clear()
@@ -73,7 +94,11 @@ class ReactionTimeStatistics(Module):
                     self._warned = True
                     self.warning("max_rt must be above 0; every reaction time is an outlier")
             if 0 <= b < bins:
-                self.RT_HISTOGRAM[b, c] += 1
+                at = b * self.RT_HISTOGRAM.shape[1] + c
+                if at < self._histogram.size:
+                    self._histogram[at] += 1
+            elif self._original:
+                self._count[c] += 1                 # Ikaros 2 counts an outlier twice
             else:
                 self._outlier[c] += 1
             self._count[c] += 1

@@ -7,6 +7,8 @@ from numpy.polynomial import Polynomial
 
 from ikaros.module import Input, Module, Output, Parameter
 
+from ._regression3 import COMPARED, SeriesWindows, linear_regression, model_comparison
+
 # name: (number of coefficients, whether x must be > 0, whether y must be > 0)
 MODELS = {"linear": (2, False, False), "quadratic": (3, False, False),
           "logarithmic": (2, True, False), "exponential": (2, False, True),
@@ -64,10 +66,25 @@ class RegressionStatistics(Module):
     ``capacity`` is fixed while the model runs. The command ``reset`` empties the window
     and MASKED. The fits use NumPy in double precision on a scaled x, so data of a small
     or large scale (1e-9, 1e6) fit as well; they are made on ticks that add pairs, at
-    about 0.15 ms per model for a window of 100 to 1000 pairs. Ikaros 3 has a class of this name whose interface its
-    reference does not describe: these parameter, input and output names are this
-    project's own, so an Ikaros 3 model that uses RegressionStatistics may need its
-    attributes and connections renamed."""
+    about 0.15 ms per model for a window of 100 to 1000 pairs.
+
+    Ikaros 3's interface (today's) is accepted too; the reference gives its names, not its
+    computation, so what follows is this project's reading of them. Y is Ikaros 3's name
+    for the observed values: when Y is connected it is the data (one series per element,
+    X one value for all or one per series) and SAMPLE, optional, says when to add pairs
+    (on ticks when any element is above 0; every tick when unconnected); COLLECT still
+    works. Each series keeps its latest ``max_samples`` finite pairs: SCATTER_X and
+    SCATTER_Y hold them, one column per series, oldest first (rows after SAMPLE_COUNT's
+    count are 0). LINEAR_REGRESSION has one column per series with the six results of a
+    least-squares line: slope, intercept, Pearson's r, the two-sided p-value of the slope
+    (Student's t, n - 2 degrees of freedom), and the standard errors of the slope and the
+    intercept (NaN where they do not exist). MODEL_COMPARISON fits every series' pairs
+    together with the models constant, linear, quadratic, cubic, logarithmic,
+    exponential and power (its rows) and gives R² and AIC (n ln(SSres / n) + 2 p; its
+    columns), NaN where a model cannot be fitted. ``labels`` names the series (comma
+    separated) for the web UI. The command ``reset`` empties these windows too. Without
+    Y, SAMPLE is the data (this project's interface) and the Ikaros 3 outputs are computed
+    from it in the same way."""
 
     capacity = Parameter(100, "the number of latest pairs the models are fitted to",
                          type="int", range=(1, None), fixed=True)
@@ -75,8 +92,18 @@ class RegressionStatistics(Module):
                        "the models to fit, in the order of the rows of the outputs "
                        "(comma-separated: linear, quadratic, logarithmic, exponential, "
                        "power)", fixed=True)
-    X = Input("the explanatory values: one for every sample, or one value shared by all")
-    SAMPLE = Input("the observed values: one pair with X per element")
+    max_samples = Parameter(1024, "Ikaros 3: the number of latest pairs of each series kept "
+                            "for SCATTER_X, SCATTER_Y, LINEAR_REGRESSION and "
+                            "MODEL_COMPARISON", type="int", range=(1, None), fixed=True)
+    labels = Parameter("", "Ikaros 3: the names of the series, comma separated (for the "
+                       "web UI)")
+    X = Input("the explanatory values: one for every sample, or one value shared by all",
+              flatten=True)
+    Y = Input("Ikaros 3: the observed values, one series per element; when connected, "
+              "SAMPLE says when to add pairs", flatten=True, optional=True)
+    SAMPLE = Input("the observed values (without Y), one pair with X per element; with Y "
+                   "(Ikaros 3): pairs are added on ticks when any element is above 0",
+                   optional=True)
     COLLECT = Input("pairs are added on ticks when any element is above 0 (every tick "
                     "when unconnected)", optional=True)
     COEFFICIENTS = Output("a, b, c of each model: one row per model")
@@ -89,6 +116,14 @@ class RegressionStatistics(Module):
     COUNT = Output("the number of pairs in the window", size="1")
     MASKED = Output("the number of pairs not used because a value was nan or infinite",
                     size="1")
+    SCATTER_X = Output("Ikaros 3: the x of each series' latest pairs, one column per series")
+    SCATTER_Y = Output("Ikaros 3: the y of each series' latest pairs, one column per series")
+    SAMPLE_COUNT = Output("Ikaros 3: the number of pairs kept for each series")
+    LINEAR_REGRESSION = Output("Ikaros 3: slope, intercept, r, p, the slope's and the "
+                               "intercept's standard errors; one column per series")
+    MODEL_COMPARISON = Output("Ikaros 3: R² and AIC of the models constant, linear, "
+                              "quadratic, cubic, logarithmic, exponential and power, fitted "
+                              "to all series together", shape=f"{len(COMPARED)}, 2")
 
     def configure(self):
         names = [m.strip().lower() for m in self.models.split(",") if m.strip()]
@@ -102,19 +137,34 @@ class RegressionStatistics(Module):
         self.set_output_shape("R2", (len(names),))
         self.set_output_shape("RMSE", (len(names),))
 
+    def _data_name(self) -> str:
+        return "Y" if self.connected("Y") else "SAMPLE"
+
     def set_sizes(self):
-        x, sample = self.input_shape("X"), self.input_shape("SAMPLE")
+        if not self.connected("Y") and not self.connected("SAMPLE"):
+            raise ValueError("connect the observed values to Y (Ikaros 3) or SAMPLE")
+        name = self._data_name()
+        x, sample = self.input_shape("X"), self.input_shape(name)
         if x is None or sample is None:
             return
-        if x != sample and math.prod(x) != 1:
-            raise ValueError(f"X has the shape {x} and SAMPLE the shape {sample}: X must be "
-                             f"one value (shared by every sample) or have the shape of "
-                             f"SAMPLE")
+        if math.prod(x) != math.prod(sample) and math.prod(x) != 1:
+            raise ValueError(f"X has the shape {x} and {name} the shape {sample}: X must be "
+                             f"one value (shared by every sample) or have as many elements "
+                             f"as {name}")
+        n = math.prod(sample)
         self.set_output_shape("PREDICTION", sample)
+        self.set_output_shape("SCATTER_X", (self.max_samples, n))
+        self.set_output_shape("SCATTER_Y", (self.max_samples, n))
+        self.set_output_shape("SAMPLE_COUNT", (n,))
+        self.set_output_shape("LINEAR_REGRESSION", (6, n))
 
     def init(self):
         self._x = np.zeros(self.capacity)           # the window: a ring of pairs
         self._y = np.zeros(self.capacity)
+        self._data = self.Y if self.Y is not None else self.SAMPLE
+        self._triggers = [t for t in (self.COLLECT, self.Y is not None and self.SAMPLE)
+                          if t is not None and t is not False]
+        self._series = SeriesWindows(self.max_samples, self._data.size)
         self._reset()
 
     def _reset(self):
@@ -122,16 +172,35 @@ class RegressionStatistics(Module):
         self._next = 0
         self._masked = 0
         self.MASKED[0] = 0
+        self._series.clear()
         self._fit_window()
+        self._fit_series()
         self._predict()
 
     def tick(self):
-        if self.COLLECT is None or (self.COLLECT.size and self.COLLECT.max() > 0):
-            y = self.SAMPLE.reshape(-1).astype(np.float64)
+        if all(t.size and t.max() > 0 for t in self._triggers):
+            y = self._data.reshape(-1).astype(np.float64)
             x = np.broadcast_to(self.X.reshape(-1).astype(np.float64), y.shape)
             if self._add(x, y):
                 self._fit_window()
+            self._series.add(x, y)
+            self._fit_series()
         self._predict()
+
+    def _fit_series(self):
+        """The Ikaros 3 outputs, from each series' window."""
+        series = self._series
+        self.SCATTER_X.fill(0)
+        self.SCATTER_Y.fill(0)
+        for j in range(len(series.count)):
+            x, y = series.pairs(j)
+            self.SCATTER_X[:len(x), j] = x
+            self.SCATTER_Y[:len(y), j] = y
+            self.LINEAR_REGRESSION[:, j] = linear_regression(x, y)
+        self.SAMPLE_COUNT[...] = series.count
+        pooled = [series.pairs(j) for j in range(len(series.count))]
+        self.MODEL_COMPARISON[...] = model_comparison(
+            np.concatenate([p[0] for p in pooled]), np.concatenate([p[1] for p in pooled]))
 
     def _add(self, x: np.ndarray, y: np.ndarray) -> int:
         """Add the finite pairs to the window; returns how many were added."""
@@ -176,7 +245,8 @@ class RegressionStatistics(Module):
         if self._best is None:
             self.PREDICTION.fill(np.nan)
             return
-        x = self.X.reshape(-1) if self.X.size == 1 else self.X     # one X for all samples
+        x = self.X.reshape(-1) if self.X.size == 1 else \
+            self.X.reshape(self.PREDICTION.shape)                   # one X for all samples
         with np.errstate(all="ignore"):         # X may be outside the model's domain
             self.PREDICTION[...] = predict(*self._best, x.astype(np.float64))
 

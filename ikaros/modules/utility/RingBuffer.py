@@ -8,8 +8,10 @@ class RingBuffer(Module):
     """Keeps the last ``size`` values of the input (read as a flat vector of n elements) and
     outputs them as a matrix of n rows and ``size`` columns: row j is the history of input
     element j, oldest on the left and the current input in the last column. Columns not yet
-    filled are 0. (Ikaros 2 wrote each new vector over the oldest column in place, so its
-    columns were not in time order; here the matrix scrolls left by one column per tick.)
+    filled are 0. The reference says the original keeps the last ``size`` input vectors
+    with the output holding them transposed; the original refused the sizes of the golden
+    models, so no golden file shows its values, and the time order of the columns is this
+    project's reading.
     ``buffersize``, the name used in the Ikaros 2 code, overrides ``size`` when given."""
 
     size = Parameter(10, "the number of past inputs kept (the number of columns)", type="int")

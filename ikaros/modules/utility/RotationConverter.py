@@ -98,14 +98,20 @@ class RotationConverter(Module):
     output; a matrix input holds one pose per row and gives one output row per pose (a 4x4
     input in matrix form is one pose). Parts the output form has but the input lacks are
     neutral: no rotation, position 0. Ikaros 2 left quaternions unimplemented; here they
-    work (``quaternions="computed"``).
+    work (``quaternions="computed"``). ``size_y`` x ``size_x`` (Ikaros 3's parameters,
+    both 4 by default) is the block of the 4x4 transform that the matrix form holds: 3 x 4
+    leaves out the last row, 3 x 3 is the rotation alone (this project's reading of the
+    two parameters, which Ikaros 3 gives as the output's size; no reference gives their
+    meaning). In an Ikaros 2 file a 1-D input with more values than its form needs is
+    read for its first values, as Ikaros 2 does (golden files: four values in xyz form
+    give the first three), with a warning; one with fewer is an error.
 
     In an Ikaros 3 file (dialect 3) the output has Ikaros 3's shapes: a pose is a row (one
-    pose gives a 1 x width output) and a matrix is 4 x 4 (several poses: n x 4 x 4, a shape
-    the reference does not settle); and, as in Ikaros 3, a quaternion input or output is
-    not implemented and the output stays all zero (``quaternions="zero"``, the default
-    there; ``quaternions="computed"`` converts them). ``turns`` is Ikaros 3's name for
-    ``tau``."""
+    pose gives a 1 x width output) and a matrix is size_y x size_x (several poses: n x
+    size_y x size_x, a shape the reference does not settle); and, as in Ikaros 3, a
+    quaternion input or output is not implemented and the output stays all zero
+    (``quaternions="zero"``, the default there; ``quaternions="computed"`` converts them).
+    ``turns`` is Ikaros 3's name for ``tau``."""
 
     input_format = Parameter("xyz", "the form of each input pose", options=_FORMATS)
     output_format = Parameter("xyz", "the form of each output pose", options=_FORMATS)
@@ -115,17 +121,26 @@ class RotationConverter(Module):
     quaternions = Parameter("computed", "computed: convert quaternions; zero: a quaternion "
                             "input or output gives all zeros (Ikaros 3, where they are not "
                             "implemented)", options="computed/zero", default_v3="zero")
+    size_x = Parameter(4, "columns of the matrix form: 4, or 3 for the rotation alone",
+                       type="int", range=(3, 4))
+    size_y = Parameter(4, "rows of the matrix form: 4, or 3 without the last row (0 0 0 1)",
+                       type="int", range=(3, 4))
     INPUT = Input("one pose, or one pose per row, in input_format")
     OUTPUT = Output("the poses in output_format: 1-D for one pose, else one row per pose")
 
+    def _width(self, fmt: str) -> int:
+        return self.size_x * self.size_y if fmt == "matrix" else _WIDTH[fmt]
+
     def _poses(self, shape):
-        """Number of poses in an input of this shape, or an error message."""
-        width = _WIDTH[self.input_format]
+        """Number of poses in an input of this shape (0: one pose, 1-D), or an error
+        message."""
+        width = self._width(self.input_format)
         n = int(np.prod(shape))
-        if self.input_format == "matrix" and tuple(shape[-2:]) == (4, 4):
-            return 0 if len(shape) == 2 else n // 16
+        block = (self.size_y, self.size_x)
+        if self.input_format == "matrix" and tuple(shape[-2:]) == block:
+            return 0 if len(shape) == 2 else n // width
         if len(shape) <= 1:
-            if n != width:
+            if n < width or (n > width and self.dialect == "3"):
                 return (f"an input in {self.input_format} form needs {width} values, "
                         f"not {n}")
             return 0          # one pose, 1-D
@@ -141,17 +156,24 @@ class RotationConverter(Module):
         poses = self._poses(shape)
         if isinstance(poses, str):
             raise ValueError(poses)
-        width = _WIDTH[self.output_format]
+        width = self._width(self.output_format)
         if self.dialect == "3":
             rows = max(poses, 1)
-            self.set_output_shape("OUTPUT", ((4, 4) if rows == 1 else (rows, 4, 4))
-                                  if width == 16 else (rows, width))
+            block = (self.size_y, self.size_x)
+            self.set_output_shape("OUTPUT", (block if rows == 1 else (rows,) + block)
+                                  if self.output_format == "matrix" else (rows, width))
         else:
             self.set_output_shape("OUTPUT", (width,) if poses == 0 else (poses, width))
 
     def init(self):
-        self._in = self.INPUT.reshape(-1, _WIDTH[self.input_format])
-        self._out = self.OUTPUT.reshape(-1, _WIDTH[self.output_format])
+        width = self._width(self.input_format)
+        if self.INPUT.ndim <= 1 and self.INPUT.size > width:
+            self.warning(f"INPUT has {self.INPUT.size} values and the {self.input_format} "
+                         f"form {width}: only the first {width} are used, as in Ikaros 2")
+            self._in = self.INPUT.reshape(-1)[:width].reshape(1, width)
+        else:
+            self._in = self.INPUT.reshape(-1, width)
+        self._out = self.OUTPUT.reshape(-1, self._width(self.output_format))
         self._warned = False
 
     def tick(self):
@@ -173,9 +195,10 @@ class RotationConverter(Module):
         elif fmt == "axayaz":
             rot = euler_to_matrices(x[:, 0] * unit, x[:, 1] * unit, x[:, 2] * unit)
         elif fmt == "matrix":
-            m = x.reshape(n, 4, 4)
+            m = x.reshape(n, self.size_y, self.size_x)
             rot = m[:, :3, :3]
-            pos = m[:, :3, 3]
+            if self.size_x == 4:
+                pos = m[:, :3, 3]
         else:
             rot, zero = quaternions_to_matrices(x)
             if zero.any() and not self._warned:
@@ -198,6 +221,6 @@ class RotationConverter(Module):
             m[:, :3, :3] = rot
             m[:, :3, 3] = pos
             m[:, 3, 3] = 1
-            out[:] = m.reshape(n, 16)
+            out[:] = m[:, :self.size_y, :self.size_x].reshape(n, -1)
         else:
             out[:] = matrices_to_quaternions(rot)

@@ -8,8 +8,9 @@ class SumMatrix(Module):
     """Sums the input matrix. With direction ``all`` the output is one element, the sum of
     all elements; with ``column`` it has one element per column, the sum down that column;
     with ``row`` one element per row, the sum along that row. A 1-D input is one row; an input
-    of higher rank is seen as rows of its last dimension. (Ikaros 2's ``all`` indexed the
-    matrix transposed and read outside a non-square input.) With ``debug`` the output is
+    of higher rank is seen as rows of its last dimension. (The original crashed on
+    the golden models, so no golden file shows its values; this follows the reference's
+    description.) With ``debug`` the output is
     printed on every tick."""
 
     direction = Parameter("all", "all: one sum; column: a sum for each column; row: a sum "

@@ -1,37 +1,38 @@
 """Sweep: a ramp that repeats."""
+import numpy as np
+
 from ikaros.module import Module, Output, Parameter
 
 
 class Sweep(Module):
-    """Outputs a ramp: ``min`` in init, then one ``step`` more on every tick; a value past
-    ``max`` wraps around to ``min``. With min=0, max=1, step=0.5 the output is 0 (init), then
-    0.5, 1, 0, 0.5, ... from tick 0. A negative step ramps down from ``max`` instead and wraps
-    to ``max`` below ``min``. All elements of the output share the value."""
+    """Outputs a ramp, as Ikaros 2 does (golden files): ``min`` in init, then on every tick
+    ``step`` is added first, and a value above ``max`` becomes ``min``, one below ``min``
+    becomes ``max``. With min=0, max=1, step=0.5 the output is 0 (init), then 0.5, 1, 0,
+    0.5, ... from tick 0; with step=-0.3 it is 0 (init), then 1, 0.7, 0.4, 0.1, 1, ... The
+    value is added up in single precision, as in the original, so a step that float32
+    cannot hold exactly drifts: ten steps of 0.1 give 1.0000001, which is past 1, so with
+    min=0, max=1, step=0.1 the ramp wraps to 0 where 1 would be due. All elements of the
+    output share the value."""
 
     outputsize = Parameter(1, "number of elements of a 1-D output", type="int")
     outputsize_x = Parameter(None, "columns of a 2-D output", type="int")
     outputsize_y = Parameter(None, "rows of a 2-D output", type="int")
-    min = Parameter(0.0, "the first value of the ramp")
-    max = Parameter(1.0, "the last value of the ramp")
+    min = Parameter(0.0, "the first value of the ramp, and where it wraps to past max")
+    max = Parameter(1.0, "the last value of the ramp, and where it wraps to below min")
     step = Parameter(0.1, "what is added on every tick")
     OUTPUT = Output("the ramp value, in every element",
                     size_param_x="outputsize_x", size_param_y="outputsize_y",
                     size_param="outputsize")
 
     def init(self):
-        self._k = 0          # steps since the ramp last started; value = start + k * step
-        self.OUTPUT.fill(self._value())
-
-    def _value(self):
-        start = self.max if self.step < 0 else self.min
-        return start + self._k * self.step
+        self._value = np.float32(self.min)
+        self.OUTPUT.fill(self._value)
 
     def tick(self):
-        self._k += 1
-        value = self._value()
-        tolerance = 1e-6 * abs(self.step)
-        if (self.step > 0 and value > self.max + tolerance) or \
-                (self.step < 0 and value < self.min - tolerance):
-            self._k = 0
-            value = self._value()
+        value = np.float32(self._value + np.float32(self.step))
+        if value > np.float32(self.max):
+            value = np.float32(self.min)
+        elif value < np.float32(self.min):
+            value = np.float32(self.max)
+        self._value = value
         self.OUTPUT.fill(value)

@@ -45,9 +45,12 @@ class Transform(Module):
         for k in ("1", "2"):
             m = getattr(self, "MATRIX_" + k)
             if m.size % 16 or m.size == 0:
-                self.fatal_error(f"MATRIX_{k} must hold 4 x 4 matrices of 16 elements each; "
-                                 f"it has shape {m.shape}")
-                return
+                if self.dialect == "3":
+                    self.fatal_error(f"MATRIX_{k} must hold 4 x 4 matrices of 16 elements "
+                                     f"each; it has shape {m.shape}")
+                    return
+                self.warning(f"MATRIX_{k} has {m.size} elements, not a multiple of 16: as in "
+                             f"Ikaros 2 only its {m.size // 16} whole matrices are used")
             n = m.size // 16
             obj, frame = getattr(self, "OBJECT_ID_" + k), getattr(self, "FRAME_ID_" + k)
             for name, ids in (("OBJECT_ID_", obj), ("FRAME_ID_", frame)):
@@ -55,7 +58,8 @@ class Transform(Module):
                     self.fatal_error(f"{name}{k} has {ids.size} elements; MATRIX_{k} has {n} "
                                      f"matrices")
                     return
-            self._lists.append((m.reshape(n, 4, 4), obj.reshape(-1)[:n], frame.reshape(-1)[:n]))
+            self._lists.append((m.reshape(-1)[:16 * n].reshape(n, 4, 4), obj.reshape(-1)[:n],
+                                frame.reshape(-1)[:n]))
         self._out = self.MATRIX.reshape(-1, 4, 4)
         self._warned = False
 

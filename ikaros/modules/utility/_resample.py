@@ -8,13 +8,19 @@ def round_half_away(v):
     return np.where(v >= 0, np.floor(v + 0.5), np.ceil(v - 0.5))
 
 
-def centre_offsets(x):
-    """For a matrix ``x`` (its last two axes; a 1-D ``x`` is one row): its centre
-    ``((cols - 1) / 2, (rows - 1) / 2)`` and every element's offset from it, as
-    ``(cx, cy, dx, dy)`` with ``dx`` and ``dy`` of shape (rows, cols)."""
+CENTRES = "half/middle"
+CENTRE_HELP = ("the centre of the matrix: half, (cols / 2, rows / 2) as in Ikaros 2; or "
+               "middle, ((cols - 1) / 2, (rows - 1) / 2)")
+
+
+def centre_offsets(x, centre: str = "half"):
+    """For a matrix ``x`` (its last two axes; a 1-D ``x`` is one row): its centre, ``half``
+    ``(cols / 2, rows / 2)`` (Ikaros 2's) or ``middle`` ``((cols - 1) / 2, (rows - 1) / 2)``,
+    and every element's offset from it, as ``(cx, cy, dx, dy)`` with ``dx`` and ``dy`` of
+    shape (rows, cols)."""
     rows, cols = (x.shape[-2], x.shape[-1]) if x.ndim > 1 else (1, x.shape[0])
     y, xs = np.mgrid[0:rows, 0:cols].astype(np.float64)
-    cx, cy = (cols - 1) / 2, (rows - 1) / 2
+    cx, cy = ((cols - 1) / 2, (rows - 1) / 2) if centre == "middle" else (cols / 2, rows / 2)
     return cx, cy, xs - cx, y - cy
 
 

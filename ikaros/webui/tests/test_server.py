@@ -40,7 +40,7 @@ MODEL = """<?xml version="1.0"?>
     <module class="Scale" name="S" factor="2" />
     <connection source="C.OUTPUT" target="S.INPUT" delay="0" />
     <module class="Randomizer" name="N" outputsize="8" interval="1" seed="1" />
-    <module class="Histogram" name="H" size="4" />
+    <module class="Histogram" name="H" size="4" elements="all" />
     <connection source="N.OUTPUT" target="H.INPUT" delay="0" />
     <module class="Gate" name="G" open="yes" />
     <connection source="N.OUTPUT" target="G.INPUT" delay="0" />

@@ -1,4 +1,5 @@
-"""Tests of the Arbiter module."""
+"""Tests of the Arbiter module. Ikaros 2 never writes its VALUE output (golden-v2 Arbiter: 0);
+most tests here read value_output="strength", this project's sum of the absolute state."""
 import numpy as np
 import pytest
 
@@ -9,7 +10,8 @@ from ikaros.testing import load_body as load
 def _body(inputs, values=None, attrs="", by_row=False):
     """Constants I1.. (and V1..) connected to Arbiter A."""
     row = ' by_row="yes"' if by_row else ""
-    lines = [f'<module class="Arbiter" name="A" no_of_inputs="{len(inputs)}" {attrs}{row}/>']
+    lines = [f'<module class="Arbiter" name="A" no_of_inputs="{len(inputs)}" '
+             f'value_output="strength" {attrs}{row}/>']
     for k, data in enumerate(inputs, 1):
         lines.append(f'<module class="Constant" name="I{k}" data="{data}"/>')
         lines.append(f'<connection source="I{k}.OUTPUT" target="A.INPUT_{k}" delay="0"/>')
@@ -36,6 +38,14 @@ def test_wta_on_city_block_norms(tmp_path):
         assert o["VALUE"].shape == (1,) and o["VALUE"][0] == 3
     finally:
         net.close()
+
+
+def test_ikaros_2_value_output_is_0(tmp_path):
+    body = _body(["1 -2", "0.5 0.5"]).replace(' value_output="strength"', "")
+    with load(tmp_path, body) as net:
+        net.step()
+        assert net.output("A.VALUE").tolist() == [0]
+        assert net.output("A.OUTPUT").tolist() == [1, -2]
 
 
 def test_euclidean_metric(tmp_path):
@@ -177,7 +187,7 @@ def test_different_sizes_are_an_error(tmp_path):
 
 def _stacked_body(inputs, attrs=""):
     """Constants I1.. all connected to Arbiter A's INPUT, in order."""
-    lines = [f'<module class="Arbiter" name="A" {attrs}/>']
+    lines = [f'<module class="Arbiter" name="A" value_output="strength" {attrs}/>']
     for k, data in enumerate(inputs, 1):
         lines.append(f'<module class="Constant" name="I{k}" data="{data}"/>')
         lines.append(f'<connection source="I{k}.OUTPUT" target="A.INPUT" delay="0"/>')

@@ -1,4 +1,7 @@
-"""Tests of the DataBuffer module."""
+"""Tests of the DataBuffer module. Ikaros 2 replaces row rand() % size whatever the policy
+(golden-v2 DataBuffer), with glibc's rand() unseeded: 1804289383, 846930886, 1681692777,
+1714636915, 1957747793, 424238335, 719885386, 1649760492, 596516649, 1189641421 (the C
+library's documented sequence for seed 1)."""
 import numpy as np
 
 from ikaros.testing import load_body as load
@@ -9,8 +12,24 @@ BODY = ('<module class="Sweep" name="S" min="1" max="100" step="1" outputsize="2
         '<connection source="S.OUTPUT" target="B.INPUT" delay="0"/>')
 
 
+GLIBC_SEED_1 = [1804289383, 846930886, 1681692777, 1714636915, 1957747793, 424238335,
+                719885386, 1649760492, 596516649, 1189641421]
+
+
+def test_every_policy_replaces_row_rand_mod_size_as_ikaros_2(tmp_path):
+    for policy in ("random", "circular", "queue"):
+        folder = tmp_path / policy
+        folder.mkdir()
+        with load(folder, BODY.format(attrs=f'update_policy="{policy}"')) as net:
+            rows = np.zeros(3)
+            for k, r in enumerate(GLIBC_SEED_1):
+                net.step()
+                rows[r % 3] = k + 2
+                assert np.array_equal(net.output("B.OUTPUT")[:, 0], rows), (policy, k)
+
+
 def test_queue_puts_the_newest_first(tmp_path):
-    net = load(tmp_path, BODY.format(attrs='update_policy="queue"'))
+    net = load(tmp_path, BODY.format(attrs='update_policy="queue" honour_policy="yes"'))
     try:
         assert net.output("B.OUTPUT").shape == (3, 2)
         history = []
@@ -25,7 +44,7 @@ def test_queue_puts_the_newest_first(tmp_path):
 
 
 def test_circular_writes_rows_in_turn(tmp_path):
-    net = load(tmp_path, BODY.format(attrs='update_policy="circular"'))
+    net = load(tmp_path, BODY.format(attrs='update_policy="circular" honour_policy="yes"'))
     try:
         rows = np.zeros(3)
         for k in range(7):
@@ -63,7 +82,8 @@ def test_random_replaces_one_row_per_tick_and_is_repeatable(tmp_path):
 def test_matrix_input_is_stored_flat(tmp_path):
     net = load(tmp_path,
                '<module class="Constant" name="C" data="1 2; 3 4"/>\n'
-               '<module class="DataBuffer" name="B" size="2" update_policy="queue"/>\n'
+               '<module class="DataBuffer" name="B" size="2" update_policy="queue" '
+               'honour_policy="yes"/>\n'
                '<connection source="C.OUTPUT" target="B.INPUT" delay="0"/>')
     try:
         net.step()

@@ -1,4 +1,5 @@
-"""Tests of the DecomposeTransform module."""
+"""Tests of the DecomposeTransform module: decomposition="corrected", and Ikaros 2's (golden-v2
+DecomposeTransform: the diagonal as scale, angles in radians from the unscaled matrix)."""
 import numpy as np
 import pytest
 
@@ -27,7 +28,7 @@ def _data(matrices, rows=False):
     return "; ".join(flat) if rows else " ".join(flat)
 
 
-def _load(tmp_path, data, attrs=""):
+def _load(tmp_path, data, attrs='decomposition="corrected"'):
     return load(tmp_path,
                 f'<module class="Constant" name="C" data="{data}"/>\n'
                 f'<module class="DecomposeTransform" name="D" {attrs}/>\n'
@@ -53,7 +54,8 @@ def test_translation_rotation_and_scale_of_two_matrices_in_one_row(tmp_path):
 
 def test_radians_and_a_matrix_per_row(tmp_path):
     a = _matrix([0, 0, 0], [0.1, -0.2, 0.3], [1, 1, 1])
-    net = _load(tmp_path, _data([a, np.eye(4)], rows=True), 'use_degrees="no"')
+    net = _load(tmp_path, _data([a, np.eye(4)], rows=True),
+                'use_degrees="no" decomposition="corrected"')
     try:
         net.step()
         assert np.allclose(net.output("D.ROTATION"), [[0.1, -0.2, 0.3], [0, 0, 0]], atol=1e-5)
@@ -77,3 +79,16 @@ def test_gimbal_lock_puts_the_rotation_in_z(tmp_path):
 def test_size_not_a_multiple_of_16_is_an_error(tmp_path):
     with pytest.raises(ikaros.ModelError, match="multiple of 16"):
         _load(tmp_path, "1 2 3")
+
+
+def test_ikaros_2_scale_is_the_diagonal_and_angles_are_radians(tmp_path):
+    angles = np.radians([10, 20, 30])
+    a = _matrix([1, 2, 3], angles, [1, 1, 1])
+    b = _matrix([0, 0, 0], [0, 0, np.pi / 2], [1, 1, 1])       # golden-v2 "defaults"
+    net = _load(tmp_path, _data([a, b]), "")
+    with net:
+        net.step()
+        assert np.allclose(net.output("D.TRANSLATION"), [[1, 2, 3], [0, 0, 0]])
+        assert np.allclose(net.output("D.ROTATION"), [angles, [0, 0, np.pi / 2]], atol=1e-5)
+        assert np.allclose(net.output("D.SCALE"), [np.diag(a)[:3], np.diag(b)[:3]],
+                           atol=1e-6)

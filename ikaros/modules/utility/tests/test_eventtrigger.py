@@ -1,4 +1,7 @@
-"""Tests of the EventTrigger module."""
+"""Tests of the EventTrigger module. Ikaros 2 (golden-v2 EventTrigger): events last duration
++ 1 ticks and pauses timeout + 1, the output is rand() % size with glibc's unseeded rand()
+(1804289383, 846930886, 1681692777, ...: the C library's documented sequence for seed 1),
+drawn again when it repeats the last event."""
 import numpy as np
 
 from ikaros.testing import load_body as load
@@ -26,9 +29,31 @@ def _runs(trace):
     return runs
 
 
+GLIBC_SEED_1 = [1804289383, 846930886, 1681692777, 1714636915, 1957747793, 424238335,
+                719885386, 1649760492, 596516649, 1189641421]
+
+
+def test_ikaros_2_timing_and_choice(tmp_path):
+    net = load(tmp_path, '<module class="EventTrigger" name="E" size="3" duration="2" '
+               'timeout="1" initial_delay="1"/>')
+    with net:
+        draws = iter(GLIBC_SEED_1)
+        events, last = [], -1
+        for _ in range(4):
+            k = next(draws) % 3
+            while k == last:
+                k = next(draws) % 3
+            events.append(k)
+            last = k
+        want = [-1]
+        for k in events:
+            want += [k] * 3 + [-1] * 2          # duration + 1 on, timeout + 1 off
+        assert _trace(net, len(want)) == want
+
+
 def test_single_output_timing(tmp_path):
     net = load(tmp_path, '<module class="EventTrigger" name="E" duration="3" timeout="2" '
-               'initial_delay="2"/>')
+               'initial_delay="2" timing="exact"/>')
     try:
         assert not net.output("E.OUTPUT").any()
         assert _trace(net, 14) == [-1, -1, 0, 0, 0, -1, -1, 0, 0, 0, -1, -1, 0, 0]
@@ -38,7 +63,7 @@ def test_single_output_timing(tmp_path):
 
 def test_no_timeout_means_back_to_back_events_that_never_repeat(tmp_path):
     net = load(tmp_path, '<module class="EventTrigger" name="E" size="3" duration="2" '
-               'seed="11"/>')
+               'seed="11" timing="exact"/>')
     try:
         trace = _trace(net, 40)
         runs = _runs(trace)
@@ -54,7 +79,7 @@ def test_no_timeout_means_back_to_back_events_that_never_repeat(tmp_path):
 
 def test_per_output_durations(tmp_path):
     net = load(tmp_path, '<module class="EventTrigger" name="E" size="2" duration="1 4" '
-               'timeout="1"/>')
+               'timeout="1" timing="exact"/>')
     try:
         for value, length in _runs(_trace(net, 30))[:-1]:
             assert length == {-1: 1, 0: 1, 1: 4}[value]

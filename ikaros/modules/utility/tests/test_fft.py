@@ -1,4 +1,5 @@
-"""Tests of the FFT module."""
+"""Tests of the FFT module. Ikaros 2 gives bins 0 ... N / 2 and 0 above them (golden-v2 FFT);
+bins="all" gives every bin."""
 import numpy as np
 
 from ikaros.testing import load_body as load
@@ -6,8 +7,10 @@ from ikaros.testing import load_body as load
 
 def test_matches_numpy_fft_over_ticks(tmp_path):
     net = load(tmp_path, '<module class="Randomizer" name="R" outputsize="8" seed="5"/>'
-               '<module class="FFT" name="F"/>'
-               '<connection source="R.OUTPUT" target="F.INPUT" delay="0"/>')
+               '<module class="FFT" name="F" bins="all"/>'
+               '<module class="FFT" name="H"/>'
+               '<connection source="R.OUTPUT" target="F.INPUT" delay="0"/>'
+               '<connection source="R.OUTPUT" target="H.INPUT" delay="0"/>')
     try:
         for _ in range(4):
             net.step()
@@ -18,6 +21,9 @@ def test_matches_numpy_fft_over_ticks(tmp_path):
             spectrum = (x[None, :] * np.exp(-2j * np.pi * k[:, None] * k[None, :] / n)).sum(1)
             assert np.allclose(net.output("F.REAL_OUTPUT"), spectrum.real, atol=1e-5)
             assert np.allclose(net.output("F.IM_OUTPUT"), spectrum.imag, atol=1e-5)
+            half = np.where(k <= n // 2, spectrum, 0)
+            assert np.allclose(net.output("H.REAL_OUTPUT"), half.real, atol=1e-5)
+            assert np.allclose(net.output("H.IM_OUTPUT"), half.imag, atol=1e-5)
     finally:
         net.close()
 
@@ -25,7 +31,7 @@ def test_matches_numpy_fft_over_ticks(tmp_path):
 def test_hand_worked_values_and_odd_length(tmp_path):
     net = load(tmp_path, '<module class="Constant" name="A" data="1 0 0 0"/>'
                '<module class="Constant" name="B" data="1 2 3"/>'
-               '<module class="FFT" name="FA"/><module class="FFT" name="FB"/>'
+               '<module class="FFT" name="FA" bins="all"/><module class="FFT" name="FB" bins="all"/>'
                '<connection source="A.OUTPUT" target="FA.INPUT" delay="0"/>'
                '<connection source="B.OUTPUT" target="FB.INPUT" delay="0"/>')
     try:
@@ -42,7 +48,7 @@ def test_hand_worked_values_and_odd_length(tmp_path):
 
 def test_matrix_is_transformed_row_by_row(tmp_path):
     net = load(tmp_path, '<module class="Constant" name="C" data="1 1 1 1; 0 1 0 -1"/>'
-               '<module class="FFT" name="F"/>'
+               '<module class="FFT" name="F" bins="all"/>'
                '<connection source="C.OUTPUT" target="F.INPUT" delay="0"/>')
     try:
         net.step()

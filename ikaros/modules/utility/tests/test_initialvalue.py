@@ -72,8 +72,22 @@ def test_stock_in_a_feedback_loop(tmp_path):
         net.close()
 
 
-def test_input_size_must_match(tmp_path):
-    with pytest.raises(ikaros.ModelError, match="same"):
-        load(tmp_path, '<module class="Constant" name="Flow" data="1 2 3"/>'
-             '<module class="InitialValue" name="S" data="1 2"/>'
+def test_a_shorter_input_is_an_error(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="at least as many"):
+        load(tmp_path, '<module class="Constant" name="Flow" data="1 2"/>'
+             '<module class="InitialValue" name="S" data="1 2 3"/>'
              '<connection source="Flow.OUTPUT" target="S.INPUT"/>')
+
+
+def test_a_longer_input_adds_its_first_elements_as_ikaros_2(tmp_path):
+    # golden-v2 InitialValue "vector": a 4-element flow into the 1-element default stock
+    net = load(tmp_path, '<module class="Constant" name="Flow" data="0.5 -1 2 0.25"/>'
+               '<module class="InitialValue" name="S"/>'
+               '<connection source="Flow.OUTPUT" target="S.INPUT" delay="0"/>')
+    with net:
+        got = []
+        for _ in range(4):
+            net.step()
+            got.append(float(net.output("S.OUTPUT")[0]))
+        assert got == [1, 1.5, 2, 2.5]                # data 1, then + 0.5 a tick
+        assert sum("only the first 1 are used" in entry[3] for entry in net.log) == 1

@@ -1,4 +1,5 @@
-"""Tests of the ListIterator module."""
+"""Tests of the ListIterator module. SYNC_OUT as in Ikaros 2 (golden-v2 ListIterator): 1 on the
+first tick and on the tick after a pass ends, except for a list of one entry."""
 import numpy as np
 
 from ikaros.testing import load_body as load
@@ -32,7 +33,7 @@ def test_single_row_steps_elements_and_stops_without_repeat(tmp_path):
         assert net.output("L.OUTPUT").shape == (1,)
         got, sync = steps(net, 5)                  # SYNC_IN unconnected: every tick
         assert got == [[7], [8], [9], [9], [9]]
-        assert sync == [1, 0, 0, 0, 0]
+        assert sync == [1, 0, 0, 1, 0]             # once more after the last pass
     finally:
         net.close()
 
@@ -44,7 +45,7 @@ def test_steps_only_when_sync_in_is_set(tmp_path):
     try:
         got, sync = steps(net, 8)                  # S: 1, 0, 1, 0, ...
         assert got == [[1], [1], [2], [2], [3], [3], [1], [1]]
-        assert sync == [1, 0, 0, 0, 0, 0, 1, 0]
+        assert sync == [1, 0, 0, 0, 0, 1, 0, 0]    # the tick after the pass ended
     finally:
         net.close()
 
@@ -73,6 +74,6 @@ def test_column_list_and_single_entry(tmp_path):
         assert sync == [1, 0, 1]
         net.step()
         assert np.array_equal(net.output("M.OUTPUT"), [6])
-        assert np.array_equal(net.output("M.SYNC_OUT"), [1])       # every step starts a pass
+        assert np.array_equal(net.output("M.SYNC_OUT"), [0])       # one entry: first tick only
     finally:
         net.close()

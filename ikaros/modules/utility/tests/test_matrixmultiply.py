@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import ikaros
-from ikaros.testing import load_body as load
+from ikaros.testing import load_body as load, matrix_text
 
 
 def two(tmp_path, a, b, attrs=""):
@@ -25,13 +25,31 @@ def test_hand_worked_product(tmp_path):
 
 
 def test_trans_2(tmp_path):
-    net = two(tmp_path, "1 2 3; 4 5 6", "1 0 2; 0 1 -1", 'trans_2="yes"')
+    net = two(tmp_path, "1 2 3; 4 5 6", "1 0 2; 0 1 -1",
+              'trans_2="yes" trans_2_result="transpose"')
     try:
         assert net.output("M.OUTPUT").shape == (2, 2)
         net.step()
         assert np.array_equal(net.output("M.OUTPUT"), [[7, -1], [16, -1]])
     finally:
         net.close()
+
+
+@pytest.mark.parametrize("a, b", [
+    ([[1, -2, 3], [0.5, 4, -1.5]], [[2, 0.5, -1], [1.5, -2, 0.25]]),    # golden-v2 trans_2
+    ([[1, 2], [3, 4], [5, 6]], [[1, 0], [2, 1]]),                        # 3 x 2 output
+])
+def test_trans_2_as_ikaros_2_computes_it(tmp_path, a, b):
+    a, b = np.array(a, np.float32), np.array(b, np.float32)
+    (m, k), n = a.shape, b.shape[0]
+    want = np.zeros(m * n)
+    for i in range(m):                     # out.flat[i + j M] = sum A[i, k] B.flat[j + k N]
+        for j in range(n):
+            want[i + j * m] = sum(a[i, q] * b.reshape(-1)[j + q * n] for q in range(k))
+    with two(tmp_path, matrix_text(a), matrix_text(b), 'trans_2="yes"') as net:
+        net.step()
+        assert net.output("M.OUTPUT").shape == (m, n)
+        assert np.allclose(net.output("M.OUTPUT").reshape(-1), want)
 
 
 def test_vectors(tmp_path):

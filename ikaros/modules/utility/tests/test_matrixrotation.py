@@ -1,4 +1,5 @@
-"""Tests of the MatrixRotation module."""
+"""Tests of the MatrixRotation module: about the middle of the matrix (centre="middle"), and about
+(cols / 2, rows / 2) as Ikaros 2 turns (golden-v2 MatrixRotation)."""
 import math
 
 import numpy as np
@@ -9,10 +10,11 @@ from ikaros.testing import matrix_text
 SQUARE = np.arange(16, dtype=np.float32).reshape(4, 4)
 
 
-def rotated(tmp_path, m, angle, fmt="deg"):
+def rotated(tmp_path, m, angle, fmt="deg", centre="middle"):
     net = load(tmp_path, f'<module class="Constant" name="C" data="{matrix_text(m)}"/>'
                f'<module class="Constant" name="A" data="{angle!r}"/>'
-               f'<module class="MatrixRotation" name="R" angle_format="{fmt}"/>'
+               f'<module class="MatrixRotation" name="R" angle_format="{fmt}" '
+               f'centre="{centre}"/>'
                '<connection source="C.OUTPUT" target="R.INPUT" delay="0"/>'
                '<connection source="A.OUTPUT" target="R.ANGLE" delay="0"/>')
     try:
@@ -69,7 +71,7 @@ def test_colour_image_turns_every_channel(tmp_path):
                                            for row in ch) + "]" for ch in stack) + "]"
     net = load(tmp_path, f'<module class="Constant" name="C" data="{nested}"/>'
                '<module class="Sweep" name="A" min="0" max="360" step="90"/>'
-               '<module class="MatrixRotation" name="R"/>'
+               '<module class="MatrixRotation" name="R" centre="middle"/>'
                '<connection source="C.OUTPUT" target="R.INPUT" delay="0"/>'
                '<connection source="A.OUTPUT" target="R.ANGLE" delay="0"/>')
     try:
@@ -80,3 +82,32 @@ def test_colour_image_turns_every_channel(tmp_path):
             assert np.array_equal(net.output("R.OUTPUT"), np.rot90(stack, turns, axes=(1, 2)))
     finally:
         net.close()
+
+
+def _turned_about_half(m, angle):
+    """Each output (i, j) reads the source (cx, cy) + R(angle) (j - cx, i - cy), rounded to
+    the nearest element, with Ikaros 2's centre (cols / 2, rows / 2)."""
+    rows, cols = m.shape
+    cx, cy = cols / 2, rows / 2
+    c, s = math.cos(angle), math.sin(angle)
+    out = np.zeros_like(m)
+    for i in range(rows):
+        for j in range(cols):
+            x = math.floor(cx + c * (j - cx) - s * (i - cy) + 0.5)
+            y = math.floor(cy + s * (j - cx) + c * (i - cy) + 0.5)
+            if 0 <= x < cols and 0 <= y < rows:
+                out[i, j] = m[y, x]
+    return out
+
+
+def test_ikaros_2_turns_about_cols_and_rows_over_2(tmp_path):
+    eye = np.eye(3, dtype=np.float32)
+    got = rotated(tmp_path, eye, 30, centre="half")
+    assert np.array_equal(got, _turned_about_half(eye, math.radians(30)))
+    assert np.array_equal(got, [[0, 0, 0], [1, 1, 0], [0, 0, 1]])      # golden-v2 "deg"
+    for angle in (0.5, 2.0, -1.2):
+        assert np.array_equal(rotated(tmp_path, SQUARE, angle, "rad", centre="half"),
+                              _turned_about_half(SQUARE, angle))
+    # a half turn of an even size is shifted by one element
+    assert np.array_equal(rotated(tmp_path, SQUARE, 180, centre="half"),
+                          _turned_about_half(SQUARE, math.pi))

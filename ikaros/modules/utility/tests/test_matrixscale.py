@@ -1,4 +1,5 @@
-"""Tests of the MatrixScale module."""
+"""Tests of the MatrixScale module: about the middle (centre="middle") and about (cols / 2,
+rows / 2) as Ikaros 2 scales (golden-v2 MatrixScale)."""
 import math
 
 import numpy as np
@@ -9,10 +10,10 @@ from ikaros.testing import matrix_text
 M = np.arange(1, 17, dtype=np.float32).reshape(4, 4)
 
 
-def reference(m, fx, fy):
+def reference(m, fx, fy, centre="middle"):
     """Each output element takes the input element nearest to centre + offset / factor."""
     rows, cols = m.shape
-    cx, cy = (cols - 1) / 2, (rows - 1) / 2
+    cx, cy = ((cols - 1) / 2, (rows - 1) / 2) if centre == "middle" else (cols / 2, rows / 2)
     out = np.zeros_like(m)
 
     def near(v):
@@ -26,11 +27,11 @@ def reference(m, fx, fy):
     return out
 
 
-def scaled(tmp_path, m, fx, fy, ticks=2):
+def scaled(tmp_path, m, fx, fy, ticks=2, centre="middle"):
     net = load(tmp_path, f'<module class="Constant" name="C" data="{matrix_text(m)}"/>'
                f'<module class="Constant" name="X" data="{fx!r}"/>'
                f'<module class="Constant" name="Y" data="{fy!r}"/>'
-               '<module class="MatrixScale" name="S"/>'
+               f'<module class="MatrixScale" name="S" centre="{centre}"/>'
                '<connection source="C.OUTPUT" target="S.INPUT" delay="0"/>'
                '<connection source="X.OUTPUT" target="S.X" delay="0"/>'
                '<connection source="Y.OUTPUT" target="S.Y" delay="0"/>')
@@ -67,3 +68,13 @@ def test_zero_factor_gives_zero_and_warns_once(tmp_path):
     got, net = scaled(tmp_path, M, 0, 1, ticks=3)
     assert np.array_equal(got, np.zeros((4, 4)))
     assert sum("cannot scale" in entry[3] for entry in net.log) == 1
+
+
+def test_ikaros_2_scales_about_cols_and_rows_over_2(tmp_path):
+    eye = np.eye(3, dtype=np.float32)
+    got, _ = scaled(tmp_path, eye, 2.0, 0.5, centre="half")
+    assert np.array_equal(got, reference(eye, 2.0, 0.5, "half"))
+    assert np.array_equal(got, [[0, 0, 0], [1, 1, 0], [0, 0, 0]])      # golden-v2 "defaults"
+    for fx, fy in ((0.7, 0.6), (1.5, -1.2), (-0.8, 3.0)):
+        got, _ = scaled(tmp_path, M, fx, fy, centre="half")
+        assert np.array_equal(got, reference(M, fx, fy, "half"))

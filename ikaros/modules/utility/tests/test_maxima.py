@@ -67,6 +67,8 @@ def test_sorted_lists_the_largest_first_and_max_points_limits(tmp_path):
 
 def test_one_dimensional_input(tmp_path):
     out, points, count = run(tmp_path, "0 3 1 4 4 0 2", 'threshold="0.5"')
+    assert count[0] == 0 and np.all(out == 0)        # Ikaros 2: one row, all border
+    out, points, count = run(tmp_path, "0 3 1 4 4 0 2", 'threshold="0.5" vectors="along"')
     assert np.array_equal(out, [0, 1, 0, 1, 1, 0, 0])
     assert count[0] == 3
     assert np.allclose(points[0], [1.5 / 7, 0.5, 3])

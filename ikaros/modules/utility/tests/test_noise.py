@@ -110,3 +110,40 @@ def test_bad_bounds_while_running_are_refused_and_the_last_valid_ones_stay(tmp_p
         assert out.min() >= 0 and out.max() < 3 and out.max() > 1
     finally:
         net.close()
+
+
+# --- Ikaros 3's interface (IKAROS3-INTERFACES: type uniform, min -0.1, max 0.1, stddev 0.1) --
+def _run_v3(tmp_path, attrs, ticks=1):
+    net = load(tmp_path, '<module class="Constant" name="C" outputsize="4000" data="0"/>'
+                         f'<module class="Noise" name="N" {attrs}/>'
+                         '<connection source="C.OUTPUT" target="N.INPUT" delay="0"/>',
+               dialect="3")
+    with net:
+        net.run(ticks=ticks)
+        return net.output("N.OUTPUT").astype(np.float64), net.parameter("N.type")
+
+
+def test_ikaros_3_defaults_are_uniform_within_a_tenth(tmp_path):
+    out, kind = _run_v3(tmp_path, "")
+    assert kind == "uniform"
+    assert out.min() >= -0.1 and out.max() < 0.1
+    assert abs(out.mean()) < 0.01 and abs(out.std() - 0.2 / np.sqrt(12)) < 0.005
+
+
+def test_ikaros_3_gaussian_uses_stddev(tmp_path):
+    out, _ = _run_v3(tmp_path, 'type="gaussian" mean="1"')          # stddev 0.1
+    assert abs(out.mean() - 1) < 0.01 and abs(out.std() - 0.1) < 0.01
+    out, _ = _run_v3(tmp_path, 'type="gaussian" stddev="2" seed="5"')
+    assert abs(out.std() - 2) < 0.1
+    rng = np.random.default_rng(5)
+    assert np.allclose(out, rng.standard_normal(4000, dtype=np.float32) * np.float32(2))
+
+
+def test_ikaros_2_uses_sigma_or_a_stddev_the_module_sets(tmp_path):
+    rng = np.random.default_rng(9)
+    noise = rng.standard_normal((2, 3), dtype=np.float32)
+    data = np.array([[1, 2, 3], [4, 5, 6]], np.float32)
+    out = run(tmp_path, 'seed="9" sigma="3"', 1)[0]
+    assert np.allclose(out, noise * np.float32(3) + data, atol=1e-6)
+    out = run(tmp_path, 'seed="9" sigma="3" stddev="0.5"', 1)[0]
+    assert np.allclose(out, noise * np.float32(0.5) + data, atol=1e-6)

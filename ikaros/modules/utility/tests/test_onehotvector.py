@@ -1,4 +1,6 @@
-"""Tests of the OneHotVector module."""
+"""Tests of the OneHotVector module (Ikaros 3 facts of issue 36: only -1 gives all zeros, any
+other index is truncated and clipped into the output; Ikaros 2: an INPUT of several
+elements gives all zeros, golden-v2 OneHotVector)."""
 import pytest
 
 import ikaros
@@ -22,11 +24,13 @@ def run(tmp_path, index, attrs="", extra="", ticks=1):
 
 @pytest.mark.parametrize("index, expected", [
     ("0", [1, 0, 0, 0]), ("2", [0, 0, 1, 0]), ("1.6", [0, 1, 0, 0]), ("12", [0, 0, 0, 1]),
-    ("-0.5", [0, 0, 0, 0]), ("-3", [0, 0, 0, 0]), ("inf", [0, 0, 0, 1]),
-    ("-inf", [0, 0, 0, 0])])
+    ("-1", [0, 0, 0, 0]), ("-0.5", [1, 0, 0, 0]), ("-3", [1, 0, 0, 0]), ("-1.5", [1, 0, 0, 0]),
+    ("inf", [0, 0, 0, 1]), ("-inf", [1, 0, 0, 0])])
 def test_the_index_is_truncated_as_in_ikaros_3(tmp_path, index, expected):
-    # golden/README.md: a fraction is truncated (2.6 -> 2), a negative index gives all zeros
+    # golden/README.md: a fraction is truncated (2.6 -> 2); issue 36: only exactly -1 gives
+    # all zeros, any other index is clipped into 0 ... size - 1
     assert run(tmp_path, index) == (expected, [])
+    assert run(tmp_path, index, 'value="3"')[0] == [3 * v for v in expected]
 
 
 @pytest.mark.parametrize("index, expected", [
@@ -36,9 +40,11 @@ def test_index_round_rounds_and_clamps(tmp_path, index, expected):
     assert run(tmp_path, index, 'index="round"') == (expected, [])
 
 
-def test_an_index_input_of_more_than_one_element_is_refused(tmp_path):
+def test_an_index_input_of_more_than_one_element(tmp_path):
     with pytest.raises(ikaros.ModelError, match="INPUT must have one element"):
-        run(tmp_path, "1 2")
+        load(tmp_path, BODY.format(index="1, 2", attrs="", extra=""), dialect="3")
+    output, warnings = run(tmp_path, "1 2", ticks=2)        # Ikaros 2: all zeros
+    assert output == [0, 0, 0, 0] and len(warnings) == 1
 
 
 def test_the_default_output_size_is_ten(tmp_path):

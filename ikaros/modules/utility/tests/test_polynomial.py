@@ -1,4 +1,5 @@
-"""Tests of the Polynomial module."""
+"""Tests of the Polynomial module: sum of c[k] x^(k + 1) over every coefficient given, whatever
+order says (golden-v2 Polynomial)."""
 
 import numpy as np
 
@@ -30,20 +31,20 @@ def test_hand_worked_cubic(tmp_path):
     assert np.allclose(out, [-3.5, 0, 4])
 
 
-def test_extra_coefficients_are_ignored(tmp_path):
-    out, _ = run(tmp_path, "2 3", 'order="1" coefficients="3 100 100"')
-    assert np.allclose(out, [6, 9])
-
-
-def test_missing_coefficients_are_zero_with_one_warning(tmp_path):
-    out, warnings = run(tmp_path, "2 3", 'order="3" coefficients="1"', ticks=3)
+def test_every_coefficient_counts_whatever_the_order_with_one_warning(tmp_path):
+    out, warnings = run(tmp_path, "2 3", 'order="1" coefficients="3 100 -1"', ticks=3)
+    assert np.allclose(out, [3 * 2 + 100 * 4 - 8, 3 * 3 + 100 * 9 - 27])
+    assert len(warnings) == 1
+    out, warnings = run(tmp_path, "2 3", 'order="3" coefficients="1"')
     assert np.allclose(out, [2, 3])
     assert len(warnings) == 1
 
 
-def test_order_zero_gives_zero(tmp_path):
-    out, _ = run(tmp_path, "2 3", 'order="0"')
-    assert np.array_equal(out, [0, 0])
+def test_golden_cubic_with_four_coefficients(tmp_path):
+    # golden-v2 Polynomial "cubic": order 3, four coefficients, all used
+    x = np.array([0.5, -1, 2, 0.25])
+    out, _ = run(tmp_path, "0.5 -1 2 0.25", 'order="3" coefficients="1 -0.5 0.25 2"')
+    assert np.allclose(out, x - 0.5 * x ** 2 + 0.25 * x ** 3 + 2 * x ** 4)
 
 
 def test_random_input_matches_numpy(tmp_path):

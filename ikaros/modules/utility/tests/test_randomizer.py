@@ -98,3 +98,30 @@ def test_a_range_wider_than_float32_does_not_overflow(tmp_path):
         assert out.min() < -1e38 and out.max() > 1e38
     finally:
         net.close()
+
+
+@pytest.mark.parametrize("attrs, dialect, shape", [
+    ("", "3", (2, 3)),                      # IKAROS3-INTERFACES: size "2,3"
+    ('size="4"', "3", (4,)),
+    ('size="3,4"', "2", (3, 4)),
+    ('outputsize="5"', "3", (5,)),          # an Ikaros 2 size set in the file wins
+    ("", "2", (1,)),
+])
+def test_size_gives_the_shape(tmp_path, attrs, dialect, shape):
+    net = load(tmp_path, f'<module class="Randomizer" name="R" seed="3" {attrs}/>',
+               dialect=dialect)
+    with net:
+        assert net.output("R.OUTPUT").shape == shape
+        net.step()
+        assert np.array_equal(net.output("R.OUTPUT"), draws(3, shape, 0, 1, 2)[1])
+
+
+def test_ikaros_3_default_seed_gives_a_different_run_every_time(tmp_path):
+    runs = []
+    for _ in range(2):
+        with load(tmp_path, '<module class="Randomizer" name="R" size="50"/>',
+                  dialect="3") as net:
+            assert net.parameter("R.seed") == -1
+            net.step()
+            runs.append(net.output("R.OUTPUT"))
+    assert not np.array_equal(runs[0], runs[1])

@@ -209,8 +209,9 @@ def test_capacity_is_fixed_while_running(tmp_path):
 
 @pytest.mark.parametrize("x, y, attrs, message", [
     ("1 2", "1 2 3", "", r"X has the shape \(2,\) and SAMPLE the shape \(3,\): X must be one "
-                         r"value \(shared by every sample\) or have the shape of SAMPLE"),
-    ("1 2 3 4", "1 2; 3 4", "", r"X has the shape \(4,\) and SAMPLE the shape \(2, 2\)"),
+                         r"value \(shared by every sample\) or have as many elements as "
+                         r"SAMPLE"),
+    ("1 2 3", "1 2; 3 4", "", r"X has the shape \(3,\) and SAMPLE the shape \(2, 2\)"),
     ("1", "1", 'models="linear, cubic"', r'models="linear, cubic": cubic is not among '
                                          r'linear, quadratic'),
     ("1", "1", 'capacity="0"', "capacity"),
@@ -223,3 +224,124 @@ def test_bad_shapes_and_parameters_are_build_errors(tmp_path, x, y, attrs, messa
                        '<connection source="X.OUTPUT" target="R.X"/>'
                        '<connection source="Y.OUTPUT" target="R.SAMPLE"/>')
     assert "model.ikg:" in str(e.value)
+
+
+# --- Ikaros 3's interface (IKAROS3-INTERFACES: X, Y, SAMPLE; SCATTER_X/Y, SAMPLE_COUNT,
+# LINEAR_REGRESSION, MODEL_COMPARISON; max_samples, labels), read as the description says
+def _t_p_value(t, df):
+    """Two-sided p of Student's t, by integrating its density numerically."""
+    grid = np.linspace(abs(t), abs(t) + 200, 400001)
+    density = (1 + grid ** 2 / df) ** (-(df + 1) / 2)
+    whole = np.linspace(0, 200, 400001)
+    return np.trapezoid(density, grid) / np.trapezoid((1 + whole ** 2 / df) **
+                                                      (-(df + 1) / 2), whole)
+
+
+def _line(x, y):
+    x, y = np.asarray(x, np.float64), np.asarray(y, np.float64)
+    n = len(x)
+    slope, intercept = np.polyfit(x, y, 1)
+    r = np.corrcoef(x, y)[0, 1]
+    residual = y - (intercept + slope * x)
+    s2 = residual @ residual / (n - 2)
+    se = np.sqrt(s2 / np.sum((x - x.mean()) ** 2))
+    return [slope, intercept, r, _t_p_value(slope / se, n - 2), se,
+            se * np.sqrt(np.mean(x * x))]
+
+
+def _v3_model(tmp_path, attrs="", sample=False):
+    body = ('<module class="Constant" name="X" data="0"/>'
+            '<module class="Constant" name="Y" data="0, 0"/>'
+            f'<module class="RegressionStatistics" name="R" {attrs}/>'
+            '<connection source="X.OUTPUT" target="R.X" delay="0"/>'
+            '<connection source="Y.OUTPUT" target="R.Y" delay="0"/>')
+    if sample:
+        body += ('<module class="Constant" name="S" data="1"/>'
+                 '<connection source="S.OUTPUT" target="R.SAMPLE" delay="0"/>')
+    return load(tmp_path, body, dialect="3")
+
+
+XS = [1.0, 2.0, 3.0, 4.5, 5.0, 7.0]
+YS = [[2.0, 9.0], [4.5, 7.5], [5.5, 7.0], [9.0, 4.0], [10.5, 3.5], [13.0, 1.0]]
+
+
+def test_ikaros_3_scatter_count_and_linear_regression_per_series(tmp_path):
+    net = _v3_model(tmp_path, 'max_samples="8" labels="left, right"')
+    with net:
+        assert net.output("R.MODEL_COMPARISON").shape == (7, 2)
+        for x, y in zip(XS, YS):
+            net.set_parameter("X.data", str(x))
+            net.set_parameter("Y.data", f"{y[0]}, {y[1]}")
+            net.step()
+        assert net.parameter("R.labels") == "left, right"
+        assert net.output("R.SAMPLE_COUNT").tolist() == [6, 6]
+        scatter_x, scatter_y = net.output("R.SCATTER_X"), net.output("R.SCATTER_Y")
+        assert scatter_x.shape == (8, 2)
+        assert np.array_equal(scatter_x[:6], np.array([XS, XS], np.float32).T)
+        assert np.array_equal(scatter_y[:6], np.array(YS, np.float32))
+        assert not scatter_x[6:].any() and not scatter_y[6:].any()
+        got = net.output("R.LINEAR_REGRESSION")
+        assert got.shape == (6, 2)
+        for j in range(2):
+            want = _line(XS, [row[j] for row in YS])
+            assert np.allclose(got[:, j], want, rtol=1e-4, atol=1e-6), j
+
+
+def test_ikaros_3_model_comparison_pools_the_series(tmp_path):
+    net = _v3_model(tmp_path)
+    with net:
+        for x, y in zip(XS, YS):
+            net.set_parameter("X.data", str(x))
+            net.set_parameter("Y.data", f"{y[0]}, {y[1]}")
+            net.step()
+        x = np.array(XS * 2)
+        y = np.array([row[0] for row in YS] + [row[1] for row in YS])
+        n, ss_tot = len(x), np.sum((y - y.mean()) ** 2)
+        want = []
+        for degree in (0, 1, 2, 3):                    # constant ... cubic
+            fitted = np.polyval(np.polyfit(x, y, degree), x)
+            want.append((fitted, degree + 1))
+        fitted = np.polyval(np.polyfit(np.log(x), y, 1), np.log(x))      # logarithmic
+        want.append((fitted, 2))
+        b, log_a = np.polyfit(x, np.log(y), 1)                          # exponential
+        want.append((np.exp(log_a + b * x), 2))
+        b, log_a = np.polyfit(np.log(x), np.log(y), 1)                  # power
+        want.append((np.exp(log_a) * x ** b, 2))
+        got = net.output("R.MODEL_COMPARISON")
+        for row, (fitted, p) in enumerate(want):
+            ss_res = np.sum((y - fitted) ** 2)
+            assert got[row, 0] == pytest.approx(1 - ss_res / ss_tot, abs=1e-5), row
+            assert got[row, 1] == pytest.approx(n * np.log(ss_res / n) + 2 * p, rel=1e-5), row
+
+
+def test_ikaros_3_sample_says_when_and_max_samples_keeps_the_latest(tmp_path):
+    net = _v3_model(tmp_path, 'max_samples="3"', sample=True)
+    with net:
+        kept = []
+        for k, (x, y) in enumerate(zip(XS, YS)):
+            on = k % 2 == 0
+            net.set_parameter("S.data", "1" if on else "0")
+            net.set_parameter("X.data", str(x))
+            net.set_parameter("Y.data", f"{y[0]}, {y[1]}")
+            net.step()
+            if on:
+                kept.append((x, y[0]))
+        kept = kept[-3:]
+        assert net.output("R.SAMPLE_COUNT").tolist() == [3, 3]
+        assert np.allclose(net.output("R.SCATTER_X")[:, 0], [k[0] for k in kept])
+        assert np.allclose(net.output("R.SCATTER_Y")[:, 0], [k[1] for k in kept])
+        net.command("R", "reset")
+        assert net.output("R.SAMPLE_COUNT").tolist() == [0, 0]
+        assert np.isnan(net.output("R.LINEAR_REGRESSION")).all()
+
+
+def test_two_pairs_give_a_line_without_p_and_errors(tmp_path):
+    net = _v3_model(tmp_path)
+    with net:
+        for x, y in ((1, "1, 5"), (3, "2, 1")):
+            net.set_parameter("X.data", str(x))
+            net.set_parameter("Y.data", y)
+            net.step()
+        got = net.output("R.LINEAR_REGRESSION")
+        assert np.allclose(got[:3, 0], [0.5, 0.5, 1]) and np.allclose(got[:3, 1], [-2, 7, -1])
+        assert np.isnan(got[3:]).all()

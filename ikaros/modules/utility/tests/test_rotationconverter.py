@@ -157,6 +157,17 @@ def test_zero_quaternion_is_no_rotation_with_one_warning(tmp_path):
 def test_wrong_input_size_is_an_error(tmp_path):
     with pytest.raises(ikaros.ModelError, match="needs 6 values"):
         convert(tmp_path, "1 2 3", input_format="xyzaxayaz")
+    with pytest.raises(ikaros.ModelError, match="needs 3 values"):
+        _convert_v3(tmp_path, "1, 2, 3, 4")         # Ikaros 2 only reads longer inputs
+
+
+def test_ikaros_2_reads_the_first_values_of_a_longer_input(tmp_path):
+    # golden-v2 RotationConverter "vector": four values in xyz form give the first three
+    out, warnings = convert(tmp_path, "0.5 -1 2 0.25")
+    assert np.array_equal(out, [0.5, -1, 2]) and len(warnings) == 1
+    out, _ = convert(tmp_path, "1 2 3 30 0 0 9", input_format="xyzaxayaz",
+                     output_format="matrix")
+    assert np.allclose(out.reshape(4, 4), pose(1, 2, 3, np.radians(30), 0, 0), atol=1e-6)
 
 
 def _convert_v3(tmp_path, data, **attrs):
@@ -190,3 +201,26 @@ def test_ikaros_3_quaternions_are_zero_unless_computed(tmp_path):
     out = _convert_v3(tmp_path, "0 0 90", input_format="axayaz", output_format="quaternion",
                       quaternions="computed")
     assert np.allclose(out, [[0, 0, np.sqrt(0.5), np.sqrt(0.5)]], atol=1e-6)
+
+
+def test_size_x_and_size_y_give_the_block_of_the_matrix_form(tmp_path):
+    m = pose(1, -2, 0.5, 0.3, 0.2, -0.4)
+    angles = "1 -2 0.5 0.3 0.2 -0.4"
+    out = _convert_v3(tmp_path, angles, input_format="xyzaxayaz", output_format="matrix",
+                      angle_unit="radians", size_y=3)
+    assert out.shape == (3, 4) and np.allclose(out, m[:3, :], atol=1e-6)
+    out = _convert_v3(tmp_path, angles, input_format="xyzaxayaz", output_format="matrix",
+                      angle_unit="radians", size_x=3, size_y=3)
+    assert out.shape == (3, 3) and np.allclose(out, m[:3, :3], atol=1e-6)
+    out, _ = convert(tmp_path, angles, input_format="xyzaxayaz", output_format="matrix",
+                     angle_unit="radians", size_y=3)              # Ikaros 2 file: 1-D
+    assert out.shape == (12,) and np.allclose(out, m[:3, :].reshape(-1), atol=1e-6)
+    rows = "; ".join(" ".join(repr(float(v)) for v in row) for row in m[:3, :])
+    out = _convert_v3(tmp_path, rows, input_format="matrix", output_format="xyzaxayaz",
+                      angle_unit="radians", size_y=3)
+    assert np.allclose(out, [[1, -2, 0.5, 0.3, 0.2, -0.4]], atol=1e-5)
+
+
+def test_size_x_and_size_y_must_be_3_or_4(tmp_path):
+    with pytest.raises(ikaros.ModelError, match="size_x"):
+        _convert_v3(tmp_path, "1, 2, 3", output_format="matrix", size_x=5)

@@ -1,4 +1,5 @@
-"""Tests of the Softmax module."""
+"""Tests of the Softmax module. Ikaros 2 reads an exponent that its class file never declares
+(it declares "exponenet"), so with none set every element is 1/n (golden-v2 Softmax)."""
 import numpy as np
 
 from ikaros.module import WARNING
@@ -8,8 +9,14 @@ RANDOM = ('<module class="Randomizer" name="R" outputsize_x="3" outputsize_y="2"
           'max="3" seed="5"/>\n<connection source="R.OUTPUT" target="S.INPUT" delay="0"/>\n')
 
 
-def test_polynomial_default_exponent_2(tmp_path):
-    net = load(tmp_path, RANDOM + '<module class="Softmax" name="S"/>')
+def test_ikaros_2_default_gives_every_element_1_over_n(tmp_path):
+    with load(tmp_path, RANDOM + '<module class="Softmax" name="S"/>') as net:
+        net.step()
+        assert np.allclose(net.output("S.OUTPUT"), np.full((2, 3), 1 / 6))
+
+
+def test_polynomial_exponent_2(tmp_path):
+    net = load(tmp_path, RANDOM + '<module class="Softmax" name="S" exponent="2"/>')
     try:
         for _ in range(4):
             net.step()
@@ -55,14 +62,15 @@ def test_exponent_and_the_misspelt_ikaros2_name(tmp_path):
     try:
         net.step()
         assert np.allclose(net.output("A.OUTPUT"), np.array([1, 2, 3]) / 6)
-        assert np.allclose(net.output("B.OUTPUT"), np.array([1, 8, 27]) / 36)
+        assert np.allclose(net.output("B.OUTPUT"), np.full(3, 1 / 3))    # not used
+        assert sum("exponenet" in entry[3] for entry in net.log) == 1
     finally:
         net.close()
 
 
 def test_zero_sum_gives_zero_and_one_warning(tmp_path):
     net = load(tmp_path, '<module class="Constant" name="C" data="0 0 0 0"/>\n'
-                         '<module class="Softmax" name="S"/>\n'
+                         '<module class="Softmax" name="S" exponent="2"/>\n'
                          '<connection source="C.OUTPUT" target="S.INPUT" delay="0"/>')
     try:
         net.run(ticks=3)
@@ -75,7 +83,7 @@ def test_zero_sum_gives_zero_and_one_warning(tmp_path):
 
 def test_nan_or_inf_input_gives_zeros_and_one_warning(tmp_path, capfd):
     net = load(tmp_path, '<module class="Constant" name="C" data="1 nan inf"/>'
-                         '<module class="Softmax" name="S"/>'
+                         '<module class="Softmax" name="S" exponent="2"/>'
                          '<connection source="C.OUTPUT" target="S.INPUT" delay="0"/>')
     try:
         net.run(ticks=3)
@@ -85,3 +93,13 @@ def test_nan_or_inf_input_gives_zeros_and_one_warning(tmp_path, capfd):
         assert "RuntimeWarning" not in capfd.readouterr().err
     finally:
         net.close()
+
+
+def test_ikaros_3_default_exponent_is_2(tmp_path):
+    net = load(tmp_path, '<module class="Constant" name="C" data="1, -2, 3"/>'
+                         '<module class="Softmax" name="S"/>'
+                         '<connection source="C.OUTPUT" target="S.INPUT" delay="0"/>',
+               dialect="3")
+    with net:
+        net.step()
+        assert np.allclose(net.output("S.OUTPUT"), np.array([1, 4, 9]) / 14)

@@ -1,4 +1,5 @@
-"""Tests of the Sweep module."""
+"""Tests of the Sweep module: Ikaros 2's ramp (golden-v2 Sweep): the step added in float32,
+then a value past max wraps to min and one below min to max."""
 
 import numpy as np
 
@@ -25,10 +26,15 @@ def test_default_ramp_reaches_max_then_wraps(tmp_path):
     try:
         out = net.output("S.OUTPUT")
         assert out.shape == (1,) and out.dtype == np.float32 and out[0] == 0
-        for tick in range(13):
+        value, got = np.float32(0), []
+        for tick in range(23):
             net.step()
-            k = (tick + 1) % 11            # 0.0, 0.1, ..., 1.0, then back to 0.0
-            assert net.output("S.OUTPUT")[0] == np.float32(k * 0.1), tick
+            value = np.float32(value + np.float32(0.1))
+            if value > 1:                  # ten steps of 0.1f are 1.0000001: wraps to 0
+                value = np.float32(0)
+            assert net.output("S.OUTPUT")[0] == value, tick
+            got.append(float(value))
+        assert got[9] == 0                 # golden-v2 Sweep "defaults": 0 at tick 9
     finally:
         net.close()
 
@@ -52,12 +58,12 @@ def test_all_elements_share_the_value_1d_and_2d(tmp_path):
 def test_negative_step_ramps_down_from_max(tmp_path):
     net = load(tmp_path, '<module class="Sweep" name="S" min="0" max="1" step="-0.5"/>')
     try:
-        assert net.output("S.OUTPUT")[0] == 1
+        assert net.output("S.OUTPUT")[0] == 0            # init: min
         got = []
         for _ in range(5):
             net.step()
             got.append(float(net.output("S.OUTPUT")[0]))
-        assert got == [0.5, 0.0, 1.0, 0.5, 0.0]
+        assert got == [1.0, 0.5, 0.0, 1.0, 0.5]          # below min wraps to max
     finally:
         net.close()
 

@@ -96,3 +96,68 @@ def test_an_asynchronous_system_module_sees_the_lag_of_its_tick(tmp_path):
         assert 0 < lag < 0.5                # its own copy of the clock carries the lag
     finally:
         net.close()
+
+
+# --- Ikaros 3's outputs (IKAROS3-INTERFACES), as the class description reads them --------
+def test_counts_state_and_progress(tmp_path):
+    net = load(tmp_path, '<module class="System" name="S"/>'
+                         '<module class="Constant" name="A" data="1"/>'
+                         '<module class="Constant" name="B" data="2"/>'
+                         '<module class="Scale" name="C"/>'
+                         '<connection source="A.OUTPUT" target="C.INPUT"/>', stop="4")
+    with net:
+        assert net.output("S.MODULE_COUNT").tolist() == [4]
+        assert net.output("S.CLASS_COUNT").tolist() == [3]       # System, Constant, Scale
+        for k in range(1, 4):
+            net.step()
+            assert net.output("S.STATE").tolist() == [3]          # stepped from Python: play
+            assert net.output("S.RUN_STATE").tolist() == [0, 0, 1, 0, 0]
+            assert net.output("S.STOP_AFTER_KNOWN").tolist() == [1]
+            assert net.output("S.PROGRESS")[0] == np.float32(k / 4)
+            assert net.output("S.TICKS_PER_S") == net.output("S.TICKS_PER_SECOND")
+            assert net.output("S.CPU_CORES") == net.output("S.CORES")
+
+
+def test_without_stop_there_is_no_progress(tmp_path):
+    with load(tmp_path, '<module class="System" name="S"/>') as net:
+        net.step()
+        assert net.output("S.STOP_AFTER_KNOWN").tolist() == [0]
+        assert net.output("S.PROGRESS").tolist() == [0]
+
+
+def test_real_time_mode_time_and_state(tmp_path):
+    with load(tmp_path, '<module class="System" name="S"/>', tick_duration="0.01") as net:
+        net.run(3, real_time=True)
+        assert net.output("S.STATE").tolist() == [4]
+        assert net.output("S.RUN_STATE").tolist() == [0, 0, 0, 1, 0]
+        assert net.output("S.TIME") == net.output("S.REAL_TIME")
+        assert net.output("S.NOMINAL_TIME")[0] == np.float32(2 * 0.01)
+        net.step()
+        assert net.output("S.TIME") == net.output("S.NOMINAL_TIME")
+
+
+@pytest.mark.parametrize("duration", ["1e-9", "1000"])
+def test_tick_time_usage_idle_ratio_and_overload(tmp_path, duration):
+    with load(tmp_path, '<module class="System" name="S"/>', tick_duration=duration) as net:
+        net.step()
+        uptime = float(net.output("S.UPTIME")[0])
+        spent = net.timing.last_spent               # the tick just completed
+        net.step()
+        assert net.output("S.TICK_TIME_USAGE")[0] == np.float32(spent)
+        share = spent / float(duration)
+        assert net.output("S.TIME_USAGE")[0] == pytest.approx(share, rel=1e-6)
+        assert net.output("S.IDLE_RATIO")[0] == pytest.approx(max(0.0, 1 - share), rel=1e-6)
+        assert net.output("S.OVERLOAD").tolist() == [float(spent > float(duration))]
+        assert float(net.output("S.UPTIME")[0]) > uptime > 0
+
+
+def test_actual_duration_is_the_time_between_tick_starts(tmp_path, monkeypatch):
+    fake = FakeTime()
+    monkeypatch.setattr(system_module, "time", fake)
+    with load(tmp_path, '<module class="System" name="S"/>') as net:
+        got = []
+        for wall in (1.0, 1.5, 2.25):
+            fake.wall = wall
+            net.step()
+            got.append(float(net.output("S.ACTUAL_DURATION")[0]))
+        assert got == [0, 0.5, 0.75]

@@ -1,5 +1,8 @@
 """Tests of the Transform module."""
 import numpy as np
+import pytest
+
+import ikaros
 
 from ikaros.testing import load_body as load
 
@@ -92,3 +95,16 @@ def test_no_match_gives_zero(tmp_path):
         assert not net.output("T.OBJECT_ID").any()
     finally:
         net.close()
+
+
+def test_an_incomplete_matrix_list_as_ikaros_2_and_3(tmp_path):
+    # golden-v2 Transform "vector": 4-element inputs hold no whole matrix; the outputs stay 0
+    body = model([np.arange(4.0)], [1], [2], [np.arange(4.0)], [1], [2])
+    body = body.replace('data="0 1 2 3"', 'data="0.5 -1 2 0.25"')
+    with load(tmp_path, body) as net:
+        net.step()
+        assert net.output("T.MATRIX").shape == (1, 16)
+        assert not net.output("T.MATRIX").any() and not net.output("T.FRAME_ID").any()
+        assert sum("not a multiple of 16" in entry[3] for entry in net.log) == 2
+    with pytest.raises(ikaros.ModelError, match="16 elements"):
+        load(tmp_path, body, dialect="3")
