@@ -58,9 +58,11 @@ class SpikingPopulation(Module):
     INTERNAL_TOPOLOGY (population_size × population_size, row the receiving neuron, column
     the sender) connects the population to itself: a neuron that spiked on the previous
     tick sends each neuron its weight times its spike, as an input spike of EXCITATION
-    does (a negative weight inhibits). ``debugmode`` is Ikaros 3's name of ``debug``. Ikaros 2
-    gave resonators c = +65 and low-threshold neurons a = 0.1 and let v run past the
-    threshold within a tick; these are corrected here. The reference says only that the
+    does (a negative weight inhibits). ``debugmode`` is Ikaros 3's name of ``debug``. This
+    project's earlier reading of the Ikaros 2 code (not checked against the original: its
+    golden files have no SpikingPopulation case, its outputs being random) is that it gave
+    resonators c = +65 and low-threshold neurons a = 0.1 and let v run past the threshold
+    within a tick; this class uses the paper's values instead. The reference says only that the
     neurons are driven through random weights in synapse_min..synapse_max and integrated in
     substeps per tick: it does not say how long a tick is or whether a spike counts by its
     value, so the 1 ms tick and the value times the weight of this class's first version stay
