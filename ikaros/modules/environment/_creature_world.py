@@ -9,6 +9,8 @@ import math
 
 import numpy as np
 
+from ._arm3_geometry import closest_point, point_distance as segment_distance
+
 OBJECT_COLUMNS, WALL_COLUMNS, SMELLS = 17, 11, 8
 FOOD, AVERSIVE = 1.0, 2.0            # the type column of the OBJECTS output
 TOUCH = 1e-3                         # distances this close count as touching
@@ -23,14 +25,6 @@ def rows(value, columns, name):
     if data.size % columns:
         raise ValueError(f"{name} has {data.size} values: it needs rows of {columns}")
     return data.reshape(-1, columns).copy()
-
-
-def segment_distance(p, a, b) -> float:
-    """The distance from point p to the segment a-b."""
-    ab = b - a
-    length2 = float(ab @ ab)
-    t = 0.0 if length2 == 0 else min(max(float((p - a) @ ab) / length2, 0.0), 1.0)
-    return float(np.hypot(*(p - (a + t * ab))))
 
 
 def ray_circle(origin, direction, centre, radius) -> float | None:
@@ -167,9 +161,7 @@ class CreatureWorld:
         touching = [c for c, cr in circles if np.hypot(*(centre - c)) - cr - r <= TOUCH]
         for a, b, w in capsules:
             if segment_distance(centre, a, b) - w - r <= TOUCH:
-                ab = b - a
-                t = min(max(float((centre - a) @ ab) / max(float(ab @ ab), _EPS), 0), 1)
-                touching.append(a + t * ab)
+                touching.append(closest_point(centre, a, b))
         for point in touching + self._edges(centre, r):
             side = math.sin(math.atan2(point[1] - self.y, point[0] - self.x) - self.heading)
             if side > -1e-6:                # left: towards +heading; straight ahead: both
