@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any, Callable, overload
 
 import numpy as np
 
+from .crandom import RAND_MAX, CRandom  # noqa: F401  (part of the module API)
 from .description import (ClassDescription, InputSpec, OutputSpec, ParameterSpec,
                           SIZE_RULE_KEYS, STATE_TYPES, StateSpec, canonical_type,
                           alias_rule, dynamic_rule)
@@ -314,7 +315,7 @@ RESERVED = {"name", "path", "clock", "element", "init", "tick", "command", "stop
             "set_sizes", "add_input", "add_output", "input_shape", "output_shape",
             "set_output_shape", "connected", "input_parts", "input_label", "notify", "print",
             "warning", "error", "fatal_error", "end_of_file", "description", "parameter_names",
-            "state", "start_steps", "dialect", "input_ready"}
+            "state", "start_steps", "dialect", "input_ready", "c_random"}
 
 
 def parameter_attribute(name: str) -> str:
@@ -415,6 +416,16 @@ class Module:
         self._ik_connected: frozenset[str] = _NONE_CONNECTED   # set by the kernel
         self._ik_start_steps = None     # the network's kernel.gating.StartSteps
         self._ik_arrivals: dict[str, np.ndarray] = {}    # input_ready's first ticks
+        self._ik_c_random: CRandom | None = None          # the network's, set by the kernel
+
+    @property
+    def c_random(self) -> CRandom:
+        """The C library's ``rand()`` as Ikaros 2 drew from it (glibc's, never seeded, so
+        seed 1), one stream shared by all modules of a network: a class that draws from it
+        in an Ikaros 2 file in the original's order gives the original's random numbers."""
+        if self._ik_c_random is None:
+            self._ik_c_random = CRandom()
+        return self._ik_c_random
 
     # --- life cycle: override these ------------------------------------------------------
     def configure(self) -> None:

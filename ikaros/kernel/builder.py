@@ -18,7 +18,7 @@ from ..language.reader import read_file
 from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
                                split_selectors, value_text)
 from ..description import parse_alias
-from ..module import Clock, Module, parameter_attribute
+from ..module import Clock, CRandom, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
 from .layout import layout, runs_into
@@ -102,6 +102,7 @@ class Builder:
         # groups with a process attribute in other processes (ikaros.links.split)
         self.network_factory = network_factory
         self.clock = Clock()
+        self.c_random = CRandom()      # the C rand() stream the network's modules share
         self.connections: list[tuple[Node, Group]] = []
         self.ports: dict[tuple, Buffer] = {}
         self.instances: list[ModuleInstance] = []
@@ -288,6 +289,7 @@ class Builder:
         module.user_data = self.user_data
         module.dialect = self.dialect
         module.clock = self.clock
+        module._ik_c_random = self.c_random
         for name, value in inst.values.items():
             setattr(module, parameter_attribute(name), value)
         inst.module = module

@@ -5,8 +5,10 @@ from ikaros.module import Input, Module, Output, Parameter
 class M02_Cortex(Module):
     """A placeholder cortex for Morén's (2002) model of emotional learning: OUTPUT is a copy of
     INPUT. With ``outputsize`` the output has that many elements instead: the first elements
-    of the input are copied and any left over are 0. (The Ikaros 2 module meant to copy but
-    never wrote its output, which stayed 0.)"""
+    of the input are copied and any left over are 0. Ikaros 3 has no such class. The
+    golden files of Ikaros 2 have no case of it, as the original refuses their sizes; this
+    project's earlier reading of its code, not checked against it, is that it never wrote
+    its output, which stayed 0."""
 
     outputsize = Parameter(None, "number of elements of the output; unset: the size of INPUT",
                            type="int")

@@ -8,26 +8,34 @@ MATCH_DISTANCE = 0.5        # a pattern farther than this from every binding is 
 
 class M02_Hippocampus(Module):
     """The context-processing hippocampus of Morén's (2002) model of emotional learning
-    (Balkenius & Morén 2000). Each tick the STIMULUS and LOCATION vectors together form a
-    pattern. BIND: the pattern is matched to the stored bindings (Euclidean distance); if none
-    is within 0.5 and there is room (``bindsize``), it is stored as a new binding. BIND is
-    one-hot for the binding and BIND_DELTA is 1 for a binding that was not active on the
-    previous tick. Novelty: each context remembers the stimulus last seen at each location
-    (the largest element of LOCATION); if an element remembered for the current context and
-    location is larger than the present stimulus, something expected is missing: RESET is 1
-    for this tick and, if the binding is new, a new context is created for it (a fatal error
-    when all ``contextsize`` contexts are used). Otherwise the current context adds the
-    binding to its set. CONTEXT is one-hot for the first context whose set holds the
-    binding, and the stimulus is remembered there. When both inputs are all 0, BIND,
-    BIND_DELTA and RESET are 0 and nothing else changes. (Ikaros 2 kept every binding of the
-    context active on BIND and reported the shortage one context early.)"""
+    (Balkenius & Morén 2000), as Ikaros 2 computes it (Ikaros 3 has no such class). Each
+    tick the STIMULUS and LOCATION vectors together form a pattern, matched to the stored
+    bindings (Euclidean distance); if none is within 0.5 and there is room (``bindsize``),
+    it is stored as a new binding. Novelty: each context remembers the stimulus last seen at
+    each location (the largest element of LOCATION); if an element remembered for the
+    current context and location is larger than the present stimulus, something expected
+    is missing: RESET is 1 for this tick and, if the binding is new, a new context is
+    created for it (a fatal error when all ``contextsize`` contexts are used). Otherwise the
+    current context adds the binding to its set. CONTEXT is one-hot for the context: it
+    stays while its set holds the binding, else it becomes the first context whose set
+    does; the stimulus is remembered there. BIND, with ``bind`` = ``context`` (Ikaros 2),
+    holds every binding of that context (1 for each); with ``current`` it is one-hot for the
+    binding of this tick. BIND_DELTA is 1 for a binding of BIND that was not in BIND on the
+    previous tick. When both inputs are all 0, BIND, BIND_DELTA and RESET are 0 and nothing
+    else changes. The golden files of Ikaros 2 show the bindings, BIND, BIND_DELTA, the
+    novelty resets, the new contexts and a context that keeps a binding it takes; the
+    distance 0.5, the memory per location and the fatal error when the contexts run out
+    are this project's reading of the model (no reference gives them)."""
 
     bindsize = Parameter(4, "number of binding nodes (distinct stimulus-location patterns)",
                          type="int", range=(1, None))
     contextsize = Parameter(4, "number of context nodes", type="int", range=(1, None))
+    bind = Parameter("context", "what BIND shows: context, every binding of the current "
+                     "context (Ikaros 2); current, the binding of this tick",
+                     options="context/current")
     STIMULUS = Input("the observed stimuli", flatten=True)
     LOCATION = Input("the observed location (its largest element is the place)", flatten=True)
-    BIND = Output("the binding of the current stimulus and location, one-hot",
+    BIND = Output("the bindings of the current context, or the current binding (see bind)",
                   size_param="bindsize")
     BIND_DELTA = Output("bindings that became active on this tick", size_param="bindsize")
     CONTEXT = Output("the current context, one-hot", size_param="contextsize")
@@ -86,10 +94,12 @@ class M02_Hippocampus(Module):
         else:
             np.maximum(self._cx_binds[self._context], bind, out=self._cx_binds[self._context])
         activity = self._cx_binds[:self._used_contexts] @ bind
-        self._context = int(np.argmax(activity))
+        if not activity[self._context] > 0:
+            self._context = int(np.argmax(activity))
         self.CONTEXT[...] = 0
         self.CONTEXT[self._context] = 1
         self._cx_memory[self._context, place] = stim
-        self.BIND[...] = bind
-        self.BIND_DELTA[...] = np.clip(bind - self._bind_last, 0, 1)
-        self._bind_last = bind
+        shown = self._cx_binds[self._context].copy() if self.bind == "context" else bind
+        self.BIND[...] = shown
+        self.BIND_DELTA[...] = np.clip(shown - self._bind_last, 0, 1)
+        self._bind_last = shown

@@ -14,7 +14,9 @@ class MemorySequencer(Module):
     in init is all 0) the sequence of the new pattern starts: OUTPUT is one-hot at 10k, then
     10k+1 on the next tick and so on; after the tenth state it starts over, so the sequence
     repeats while the input stays. Before any change OUTPUT is all 0. States past the end of
-    OUTPUT (k >= 8) are not shown (Ikaros 2 wrote past the end of its arrays)."""
+    OUTPUT (k >= 8) are not shown (this project's reading is that Ikaros 2 writes past the
+    end of its arrays there; its golden files, which this class reproduces, have no such
+    case). Ikaros 3 has no MemorySequencer."""
 
     INPUT = Input("the pattern; its largest element selects the sequence", flatten=True)
     OUTPUT = Output("the current state of the sequence, one-hot", size=str(SIZE))

@@ -14,8 +14,11 @@ class NeuralArray(Module):
     its sum; a negative shunting term counts as 0). Each tick ACTIVITY += epsilon * (a -
     ACTIVITY) + alpha * (1 - ACTIVITY) + noise * N(0, 1), so alpha is a slow passive increase
     towards 1; ACTIVITY starts at 0. OUTPUT = beta * max(ACTIVITY, 0). The ``seed`` fixes the
-    noise. (The Ikaros 2 module was a preliminary version whose code ignored most of its
-    parameters; this one implements the documented equation.)"""
+    noise. This implements the equation of the class description (Ikaros 3 has no
+    NeuralArray). It does not give Ikaros 2's values: the golden files of Ikaros 2 show its
+    OUTPUT always 0, and ACTIVITY 0 or about alpha (0.001, changed by its random numbers)
+    on elements that change from tick to tick, for an INHIBITION alone, a rule this project
+    has not worked out."""
 
     alpha = Parameter(0.001, "passive increase of the activity towards 1, per tick")
     beta = Parameter(1.0, "gain of the output")

@@ -5,7 +5,7 @@ from ikaros.module import Input, Module, Output, Parameter, require
 from ikaros.modules.io._files import resolve
 from ikaros.modules.neural import _connectivity as connectivity
 
-from ._nucleus import ATAN_1
+from ._nucleus import ATAN_1, TAN_1
 
 NA_THRESHOLD = 0.5          # noradrenaline threshold when NA_THRESHOLD is not connected
 WEIGHT_MIN, WEIGHT_MAX = 0.01, 100.0
@@ -15,13 +15,13 @@ INPUTS = (("EXCITATION", "excitation", "EX_TOPOLOGY"),
           ("SHUNTING_INHIBITION", "shunting_inhibition", "SH_INH_TOPOLOGY"))
 
 
-def _activation(name, x):
+def _activation(name, x, divisor):
     x = np.maximum(x, 0.0)
     if name == "relu":
         return x
     if name == "secondorder":
         return 2 * x * x / (1 + x * x)
-    return np.arctan(x) / ATAN_1            # scaledsigmoid
+    return np.arctan(x) / divisor            # scaledsigmoid
 
 
 class NucleusEnsemble(Module):
@@ -38,8 +38,9 @@ class NucleusEnsemble(Module):
     (0.5 when unconnected) and subtracted below. The state follows x += epsilon * (a - x);
     a tetanus trace follows T = (1 - tetanus_leak) * T + tetanus_factor * a. A nucleus whose
     T reaches its THRESHOLD = max(0, threshold + rho * ADENO_INPUT - sigma * DOPAMINE) outputs
-    alpha + beta * f(x), otherwise alpha; f is relu, scaledsigmoid (atan(x)/atan(1)) or
-    secondorder (2x^2/(1+x^2)), all 0 for x < 0. ADENO_OUTPUT equals OUTPUT. When SETPOINT is
+    alpha + beta * f(x), otherwise alpha; f is relu, scaledsigmoid (atan(x) divided by
+    ``sigmoid_divisor``: tan(1) as in Ikaros 2, whose Nucleus the golden files show dividing
+    so, or atan(1), which makes f(1) = 1) or secondorder (2x^2/(1+x^2)), all 0 for x < 0. ADENO_OUTPUT equals OUTPUT. When SETPOINT is
     connected the excitation weights w (initially 1) adapt: for an active nucleus its output
     enters a window of the last ``moving_avg_window_size`` values (initially 1) and w +=
     ADAPTATIONRATE (0.001 when unconnected) * (SETPOINT - window mean), kept in 0.01..100.
@@ -50,9 +51,11 @@ class NucleusEnsemble(Module):
     col, data and shape, .csv, .txt; nuclei x input elements, float32), which replaces the
     topology parameter. With ``synapse_storage`` auto a topology of at least 262,144 pairs of
     which at most a quarter are connected is kept sparse and multiplied with scipy.sparse
-    (the extra ikaros[scipy]); ``sparse`` asks for that always, ``dense`` never. Ikaros 2 left the
-    lateral topologies empty, averaged the window over ``size`` values, replaced phi by w and
-    divided atan by tan(1); these are fixed here."""
+    (the extra ikaros[scipy]); ``sparse`` asks for that always, ``dense`` never. This
+    project's earlier reading of the original's code (not checked against the original:
+    the golden file of Ikaros 2 has only a case without inputs) is that Ikaros 2 left the
+    lateral topologies empty, averaged the window over ``size`` values and replaced phi by
+    w; this class does not copy those. Ikaros 3 has no NucleusEnsemble."""
 
     debug = Parameter(False, "print the state of the ensemble every tick")
     size = Parameter(1, "number of nuclei", type="int", range=(1, None))
@@ -99,6 +102,8 @@ class NucleusEnsemble(Module):
                                    "output", options="none/excitatory/inhibitory")
     activation_function = Parameter("scaledsigmoid", "the output function f",
                                     options="relu/scaledsigmoid/secondorder")
+    sigmoid_divisor = Parameter("tan1", "scaledsigmoid is atan(x) / tan(1) (Ikaros 2) or / "
+                                "atan(1) (f(1) = 1)", options="tan1/atan1")
     moving_avg_window_size = Parameter(100, "length of the output window used to adapt to "
                                        "SETPOINT", type="int")
 
@@ -253,7 +258,9 @@ class NucleusEnsemble(Module):
 
         tetanus = (1 - self.tetanus_leak) * self.TETANUS + self.tetanus_factor * a
         self._x += self.epsilon * (a - self._x)
-        active_out = self.alpha + self.beta * _activation(self.activation_function, self._x)
+        divisor = TAN_1 if self.sigmoid_divisor == "tan1" else ATAN_1
+        active_out = self.alpha + self.beta * _activation(self.activation_function, self._x,
+                                                          divisor)
         out = np.where(tetanus >= thr, active_out, self.alpha)
         self.TETANUS[...] = tetanus
         self.THRESHOLD[...] = thr

@@ -48,9 +48,21 @@ class SpikingPopulation(Module):
     * y_i; a spike of neuron i adds 1 to y_i and raises each weight w_ij onto it by
     stdp_a_plus * x_j (so a sender spike arriving on the same tick counts as before); weights
     stay in 0..stdp_w_max. EXCITATION_WEIGHTS shows W_exc when ``weights_output`` is set.
-    ADENOSINE is adenosine_factor times the number of neurons spiking this tick. Ikaros 2
-    gave resonators c = +65 and low-threshold neurons a = 0.1 and let v run past the
-    threshold within a tick; these are corrected here. The reference says only that the
+    ADENOSINE is adenosine_factor times the number of neurons spiking this tick.
+
+    Ikaros 3's inputs (this project's reading of its interface; no run of the original was
+    compared): EXCITATION and INHIBITION are EXCITATION_IN and INHIBITION_IN under Ikaros
+    3's names (connect one name of each). EXCITATION_TOPOLOGY, when connected, gives the
+    excitatory weights instead (a matrix, a row per neuron and a column per element of
+    EXCITATION, read every tick: zero is no synapse; STDP does not learn it).
+    INTERNAL_TOPOLOGY (population_size × population_size, row the receiving neuron, column
+    the sender) connects the population to itself: a neuron that spiked on the previous
+    tick sends each neuron its weight times its spike, as an input spike of EXCITATION
+    does (a negative weight inhibits). ``debugmode`` is Ikaros 3's name of ``debug``. This
+    project's earlier reading of the Ikaros 2 code (not checked against the original: its
+    golden files have no SpikingPopulation case, its outputs being random) is that it gave
+    resonators c = +65 and low-threshold neurons a = 0.1 and let v run past the threshold
+    within a tick; this class uses the paper's values instead. The reference says only that the
     neurons are driven through random weights in synapse_min..synapse_max and integrated in
     substeps per tick: it does not say how long a tick is or whether a spike counts by its
     value, so the 1 ms tick and the value times the weight of this class's first version stay
@@ -59,7 +71,8 @@ class SpikingPopulation(Module):
     model_type = Parameter("Izhikevich", "the spiking neuron model", options="Izhikevich")
     neuron_type = Parameter("regular_spiking", "the Izhikevich neuron type",
                             options=list(NEURON_TYPES))
-    population_size = Parameter(50, "number of neurons", type="int", range=(1, None))
+    population_size = Parameter(50, "number of neurons", type="int", range=(1, None),
+                                default_v3=1)
     substeps = Parameter(2, "Euler steps per tick for the membrane potential", type="int")
     time_step = Parameter(1.0, "model time (ms) of one tick; 0: the kernel's tick_duration",
                           range=(0, None))
@@ -69,6 +82,7 @@ class SpikingPopulation(Module):
                             "or the weight alone (flag)", options="value,flag")
     adenosine_factor = Parameter(1.0, "adenosine produced per spike")
     debug = Parameter(False, "print the number of spikes every tick")
+    debugmode = Parameter(False, "Ikaros 3's name of debug")
     synapse_max = Parameter(1.5, "largest random synaptic weight")
     synapse_min = Parameter(0.5, "smallest random synaptic weight")
     inhibition_synapse_range = Parameter(None, "smallest and largest random inhibitory "
@@ -115,14 +129,26 @@ class SpikingPopulation(Module):
                           "spikes", optional=True, flatten=True)
     INHIBITION_IN = Input("inhibitory synaptic input: elements at or above threshold are "
                           "spikes", optional=True, flatten=True)
+    EXCITATION = Input("Ikaros 3's name of EXCITATION_IN", optional=True, flatten=True)
+    INHIBITION = Input("Ikaros 3's name of INHIBITION_IN", optional=True, flatten=True)
+    EXCITATION_TOPOLOGY = Input("the excitatory weights, neurons x EXCITATION elements, read "
+                                "every tick (instead of the drawn or given ones)",
+                                optional=True)
+    INTERNAL_TOPOLOGY = Input("weights among the neurons, receiver x sender: the previous "
+                              "tick's spikes feed back through them", optional=True)
     OUTPUT = Output("the membrane potentials (mV); threshold marks a spike",
                     size_param="population_size")
     ADENOSINE = Output("adenosine_factor times the number of spikes this tick", size="1")
     EXCITATION_WEIGHTS = Output("the excitatory weights (neurons x EXCITATION_IN elements) "
                                 "when weights_output is set, else empty")
 
+    def _input(self, name):
+        """The input under its Ikaros 2 name (``EXCITATION_IN``) or its Ikaros 3 one."""
+        v2, v3 = getattr(self, name + "_IN", None), getattr(self, name, None)
+        return v2 if v2 is not None else v3
+
     def set_sizes(self):
-        shape = self.input_shape("EXCITATION_IN")
+        shape = self.input_shape("EXCITATION_IN") or self.input_shape("EXCITATION")
         if self.weights_output and shape is not None:
             self.set_output_shape("EXCITATION_WEIGHTS",
                                   (self.population_size, int(np.prod(shape))))
@@ -143,14 +169,21 @@ class SpikingPopulation(Module):
         if self.DIRECT_IN is not None and self.DIRECT_IN.size > n:
             raise ValueError(f"DIRECT_IN has {self.DIRECT_IN.size} elements but the "
                              f"population only {n} neurons")
+        for name in ("EXCITATION", "INHIBITION"):
+            if getattr(self, name) is not None and getattr(self, name + "_IN") is not None:
+                raise ValueError(f"connect {name}_IN (Ikaros 2) or {name} (Ikaros 3), not "
+                                 f"both")
+        self._excitation, self._inhibition = self._input("EXCITATION"), \
+            self._input("INHIBITION")
+        self._check_topologies(n)
         rng = np.random.default_rng(self.seed or None)
-        self._exc = self._projection(rng, "excitation", self.EXCITATION_IN,
-                                     (self.synapse_min, self.synapse_max))
+        self._exc = None if self.EXCITATION_TOPOLOGY is not None else self._projection(
+            rng, "excitation", self._excitation, (self.synapse_min, self.synapse_max))
         inh_range = np.ravel(self.inhibition_synapse_range)
         if inh_range.size not in (0, 2):
             raise ValueError(f"inhibition_synapse_range has {inh_range.size} values; it "
                              f"needs two (smallest and largest weight) or none")
-        self._inh = self._projection(rng, "inhibition", self.INHIBITION_IN,
+        self._inh = self._projection(rng, "inhibition", self._inhibition,
                                      inh_range if inh_range.size else
                                      (self.synapse_min, self.synapse_max))
         self._stdp = None
@@ -161,6 +194,23 @@ class SpikingPopulation(Module):
         self._show_weights()
         self.OUTPUT[...] = self._v
         self.ADENOSINE[...] = 0
+
+    def _check_topologies(self, n):
+        excitation = self._excitation
+        for name, shape in (("INTERNAL_TOPOLOGY", (n, n)), ("EXCITATION_TOPOLOGY", (
+                n, 0 if excitation is None else excitation.size))):
+            x = getattr(self, name)
+            if x is not None and x.shape != shape:
+                raise ValueError(f"{name} has shape {x.shape}; it must be {shape} (a row per "
+                                 f"neuron, a column per sender)")
+        if self.EXCITATION_TOPOLOGY is not None and self.stdp:
+            raise ValueError("stdp learns drawn or given weights, not EXCITATION_TOPOLOGY's")
+
+    def _topology_current(self, current, weights, senders, values):
+        """current += weights[:, senders] @ values (or the sum of the columns)."""
+        if senders.size:
+            columns = weights[:, senders].astype(np.float64)
+            current += columns @ values if values is not None else columns.sum(axis=1)
 
     def _projection(self, rng, kind, x, weight_range):
         """The weights of one input: the matrix parameter, the file, or drawn."""
@@ -207,10 +257,16 @@ class SpikingPopulation(Module):
         dt = self.time_step or 1000.0 * self.clock.tick_duration
         pre = None
         if self._exc is not None:
-            pre, values = self._spiking(self.EXCITATION_IN)
+            pre, values = self._spiking(self._excitation)
             current += self._synaptic(self._exc, pre, values)
+        elif self.EXCITATION_TOPOLOGY is not None and self._excitation is not None:
+            self._topology_current(current, self.EXCITATION_TOPOLOGY,
+                                   *self._spiking(self._excitation))
+        if self.INTERNAL_TOPOLOGY is not None:
+            self._topology_current(current, self.INTERNAL_TOPOLOGY,
+                                   *self._spiking(self.OUTPUT.reshape(-1)))
         if self._inh is not None:
-            current -= self._synaptic(self._inh, *self._spiking(self.INHIBITION_IN))
+            current -= self._synaptic(self._inh, *self._spiking(self._inhibition))
 
         steps = max(1, self.substeps)
         if self._compiled:
@@ -235,5 +291,5 @@ class SpikingPopulation(Module):
             self._stdp.on_post(spiking)
             self._show_weights()
         self.ADENOSINE[...] = self.adenosine_factor * spiking.size
-        if self.debug:
+        if self.debug or self.debugmode:
             self.print(f"{spiking.size} spikes")

@@ -1,4 +1,5 @@
-"""Shared parts of the nucleus-like brain models (Nucleus, NeuralField, NucleusEnsemble)."""
+"""Shared parts of the nucleus-like brain models (Nucleus, NeuralField, NeuralArray,
+NucleusEnsemble)."""
 import math
 
 import numpy as np
@@ -6,6 +7,7 @@ import numpy as np
 from ikaros.module import Input, Module, Output, Parameter
 
 ATAN_1 = math.atan(1.0)
+TAN_1 = math.tan(1.0)
 
 
 def pooled(x, scale):
@@ -20,15 +22,17 @@ def shunting_factor(psi, s):
     return 1.0 / (1.0 + np.maximum(psi * s, 0.0))
 
 
-def scaled_atan(x):
-    """0 for x <= 0, atan(x) / atan(1) above: f(1) = 1 and f approaches 2 as x grows."""
-    return np.arctan(np.maximum(x, 0.0)) / ATAN_1
+def ikaros2_activation(x):
+    """Ikaros 2's nucleus activation: atan(x) / tan(1) for x > 0 (the golden files show the
+    divisor tan(1), not atan(1): f(1) = 0.504 and f tends to 1.009), 0 otherwise."""
+    return math.atan(x) / TAN_1 if x > 0 else 0.0
 
 
 class ScalarNucleus(Module):
-    """Base of Nucleus and NeuralField: one leaky unit driven by pooled inputs."""
+    """Base of Nucleus and NeuralField: one leaky unit driven by pooled inputs, as Ikaros 2
+    computes it."""
 
-    alpha = Parameter(0.0, "offset of the output (bias level)")
+    alpha = Parameter(0.0, "offset of the output while the state is above 0")
     beta = Parameter(1.0, "gain of the output")
     phi = Parameter(1.0, "weight of the excitation")
     chi = Parameter(1.0, "weight of the inhibition")
@@ -47,11 +51,12 @@ class ScalarNucleus(Module):
 
     def init(self):
         self._x = 0.0
-        self.OUTPUT[...] = self.alpha
+        self.OUTPUT[...] = 0.0
 
     def tick(self):
         s = shunting_factor(self.psi, pooled(self.SHUNTING_INHIBITION, self.scale))
         drive = (self.phi * s * pooled(self.EXCITATION, self.scale)
                  - self.chi * pooled(self.INHIBITION, self.scale))
         self._x += self.epsilon * (drive - self._x)
-        self.OUTPUT[...] = self.alpha + self.beta * scaled_atan(self._x)
+        self.OUTPUT[0] = self.alpha + self.beta * ikaros2_activation(self._x) \
+            if self._x > 0 else 0.0

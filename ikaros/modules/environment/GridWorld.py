@@ -23,16 +23,22 @@ class GridWorld(Module):
     radius ``radius`` cells that drives freely: MOVE is (left wheel, right wheel) speed in
     cells per tick (clipped to ``max_speed``), ``wheel_base`` sets how fast unequal wheels
     turn it, and a move that would overlap a wall slides along it or is refused. A cell's
-    centre is at its integer coordinate. A move onto a cell with a positive value gives that
-    REWARD and puts the agent back at (``start_x``, ``start_y``), so on that tick LOCATION
-    and COORDINATE already show the start. Differences from Ikaros 2, whose code read the
-    parameters under other names than the class file declared (x_start, y_start, mode; the
-    first two are accepted here as aliases), mapped the ``move`` options to the wrong
-    modes, never turned right in the relative modes, read past MOVE in ``relative_sum``
-    and set COLLISION when the agent did *not* collide: here ``move`` works as listed,
-    turns go both ways and COLLISION is 1 when a move is blocked. IMAGE is the Ikaros 2
-    picture (0 free, 1 wall, 2 agent, 3 reward) divided by 3 so that it is an image in
-    0..1. HEADING is an addition: the agent's direction in radians, clockwise from north."""
+    centre is at its integer coordinate. A move onto a cell with a positive value gives
+    that REWARD and puts the agent back at (``start_x``, ``start_y``), so on that tick
+    LOCATION and COORDINATE already show the start. COLLISION, with ``collision`` =
+    ``original`` (Ikaros 2), is 0 on a discrete move that a wall blocks and 1 on one that
+    succeeds (the original sets it when the agent did not collide); ``blocked`` gives 1 for
+    a blocked move and 0 otherwise, and the differential drive always reports it so. IMAGE,
+    with ``image`` = ``original`` (Ikaros 2), is OBSTACLES with 3 where VALUES is above 0
+    and 2 at the agent; ``normalized`` gives an image in 0..1: free 0, wall 1/3, agent 2/3,
+    reward 1. HEADING is an addition: the agent's direction in radians, clockwise from
+    north. The golden file of Ikaros 2 shows a blocked move (COLLISION 0), IMAGE, LOCATION,
+    COORDINATE, the local views and REWARD on a matrix MOVE; that Ikaros 2 read the
+    parameters under other names than its class file (x_start, y_start and mode; the first
+    two are accepted here as aliases), mapped the ``move`` options to other modes, never
+    turned right in the relative modes and read past MOVE in ``relative_sum`` is this
+    project's earlier reading of the original, not checked against it: here ``move``
+    works as listed and turns go both ways (Ikaros 3 has no GridWorld)."""
 
     move = Parameter("max", "how MOVE is read in the discrete mode: max or sum of the four "
                      "directions N, E, S, W, or relative_max / relative_sum of (ahead, turn "
@@ -50,6 +56,12 @@ class GridWorld(Module):
                         type="int")
     start_heading = Parameter(0.0, "starting heading in radians clockwise from north (the "
                               "relative modes round it to the nearest compass direction)")
+    collision = Parameter("original", "original: COLLISION 0 on a blocked move, 1 on a "
+                          "move that succeeds (Ikaros 2); blocked: 1 on a blocked move",
+                          options="original,blocked")
+    image = Parameter("original", "original: IMAGE is OBSTACLES, 3 on rewards, 2 at the "
+                      "agent (Ikaros 2); normalized: 0 free, 1/3 wall, 2/3 agent, 1 reward",
+                      options="original,normalized")
     normalize_coordinate = Parameter(False, "map COORDINATE to 0..1: ((x+0.5)/columns, "
                                      "(y+0.5)/rows)")
     max_speed = Parameter(0.25, "differential drive: largest wheel speed, cells per tick")
@@ -72,10 +84,9 @@ class GridWorld(Module):
     LOCAL_VALUES = Output("the 3x3 cells of VALUES around the agent's cell",
                           size_x="3", size_y="3")
     REWARD = Output("the value of the cell the agent reached on this tick", size="1")
-    COLLISION = Output("1 when the move of this tick was blocked by a wall, else 0",
+    COLLISION = Output("whether the move of this tick was blocked (see collision)",
                        size="1")
-    IMAGE = Output("picture of the world in 0..1: free 0, wall 1/3, agent 2/3, reward 1",
-                   shape="OBSTACLES.shape")
+    IMAGE = Output("picture of the world (see image)", shape="OBSTACLES.shape")
     HEADING = Output("the agent's heading in radians clockwise from north", size="1")
 
     def init(self):
@@ -136,7 +147,8 @@ class GridWorld(Module):
                 self.COLLISION[0] = 0
                 self._write()
                 return
-            self.COLLISION[0] = 0 if moved else 1
+            self.COLLISION[0] = float(moved) if self.collision == "original" else \
+                float(not moved)
         cx, cy = self._cell()
         reward = float(self._values[cy, cx])
         self.REWARD[0] = reward
@@ -234,6 +246,11 @@ class GridWorld(Module):
         self.LOCAL_VALUES[...] = self._values[cy - 1:cy + 2, cx - 1:cx + 2]
         self.HEADING[0] = self._heading
         image = self.IMAGE
+        if self.image == "original":
+            image[...] = self.OBSTACLES
+            image[self._values > 0] = 3
+            image[cy, cx] = 2
+            return
         np.clip(self.OBSTACLES, 0, 1, out=image)
         image *= 1 / 3
         image[self._values > 0] = 1

@@ -13,9 +13,13 @@ class MazeGenerator(Module):
     and along the bottom room row; ``t-maze`` is a corridor up the middle room column that
     meets one along the top room row. The maze is made in init and, when ``regenerate`` is
     more than 0, again on every tick that is a multiple of it (tick ``regenerate``,
-    2·``regenerate``, ...). The same ``seed`` gives the same mazes. (Ikaros 2 took its
-    random seed from the command line, left the output empty until its first tick when
-    regenerating, and made only perfect mazes whatever ``type`` said.)"""
+    2·``regenerate``, ...). The same ``seed`` gives the same mazes. Ikaros 2 (Ikaros 3
+    has no MazeGenerator) draws its mazes from the C library's rand(), seeded by the
+    command line's -z, so a run without -z makes the same maze every time; the golden file
+    of Ikaros 2 shows that maze for the defaults, and this class, whose random numbers and
+    depth-first order are its own, makes another: an Ikaros 2 model gets a maze of the same
+    kind but not the original's. The class description says the l-maze and t-maze types
+    exist; their layouts here are this project's."""
 
     size = Parameter(8, "number of rooms along each side; the matrix is 2*size+1 square",
                      range=(1, None))

@@ -1,77 +1,63 @@
-"""PlanarArm: a three-joint arm in the unit square, and a target for it to reach."""
-import math
-
+"""PlanarArm: a three-joint arm in the unit square and a target for it to reach (Ikaros 2),
+or Ikaros 3's arm with a gripper that pushes an object among obstacles."""
 import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
+from .._crand import module_rand
+from ._arm2 import (RANDOM_INTERVAL, START_ANGLES, arm_joints, inside_frame, next_angles,
+                    path_target)
 from ._arm3 import Arm3, parameters as arm3_parameters
-
-_LIMITS_LOW = np.array([-math.pi / 1.5, 0.0, 0.0])
-_LIMITS_HIGH = np.array([math.pi / 1.5, math.pi, math.pi])
-_RANDOM_INTERVAL = 100          # ticks between new random targets
-
-
-def arm_joints(angles, segment_length, base=(0.5, 0.0)):
-    """Forward kinematics: the (4, 2) joint positions of the arm for three joint angles.
-
-    Angles are measured from the y axis (straight up), clockwise, each relative to the
-    previous segment: joint k+1 = joint k + L_k (sin(a_0+...+a_k), cos(a_0+...+a_k))."""
-    cumulative = np.cumsum(angles)
-    steps = np.stack([np.sin(cumulative), np.cos(cumulative)], axis=1) * \
-        np.asarray(segment_length, np.float64)[:, None]
-    return np.vstack([base, np.asarray(base) + np.cumsum(steps, axis=0)])
-
-
-def _outside(hand):
-    """How far the hand is outside the frame 0.01..0.99 (0 inside)."""
-    return float(np.sum(np.maximum(0.01 - hand, 0) + np.maximum(hand - 0.99, 0)))
 
 
 class PlanarArm(Module):
-    """A planar arm of three segments (lengths ``segment_length``, Ikaros 2: 0.35, 0.25,
-    0.20) standing at (0.5, 0) in the unit square, and a target. Joint angles are measured
-    clockwise from straight up, each relative to the previous segment, so joint k+1 =
-    joint k + L_k·(sin(a_0+...+a_k), cos(a_0+...+a_k)). The angles start at 0.4 and move
-    towards DESIRED_ANGLES (unconnected: the arm stays) at most ``speed`` radians per tick
-    (all joints scaled together so the largest change is ``speed``), within the limits
-    |a_0| <= 2π/3 and 0 <= a_1, a_2 <= π; a move that would take the hand outside
-    0.01..0.99 in x or y is refused (unless it brings an outside hand closer to the frame:
-    the start pose has the hand at x = 1.002, where Ikaros 2 could leave the arm stuck).
-    The TARGET is redrawn uniformly in 0.1..0.9 at the start, every 100 ticks and whenever
-    the hand comes within ``grasp_limit`` of it
-    (``random``), or follows a path of radius ``target_range`` around (0.5, 0.5): ``linear``
-    (x = 0.5 + range·sin(speed·t)), ``circular``, ``lisajous`` (y at 0.3 times the
-    frequency) or ``square``; a grasp moves the time t of a path to a random point of its
-    first 100 ticks. ``target_noise`` adds Gaussian noise to the TARGET output on every
-    tick. DISTANCE is from the hand to the target of the same tick and CONTACT is 1 when it
-    is below ``target_size``. (Ikaros 2 reported the distance to the previous tick's
-    target, and with a random target let the noise accumulate as a random walk; here the
-    noise does not accumulate.)
+    """A planar arm and something to reach; an Ikaros 2 file gets Ikaros 2's simulation, an
+    Ikaros 3 file Ikaros 3's, a different one.
 
-    Two interfaces: Ikaros 2 gives the angles on DESIRED_ANGLES, Ikaros 3 on JOINT_COMMAND
-    (the same meaning; a model connects one of them). The Ikaros 3 GRIPPER input, when
-    connected, decides grasps: the hand grasps the target on a tick when GRIPPER's first
-    element is above 0 (closed) and the hand touches the target (CONTACT); ``grasp_limit``
-    is then not used.
+    **Ikaros 2.** Three segments (lengths ``segment_length``: 0.35, 0.25, 0.20) standing at
+    (0.5, 0) in the unit square. Joint angles are measured clockwise from straight up, each
+    relative to the previous segment: joint k+1 = joint k + L_k·(sin(a_0+…+a_k),
+    cos(a_0+…+a_k)). The angles start at 0.4. Each tick, with DESIRED_ANGLES d (the first
+    three elements; unconnected, the arm stays): when the largest |d − a| is 1 radian or
+    more the angles move ``speed`` × (d − a), otherwise they take d at once; then they are
+    limited to |a_0| ≤ 2π/3 and 0 ≤ a_1, a_2 ≤ π, and the move is refused (the arm stays)
+    if it would put the hand outside 0.01 … 0.99 in x or y. (The start pose has the hand at
+    x = 1.002, outside: the arm leaves it only by a move that ends inside.) DISTANCE is
+    from the hand to the TARGET of the previous tick (0, 0 before the first), CONTACT is 1
+    when it is below ``target_size``; then the target moves. With ``random`` a new target,
+    uniform in 0.1 … 0.9 (x drawn first), is drawn on tick 0, every 100 ticks and whenever
+    the hand is within ``grasp_limit`` of it; the draws are the C library's ``rand()`` of
+    the network (``rand()/RAND_MAX``), unseeded as in Ikaros 2, so a model gives the
+    original's targets, or a stream of its own seeded with ``seed``. The golden files of
+    Ikaros 2 show the motion rule, the start, the limits a_1 ≥ 0, the refused moves and the
+    random targets at the default ``speed``; the other limits, the paths and the noise
+    follow this project's reading of the class description: ``linear``,
+    ``circular``, ``lisajous`` and ``square`` follow a path of radius ``target_range``
+    around (0.5, 0.5) at phase ``target_speed`` × t (t = 1 on tick 0; x = 0.5 + range·sin,
+    circular y = 0.5 + range·cos, lisajous y at 0.3 times the frequency), a grasp moving t
+    to a random point of the first 100 ticks; ``target_noise`` adds Gaussian noise to the
+    TARGET output on every tick (it does not accumulate). The Ikaros 3 inputs work here
+    too: JOINT_COMMAND as DESIRED_ANGLES, and GRIPPER (when connected) decides grasps:
+    the hand grasps the target on a tick when GRIPPER's first element is above 0 and
+    CONTACT is 1. The Ikaros 3 outputs stay 0.
 
-    In an Ikaros 3 file (dialect 3) the class is Ikaros 3's, a different simulation: a
-    serial arm of ``link_lengths`` fixed at ``base_position`` in a world of world_width ×
-    world_height units, its angles relative and counter-clockwise from +x, with a palm and
-    two fingers (GRIPPER: 0 closed, 1 open) that push one movable circle
-    (``movable_object``: x, y, radius) among fixed circles and lines. JOINT_COMMAND is
-    reached in one tick unless a sub-step (at most ``max_joint_step``) hits the fixed world
-    or leaves the object no place (``solver_iterations`` pushes), which stops the motion
-    there and sets BLOCKED. RESET above 0.5 restarts from the initial pose. The outputs are
-    Ikaros 3's (added in dialect 3): JOINT_ANGLES, JOINT_POSITIONS, END_EFFECTOR (x, y, sum
-    of the angles), MOVABLE_OBJECT (x, y, r, enclosed), LINK_CONTACTS, GRIPPER_CONTACTS
-    (palm, left, right), OBJECT_CONTACTS (arm, circles, lines, world edge), BLOCKED,
-    ENCLOSED (two or more gripper parts touch the object) and the World2D-style tables
-    ARM_LINES, OBJECTS and WALLS; the Ikaros 2 outputs stay 0. Computed in float64 (Ikaros
-    3 uses float32), so values may differ in the last digits; no run of the original was
-    compared. Read this way, the reference's default scene puts the open right finger
-    inside the lower fixed circle, so with every default the arm starts (and stays)
-    BLOCKED; the reference does not settle whether the original does the same."""
+    **Ikaros 3** (an Ikaros 3 file): a serial arm of ``link_lengths`` fixed at
+    ``base_position`` in a world of world_width × world_height units, its angles relative
+    and counter-clockwise from +x, with a palm and two fingers (GRIPPER: 0 closed, 1 open)
+    that push one movable circle (``movable_object``: x, y, radius) among fixed circles and
+    lines. JOINT_COMMAND is reached in one tick unless a sub-step (at most
+    ``max_joint_step``) hits the fixed world or leaves the object no place
+    (``solver_iterations`` pushes), which stops the motion there and sets BLOCKED. RESET
+    above 0.5 restarts from the initial pose. The outputs: JOINT_ANGLES, JOINT_POSITIONS,
+    END_EFFECTOR (x, y, sum of the angles), MOVABLE_OBJECT (x, y, r, enclosed),
+    LINK_CONTACTS, GRIPPER_CONTACTS (palm, left, right), OBJECT_CONTACTS (arm, circles,
+    lines, world edge), BLOCKED, ENCLOSED (two or more gripper parts touch the object) and
+    the World2D-style tables ARM_LINES, OBJECTS and WALLS; the Ikaros 2 outputs stay 0.
+    Computed in float64 (Ikaros 3 uses float32), so values may differ in the last digits;
+    no run of the original was compared. Read this way, the reference's default scene puts
+    the open right finger inside the lower fixed circle, so with every default the arm
+    starts (and stays) BLOCKED; the reference does not settle whether the original does
+    the same."""
 
     target_behavior = Parameter("random", "how the target moves",
                                 options="random/linear/circular/lisajous/square")
@@ -79,13 +65,15 @@ class PlanarArm(Module):
     target_size = Parameter(0.05, "CONTACT is 1 when the hand is closer than this")
     target_range = Parameter(0.3, "radius of the target's path around (0.5, 0.5)")
     target_noise = Parameter(0.0, "standard deviation of Gaussian noise added to TARGET")
-    speed = Parameter(0.1, "largest change of a joint angle per tick, radians")
+    speed = Parameter(0.1, "the fraction of the change to DESIRED_ANGLES moved per tick "
+                      "when the largest change is 1 radian or more")
     grasp_limit = Parameter(0.0, "a hand closer than this to the target grasps it: a new "
                             "random target, or a jump along the path (0: never)")
     segment_length = Parameter("0.35 0.25 0.20", "lengths of the three segments",
                                type="array")
-    seed = Parameter(None, "seed of the random generator; unset (or 0) gives a different "
-                     "run every time", type="int")
+    seed = Parameter(None, "a random stream of the module's own, srand(seed); unset (or "
+                     "0): the network's C rand(), as Ikaros 2 (the same targets every run)",
+                     type="int")
     base_position = Parameter("60, 150", "Ikaros 3: where the arm is fixed", type="array")
     link_lengths = Parameter("65, 55, 45", "Ikaros 3: the length of each link", type="array")
     link_width = Parameter(6.0, "Ikaros 3: the width of the links")
@@ -120,33 +108,49 @@ class PlanarArm(Module):
 
     DESIRED_ANGLES = Input("Ikaros 2: the three joint angles the arm moves towards",
                            optional=True)
-    JOINT_COMMAND = Input("Ikaros 3: the three joint angles the arm moves towards",
-                          optional=True)
-    GRIPPER = Input("Ikaros 3: above 0 closes the gripper, which grasps a touched target",
-                    optional=True)
+    JOINT_COMMAND = Input("Ikaros 3: the joint angles the arm moves to (in an Ikaros 2 "
+                          "file: as DESIRED_ANGLES)", optional=True)
+    GRIPPER = Input("Ikaros 3: 0 closed … 1 open (in an Ikaros 2 file: above 0 grasps a "
+                    "touched target)", optional=True)
+    RESET = Input("Ikaros 3: above 0.5 restarts the arm from its initial pose",
+                  optional=True)
 
-    TARGET = Output("the target position (x, y)", size="2")
-    JOINTS = Output("positions (x, y) of the base, the two inner joints and the hand, "
-                    "one row each", size_x="2", size_y="4")
-    ANGLES = Output("the three joint angles", size="3")
-    HAND_POSITION = Output("the hand position (x, y)", size="2")
-    DISTANCE = Output("distance from the hand to the target", size="1")
-    CONTACT = Output("1 when the hand touches the target (DISTANCE < target_size)",
-                     size="1")
+    TARGET = Output("Ikaros 2: the target position (x, y)", size="2")
+    JOINTS = Output("Ikaros 2: positions (x, y) of the base, the two inner joints and the "
+                    "hand, one row each", size_x="2", size_y="4")
+    ANGLES = Output("Ikaros 2: the three joint angles", size="3")
+    HAND_POSITION = Output("Ikaros 2: the hand position (x, y)", size="2")
+    DISTANCE = Output("Ikaros 2: distance from the hand to the previous tick's target",
+                      size="1")
+    CONTACT = Output("Ikaros 2: 1 when DISTANCE < target_size", size="1")
+    JOINT_ANGLES = Output("Ikaros 3: the joint angles (one per link)")
+    JOINT_POSITIONS = Output("Ikaros 3: the base and the end of each link (x, y), one row "
+                             "each")
+    END_EFFECTOR = Output("Ikaros 3: the hand: x, y and the sum of the angles", size="3")
+    MOVABLE_OBJECT = Output("Ikaros 3: the movable circle: x, y, radius, enclosed",
+                            size="4")
+    LINK_CONTACTS = Output("Ikaros 3: 1 for each link that touches the movable object")
+    GRIPPER_CONTACTS = Output("Ikaros 3: palm, left and right finger touch the object",
+                              size="3")
+    OBJECT_CONTACTS = Output("Ikaros 3: the object touches the arm, a fixed circle, a fixed "
+                             "line, the world's edge", size="4")
+    BLOCKED = Output("Ikaros 3: 1 when this tick's motion was stopped", size="1")
+    ENCLOSED = Output("Ikaros 3: 1 when two or more gripper parts touch the object",
+                      size="1")
+    ARM_LINES = Output("Ikaros 3: the arm's segments as World2D wall rows (11 columns)")
+    OBJECTS = Output("Ikaros 3: the movable object and the fixed circles as World2D object "
+                     "rows (18 columns)")
+    WALLS = Output("Ikaros 3: the arm's segments and the fixed lines as World2D wall rows "
+                   "(11 columns)")
 
-    def configure(self):
-        if self.dialect != "3":
-            return
-        self.add_input("RESET", optional=True, description="above 0.5 restarts the arm")
+    def set_sizes(self):
         p = arm3_parameters(self)
-        L, circles, lines = len(p.link_lengths), len(p.circles), len(p.lines)
-        for name, shape in (("JOINT_ANGLES", (L,)), ("JOINT_POSITIONS", (L + 1, 2)),
-                            ("END_EFFECTOR", (3,)), ("MOVABLE_OBJECT", (4,)),
-                            ("LINK_CONTACTS", (L,)), ("GRIPPER_CONTACTS", (3,)),
-                            ("OBJECT_CONTACTS", (4,)), ("BLOCKED", (1,)), ("ENCLOSED", (1,)),
-                            ("ARM_LINES", (L + 3, 11)), ("OBJECTS", (circles + 1, 18)),
-                            ("WALLS", (L + 3 + lines, 11))):
-            self.add_output(name, shape, "Ikaros 3 (see the description)")
+        links, circles, lines = len(p.link_lengths), len(p.circles), len(p.lines)
+        for name, shape in (("JOINT_ANGLES", links), ("JOINT_POSITIONS", (links + 1, 2)),
+                            ("LINK_CONTACTS", links), ("ARM_LINES", (links + 3, 11)),
+                            ("OBJECTS", (circles + 1, 18)),
+                            ("WALLS", (links + 3 + lines, 11))):
+            self.set_output_shape(name, shape)
 
     def init(self):
         self._arm3 = None
@@ -164,28 +168,22 @@ class PlanarArm(Module):
             if self.JOINT_COMMAND is not None else (self.DESIRED_ANGLES, "DESIRED_ANGLES")
         if self._command is not None and self._command.size < 3:
             raise ValueError(f"{name} has {self._command.size} elements; it needs 3")
+        self._random = module_rand(self)
         self._rng = np.random.default_rng(self.seed or None)
-        self._angles = np.full(3, 0.4)
-        self._t = 0
-        self._target = np.array([0.5, 0.5])
-        self._new_random_target()
+        self._angles = np.full(3, START_ANGLES)
+        self._ticks = 0             # ticks run
+        self._t = 0                 # time on a target path
+        self._target = np.zeros(2)
         self._update_arm()
-        self._write_target()
 
     def _joints(self, angles):
         return arm_joints(angles, self.segment_length.astype(np.float64))
 
     def _update_arm(self):
-        np.clip(self._angles, _LIMITS_LOW, _LIMITS_HIGH, out=self._angles)
         joints = self._joints(self._angles)
         self.JOINTS[...] = joints
         self.HAND_POSITION[...] = joints[3]
         self.ANGLES[...] = self._angles
-
-    def _new_random_target(self):
-        if self.target_behavior == "random":
-            self._target = self._rng.uniform(0.1, 0.9, 2)
-        self._since_new = 0
 
     def _tick3(self):
         arm = self._arm3
@@ -207,54 +205,31 @@ class PlanarArm(Module):
             self._tick3()
             return
         if self._command is not None:
-            self._move_arm()
+            desired = np.asarray(self._command, np.float64).reshape(-1)[:3]
+            new = next_angles(self._angles, desired, self.speed)
+            if inside_frame(self._joints(new)[3]):
+                self._angles = new
+            self._update_arm()
         distance = float(np.hypot(*(self.HAND_POSITION - self.TARGET)))
+        self.DISTANCE[0] = distance
+        self.CONTACT[0] = 1.0 if distance < self.target_size else 0.0
         if self.GRIPPER is not None:
             grasped = bool(self.GRIPPER.size and self.GRIPPER.flat[0] > 0) and \
                 distance < self.target_size
         else:
             grasped = distance < self.grasp_limit
-        self._since_new += 1
         if self.target_behavior == "random":
-            if grasped or self._since_new >= _RANDOM_INTERVAL:
-                self._new_random_target()
+            if grasped or self._ticks % RANDOM_INTERVAL == 0:
+                self._target = np.array([0.1 + 0.8 * self._random.uniform(),
+                                         0.1 + 0.8 * self._random.uniform()])
+            target = self._target
         else:
             if grasped:
                 self._t = int(self._rng.integers(0, 100))
             self._t += 1
-        self._write_target()
-
-    def _move_arm(self):
-        desired = np.asarray(self._command, np.float64).reshape(-1)[:3]
-        movement = desired - self._angles
-        largest = np.max(np.abs(movement))
-        if largest > self.speed:
-            movement *= self.speed / largest
-        new = np.clip(self._angles + movement, _LIMITS_LOW, _LIMITS_HIGH)
-        outside = _outside(self._joints(new)[3])
-        if outside == 0 or outside < _outside(self._joints(self._angles)[3]):
-            self._angles = new
-        self._update_arm()
-
-    def _path_target(self):
-        phase = self.target_speed * self._t
-        r = self.target_range
-        s, c = math.sin(phase), math.cos(phase)
-        kind = self.target_behavior
-        if kind == "linear":
-            return np.array([0.5 + r * s, 0.5])
-        if kind == "circular":
-            return np.array([0.5 + r * s, 0.5 + r * c])
-        if kind == "lisajous":
-            return np.array([0.5 + r * s, 0.5 + r * math.cos(0.3 * phase)])
-        norm = abs(s) + abs(c)                              # square
-        return np.array([0.5 + r * s / norm, 0.5 + r * c / norm])
-
-    def _write_target(self):
-        target = self._target if self.target_behavior == "random" else self._path_target()
+            target = path_target(self.target_behavior, self.target_speed * self._t,
+                                 self.target_range)
         if self.target_noise > 0:
             target = target + self._rng.normal(0, self.target_noise, 2)
         self.TARGET[...] = target
-        d = float(np.hypot(*(self.HAND_POSITION - self.TARGET)))
-        self.DISTANCE[0] = d
-        self.CONTACT[0] = 1.0 if d < self.target_size else 0.0
+        self._ticks += 1

@@ -11,10 +11,6 @@ LINK_COLOUR, GRIPPER_COLOUR, WALL_COLOUR = (0.12, 0.35, 0.75), (0.15, 0.55, 0.95
     (0.25, 0.25, 0.27)
 CIRCLE_COLOUR, HELD_COLOUR, FREE_COLOUR = (0.42, 0.42, 0.46), (0.20, 0.85, 0.18), \
     (0.95, 0.55, 0.18)
-OUTPUTS = ("JOINT_ANGLES", "JOINT_POSITIONS", "END_EFFECTOR", "MOVABLE_OBJECT",
-           "LINK_CONTACTS", "GRIPPER_CONTACTS", "OBJECT_CONTACTS", "BLOCKED", "ENCLOSED",
-           "ARM_LINES", "OBJECTS", "WALLS")
-
 
 def _push(centre, point, need, fallback):
     """The centre moved out to distance ``need`` from ``point``, and whether it moved."""

@@ -5,7 +5,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from .._crand import network_rand, numpy_generator, uses_crand
+from .._crand import numpy_generator, uses_crand
 
 _ZERO_ONE = ("step", "sigmoid")          # activations whose targets are 0/1 (the others -1/1)
 
@@ -99,8 +99,8 @@ class Perceptron(Module):
             self.fatal_error(f"INPUT has {self.INPUT.size} elements but T_INPUT {n_in}")
         low, high = self.rand_weights_min, self.rand_weights_max
         if uses_crand(self):
-            stream = network_rand(self.clock)
-            self._w = np.array([[np.float32(stream.uniform(low, high))
+            stream = self.c_random
+            self._w = np.array([[np.float32(low + (high - low) * stream.uniform())
                                  for _ in range(n_in + 1)] for _ in range(n_out)], np.float64)
         else:
             self._w = numpy_generator(self).uniform(low, high, (n_out, n_in + 1))

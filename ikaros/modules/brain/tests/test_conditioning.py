@@ -11,7 +11,8 @@ MODEL = os.path.join(ROOT, "examples", "conditioning.ikg")
 
 
 def conditioned_responses(trials):
-    """The amygdala's E on the first CS tick of every 10-tick trial, run headless."""
+    """The amygdala's response to the first CS tick of every 10-tick trial, run headless: E
+    two ticks later (E(t) is computed from the nodes of tick t-2, as in Ikaros 2)."""
     net = ikaros.load(MODEL)
     try:
         cr = []
@@ -19,6 +20,7 @@ def conditioned_responses(trials):
             net.step()
             if t % 10 == 0:
                 assert net.output("CS.OUTPUT")[0] == 1
+            if t % 10 == 2:
                 cr.append(float(net.output("Amygdala.E")[0]))
         return np.array(cr)
     finally:

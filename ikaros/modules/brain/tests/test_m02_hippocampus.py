@@ -25,23 +25,37 @@ def run(tmp_path, rows, extra=""):
         net.close()
 
 
+ROWS = [[1, 0, 1, 0],    # CS at place 0: binding 0 (new), context 0
+        [1, 0, 1, 0],    # same: no change
+        [0, 0, 1, 0],    # CS missing where it was expected: reset, binding 1, context 1
+        [1, 0, 1, 0],    # binding 0, no novelty in context 1: context 1 takes binding 0
+        [0, 0, 0, 0],    # no input: BIND 0, no reset
+        [0, 1, 0, 1],    # another stimulus at place 1: binding 2, nothing expected there
+        [1, 0, 1, 0]]    # binding 0 again
+
+
 def test_bindings_contexts_and_resets(tmp_path):
-    rows = [[1, 0, 1, 0],    # CS at place 0: binding 0 (new), context 0
-            [1, 0, 1, 0],    # same: no change
-            [0, 0, 1, 0],    # CS missing where it was expected: reset, binding 1, context 1
-            [1, 0, 1, 0],    # binding 0, no novelty in context 1: context 1 takes binding 0
-            [0, 0, 0, 0],    # no input: BIND 0, no reset
-            [0, 1, 0, 1],    # another stimulus at place 1: binding 2, nothing expected there
-            [1, 0, 1, 0]]    # binding 0 again
-    out = run(tmp_path, rows)
+    out = run(tmp_path, ROWS, 'bind="current"')
     binds = [int(np.argmax(o["BIND"])) if o["BIND"].any() else None for o in out]
     assert binds == [0, 0, 1, 0, None, 2, 0]
+    assert all(o["BIND"].sum() == (1 if b is not None else 0) for o, b in zip(out, binds))
     assert [o["RESET"][0] for o in out] == [0, 0, 1, 0, 0, 0, 0]
-    assert [int(np.argmax(o["CONTEXT"])) for o in out] == [0, 0, 1, 0, 0, 0, 0]
+    # a context keeps a binding it takes (golden-v2 M02_Hippocampus "varying")
+    assert [int(np.argmax(o["CONTEXT"])) for o in out] == [0, 0, 1, 1, 1, 1, 1]
     assert all(o["CONTEXT"].sum() == 1 for o in out)
     assert [o["BIND_DELTA"].tolist() for o in out][:4] == [
         [1, 0, 0, 0], [0, 0, 0, 0], [0, 1, 0, 0], [1, 0, 0, 0]]
-    assert out[4]["BIND_DELTA"].sum() == 0 and out[5]["BIND_DELTA"][2] == 1
+    assert out[4]["BIND_DELTA"].sum() == 0 and out[5]["BIND_DELTA"].tolist() == [0, 0, 1, 0]
+
+
+def test_bind_shows_every_binding_of_the_context_by_default(tmp_path):
+    out = run(tmp_path, ROWS)
+    assert [o["BIND"].tolist() for o in out] == [
+        [1, 0, 0, 0], [1, 0, 0, 0], [0, 1, 0, 0], [1, 1, 0, 0], [0, 0, 0, 0],
+        [1, 1, 1, 0], [1, 1, 1, 0]]
+    assert [o["BIND_DELTA"].tolist() for o in out] == [
+        [1, 0, 0, 0], [0, 0, 0, 0], [0, 1, 0, 0], [1, 0, 0, 0], [0, 0, 0, 0],
+        [1, 1, 1, 0], [0, 0, 0, 0]]
 
 
 def test_too_few_contexts_is_a_fatal_error(tmp_path):

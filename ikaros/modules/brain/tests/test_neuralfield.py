@@ -1,4 +1,4 @@
-"""Tests of NeuralField: the scalar nucleus equation (shared with Nucleus)."""
+"""Tests of NeuralField: the scalar nucleus equation of Ikaros 2's Nucleus."""
 import math
 
 import pytest
@@ -19,30 +19,30 @@ def test_shunting_divides_the_excitation(tmp_path):
     try:
         for _ in range(3):
             net.step()
-            assert net.output("F.OUTPUT")[0] == pytest.approx(1.0)   # atan(1) / atan(1)
+            assert net.output("F.OUTPUT")[0] == pytest.approx(math.atan(1) / math.tan(1))
     finally:
         net.close()
 
 
-def test_unconnected_gives_alpha(tmp_path):
+def test_unconnected_gives_0_not_alpha(tmp_path):
     net = load(tmp_path, '<module class="NeuralField" name="F" alpha="0.25" beta="3"/>')
     try:
-        assert net.output("F.OUTPUT")[0] == pytest.approx(0.25)
+        assert net.output("F.OUTPUT")[0] == 0
         net.run(ticks=4)
-        assert net.output("F.OUTPUT")[0] == pytest.approx(0.25)
+        assert net.output("F.OUTPUT")[0] == 0          # x stays 0: not above 0
     finally:
         net.close()
 
 
 def test_approaches_its_fixed_point(tmp_path):
     net = load(tmp_path, '<module class="Constant" name="E" data="0.5"/>'
-               '<module class="NeuralField" name="F" epsilon="0.5" beta="2"/>'
+               '<module class="NeuralField" name="F" epsilon="0.5" beta="2" alpha="0.1"/>'
                '<connection source="E.OUTPUT" target="F.EXCITATION" delay="0"/>')
     try:
         xs = []
         for _ in range(20):
             net.step()
-            xs.append(math.tan(net.output("F.OUTPUT")[0] / 2 * math.atan(1)))
+            xs.append(math.tan((net.output("F.OUTPUT")[0] - 0.1) / 2 * math.tan(1)))
         # x_t = 0.5 (1 - 0.5^t)
         assert xs[0] == pytest.approx(0.25, rel=1e-5) and xs[1] == pytest.approx(0.375, rel=1e-5)
         assert xs[-1] == pytest.approx(0.5, rel=1e-5)

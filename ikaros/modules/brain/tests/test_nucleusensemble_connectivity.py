@@ -9,7 +9,7 @@ from ikaros.testing import load_body, matrix_text
 
 
 def f(x):
-    return np.arctan(np.maximum(x, 0)) / math.atan(1)
+    return np.arctan(np.maximum(x, 0)) / math.tan(1)      # Ikaros 2's scaledsigmoid
 
 
 def run(tmp_path, params, excitation, ticks=15):
@@ -73,7 +73,7 @@ def test_random_topology(tmp_path):
                 'connection_probability="0.2" scale="no"', e) for s in (3, 3, 4)]
     assert np.array_equal(some[0], some[1]) and not np.array_equal(some[0], some[2])
     # about a fifth of the inputs reach each nucleus: the drive is near 0.2 sum(e)
-    drive = np.tan(some[0][-1] * math.atan(1)) / (1 - 0.9 ** 15)
+    drive = np.tan(some[0][-1] * math.tan(1)) / (1 - 0.9 ** 15)
     assert 0.1 * e.sum() < drive.mean() < 0.3 * e.sum()
 
 

@@ -93,3 +93,24 @@ def test_noise_is_seeded_and_breaks_ties(tmp_path):
     a, b = run(1), run(1)
     assert np.array_equal(a, b)
     assert a.sum() == pytest.approx(1) and np.all(np.abs(a - 0.5) < 0.15)
+
+
+def test_positive_evidence_matrix_options_and_choice_ix(tmp_path):
+    """golden-v2 ValueAccumulator: E sums only the positive elements of INPUT, a matrix
+    INDEX keeps its shape, CHOICE_IX holds the last choice, and a choice's histogram cell
+    is its flat index from the start of its row."""
+    net = load(tmp_path, build("", "0 0 0; 0 0 1", "2 -5 0.5"))  # E = 2.5: s = 0.5 E (2 i - 1)
+    try:
+        net.step()                       # option 5 (row 1, column 2): 0.2 * 2.5 = 0.5
+        assert net.output("V.STATE").shape == (2, 3)
+        assert net.output("V.STATE").tolist() == [[0, 0, 0], [0, 0, 0.5]]
+        assert net.output("V.CHOICE_IX")[0] == 0
+        net.step()                       # 1.0: chosen after 1 tick
+        assert net.output("V.CHOICE").tolist() == [[0, 0, 0], [0, 0, 1]]
+        assert net.output("V.CHOICE_IX")[0] == 5
+        hist = net.output("V.RT-HISTOGRAM")
+        assert hist.shape == (40, 3) and hist[1, 2] == 1 and hist.sum() == 1   # 0 * 3 + 5
+        net.step()
+        assert net.output("V.CHOICE_IX")[0] == 5 and net.output("V.CHOICE").sum() == 0
+    finally:
+        net.close()

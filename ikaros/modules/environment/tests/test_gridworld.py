@@ -15,6 +15,8 @@ WALLS = np.array([[float(v) for v in row.split()] for row in OPEN.split(";")], n
 
 
 def world(tmp_path, move_size=4, values=None, **params):
+    """A world with this project's COLLISION and IMAGE unless the test asks otherwise."""
+    params = {"collision": "blocked", "image": "normalized", **params}
     attrs = " ".join(f'{k}="{v}"' for k, v in params.items())
     body = (f'<module class="Constant" name="Obst" data="{OPEN}"/>\n'
             f'<module class="Constant" name="Mv" data="{" ".join(["0"] * move_size)}"/>\n'
@@ -51,6 +53,24 @@ def test_max_mode_moves_collides_and_reports_the_neighbourhood(tmp_path):
         expected = WALLS / 3
         expected[1, 2] = 2 / 3
         assert np.allclose(net.output("G.IMAGE"), expected)
+    finally:
+        net.close()
+
+
+def test_ikaros2_collision_and_image(tmp_path):
+    """Ikaros 2's defaults (golden-v2 GridWorld): COLLISION 0 on a blocked move and 1 on a
+    move that succeeds; IMAGE is OBSTACLES with 3 on rewards and 2 at the agent."""
+    values = "0 0 0 0 0 0 0; 0 0 0 0 0 2 0; 0 0 0 0 0 0 0; 0 0 0 0 0 0 0; " \
+             "0 0 0 0 0 0 0; 0 0 0 0 0 0 0"
+    net = world(tmp_path, values=values, start_x=2, start_y=2, collision="original",
+                image="original")
+    try:
+        assert act(net, 1, 0, 0, 0) == ((2, 1), 1)                   # north: moved
+        assert act(net, 1, 0, 0, 0) == ((2, 1), 0)                   # border: blocked
+        expected = WALLS.copy()
+        expected[1, 5] = 3
+        expected[1, 2] = 2
+        assert np.array_equal(net.output("G.IMAGE"), expected)
     finally:
         net.close()
 
