@@ -2,7 +2,7 @@
 import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
-from ikaros.modules.robot._servo_chain import ChainDriver, limits, robot_of, toward, top_speeds
+from ikaros.modules.robot._servo_chain import SERIAL_LATENCY, latency, ChainDriver, limits, robot_of, toward, top_speeds
 
 
 
@@ -44,6 +44,8 @@ class DynamixelController(Module):
     ServoControlMode = Parameter("Position", "Position, or CurrentPosition (current-based position control)",
                                  options="Position,CurrentPosition")
 
+    serial_latency = Parameter(-1.0, SERIAL_LATENCY)
+
     GOAL_POSITION = Input("goal positions (degrees)")
     GOAL_CURRENT = Input("goal currents (mA; CurrentPosition)", optional=True)
     TORQUE_ENABLE = Input("1: torque on, 0: off (unconnected: on with a servo's first goal)", optional=True)
@@ -73,7 +75,7 @@ class DynamixelController(Module):
         def follow(present, goal, dt):
             return toward(present, goal, np.minimum(abs(goal - present) * float(self.SimulationRate), speeds * dt))
         self._driver = ChainDriver(self, self._robot, self.Simulate, *self._limits, str(self.ServoControlMode),
-                                   follow=follow)
+                                   follow=follow, latency_ms=latency(self))
         self._driver.start()
         self._ticks = 0
         self._show()

@@ -2,7 +2,7 @@
 import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
-from ikaros.modules.robot._servo_chain import ChainDriver, limits, parse_writes, robot_of
+from ikaros.modules.robot._servo_chain import SERIAL_LATENCY, latency, ChainDriver, limits, parse_writes, robot_of
 
 EPI_ROBOTS = "EpiWhite,EpiGreen,EpiBlue,EpiBlack,EpiRed,EpiOrange"
 MIN_LIMITS = "122, 130, 161, 156, 53, 73, 87, 53, 70, 0, 53, 79, 88, 158, 70, 0, 9"
@@ -48,6 +48,8 @@ class EpiServos(Module):
     ServoControlMode = Parameter("Position", "Position, or CurrentPosition (current-based position control: "
                                  "GOAL_CURRENT limits the current)", options="Position,CurrentPosition")
 
+    serial_latency = Parameter(-1.0, SERIAL_LATENCY)
+
     GOAL_POSITION = Input("goal positions (degrees)")
     GOAL_CURRENT = Input("goal currents (mA; ServoControlMode CurrentPosition)", optional=True)
     TORQUE_ENABLE = Input("1: torque on, 0: off (unconnected: on with a servo's first goal)", optional=True)
@@ -67,7 +69,7 @@ class EpiServos(Module):
 
     def init(self):
         self._driver = ChainDriver(self, self._robot, self.simulate, *self._limits, str(self.ServoControlMode),
-                                   self._writes)
+                                   self._writes, latency_ms=latency(self))
         self._driver.start()
         self._show()
 

@@ -2,7 +2,7 @@
 import os
 
 from ikaros.module import Input, Module, Output, Parameter
-from ikaros.modules.robot._servo_chain import ChainDriver, limits
+from ikaros.modules.robot._servo_chain import SERIAL_LATENCY, latency, ChainDriver, limits
 
 
 class HeadServos(Module):
@@ -22,6 +22,8 @@ class HeadServos(Module):
     port = Parameter("cu.usbserial-A40129WB", "the serial device of the head's bus (a name without a folder is in "
                      "/dev), or sim:dynamixel?... for the simulator")
 
+    serial_latency = Parameter(-1.0, SERIAL_LATENCY)
+
     GOAL_POSITION = Input("goal positions: neck tilt, neck pan (degrees)")
     TORQUE_ENABLE = Input("1: torque on, 0: off, per servo")
 
@@ -34,7 +36,8 @@ class HeadServos(Module):
         if not port.startswith("sim:") and "/" not in port and "\\" not in port:
             port = os.path.join("/dev", port)
         robot = robot_with_ports("Head", {"head": port}, model_folder(self))
-        self._driver = ChainDriver(self, robot, False, *limits(robot), writes={"Goal Position", "Torque Enable"})
+        self._driver = ChainDriver(self, robot, False, *limits(robot), writes={"Goal Position", "Torque Enable"},
+                                   latency_ms=latency(self))
         self._driver.start()
         self.PRESENT_POSITION[:] = self._driver.present
 

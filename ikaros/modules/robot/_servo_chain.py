@@ -54,6 +54,15 @@ def limits(robot, low=None, high=None) -> tuple[np.ndarray, np.ndarray]:
     return lows, highs
 
 
+def latency(module) -> float | None:
+    """The module's ``serial_latency`` in ms (None: the bus's default)."""
+    return None if module.serial_latency < 0 else float(module.serial_latency)
+
+
+SERIAL_LATENCY = ("milliseconds the adapters may hold a packet, which sets how long an answer is waited for "
+                  "(-1: 16, or 20 on a pseudo-terminal)")
+
+
 def top_speeds(robot) -> np.ndarray:
     """Each servo's no-load speed in degrees per second (its model's, from its control table)."""
     return np.array([s.table.no_load_rpm * 6.0 for s in robot.servos])
@@ -70,8 +79,10 @@ class ChainDriver:
     they are driven on their buses. ``writes`` are the DataToWrite fields."""
 
     def __init__(self, module, robot, simulate: bool, low: np.ndarray, high: np.ndarray,
-                 control_mode: str = "Position", writes: set[str] = frozenset(WRITABLE), follow=None):
+                 control_mode: str = "Position", writes: set[str] = frozenset(WRITABLE), follow=None,
+                 latency_ms: float | None = None):
         self.module, self.robot, self.simulate = module, robot, bool(simulate)
+        self.latency_ms = latency_ms
         self.low, self.high = low, high
         self.control_mode, self.writes = control_mode, set(writes)
         self.follow = follow or (lambda present, goal, dt: toward(present, goal, top_speeds(robot) * dt))
@@ -89,7 +100,7 @@ class ChainDriver:
             return
         from ikaros.hardware import safety
         from ikaros.hardware.dynamixel.chain import ServoChain
-        self.chain = ServoChain(self.robot)
+        self.chain = ServoChain(self.robot, self.latency_ms)
         try:
             self._set_modes()
             values, missing = self.chain.read(["PRESENT_POSITION"])

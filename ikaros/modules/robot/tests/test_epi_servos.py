@@ -27,6 +27,8 @@ BUSES = {"head": {2: "MX-106(2.0)", 3: "MX-106(2.0)", 4: "MX-28(2.0)", 5: "MX-28
 MODELS = [BUSES["head"][i] for i in (2, 3, 4, 5)] + ["XL-320"] * 2 + ARM + ARM + ["MX-106(2.0)"]
 LOW = [122, 130, 161, 156, -np.inf, -np.inf, 53, 73, 87, 53, 70, 0, 53, 79, 88, 158, 70, 0, 9]
 HIGH = [237, 240, 202, 193, np.inf, np.inf, 281, 281, 263, 202, 342, 360, 281, 290, 264, 316, 343, 360, 343]
+# answers are waited for generously: the simulator may wait for a CPU on a busy machine
+LATENCY = 'serial_latency="100"'
 GOALS = [200, 150, 170, 170, 200, 160, 100, 100, 100, 100, 100, 100, 250, 250, 250, 250, 250, 250, 400]
 
 
@@ -100,7 +102,7 @@ def servo(buses, element):
 def test_epi_servos_drive_the_epi_on_its_five_buses(tmp_path, epi):
     extra = ('<module class="Constant" name="T" data="1 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1 0"/>\n'
              '<connection source="T.OUTPUT" target="E.TORQUE_ENABLE" delay="0"/>\n')
-    net = epi_model(tmp_path, "EpiServos", 'robot="TestEpi"', extra=extra)
+    net = epi_model(tmp_path, "EpiServos", f'robot="TestEpi" {LATENCY}', extra=extra)
     try:
         assert net.output("E.PRESENT_POSITION").tolist() == pytest.approx([180.0] * 19, abs=0.1)
         assert not any(servo(epi, k).torque for k in range(19))            # nothing moved at the start
@@ -123,7 +125,7 @@ def test_epi_servos_drive_the_epi_on_its_five_buses(tmp_path, epi):
 def test_current_position_control_sets_the_operating_mode_and_writes_goal_currents(tmp_path, epi):
     extra = ('<module class="Constant" name="C" data="' + " ".join(["336"] * 19) + '"/>\n'
              '<connection source="C.OUTPUT" target="E.GOAL_CURRENT" delay="0"/>\n')
-    net = epi_model(tmp_path, "EpiServos", 'robot="TestEpi" ServoControlMode="CurrentPosition"', extra=extra)
+    net = epi_model(tmp_path, "EpiServos", f'robot="TestEpi" ServoControlMode="CurrentPosition" {LATENCY}', extra=extra)
     try:
         modes = [servo(epi, k).raw("OPERATING_MODE") if MODELS[k] != "XL-320" else None for k in range(19)]
         assert modes == [5 if m == "MX-106(2.0)" else 3 if m == "MX-28(2.0)" else None for m in MODELS]
@@ -144,7 +146,7 @@ def test_a_servo_of_another_model_than_the_robot_type_says_is_an_error(tmp_path,
         (tmp_path / "robots" / "TestEpi.json").write_text(json.dumps(robot))
         with pytest.raises(ModelError, match=r"servo Body \(id 2 on the body bus, .*\) is a XM430-W350; the robot "
                                              r"type Epi says MX-106\(2.0\)"):
-            epi_model(tmp_path, "EpiServos", 'robot="TestEpi"').step()
+            epi_model(tmp_path, "EpiServos", f'robot="TestEpi" {LATENCY}').step()
     finally:
         other.stop()
 
@@ -155,7 +157,7 @@ def test_an_unknown_robot_names_the_known_ones(tmp_path):
 
 
 def test_dynamixel_controller_drives_the_first_servo_count_servos_of_a_robot(tmp_path, epi):
-    net = epi_model(tmp_path, "DynamixelController", 'robot="TestEpi" ServoCount="4"', goals=GOALS[:4])
+    net = epi_model(tmp_path, "DynamixelController", f'robot="TestEpi" ServoCount="4" {LATENCY}', goals=GOALS[:4])
     try:
         assert net.output("E.PRESENT_POSITION").size == 4
         net.step()
@@ -170,7 +172,7 @@ def test_dynamixel_controller_drives_the_first_servo_count_servos_of_a_robot(tmp
 def test_head_servos_on_their_port(tmp_path):
     with VirtualDynamixelBus({2: "MX-106(2.0)", 3: "MX-106(2.0)"}, 2) as bus:
         body = (f'<module class="Constant" name="G" data="200 150"/>\n<module class="Constant" name="T" data="1 0"/>\n'
-                f'<module class="HeadServos" name="H" port="{bus.path}"/>\n'
+                f'<module class="HeadServos" name="H" port="{bus.path}" {LATENCY}/>\n'
                 '<connection source="G.OUTPUT" target="H.GOAL_POSITION" delay="0"/>\n'
                 '<connection source="T.OUTPUT" target="H.TORQUE_ENABLE" delay="0"/>\n')
         net = load_body(tmp_path, body, dialect="3")
