@@ -109,9 +109,9 @@ def test_start_server_runs_the_program_and_stops_it(tmp_path):
         f"#!{sys.executable}\n"
         "import signal, sys, time\n"
         "from ikaros.hardware.opc_sim import VirtualOPCServer\n"
-        f"server = VirtualOPCServer({port}).start()\n"
         f"signal.signal(signal.SIGTERM, lambda *a: (open({str(marker)!r}, 'w').close(), "
-        "sys.exit(0)))\n"
+        "sys.exit(0)))\n"                                  # before the port opens: a busy machine
+        f"server = VirtualOPCServer({port}).start()\n"
         "time.sleep(30)\n")
     os.chmod(program, 0o755)
     net = model(tmp_path, f"127.0.0.1:{port}", f'command="{program}"')
