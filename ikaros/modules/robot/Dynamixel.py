@@ -7,6 +7,7 @@ import numpy as np
 
 from ikaros.hardware import DeviceError
 from ikaros.module import Input, Module, Output, Parameter
+from ikaros.modules.robot._dynamixel_build import describe, elements, first_found
 from ikaros.modules.robot._dynamixel_report import state_table
 from ikaros.modules.robot._dynamixel_writes import NEEDS_TORQUE, SETTINGS, SettingsWriter, ramp
 
@@ -178,21 +179,15 @@ class Dynamixel(Module):
                 raise ValueError(f"servo {', '.join(map(str, missing))} on {described} does not answer")
             if missing:
                 self.warning(f"servo {', '.join(map(str, missing))} on {described} does not answer; left out")
-        elif self.number_of_servos > 0:
-            tables = self._first_found(tables, described)
-        self._tables = dict(sorted(tables.items()))
-        self._ids = list(self._tables)
-        self._size, self._index = self._elements(wanted or self._ids)
-
-    def _first_found(self, tables: dict, described: str) -> dict:
-        """The ``number_of_servos`` lowest ids of a scan; fewer found is an error."""
-        wanted = int(self.number_of_servos)
-        if len(tables) < wanted:
+        try:
+            if not wanted and self.number_of_servos > 0:
+                tables = first_found(tables, int(self.number_of_servos), int(self.max_servo_id), described)
+            self._tables = dict(sorted(tables.items()))
+            self._ids = list(self._tables)
+            self._size, self._index = elements(str(self.index_mode), int(self.size), self._ids, wanted or self._ids)
+        except ValueError:
             self._close_simulator()
-            raise ValueError(f"the scan of ids 0..{int(self.max_servo_id)} on {described} found "
-                             f"{len(tables)} servos ({', '.join(map(str, sorted(tables))) or 'none'}); "
-                             f"number_of_servos is {wanted}")
-        return {ident: tables[ident] for ident in sorted(tables)[:wanted]}
+            raise
 
     def set_sizes(self):
         if self.dialect != "3" and not self.connected("TORQUE_LIMIT"):
@@ -201,34 +196,6 @@ class Dynamixel(Module):
                              '(the torque limit ramps up to it at the start)')
         for name in self._ik_outputs:
             self.set_output_shape(name, (self._size, ERROR_BITS) if name == "ERRORS" else self._size)
-
-    def _elements(self, order: list[int]) -> tuple[int, np.ndarray]:
-        """The array size and the element of each servo (in id order) for ``index_mode``:
-        its id (direct), or its place in ``order``, the listed or scanned ids (indirect)."""
-        if self.index_mode == "direct":
-            element = {ident: ident for ident in self._ids}
-            natural = max(order) + 1
-        else:
-            element = {ident: order.index(ident) for ident in self._ids}
-            natural = len(order)
-        size = int(self.size) if int(self.size) > 0 else natural
-        outside = [ident for ident in self._ids if element[ident] >= size]
-        if outside:
-            self._close_simulator()
-            raise ValueError(f"size=\"{int(self.size)}\" leaves no element for servo "
-                             f"{', '.join(map(str, outside))} (index_mode=\"{self.index_mode}\" "
-                             f"needs at least {natural})")
-        return size, np.array([element[ident] for ident in self._ids], dtype=int)
-
-    def _describe(self, bus, tables) -> str:
-        models = {}
-        for ident, table in tables.items():
-            models.setdefault(table.model, []).append(ident)
-        text = f"{len(tables)} servos on {bus}: " + "; ".join(f"{m} {ids}" for m, ids in models.items())
-        if self.print_info == "full":
-            for ident, table in tables.items():
-                text += f"\n  id {ident}: {table.model} (model number {table.model_number}, {table.series})"
-        return text
 
     # --- run --------------------------------------------------------------------------------
     def init(self):
@@ -244,7 +211,7 @@ class Dynamixel(Module):
     def _start(self, group) -> None:
         from ikaros.hardware import safety
         if self.print_info != "none":
-            self.print(self._describe(group.bus, group.tables))
+            self.print(describe(group.bus, group.tables, self.print_info == "full"))
         self._angle = ANGLE_FACTOR[self.angle_unit]
         self._writer = SettingsWriter(group, bool(self.optimize), self._published)
         start = group.read(SETTINGS)

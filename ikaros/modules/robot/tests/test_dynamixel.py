@@ -38,8 +38,11 @@ def model(tmp_path, device, goals="200 0 90", params="", extra=""):
 
 
 def ikaros2_file(path, device, goals, params=""):
-    """A whole Ikaros 2 model file: goals and a torque limit of 1 from Constants."""
+    """A whole Ikaros 2 model file: goals and a torque limit of 1 from Constants; answers are
+    waited for generously (the simulator runs in this test's process, another process's
+    driver may wait for it on a busy machine)."""
     limit = " ".join("1" for _ in goals.split())
+    params += ' serial_latency="100"'
     path.write_text(f'<group name="Arm" tick_duration="0.01">\n<module class="Constant" name="G" data="{goals}"/>\n'
                     f'<module class="Constant" name="L" data="{limit}"/>\n'
                     f'<module class="Dynamixel" name="D" device="{device}" {params}/>\n'
