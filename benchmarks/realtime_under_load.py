@@ -87,9 +87,11 @@ def epi_bus_model(folder: str, device: str) -> str:
         f.write(f'<group name="EpiBus" tick_duration="0.01">\n'
                 f'<module class="Constant" name="Goals" data="{goals}"/>\n'
                 f'<module class="Dynamixel" name="Servos" device="{device}" servo_id="{ids}" index_mode="indirect" '
-                f'protocol="2" feedback="position" print_info="none" '
+                f'protocol="2" feedback="position" max_temperature="0" print_info="none" '
                 f'serial_latency="{LATENCY_MS}"/>\n'
+                f'<module class="Constant" name="Torque" data="{" ".join("1" for _ in range(SERVOS))}"/>\n'
                 f'<connection source="Goals.OUTPUT" target="Servos.GOAL_POSITION"/>\n'
+                f'<connection source="Torque.OUTPUT" target="Servos.TORQUE_LIMIT"/>\n'
                 f'</group>\n')
     return path
 

@@ -76,8 +76,11 @@ def module_run(path: str, ticks: int) -> dict:
     model = (f'<group name="EpiBus" tick_duration="0.01">\n'
              f'<module class="Constant" name="Goals" data="{goals}"/>\n'
              f'<module class="Dynamixel" name="Servos" device="{path}" servo_id="{" ".join(map(str, range(1, SERVOS + 1)))}" '
-             f'index_mode="indirect" protocol="2" feedback="position" print_info="none" serial_latency="{LATENCY_MS}"/>\n'
-             '<connection source="Goals.OUTPUT" target="Servos.GOAL_POSITION"/>\n</group>\n')
+             f'index_mode="indirect" protocol="2" feedback="position" max_temperature="0" print_info="none" '
+             f'serial_latency="{LATENCY_MS}"/>\n'
+             f'<module class="Constant" name="Torque" data="{" ".join("1" for _ in range(SERVOS))}"/>\n'
+             '<connection source="Goals.OUTPUT" target="Servos.GOAL_POSITION"/>\n'
+             '<connection source="Torque.OUTPUT" target="Servos.TORQUE_LIMIT"/>\n</group>\n')
     with tempfile.TemporaryDirectory() as folder:
         file = os.path.join(folder, "epibus.ikg")
         with open(file, "w") as f:

@@ -1,7 +1,7 @@
 """The robot examples run headless against the simulators: the Epi head follows its target,
-the LUCS arm follows its guarded sines, and the recorded arm motion is played back; every
-example with a robot driver runs to its end in a batch run, also on a machine whose cores are
-busy."""
+the whole Epi (head and arms, EpiServos, an Ikaros 3 file) follows its waves, the LUCS arm
+follows its guarded sines, and the recorded arm motion is played back; every example with a
+robot driver runs to its end in a batch run, also on a machine whose cores are busy."""
 import glob
 import os
 import re
@@ -19,10 +19,11 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLES = os.path.join(ROOT, "examples")
 
 
-DRIVERS = ("Dynamixel", "SSC32", "Epuck", "FadeCandy", "Phidgets")
+DRIVERS = ("Dynamixel", "SSC32", "Epuck", "FadeCandy", "Phidgets", "EpiServos", "DynamixelController",
+           "HeadServos")
 # each robot example and the files it needs beside it
 ROBOT_EXAMPLES = {"epi.ikg": ["EpiHeadPose.py"], "lucs_arm.ikg": [], "arm_playback.ikg": ["arm_motion.00.dat"],
-                  "epuck_obstacles.ikg": []}
+                  "epuck_obstacles.ikg": [], "epi_servos.ikg": []}
 
 
 def copy(tmp_path, *names):
@@ -58,6 +59,28 @@ def test_epi_head_follows_the_target_through_the_guard(tmp_path):
         assert np.median(errors) < 2.0                                       # and the head keeps up
         pose = net.output("Pose.TRANSFORMS")
         assert pose.shape == (6, 16) and abs(pose[1, 11] - (0.693 + 0.077)) < 1e-6     # the tilt axis
+    finally:
+        net.close()
+
+
+def test_the_whole_epi_follows_its_waves_in_simulation(tmp_path):
+    """Head and arms move; every servo is within its top speed × tick of its goal's path and
+    inside its limits (EpiServos's MinLimitPosition/MaxLimitPosition; the pupils have none)."""
+    net = ikaros.load(copy(tmp_path, "epi_servos.ikg"))
+    try:
+        assert net.dialect == "3"
+        low = np.array([122, 130, 161, 156, 0, 0, 53, 73, 87, 53, 70, 0, 53, 79, 88, 158, 70, 0, 9])
+        high = np.array([237, 240, 202, 193, 360, 360, 281, 281, 263, 202, 342, 360, 281, 290, 264, 316, 343, 360, 343])
+        rows = []
+        for _ in range(200):
+            net.step()
+            rows.append((net.output("Pose.OUTPUT").copy(), net.output("Servos.PRESENT_POSITION").copy()))
+        present = np.array([p for _, p in rows])
+        assert np.all(present >= low - 1e-3) and np.all(present <= high + 1e-3)
+        assert np.ptp(present[:, :4], axis=0).min() > 5 and np.ptp(present[:, 6:18], axis=0).min() > 5
+        # the goal arrives through a delay of 1: each servo is where last tick's goal was
+        errors = [np.max(np.abs(np.clip(g, low, high) - p)) for (g, _), (_, p) in zip(rows[20:], rows[21:])]
+        assert np.max(errors) < 1e-3                         # the simulated servos keep up
     finally:
         net.close()
 

@@ -2,10 +2,11 @@
 
 The client asks the server to push frames (``{"category": "tracker", "request": "set",
 "values": {"push": true, "version": 1}}``), sends a heartbeat (``{"category": "heartbeat"}``)
-every 250 ms, and keeps the newest frame it received. Frames are JSON objects sent one after
-the other, not necessarily one per line (The Eye Tribe "API Reference", "Protocol" and
-"Tracker" categories). Text that is no JSON object is skipped and kept for a warning, and
-reading resumes at the next message.
+every 250 ms, and keeps the newest frame it received. Messages are JSON objects, each ended
+by a newline (The Eye Tribe "API Reference", "Protocol" and "Tracker" categories); they are
+read whether or not the newline has come. Text that is no JSON object, and a message cut
+off (its line ends before it closes), is skipped and kept for a
+warning, and reading resumes at the next message at once.
 """
 from __future__ import annotations
 
@@ -29,9 +30,14 @@ MAX_PENDING = 65536              # characters of an unfinished message kept (a f
 def messages(buffer: str) -> tuple[list[dict], str, list[str]]:
     """The whole JSON objects at the start of ``buffer``, what is left after them (the start
     of an unfinished message), and the pieces of text skipped because they are no JSON
-    object: text before a ``{``, or a ``{...}`` whose braces balance but that does not parse.
-    Parsing resumes at the next ``{``; an unfinished message longer than ``MAX_PENDING`` is
-    skipped too, so the buffer stays bounded."""
+    object: text before a ``{``, a ``{...}`` whose braces balance but that does not parse, or
+    a message cut off. The server ends every message with a newline, and JSON holds no raw
+    newline inside a message, so a ``{`` still open at a newline is a message cut off (a
+    connection hiccup): it is skipped, and reading resumes at the next ``{`` of that line
+    from which a whole JSON object reads (the next message, sent right after the cut one),
+    or after the newline. A ``{...}`` that does not parse is skipped to the next ``{`` in it.
+    So a bad or truncated message costs that message alone. An unfinished message longer
+    than ``MAX_PENDING`` is skipped too, so the buffer stays bounded."""
     decoder = json.JSONDecoder()
     found: list[dict] = []
     skipped: list[str] = []
@@ -44,7 +50,12 @@ def messages(buffer: str) -> tuple[list[dict], str, list[str]]:
             skipped.append(buffer[i:start].strip())
         if start >= len(buffer):
             return found, "", skipped
-        end = _closing_brace(buffer, start)
+        end, cut = _closing_brace(buffer, start)
+        if cut:                                      # cut off: resynchronise in its line
+            stop = _next_message(decoder, buffer, start, end)
+            skipped.append(buffer[start:stop].strip())
+            i = stop
+            continue
         if end is None:                              # unfinished: wait for the rest
             if len(buffer) - start > MAX_PENDING:
                 skipped.append(buffer[start:])
@@ -64,12 +75,31 @@ def messages(buffer: str) -> tuple[list[dict], str, list[str]]:
             i = stop
 
 
-def _closing_brace(text: str, start: int) -> int | None:
-    """The index after the ``}`` that closes the ``{`` at ``start`` (braces in JSON strings
-    do not count), or None when the text ends first."""
+def _next_message(decoder: json.JSONDecoder, text: str, start: int, newline: int) -> int:
+    """Where reading resumes after the message cut off at ``start``: the first later ``{``
+    before ``newline`` from which a whole JSON object reads within the line, else the
+    newline."""
+    k = text.find("{", start + 1, newline)
+    while k >= 0:
+        try:
+            obj, end = decoder.raw_decode(text, k)
+        except json.JSONDecodeError:
+            obj, end = None, newline + 1
+        if isinstance(obj, dict) and end <= newline:
+            return k
+        k = text.find("{", k + 1, newline)
+    return newline
+
+
+def _closing_brace(text: str, start: int) -> tuple[int | None, bool]:
+    """(the index after the ``}`` that closes the ``{`` at ``start``, False) — braces in JSON
+    strings do not count — or (the index of a newline met first, True), or (None, False)
+    when the text ends first."""
     depth, in_string, escaped = 0, False, False
     for k in range(start, len(text)):
         c = text[k]
+        if c == "\n":
+            return k, True
         if in_string:
             if escaped:
                 escaped = False
@@ -84,8 +114,8 @@ def _closing_brace(text: str, start: int) -> int | None:
         elif c == "}":
             depth -= 1
             if depth == 0:
-                return k + 1
-    return None
+                return k + 1, False
+    return None, False
 
 
 def frame_of(message: dict) -> dict | None:

@@ -1,5 +1,6 @@
 """A simulated Eye Tribe server on 127.0.0.1: answers the push request and heartbeats as the
-tracker server does and pushes the frames it is given."""
+tracker server does and pushes the frames it is given. Every message ends with a newline, as
+the server's do."""
 from __future__ import annotations
 
 import json
@@ -69,16 +70,16 @@ class SimulatedEyeTribe:
         if request.get("request") == "set" and request.get("values", {}).get("push"):
             reply["values"] = {}
             self.pushing.set()
-        client.sendall(json.dumps(reply).encode())
+        client.sendall(json.dumps(reply).encode() + b"\n")
 
     def push(self, gaze: dict) -> None:
         self.pushing.wait(5)
         message = {"category": "tracker", "request": "get", "statuscode": 200,
                    "values": {"frame": gaze}}
-        self.client.sendall(json.dumps(message).encode())
+        self.client.sendall(json.dumps(message).encode() + b"\n")
 
     def send_text(self, text: str) -> None:
-        """Send raw text to the client (a fault: a message that is no JSON)."""
+        """Send raw text to the client (a fault: a message that is no JSON, or one cut off)."""
         self.pushing.wait(5)
         self.client.sendall(text.encode())
 

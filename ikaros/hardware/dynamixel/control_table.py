@@ -6,6 +6,8 @@ and the ``ikaros`` roles: which field holds, say, ``GOAL_POSITION`` and how its 
 converts to the Ikaros unit, ``value = (raw - offset) * scale + bias`` (after sign decoding:
 ``bit10`` is sign-and-magnitude with bit 10 the direction, ``twos`` two's complement). A role
 may name the models that have it (``models``) and per-model changes (``by_model``).
+``goal_enables_torque`` marks a series whose servos switch their torque on when Goal Position
+or Moving Speed is written (the Protocol 1.0 series).
 Adding a series is adding a file.
 """
 from __future__ import annotations
@@ -71,6 +73,7 @@ class ControlTable:
     no_load_rpm: float
     rpm_per_speed_unit: float
     baud_rates: dict[int, int] = dataclass_field(default_factory=dict)
+    goal_enables_torque: bool = False   # writing Goal Position or Moving Speed turns torque on
 
     @property
     def size(self) -> int:
@@ -127,7 +130,8 @@ def _build(series: dict, model: str) -> ControlTable:
                                 spec.get("bias", 0.0), spec.get("signed"))
     return ControlTable(series["series"], model, series["models"][model], series["protocol"], fields,
                         roles, series["no_load_rpm"][model], series["rpm_per_speed_unit"],
-                        {int(k): v for k, v in series["baud_rates"].items()})
+                        {int(k): v for k, v in series["baud_rates"].items()},
+                        bool(series.get("goal_enables_torque", False)))
 
 
 @functools.lru_cache(maxsize=None)

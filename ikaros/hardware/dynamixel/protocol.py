@@ -157,3 +157,31 @@ class PacketReader:
         del buf[:total]
         valid = crc16(raw[:-2]) == (raw[-2] | (raw[-1] << 8))
         return Packet(2, raw[4], raw[7], unstuff(raw[8:-2]), valid)
+
+
+def writes_of(packet: Packet) -> list[tuple[int, int, bytes]]:
+    """(id, address, data) of each value a Write, Sync Write or Bulk Write packet writes
+    (e-Manual, "DYNAMIXEL Protocol 1.0" / "2.0": Write: address then data; Sync Write:
+    address, length, then id and data per servo; Bulk Write (2.0): id, address, length and
+    data per servo; addresses and lengths are one byte in 1.0, two in 2.0). Other
+    instructions, and packets whose checksum or CRC is wrong, write nothing."""
+    params, two = packet.params, packet.protocol == 2
+    if not packet.valid:
+        return []
+    word = (lambda at: params[at] | (params[at + 1] << 8)) if two else (lambda at: params[at])
+    step = 2 if two else 1
+    if packet.instruction == WRITE and len(params) > step:
+        return [(packet.ident, word(0), bytes(params[step:]))]
+    out = []
+    if packet.instruction == SYNC_WRITE and len(params) >= 2 * step:
+        address, length, at = word(0), word(step), 2 * step
+        while length and at + 1 + length <= len(params):
+            out.append((params[at], address, bytes(params[at + 1:at + 1 + length])))
+            at += 1 + length
+    elif packet.instruction == BULK_WRITE and two:
+        at = 0
+        while at + 5 <= len(params):
+            ident, address, length = params[at], word(at + 1), word(at + 3)
+            out.append((ident, address, bytes(params[at + 5:at + 5 + length])))
+            at += 5 + length
+    return out

@@ -5,7 +5,9 @@ ping, read, write, reg write/action, sync write, sync read and bulk read/write (
 protocol allows), and moves: its present position follows the goal position at the moving
 speed (or the model's no-load speed), load rises with an external load and while moving,
 temperature rises under load, and the overload, overheating and angle-limit errors are
-raised as a real servo raises them (overload and overheating switch torque off).
+raised as a real servo raises them (overload and overheating switch torque off); see
+:mod:`ikaros.hardware.dynamixel.simulated_servo`. Every instruction packet received is kept
+(``received_packets``, ``writes()``), so tests can check what a driver put on the bus.
 
 A servo answers only while the driver's port runs at the servo's baud rate (read from the
 terminal settings the driver made), so a wrong baud rate looks as it does on a real bus.
@@ -14,184 +16,26 @@ and each status packet comes after the servo's Return Delay Time.
 
 Faults for tests: :meth:`silence` (a servo stops answering), :meth:`lose` (the next status
 packets are lost), :meth:`corrupt` (the next status packets have a broken checksum or CRC), :meth:`answer_as` (a servo answers with a wrong id),
-and ``disconnect()`` (the bus disappears).
+and ``disconnect()`` (the bus disappears); the world: :meth:`set_external_load`,
+:meth:`set_temperature`, :meth:`move_by_hand`.
 """
 from __future__ import annotations
 
+import collections
 import termios
 import threading
 import time
 
 from ikaros.hardware.dynamixel import protocol as p
-from ikaros.hardware.dynamixel.control_table import ControlTable, table_for_model
+from ikaros.hardware.dynamixel.control_table import table_for_model
+from ikaros.hardware.dynamixel.simulated_servo import SimulatedServo
 from ikaros.hardware.pty_device import PtyDevice, sleep_until
 
 DEFAULT_MODEL = {1: "AX-12A", 2: "XM430-W350"}
-AMBIENT_TEMPERATURE = 30.0
-HEATING_PER_SECOND = 4.0        # degrees C per second at full load
-COOLING_PER_SECOND = 0.05       # fraction of the excess over ambient lost per second
-OVERLOAD_SECONDS = 0.3          # load above the torque limit this long trips the overload error
-MOVING_LOAD = 0.08              # load fraction while moving
+LOG_SIZE = 100000               # instruction packets kept in ``received_packets``
 
 _SPEEDS = {getattr(termios, name): int(name[1:]) for name in dir(termios)
            if name.startswith("B") and name[1:].isdigit()}
-
-
-class SimulatedServo:
-    """One servo: its control table memory and its dynamics."""
-
-    def __init__(self, ident: int, table: ControlTable, baud_rate: int, position: float | None = None):
-        self.table = table
-        self.memory = table.initial_memory()
-        self._put("ID", ident)
-        self._put("BAUD_RATE", table.baud_code(baud_rate))
-        present = table.role("PRESENT_POSITION")
-        goal = table.role("GOAL_POSITION")
-        raw = present.to_raw(position) if position is not None else present.field.default
-        self.position = float(raw)
-        self._write_field(present.field, raw)
-        self._write_field(goal.field, raw)
-        self.temperature = AMBIENT_TEMPERATURE
-        self.external_load = 0.0        # fraction of the maximum torque, signed
-        self.load = 0.0
-        self.overload_time = 0.0
-        self.alarms = 0                 # Protocol 1.0 error bits that persist
-        self.registered: tuple[int, bytes] | None = None
-
-    # --- memory ---------------------------------------------------------------------------
-    @property
-    def ident(self) -> int:
-        return self.memory[self.table.role("ID").field.address]
-
-    @property
-    def baud_rate(self) -> int:
-        code = self.memory[self.table.role("BAUD_RATE").field.address]
-        return self.table.baud_rates.get(code, -1)
-
-    def raw(self, role: str) -> int:
-        f = self.table.role(role).field
-        return int.from_bytes(self.memory[f.address:f.address + f.size], "little")
-
-    def value(self, role: str) -> float:
-        return self.table.role(role).to_value(self.raw(role))
-
-    def _put(self, role: str, raw: int) -> None:
-        entry = self.table.role(role)
-        if entry is not None:
-            self._write_field(entry.field, raw)
-
-    def _write_field(self, f, raw: int) -> None:
-        self.memory[f.address:f.address + f.size] = (int(raw) & ((1 << 8 * f.size) - 1)).to_bytes(f.size, "little")
-
-    @property
-    def torque(self) -> bool:
-        return self.raw("TORQUE_ENABLE") != 0
-
-    def read(self, address: int, length: int) -> tuple[int, bytes]:
-        """(error, data) of a read."""
-        if length < 1 or address + length > len(self.memory):
-            return self._range_error(), b""
-        return 0, bytes(self.memory[address:address + length])
-
-    def write(self, address: int, data: bytes) -> int:
-        """Write ``data`` at ``address``; returns the error of the status packet."""
-        protocol = self.table.protocol
-        if not data or address + len(data) > len(self.memory):
-            return self._range_error()
-        fields = [f for f in self.table.fields.values()
-                  if f.address < address + len(data) and address < f.address + f.size]
-        if any(f.access == "R" for f in fields):
-            return p.P2_ACCESS if protocol == 2 else p.P1_RANGE
-        if protocol == 2 and self.torque and address < self.table.role("TORQUE_ENABLE").field.address:
-            return p.P2_ACCESS              # EEPROM is locked while torque is on
-        goal = self.table.role("GOAL_POSITION").field
-        if goal.address <= address < goal.address + goal.size and address + len(data) >= goal.address + goal.size:
-            raw = int.from_bytes(data[goal.address - address:goal.address - address + goal.size], "little")
-            if not self._within_limits(raw):
-                return p.P2_DATA_LIMIT if protocol == 2 else p.P1_ANGLE_LIMIT
-        self.memory[address:address + len(data)] = data
-        if self.raw("TORQUE_ENABLE") and self.alarms & (p.P1_OVERLOAD | p.P1_OVERHEATING):
-            self._put("TORQUE_ENABLE", 0)   # a tripped servo keeps torque off until rebooted
-            return self.alarms if protocol == 1 else p.P2_RESULT_FAIL
-        return 0
-
-    def _range_error(self) -> int:
-        return p.P2_ACCESS if self.table.protocol == 2 else p.P1_RANGE
-
-    def _within_limits(self, raw: int) -> bool:
-        low, high = self.raw("MIN_POSITION"), self.raw("MAX_POSITION")
-        if self.table.protocol == 1 and low == 0 and high == 0:
-            return True                     # wheel mode
-        if self.table.role("GOAL_POSITION").signed == "twos" and raw >= 1 << 31:
-            raw -= 1 << 32
-        return low <= raw <= high
-
-    def status_error(self) -> int:
-        """The error byte every status packet carries besides the instruction's own error."""
-        if self.table.protocol == 1:
-            return self.alarms
-        hardware = self.table.role("HARDWARE_ERROR")
-        return p.P2_ALERT if hardware is not None and self.raw("HARDWARE_ERROR") else 0
-
-    def reboot(self) -> None:
-        self.alarms = 0
-        self.overload_time = 0.0
-        self._put("HARDWARE_ERROR", 0)
-        self._put("TORQUE_ENABLE", 0)
-
-    # --- dynamics -------------------------------------------------------------------------
-    def advance(self, dt: float) -> None:
-        """Move the servo on by ``dt`` seconds."""
-        table = self.table
-        goal_role, present_role = table.role("GOAL_POSITION"), table.role("PRESENT_POSITION")
-        degrees_per_raw = abs(present_role.scale)
-        speed_raw = self.raw("MOVING_SPEED") & 0x3FF if table.protocol == 1 else self.raw("MOVING_SPEED")
-        rpm = speed_raw * table.rpm_per_speed_unit if speed_raw else table.no_load_rpm
-        rpm = min(rpm, table.no_load_rpm)
-        step = rpm * 6.0 / degrees_per_raw * dt              # raw units this dt
-        moving = False
-        if self.torque:
-            goal = present_role.to_raw(goal_role.to_value(self.raw("GOAL_POSITION")))
-            error = goal - self.position
-            moving = abs(error) > 0.5
-            self.position = float(goal) if abs(error) <= step else self.position + step * (1 if error > 0 else -1)
-            velocity = (step / dt if moving and dt > 0 else 0.0) * (1 if error > 0 else -1)
-        else:
-            velocity = 0.0
-        limit = self.value("TORQUE_LIMIT") if table.role("TORQUE_LIMIT") else 1.0
-        self.load = (self.external_load + (MOVING_LOAD if moving else 0.0) * (1 if velocity >= 0 else -1)) \
-            if self.torque else 0.0
-        self.temperature += (HEATING_PER_SECOND * self.load ** 2
-                             - COOLING_PER_SECOND * (self.temperature - AMBIENT_TEMPERATURE)) * dt
-        if self.torque and abs(self.external_load) > limit:
-            self.overload_time += dt
-        else:
-            self.overload_time = 0.0
-        if self.overload_time > OVERLOAD_SECONDS:
-            self._trip(p.P1_OVERLOAD, p.HW_OVERLOAD)
-        if self.temperature > self.raw("TEMPERATURE_LIMIT"):
-            self._trip(p.P1_OVERHEATING, p.HW_OVERHEATING)
-        self._publish(velocity * degrees_per_raw / 6.0, moving)
-
-    def _trip(self, p1_bit: int, hardware_bit: int) -> None:
-        self.alarms |= p1_bit
-        if self.table.role("HARDWARE_ERROR") is not None:
-            self._put("HARDWARE_ERROR", self.raw("HARDWARE_ERROR") | hardware_bit)
-        self._put("TORQUE_ENABLE", 0)
-
-    def _publish(self, rpm: float, moving: bool) -> None:
-        table = self.table
-        self._write_field(table.role("PRESENT_POSITION").field, int(round(self.position)))
-        speed = table.role("PRESENT_SPEED")
-        full_scale_rpm = 1.0 / speed.scale * table.rpm_per_speed_unit
-        self._write_field(speed.field, speed.to_raw(rpm / full_scale_rpm))
-        load = table.role("PRESENT_LOAD")
-        self._write_field(load.field, load.to_raw(max(-1.0, min(1.0, self.load))))
-        current = table.role("PRESENT_CURRENT")
-        if current is not None and current.field is not load.field:
-            self._write_field(current.field, current.to_raw(self.load * 2.0))
-        self._put("PRESENT_TEMPERATURE", int(round(self.temperature)))
-        self._put("MOVING", int(moving))
 
 
 class VirtualDynamixelBus(PtyDevice):
@@ -221,6 +65,9 @@ class VirtualDynamixelBus(PtyDevice):
         self._last_update = time.perf_counter()
         self._bus_free_at = 0.0
         self.packets = 0                # instruction packets received (for tests and benchmarks)
+        # every instruction packet received, in order, as (arrival time, packet): what the
+        # driver put on the bus, for tests that check the bytes
+        self.received_packets: collections.deque = collections.deque(maxlen=LOG_SIZE)
 
     # --- faults and the world ---------------------------------------------------------------
     def silence(self, *idents: int, silent: bool = True) -> None:
@@ -251,6 +98,20 @@ class VirtualDynamixelBus(PtyDevice):
         with self.lock:
             self._update()
             self.servos[ident].external_load = float(load)
+
+    def set_temperature(self, ident: int, celsius: float) -> None:
+        """Servo ``ident`` and its surroundings are at ``celsius`` °C from now on (a servo under
+        load warms further)."""
+        with self.lock:
+            self._update()
+            self.servos[ident].set_temperature(celsius)
+
+    def writes(self) -> list[tuple[int, int, bytes]]:
+        """(id, address, data) of every value written so far (write, sync write, bulk write),
+        in the order the packets came."""
+        with self.lock:
+            packets = [packet for _, packet in self.received_packets]
+        return [write for packet in packets for write in p.writes_of(packet)]
 
     def move_by_hand(self, ident: int, degrees: float) -> None:
         """Turn a servo whose torque is off to an angle (180 is its centre)."""
@@ -290,6 +151,7 @@ class VirtualDynamixelBus(PtyDevice):
         for packet in self._reader.feed(data):
             with self.lock:
                 self.packets += 1
+                self.received_packets.append((arrived, packet))
                 self._update()
                 replies = self._answer(packet)
             self._transmit(packet, replies, arrived)
@@ -371,7 +233,7 @@ class VirtualDynamixelBus(PtyDevice):
                 replies.append(self._status(servo, 0, data, p.PING))
             return replies
         if instruction in (p.SYNC_WRITE, p.BULK_WRITE):
-            self._write_many(params, instruction)
+            self._write_many(packet)
             return []
         if instruction == p.SYNC_READ and two:
             address, length = word(0), word(2)
@@ -411,34 +273,17 @@ class VirtualDynamixelBus(PtyDevice):
                 servo.reboot()
                 replies.append(self._status(servo, 0, b"", instruction))
             elif instruction == p.FACTORY_RESET:
-                kept = servo.ident
-                servo.memory = servo.table.initial_memory()
-                servo._put("ID", kept)
-                servo.position = float(servo.raw("PRESENT_POSITION"))
+                servo.factory_reset()
                 replies.append(self._status(servo, 0, b"", instruction))
             else:
                 replies.append(self._status(servo, p.P2_INSTRUCTION if two else p.P1_INSTRUCTION, b"", instruction))
         return [r for r in replies if r] if ident != p.BROADCAST_ID else []
 
-    def _write_many(self, params: bytes, instruction: int) -> None:
-        if instruction == p.SYNC_WRITE:         # address, length, then id + data per servo
-            if self.protocol == 2:
-                address, length, at = params[0] | params[1] << 8, params[2] | params[3] << 8, 4
-            else:
-                address, length, at = params[0], params[1], 2
-            while at + 1 + length <= len(params):
-                servo = self._find(params[at])
-                if servo is not None:
-                    servo.write(address, params[at + 1:at + 1 + length])
-                at += 1 + length
-        elif self.protocol == 2:                # bulk write: id, address, length, data per servo
-            at = 0
-            while at + 5 <= len(params):
-                ident, address, length = params[at], params[at + 1] | params[at + 2] << 8, params[at + 3] | params[at + 4] << 8
-                servo = self._find(ident)
-                if servo is not None:
-                    servo.write(address, params[at + 5:at + 5 + length])
-                at += 5 + length
+    def _write_many(self, packet: p.Packet) -> None:
+        for ident, address, data in p.writes_of(packet):
+            servo = self._find(ident)
+            if servo is not None:
+                servo.write(address, data)
 
     def _bulk_read(self, params: bytes) -> list[bytes]:
         requests = []

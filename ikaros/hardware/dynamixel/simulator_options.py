@@ -24,6 +24,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--load", action="append", default=[], metavar="ID=FRACTION",
                         help="an external load on a servo as a signed fraction of its maximum torque "
                              "(above 1: overload), e.g. --load 2=0.5 (repeatable)")
+    parser.add_argument("--temperature", action="append", default=[], metavar="ID=CELSIUS",
+                        help="a servo and its surroundings at this temperature, e.g. --temperature 2=65 "
+                             "(repeatable)")
 
 
 def start(options: argparse.Namespace) -> VirtualDynamixelBus:
@@ -38,6 +41,9 @@ def start(options: argparse.Namespace) -> VirtualDynamixelBus:
         for entry in options.load:
             ident, _, fraction = entry.partition("=")
             bus.set_external_load(int(ident), float(fraction))
+        for entry in options.temperature:
+            ident, _, celsius = entry.partition("=")
+            bus.set_temperature(int(ident), float(celsius))
     except (ValueError, KeyError, DeviceError) as error:
         raise DeviceError(f"cannot start the Dynamixel simulator: {error}") from None
     return bus.start()

@@ -109,3 +109,23 @@ def test_every_model_of_every_table_has_the_roles_the_driver_needs():
         assert needed <= set(table.roles), model
         addresses = sorted((f.address, f.address + f.size) for f in table.fields.values())
         assert all(end <= start for (_, end), (start, _) in zip(addresses, addresses[1:])), model
+
+
+def test_writes_of_write_sync_write_and_bulk_write_packets_of_the_e_manual():
+    """The e-Manual's example packets: Protocol 1.0 Sync Write (ids 0..3, Goal Position and
+    Moving Speed, 4 bytes at 0x1E); Protocol 2.0 Write (Goal Position 512 of id 1) and Sync
+    Write (ids 1 and 2, 4 bytes at 116); and a Bulk Write laid out as its section gives (id,
+    address, length, data per servo: id 1 LED at 65, id 2 Goal Position at 116)."""
+    reader1 = p.PacketReader(1)
+    [sync1] = reader1.feed(H("FF FF FE 18 83 1E 04 00 10 00 50 01 01 20 02 60 03 02 30 00 70 01 03 20 02 80 03 12"))
+    assert p.writes_of(sync1) == [(0, 0x1E, H("10 00 50 01")), (1, 0x1E, H("20 02 60 03")),
+                                  (2, 0x1E, H("30 00 70 01")), (3, 0x1E, H("20 02 80 03"))]
+    reader2 = p.PacketReader(2)
+    write, sync2, bulk = reader2.feed(
+        H("FF FF FD 00 01 09 00 03 74 00 00 02 00 00 CA 89")
+        + H("FF FF FD 00 FE 11 00 83 74 00 04 00 01 96 00 00 00 02 AA 00 00 00 82 87")
+        + p.packet2(0xFE, p.BULK_WRITE, H("01 41 00 01 00 01 02 74 00 04 00 00 02 00 00")))
+    assert p.writes_of(write) == [(1, 116, H("00 02 00 00"))]
+    assert p.writes_of(sync2) == [(1, 116, H("96 00 00 00")), (2, 116, H("AA 00 00 00"))]
+    assert p.writes_of(bulk) == [(1, 65, H("01")), (2, 116, H("00 02 00 00"))]
+    assert p.writes_of(p.Packet(2, 1, p.READ, H("84 00 04 00"))) == []

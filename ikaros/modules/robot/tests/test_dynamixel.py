@@ -19,15 +19,35 @@ XM = "XM430-W350"
 
 def model(tmp_path, device, goals="200 0 90", params="", extra=""):
     """Goals in the order of the servos (index_mode indirect) unless ``params`` sets the mode;
-    answers are waited for generously (the simulator may wait for a CPU on a busy machine)."""
+    answers are waited for generously (the simulator may wait for a CPU on a busy machine).
+    Unless ``params`` or ``extra`` say otherwise, the start-up delay and the torque ramp are
+    left out (test_dynamixel_startup.py tests them) and TORQUE_LIMIT is 1 for every element."""
     if "index_mode" not in params:
         params += ' index_mode="indirect"'
     if "serial_latency" not in params:
         params += ' serial_latency="100"'
+    if "start_up_delay" not in params:
+        params += ' start_up_delay="0" torque_up_delay="0"'
+    if "D.TORQUE_LIMIT" not in extra:
+        extra += (f'<module class="Constant" name="Full" data="{" ".join("1" for _ in goals.split())}"/>\n'
+                  '<connection source="Full.OUTPUT" target="D.TORQUE_LIMIT" delay="0"/>\n')
     body = (f'<module class="Constant" name="G" data="{goals}"/>\n'
             f'<module class="Dynamixel" name="D" device="{device}" print_info="none" {params}/>\n'
             '<connection source="G.OUTPUT" target="D.GOAL_POSITION" delay="0"/>\n' + extra)
     return load_body(tmp_path, body)
+
+
+def ikaros2_file(path, device, goals, params=""):
+    """A whole Ikaros 2 model file: goals and a torque limit of 1 from Constants; answers are
+    waited for generously (the simulator runs in this test's process, another process's
+    driver may wait for it on a busy machine)."""
+    limit = " ".join("1" for _ in goals.split())
+    params += ' serial_latency="100"'
+    path.write_text(f'<group name="Arm" tick_duration="0.01">\n<module class="Constant" name="G" data="{goals}"/>\n'
+                    f'<module class="Constant" name="L" data="{limit}"/>\n'
+                    f'<module class="Dynamixel" name="D" device="{device}" {params}/>\n'
+                    '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n'
+                    '<connection source="L.OUTPUT" target="D.TORQUE_LIMIT"/>\n</group>\n')
 
 
 @pytest.fixture
@@ -87,9 +107,9 @@ def test_direct_index_mode_speed_and_torque_enable(tmp_path, bus):
         net.step()
         assert [bus.servo(i).torque for i in (1, 2, 4)] == [False, True, False]   # TORQUE_ENABLE rules
         assert bus.servo(2).raw("MOVING_SPEED") == round(0.25 / 0.0020087719)
-        assert bus.servo(4).raw("MOVING_SPEED") == round(0.5 / 0.0020087719)
+        assert bus.servo(4).raw("MOVING_SPEED") == 0          # its TORQUE_ENABLE is 0: no speed, no goal
         net.step()
-        assert net.output("D.FEEDBACK_MOVING_SPEED")[[1, 2, 4]] == pytest.approx([0.25, 0.25, 0.5])
+        assert net.output("D.FEEDBACK_MOVING_SPEED")[[1, 2, 4]] == pytest.approx([0, 0.25, 0])
         assert net.output("D.FEEDBACK_PRESENT_SPEED")[2] == pytest.approx(0.25, abs=0.01)   # moving
     finally:
         net.close()
@@ -99,8 +119,11 @@ def test_by_default_element_i_is_the_servo_with_id_i_as_in_ikaros_2(tmp_path):
     """An Ikaros 2 model for servos 1, 2, 3 (no index_mode): element 0 unused, reads 0."""
     with VirtualDynamixelBus({1: XM, 2: XM, 3: XM}, 2) as sim:
         body = (f'<module class="Constant" name="G" data="0 150 200 210"/>\n'
-                f'<module class="Dynamixel" name="D" device="{sim.path}" print_info="none" servo_id="1 2 3"/>\n'
-                '<connection source="G.OUTPUT" target="D.GOAL_POSITION" delay="0"/>\n')
+                '<module class="Constant" name="L" data="0 1 1 1"/>\n'
+                f'<module class="Dynamixel" name="D" device="{sim.path}" print_info="none" servo_id="1 2 3" '
+                'start_up_delay="0"/>\n'
+                '<connection source="G.OUTPUT" target="D.GOAL_POSITION" delay="0"/>\n'
+                '<connection source="L.OUTPUT" target="D.TORQUE_LIMIT" delay="0"/>\n')
         net = load_body(tmp_path, body)
         try:
             assert net.output("D.FEEDBACK_PRESENT_POSITION").tolist() == [0, 180, 180, 180]
@@ -127,19 +150,25 @@ def test_indirect_follows_the_listed_order_and_size_forces_the_array_size(tmp_pa
 
 
 def test_an_input_that_has_no_value_from_its_source_yet_is_not_written(tmp_path):
-    """TORQUE_LIMIT through a Scale (delays 1) arrives on tick 2: the zeros before it must not
-    be written as a torque limit of 0."""
+    """LED and TORQUE_LIMIT through a Scale (delays 1) arrive on tick 2: the zeros before are
+    no LED value (nothing is written) and no torque limit (it stays at the 0 of the start)."""
     with VirtualDynamixelBus({1: "AX-12A"}, 1) as sim:
+        sim.servo(1).memory[25] = 1                                         # LED on
         extra = ('<module class="Constant" name="L" data="0.5"/>\n<module class="Scale" name="S" factor="1"/>\n'
+                 '<module class="Constant" name="Off" data="0"/>\n<module class="Scale" name="S2" factor="1"/>\n'
                  '<connection source="L.OUTPUT" target="S.INPUT"/>\n'
-                 '<connection source="S.OUTPUT" target="D.TORQUE_LIMIT"/>')
+                 '<connection source="S.OUTPUT" target="D.TORQUE_LIMIT"/>\n'
+                 '<connection source="Off.OUTPUT" target="S2.INPUT"/>\n'
+                 '<connection source="S2.OUTPUT" target="D.LED"/>')
         net = model(tmp_path, sim.path, goals="200", params='protocol="1" servo_id="1"', extra=extra)
         try:
             net.step()
             net.step()
-            assert sim.servo(1).raw("TORQUE_LIMIT") == 1023                    # the factory value
+            assert sim.servo(1).raw("TORQUE_LIMIT") == 0                       # as written at the start
+            assert sim.servo(1).raw("LED") == 1                                # not written
             net.step()
             assert sim.servo(1).raw("TORQUE_LIMIT") == 512
+            assert sim.servo(1).raw("LED") == 0
         finally:
             net.close()
 
@@ -197,7 +226,7 @@ def test_a_servo_silent_for_silent_ticks_stops_the_run_and_the_rest_is_made_safe
 
 
 def test_a_register_is_named_by_name_and_address(tmp_path, bus):
-    net = model(tmp_path, bus.path, goals="200", params='servo_id="1" feedback="position" silent_ticks="1" serial_latency="100"')
+    net = model(tmp_path, bus.path, goals="200", params='servo_id="1" feedback="position" max_temperature="0" silent_ticks="1" serial_latency="100"')
     bus.silence(1)
     with pytest.raises(RunError, match=r"servo 1 on .* does not answer \(reading Present Position, address 132\)"):
         net.step()
@@ -273,10 +302,7 @@ def test_a_simulator_started_by_the_device_attribute(tmp_path):
 @pytest.mark.parametrize("how", [signal.SIGINT, signal.SIGTERM])
 def test_ctrl_c_of_an_ikaros_process_makes_the_servos_safe(tmp_path, bus, how):
     path = tmp_path / "arm.ikg"
-    path.write_text(f'<group name="Arm" tick_duration="0.01">\n'
-                    f'<module class="Constant" name="G" data="250 100"/>\n'
-                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1 2" index_mode="indirect"/>\n'
-                    '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
+    ikaros2_file(path, bus.path, "250 100", 'servo_id="1 2" index_mode="indirect"')
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
     process = subprocess.Popen([sys.executable, "-m", "ikaros", "-b", "-r", str(path)], env=env,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -292,9 +318,7 @@ def test_ctrl_c_of_an_ikaros_process_makes_the_servos_safe(tmp_path, bus, how):
 
 def test_a_script_that_never_closes_its_network_leaves_the_servos_safe(tmp_path, bus):
     path = tmp_path / "arm.ikg"
-    path.write_text(f'<group name="Arm">\n<module class="Constant" name="G" data="250"/>\n'
-                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1" index_mode="indirect"/>\n'
-                    '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
+    ikaros2_file(path, bus.path, "250", 'servo_id="1" index_mode="indirect" start_up_delay="0"')
     script = f"import ikaros\nnet = ikaros.load({str(path)!r})\nnet.run(ticks=3)\nprint(net.output('D.FEEDBACK_TORQUE_ENABLE')[0])\n"
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
     result = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=60)
@@ -326,9 +350,7 @@ def test_two_networks_share_one_bus(tmp_path, bus):
 
 def test_the_end_of_a_batch_run_leaves_the_servos_safe(tmp_path, bus):
     path = tmp_path / "arm.ikg"
-    path.write_text(f'<group name="Arm">\n<module class="Constant" name="G" data="250"/>\n'
-                    f'<module class="Dynamixel" name="D" device="{bus.path}" servo_id="1" print_info="none" index_mode="indirect"/>\n'
-                    '<connection source="G.OUTPUT" target="D.GOAL_POSITION"/>\n</group>\n')
+    ikaros2_file(path, bus.path, "250", 'servo_id="1" print_info="none" index_mode="indirect"')
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in [os.getcwd(), os.environ.get("PYTHONPATH")] if p))
     result = subprocess.run([sys.executable, "-m", "ikaros", "-b", "-s", "20", str(path)], env=env,
                             capture_output=True, text=True, timeout=60)

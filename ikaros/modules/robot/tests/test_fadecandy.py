@@ -28,7 +28,8 @@ def test_channels_become_inputs_and_pixels_arrive(tmp_path):
     with VirtualOPCServer() as server:
         net = model(tmp_path, server.path)
         inputs, _ = net.ports("LED")
-        assert [i.name for i in inputs] == ["EYES_RED", "EYES_GREEN", "EYES_BLUE",
+        assert [i.name for i in inputs] == ["LEFT_EYE", "RIGHT_EYE", "MOUTH_HIGH", "MOUTH_LOW",   # Ikaros 3's
+                                            "EYES_RED", "EYES_GREEN", "EYES_BLUE",
                                             "MOUTH_RED", "MOUTH_GREEN", "MOUTH_BLUE"]
         time.sleep(0.05)
         assert server.messages == []                    # nothing before the first tick
@@ -108,9 +109,9 @@ def test_start_server_runs_the_program_and_stops_it(tmp_path):
         f"#!{sys.executable}\n"
         "import signal, sys, time\n"
         "from ikaros.hardware.opc_sim import VirtualOPCServer\n"
-        f"server = VirtualOPCServer({port}).start()\n"
         f"signal.signal(signal.SIGTERM, lambda *a: (open({str(marker)!r}, 'w').close(), "
-        "sys.exit(0)))\n"
+        "sys.exit(0)))\n"                                  # before the port opens: a busy machine
+        f"server = VirtualOPCServer({port}).start()\n"
         "time.sleep(30)\n")
     os.chmod(program, 0o755)
     net = model(tmp_path, f"127.0.0.1:{port}", f'command="{program}"')
@@ -159,3 +160,49 @@ def test_a_script_that_never_closes_turns_the_leds_off(tmp_path):
         assert server.messages[0][2] == bytes([255, 0, 0, 128, 0, 0, 0, 0, 0])
         assert server.pixels_of(1).tolist() == [[0, 0, 0]] * 3
         assert server.pixels_of(2).tolist() == [[0, 0, 0]] * 2
+
+
+EPI_BODY = ('<module class="Constant" name="Left" data="1 0 0"/>\n'
+            '<module class="Constant" name="Right" data="0 0.5 0"/>\n'
+            '<module class="Constant" name="High" data="0 0 1; 0 0 1; 1 1 0"/>\n'
+            '<module class="Constant" name="Low" data="0.2 0.2 0.2"/>\n'
+            '<module class="FadeCandy" name="LED" {params}/>\n'
+            '<connection source="Left.OUTPUT" target="LED.LEFT_EYE" delay="0"/>\n'
+            '<connection source="Right.OUTPUT" target="LED.RIGHT_EYE" delay="0"/>\n'
+            '<connection source="High.OUTPUT" target="LED.MOUTH_HIGH" delay="0"/>\n'
+            '<connection source="Low.OUTPUT" target="LED.MOUTH_LOW" delay="0"/>\n')
+
+
+def test_the_epi_leds_of_ikaros_3_in_simulation(tmp_path):
+    """Ikaros 3's inputs: one colour an eye (12 pixels) or mouth row (8), or 3 × N pixels; the
+    left eye on strip 0, the right on strip 1, the mouth rows on strips 2 and 3 of channel 0
+    (64 pixels a strip: Fadecandy's "Server Configuration", the built-in map)."""
+    net = load_body(tmp_path, EPI_BODY.format(params='simulate="yes"'), dialect="3")
+    try:
+        net.step()
+        server = net.modules["LED"].module._simulator
+        assert wait_for(lambda: 0 in server.pixels)
+        pixels = server.pixels_of(0)
+        assert pixels.shape == (200, 3)                                   # up to the last mouth pixel
+        assert pixels[0:12].tolist() == [[255, 0, 0]] * 12 and pixels[12:64].sum() == 0
+        assert pixels[64:76].tolist() == [[0, 128, 0]] * 12
+        assert pixels[128:131].tolist() == [[0, 0, 255], [0, 0, 255], [255, 255, 0]]   # 3 × N: 3 pixels
+        assert pixels[131:192].sum() == 0
+        assert pixels[192:200].tolist() == [[51, 51, 51]] * 8
+    finally:
+        net.close()
+    assert server.pixels_of(0).sum() == 0                                 # off at the end
+
+
+def test_the_epi_leds_are_required_in_an_ikaros_3_file_and_optional_in_an_ikaros_2_file(tmp_path):
+    with pytest.raises(ModelError, match=r"the input MOUTH_LOW is not connected \(required in an Ikaros 3 file\)"):
+        load_body(tmp_path, EPI_BODY.format(params='simulate="yes"').split('<connection source="Low')[0],
+                  dialect="3").step()
+    with VirtualOPCServer() as server:
+        net = model(tmp_path, server.path)                                # Ikaros 2: channels only
+        try:
+            net.step()
+            assert wait_for(lambda: len(server.messages) == 2)
+            assert 0 not in server.pixels
+        finally:
+            net.close()

@@ -82,14 +82,19 @@ def test_record_save_load_and_trig(tmp_path):
 def test_a_recording_made_by_hand_is_played_back_on_the_servos(tmp_path):
     with VirtualDynamixelBus({1: "AX-12A", 2: "AX-12A"}, 1) as sim:
         body = (f'<module class="Dynamixel" name="Arm" device="{sim.path}" servo_id="1 2" index_mode="indirect" print_info="none" '
-                'watchdog="0"/>\n'
+                'watchdog="0" start_up_delay="0" torque_up_delay="0"/>\n'
                 '<module class="MotionRecorder" name="R" mode_string="off" directory="m"/>\n'
+                '<module class="Constant" name="Full" data="1 1"/>\n'
                 '<connection source="Arm.FEEDBACK_PRESENT_POSITION" target="R.INPUT"/>\n'
                 '<connection source="R.OUTPUT" target="Arm.GOAL_POSITION"/>\n'
-                '<connection source="R.TORQUE" target="Arm.TORQUE_ENABLE"/>')
+                '<connection source="R.TORQUE" target="Arm.TORQUE_ENABLE"/>\n'
+                '<connection source="Full.OUTPUT" target="Arm.TORQUE_LIMIT"/>')
         net = load_body(tmp_path, body, tick_duration="0.02")
         try:
-            net.step()
+            # at the start the AX-12s hold with a torque limit of 0 (Ikaros 2's start-up; a goal
+            # switches their torque on) until TORQUE 0 (off) comes round the loop
+            for _ in range(5):
+                net.step()
             assert not sim.servo(1).torque
             net.command("R", "record")
             path = [(180 + 5 * k, 180 - 3 * k) for k in range(10)]

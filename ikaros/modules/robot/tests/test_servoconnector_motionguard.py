@@ -18,6 +18,18 @@ def test_servo_connector_maps_inverts_and_offsets(tmp_path):
     assert net2.output("S.OUTPUT").tolist() == [1, 2, 0]
 
 
+def test_servo_connector_output_has_ten_elements_in_ikaros_2_and_inputs_size_in_ikaros_3(tmp_path):
+    """MODULES (Ikaros 2): OUTPUT[@output_size], output_size=10; IKAROS3-INTERFACES: OUTPUT
+    (size=INPUT.size), no output_size."""
+    body = ('<module class="Constant" name="C" data="1 2 3"/>\n<module class="ServoConnector" name="S" connector="3 2 1"/>\n'
+            '<connection source="C.OUTPUT" target="S.INPUT"/>')
+    assert load_body(tmp_path, body).output("S.OUTPUT").size == 10
+    net = load_body(tmp_path, body, dialect="3")
+    net.step()
+    net.step()
+    assert net.output("S.OUTPUT").tolist() == [3, 2, 1]
+
+
 def guard(tmp_path, inputs, references, params):
     """Runs MotionGuard on rows of INPUT and REFERENCE (delay 0) and returns OUTPUT and HOLD per tick."""
     (tmp_path / "in.txt").write_text("A/2\n" + "\n".join(" ".join(map(str, r)) for r in inputs) + "\n")
