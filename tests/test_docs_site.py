@@ -106,19 +106,33 @@ class _QuietHandler(http.server.SimpleHTTPRequestHandler):
 def test_search_finds_a_class_by_name_and_by_a_word_of_its_description(site):
     playwright = pytest.importorskip("playwright.sync_api")
     server = _serve(site)
+    failure = []
+
+    def search():
+        # in a thread of its own: Playwright's sync API cannot start while another test's
+        # session Playwright runs in this thread (ikaros/webui/tests/test_browser.py)
+        try:
+            with playwright.sync_playwright() as p:
+                browser = p.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
+                try:
+                    page = browser.new_page()
+                    for query, expected in (("PIDController", "classes/PIDController.html"),
+                                            ("ticksquare", "classes/FunctionGenerator.html")):
+                        page.goto(f"http://127.0.0.1:{server.server_port}/index.html")
+                        page.click(".md-search__input", timeout=10_000)
+                        page.locator("input.md-search__input").fill(query)
+                        link = page.locator(f'.md-search-result a[href*="{expected}"]').first
+                        link.wait_for(timeout=20_000)
+                finally:
+                    browser.close()
+        except BaseException as e:      # noqa: BLE001 - handed to the test's thread
+            failure.append(e)
     try:
-        with playwright.sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
-            try:
-                page = browser.new_page()
-                for query, expected in (("PIDController", "classes/PIDController.html"),
-                                        ("ticksquare", "classes/FunctionGenerator.html")):
-                    page.goto(f"http://127.0.0.1:{server.server_port}/index.html")
-                    page.click(".md-search__input", timeout=10_000)
-                    page.locator("input.md-search__input").fill(query)
-                    link = page.locator(f'.md-search-result a[href*="{expected}"]').first
-                    link.wait_for(timeout=20_000)
-            finally:
-                browser.close()
+        thread = threading.Thread(target=search, daemon=True)
+        thread.start()
+        thread.join(timeout=180)
+        assert not thread.is_alive(), "the search in Chromium did not end within 180 s"
+        if failure:
+            raise failure[0]
     finally:
         server.shutdown()
