@@ -21,6 +21,9 @@ from ..description import parse_alias
 from ..module import Clock, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
+from .concatenation import (ATTRIBUTE as CONCATENATION, DEFAULT as DEFAULT_CONCATENATION,
+                            check_value as check_concatenation, warn_shared_zero_delay,
+                            window_order)
 from .layout import layout, runs_into
 from .network import Network
 from .ranges import check_parameter, fit_shape
@@ -111,6 +114,7 @@ class Builder:
         self.startup = StartupSteps()           # the time of each build step
         self._confined = True          # whether file parameters are checked (set by _build)
         self._checked_shapes: set[tuple] = set()   # output shapes that passed check_shape
+        self._concatenations: dict[Group, str] = {}   # each group's concatenation setting
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
@@ -390,15 +394,21 @@ class Builder:
         module: Module = inst.module
         inputs, outputs = {}, {}
         dotted = "." in "".join(inst.attrs)     # INPUT.flatten="yes" and the like
+        joined = self._concatenation(inst) if module._ik_inputs else None
         for spec in module._ik_inputs.values():
             flatten, stack, use_label = spec.flatten, spec.stack, spec.use_label
+            concatenation = joined
             if dotted:
                 flatten = self._input_flag(inst, spec.name, "flatten", flatten)
                 stack = self._input_flag(inst, spec.name, "stack", stack)
                 use_label = self._input_flag(inst, spec.name, "use_label", use_label)
+                own = inst.attrs.get(f"{spec.name}.{CONCATENATION}")
+                if own:
+                    concatenation = self._concatenation_value(inst, inst.node, own)
             inputs[spec.name] = Buffer("input", inst, spec.name, optional=spec.optional,
                                        flatten=flatten, stack=stack, fixed=spec.size,
-                                       node=inst.node, use_label=use_label)
+                                       node=inst.node, use_label=use_label,
+                                       concatenation=concatenation)
         for spec in module._ik_outputs.values():
             buf = Buffer("output", inst, spec.name, optional=spec.optional, node=inst.node)
             buf.shape = module._ik_output_shapes.get(spec.name)
@@ -406,6 +416,29 @@ class Builder:
             outputs[spec.name] = buf
         self.buffers[inst] = (inputs, outputs)
         module._ik_input_buffers = inputs       # for input_parts and input_label
+
+    def _concatenation(self, comp: Component) -> str:
+        """The ``concatenation`` setting seen from a module or group: its own attribute, then
+        the enclosing groups', then the dialect's default (kernel/concatenation.py)."""
+        cached = self._concatenations.get(comp)
+        if cached is not None:
+            return cached
+        text = comp.attrs.get(CONCATENATION)
+        if text:
+            value = self._concatenation_value(comp, comp.node, text)
+        elif comp.parent is not None:
+            value = self._concatenation(comp.parent)
+        else:
+            value = DEFAULT_CONCATENATION[self.dialect]
+        if isinstance(comp, Group):
+            self._concatenations[comp] = value
+        return value
+
+    def _concatenation_value(self, scope, node: Node, text: str) -> str:
+        try:
+            return check_concatenation(substitute(text, scope))
+        except (ValueError, VariableError) as e:
+            raise node.error(str(e)) from None
 
     def _input_flag(self, inst: ModuleInstance, name: str, key: str, default: bool) -> bool:
         """An input's flag as the module element sets it (``INPUT.flatten="yes"``)."""
@@ -470,7 +503,8 @@ class Builder:
             return
         label = self._connection_attr(node, group, "label") if "label" in attrs else None
         for dst in targets:
-            Buffer.link(Link(src, dst, delays, node, order, src_sel, dst_sel, label or None))
+            Buffer.link(Link(src, dst, window_order(delays, dst.concatenation), node, order,
+                             src_sel, dst_sel, label or None))
 
     def _connection_attr(self, node: Node, group: Group, key: str) -> str | None:
         value = node.attrs.get(key)
@@ -497,6 +531,9 @@ class Builder:
         if key not in self.ports:
             flags = {k: self._flag(group, decl.get(k), k) for k in ("flatten", "stack")
                      if decl.get(k)}
+            own = decl.get(CONCATENATION)
+            flags["concatenation"] = self._concatenation_value(group, decl, own) if own \
+                else self._concatenation(group)
             self.ports[key] = Buffer("port", group, name, node=decl, **flags)
         return self.ports[key]
 
@@ -831,7 +868,10 @@ class Builder:
         for inst in self.instances:
             for buf in self.buffers[inst][0].values():
                 if buf.incoming:
-                    for run in runs_into(buf, memo):
+                    into = runs_into(buf, memo)
+                    if self.dialect == "2":
+                        warn_shared_zero_delay(into)
+                    for run in into:
                         runs.append(run)
                         if run.delay == 0:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)
