@@ -11,7 +11,7 @@ from ..access import AccessRefused, check_file_parameter, current as access_now
 from ..errors import ModelError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.diagnostics import Diagnostics, collecting, warn_at
-from ..language.dialect import DIALECTS, detect_dialect
+from ..language.dialect import DIALECTS, read_dialect
 from ..language.node import INCLUDE, Node
 from ..limits import LimitError, Limits, applied, check_shape, current as current_limits
 from ..language.reader import read_file
@@ -124,7 +124,12 @@ class Builder:
                                 "choose where files are written); use ikaros -u DIR")
             del attrs["user_data"]
         attrs.update(self.overrides)
-        self.dialect = attrs.get("dialect") or detect_dialect(self.model)
+        self.dialect = attrs.get("dialect")
+        if not self.dialect:
+            reading = read_dialect(self.model, os.path.dirname(self.filename))
+            self.dialect = reading.dialect
+            if reading.reason:
+                self.diagnostics.note(reading.reason, self.model.file, self.model.line)
         if self.dialect not in DIALECTS:
             raise self.model.error(f'dialect="{self.dialect}" must be "2" (Ikaros 2) or "3" '
                                    f'(Ikaros 3)')
