@@ -45,25 +45,26 @@ def window_order(delays: list[int], concatenation: str) -> list[int]:
     return delays
 
 
-def uncover(runs: list[Run], size: int) -> list[Run]:
-    """Runs that overlay one another (Ikaros 3): each element is kept only in the last run
-    that writes it, so the copies may run in any order. Runs left with nothing are dropped."""
+def uncover(runs: list[Run], size: int) -> None:
+    """Runs (in declaration order) that overlay one another (Ikaros 3): each element is kept
+    only in the run that writes it last, so the copies may run in any order. Ikaros 3 copies
+    the delayed connections at the end of a tick and a zero-delay connection just before its
+    target ticks (KERNEL §3.2), so a zero-delay connection wins over delayed ones, and among
+    the rest the later declared wins. A run left with nothing keeps its place (it still
+    orders the schedule and counts for the start-up steps)."""
     if sum(len(r.dst_index) for r in runs) <= size:
-        return runs
+        return
+    last = sorted(range(len(runs)), key=lambda k: (runs[k].delay == 0 and not runs[k].window,
+                                                    k))
     taken = np.zeros(size, dtype=bool)
-    kept = []
-    for run in reversed(runs):
+    for k in reversed(last):
+        run = runs[k]
         dst = np.asarray(run.dst_index)
         free = ~taken[dst]
         taken[dst] = True
-        if not free.any():
-            continue
         if not free.all():
             run.dst_index = dst[free]
             run.src_index = np.asarray(run.src_index)[free]
-        kept.append(run)
-    kept.reverse()
-    return kept
 
 
 def warn_shared_zero_delay(runs: list[Run]) -> None:

@@ -284,6 +284,6 @@ def runs_into(buffer: Buffer, memo: dict, stack: tuple = ()) -> list[Run]:
                                 dst[mask], link.node, up.window or link.window,
                                 up.links + [link]))
     if len(incoming) > 1:
-        runs = uncover(runs, buffer.size)
+        uncover(runs, buffer.size)
     memo[buffer] = runs
     return runs
