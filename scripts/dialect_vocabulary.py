@@ -3,7 +3,8 @@ that only one version of the original Ikaros uses, from the reference's catalogu
 
     python scripts/dialect_vocabulary.py ../shared
 
-reads ``reference/IKAROS3-INTERFACES.md`` (Ikaros 3's classes today), ``reference/MODULES.md``
+reads ``reference/IKAROS3-INTERFACES.md`` (Ikaros 3's classes today, with the test-only classes
+of its kernel tests, TESTS.md §2.1), ``reference/MODULES.md``
 (Ikaros 2's catalogue) and ``golden-v2/*.json`` (classes the Ikaros 2 program of 2024 runs,
 which the catalogue of 2020 lacks in part). Only names are taken: they are facts about which
 version has what. A parameter counts as Ikaros 3's alone only where the catalogue lists the
@@ -18,6 +19,17 @@ from xml.etree import ElementTree
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "ikaros", "language", "vocabulary.py")
+
+
+# the test-only classes of Ikaros 3's kernel tests (reference TESTS.md §2.1, DynamicMatrix*
+# as this project names them)
+TEST_CLASSES = {
+    "KernelTestModule", "KernelSizeTestModule", "KernelSizedInputTestModule",
+    "DelaySequenceSource", "DelayVectorSource", "DelayWindowSink", "DelayFlatWindowSink",
+    "DelayStackedWindowSink", "FirstTickReporter", "StartupStepReporter",
+    "TaskLifecycleTestModule", "PersistentStateTestModule", "AsyncLifecycleTestModule",
+    "DynamicMatrixSource", "DynamicMatrixSink", "DynamicMatrixCopy",
+    "MatrixFunctionTestModule", "ComputeEngineTestModule"}
 
 
 def ikaros3(text: str) -> tuple[dict, dict]:
@@ -110,7 +122,7 @@ def main(shared: str) -> None:
     # classes the golden README names as Ikaros 2's but could not record
     named = {n for n in re.findall(r"`([A-Z][A-Za-z0-9_]+)`", readme) if not n.isupper()}
     in_v2 = set(v2) | golden | (named - set(v3))
-    only3 = sorted(set(v3) - in_v2)
+    only3 = sorted((set(v3) | TEST_CLASSES) - in_v2)
     only2 = sorted(in_v2 - set(v3))
     params, labels, ports3, ports2 = {}, {}, {}, {}
     for cls in sorted(set(v3) & set(v2_ports)):
@@ -132,7 +144,7 @@ def main(shared: str) -> None:
              "model file was written for (ikaros/language/dialect.py). Made by",
              "scripts/dialect_vocabulary.py from the reference's catalogues; do not edit by hand.",
              '"""', "",
-             "# classes that only Ikaros 3 has",
+             "# classes that only Ikaros 3 has (with the test-only classes of its kernel tests)",
              f"IKAROS3_CLASSES = frozenset({_names(only3)})", "",
              "# classes that only Ikaros 2 has",
              f"IKAROS2_CLASSES = frozenset({_names(only2)})", "",

@@ -9,10 +9,11 @@ outright. Without one (docs/language.md, "Ikaros 2 and Ikaros 3 files"):
    an alias, a connection label, ``flatten`` / ``stack`` flags; aliases, offsets, views,
    renamings, delay lists, matrices written with spaces), a class file of Ikaros 3 beside it,
    top-group settings that Ikaros 3 reads (``stop``, ``tick_duration``, ...). Signs of
-   Ikaros 3 alone make it an Ikaros 3 file; anything else is an Ikaros 2 file (the weak signs
-   of Ikaros 3, its parameters and settings, never outweigh one of Ikaros 2). When signs
-   chose Ikaros 3, or strong signs disagree, ``Reading.reason`` says in one line what was
-   chosen and why.
+   Ikaros 3 and none of Ikaros 2 make it an Ikaros 3 file; anything else is an Ikaros 2 file.
+   The weak signs of Ikaros 3 (in the interface of a class both have, and the top-group
+   settings: this project's Ikaros 2 files use them as well) never outweigh a sign of
+   Ikaros 2. When signs chose Ikaros 3, or strong signs point both ways, ``Reading.reason``
+   says in one line what was chosen and why.
 """
 from __future__ import annotations
 
@@ -53,8 +54,9 @@ class Sign:
     version: str
     text: str
     node: Node
-    # a sign of Ikaros 3 that this project's Ikaros 2 files use as well (its parameters, the
-    # top-group settings) is weak: it never outweighs a sign of Ikaros 2
+    # a sign of Ikaros 3 in the interface of a class both versions have (a parameter, a port,
+    # an option label), or a top-group setting, is weak: this project's Ikaros 2 files use
+    # them too (its classes take both interfaces), so alone it does not decide
     strong: bool = True
 
     def where(self) -> str:
@@ -88,9 +90,10 @@ def read_dialect(top: Node, folder: str | None = None) -> Reading:
         return Reading("2", f"read as an Ikaros 2 file: {v2[0].where()} is Ikaros 2's, "
                             f"although {strong[0].where()} is Ikaros 3's; write "
                             f'dialect="3" on the top group to read it as Ikaros 3')
-    return Reading("3", f"read as an Ikaros 3 file: {v3[0].where()} is Ikaros 3's and "
-                        f'nothing in it is only Ikaros 2\'s; write dialect="2" on the top '
-                        f"group to read it as Ikaros 2")
+    sign = (strong or v3)[0]
+    return Reading("3", f"read as an Ikaros 3 file: {sign.where()} is Ikaros 3's and nothing "
+                        f'in it is only Ikaros 2\'s; write dialect="2" on the top group to '
+                        f"read it as Ikaros 2")
 
 
 def ikaros3_form(top: Node) -> str | None:
@@ -173,7 +176,7 @@ def _module_signs(node: Node, class_files: "_ClassFiles") -> list[Sign]:
         if key in IKAROS3_PARAMETERS.get(cls, ()):
             signs.append(Sign("3", f'the parameter "{key}" of {cls}', node, strong=False))
         elif value in IKAROS3_LABELS.get(f"{cls}.{key}", ()):
-            signs.append(Sign("3", f'{key}="{value}" of {cls}', node))
+            signs.append(Sign("3", f'{key}="{value}" of {cls}', node, strong=False))
         elif key.rpartition(".")[2] in _PORT_FLAGS and "." in key:
             signs.append(Sign("3", f'the input flag "{key}"', node))
         elif _SPACED.match(value) and not key.startswith("_"):
@@ -206,7 +209,7 @@ def _connection_signs(node: Node, classes: dict) -> list[Sign]:
         path, _, port = attrs.get(key, "").partition("[")[0].rpartition(".")
         cls = classes.get(path.rpartition(".")[2])
         if cls and port in IKAROS3_PORTS.get(cls, ()):
-            signs.append(Sign("3", f'the port {port} of {cls}', node))
+            signs.append(Sign("3", f'the port {port} of {cls}', node, strong=False))
         elif cls and port in IKAROS2_PORTS.get(cls, ()):
             signs.append(Sign("2", f'the port {port} of {cls}', node))
     return signs

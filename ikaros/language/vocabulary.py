@@ -3,25 +3,31 @@ model file was written for (ikaros/language/dialect.py). Made by
 scripts/dialect_vocabulary.py from the reference's catalogues; do not edit by hand.
 """
 
-# classes that only Ikaros 3 has
+# classes that only Ikaros 3 has (with the test-only classes of its kernel tests)
 IKAROS3_CLASSES = frozenset({
     "ADSREnvelope", "ALIKEDFeatureExtractor", "AmbientLight", "AppleVisionFaceDetector",
-    "AudioDelay", "AudioFilter", "AudioInput", "AudioOscillator", "AudioOutput",
-    "AudioReverb", "AudioSynth", "BalkeniusReactiveControl", "CameraRectification",
-    "Cerebellum", "Clip", "Concentration", "ConductanceNeuronPopulation",
+    "AsyncLifecycleTestModule", "AudioDelay", "AudioFilter", "AudioInput",
+    "AudioOscillator", "AudioOutput", "AudioReverb", "AudioSynth",
+    "BalkeniusReactiveControl", "CameraRectification", "Cerebellum", "Clip",
+    "ComputeEngineTestModule", "Concentration", "ConductanceNeuronPopulation",
     "ConvolutionalVariationalAutoEncoder", "CurrentPositionMapping", "DeepNetwork",
-    "DlibFaceDetector", "DlibFaceRecognizer", "DynamixelController", "EpiServos",
-    "EpiSpeech", "EpiVoice", "Exp", "FaceClassifier", "FeaturePointBoxes",
-    "FeatureRegionFilter", "ForceCheck", "HeadServos", "Idle", "ImageMatching",
-    "InputAudioFile", "InputImage", "IntegrateAndFirePopulation", "Invert",
+    "DelayFlatWindowSink", "DelaySequenceSource", "DelayStackedWindowSink",
+    "DelayVectorSource", "DelayWindowSink", "DlibFaceDetector", "DlibFaceRecognizer",
+    "DynamicMatrixCopy", "DynamicMatrixSink", "DynamicMatrixSource", "DynamixelController",
+    "EpiServos", "EpiSpeech", "EpiVoice", "Exp", "FaceClassifier", "FeaturePointBoxes",
+    "FeatureRegionFilter", "FirstTickReporter", "ForceCheck", "HeadServos", "Idle",
+    "ImageMatching", "InputAudioFile", "InputImage", "IntegrateAndFirePopulation",
+    "Invert", "KernelSizeTestModule", "KernelSizedInputTestModule", "KernelTestModule",
     "LaunchpadAnimation", "LaunchpadLED", "LeakyIntegrator", "LightGlueFeatureMatcher",
-    "Maximum", "Median", "MidiInput", "Minimum", "Negate", "Not", "Oscillator",
-    "OutputAudioFile", "OutputImage", "PointsToSalience", "PositionSelection", "Print",
-    "Protocol", "PyramidalLucasKanadeTracker", "PythonModule", "RatePopulation",
+    "MatrixFunctionTestModule", "Maximum", "Median", "MidiInput", "Minimum", "Negate",
+    "Not", "Oscillator", "OutputAudioFile", "OutputImage", "PersistentStateTestModule",
+    "PointsToSalience", "PositionSelection", "Print", "Protocol",
+    "PyramidalLucasKanadeTracker", "PythonModule", "RatePopulation",
     "RegressionStatistics", "RingWorld", "RobustTransformEstimator", "SCN",
     "SalienceIntegrator", "ServoControlTuning", "ServosSimulation", "SpikeGenerator",
-    "Square", "Statistics", "System", "TemplateFeatureBank", "TemplatePolygonTransform",
-    "TemplateTrackingController", "TimeSeries", "UM7", "WilsonCowan", "World2D"
+    "Square", "StartupStepReporter", "Statistics", "System", "TaskLifecycleTestModule",
+    "TemplateFeatureBank", "TemplatePolygonTransform", "TemplateTrackingController",
+    "TimeSeries", "UM7", "WilsonCowan", "World2D"
 })
 
 # classes that only Ikaros 2 has
