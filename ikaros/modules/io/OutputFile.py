@@ -101,7 +101,7 @@ class OutputFile(ColumnWriter):
                                "text header is always written in the NAME/n form that "
                                "InputFile reads")
     INPUT = Input("Ikaros 3: the values to write, each connection named by its label",
-                  optional=True)
+                  optional=True, flatten=True)
     NEWFILE = Input("a rise of the first element to above 0 starts a new file", optional=True)
     WRITE = Input("when connected, a record is written only when the first element is above "
                   "0", optional=True)
