@@ -142,7 +142,8 @@ def test_user_data_folder_takes_written_files_and_the_model_cannot_choose_it(tmp
     net = ikaros.load(str(model), user_data=str(tmp_path / "data"), quiet=True)
     net.run(ticks=1)
     net.close()
-    assert (tmp_path / "data" / "o.csv").read_text() == "tick,v\n0,5.0\n"
+    # an Ikaros 3 file by its signs (INPUT, a label): the first tick is 1
+    assert (tmp_path / "data" / "o.csv").read_text() == "tick,v\n1,5.0\n"
     assert not (tmp_path / "o.csv").exists() and not (tmp_path / "elsewhere").exists()
     assert [w.message for w in net.warnings][:1] == [
         "user_data in a model file is ignored (a model may not choose where files are "
@@ -175,17 +176,22 @@ def test_the_web_ui_listens_on_the_models_webui_port_unless_w_is_given(tmp_path)
 
 def test_dialect_option_gives_a_file_the_ikaros_3_ticks(tmp_path):
     # golden/README.md: in Ikaros 3 a Constant reaches a delay-1 receiver on the second
-    # tick (zeros on the first), and the first tick is numbered 1.
+    # tick (zeros on the first), and the first tick is numbered 1; in Ikaros 2 the value
+    # Constant writes in init reaches it on the first tick.
     path = tmp_path / "m.ikg"
-    path.write_text('<group name="G"><module class="Constant" name="C" data="4"/>'
+    path.write_text('<group name="G"><module class="Constant" name="C" data="4 4"/>'
                     '<module class="Print" name="P"/>'
                     '<connection source="C.OUTPUT" target="P.INPUT"/></group>')
-    assert ikaros("-b", "-s", "2", str(path)).stdout.splitlines() == ["P: 4", "P: 4"]
+    # an Ikaros 2 file (its matrix written with spaces), although Print is Ikaros 3's
+    r = ikaros("-b", "-s", "2", str(path))
+    assert r.stdout.splitlines() == ["P: 4 4", "P: 4 4"]
+    assert f"{path}:1: note: read as an Ikaros 2 file" in r.stderr
     r = ikaros("-b", "-s", "2", "--dialect", "3", str(path))
     assert r.returncode == 0, r.stderr
-    assert r.stdout.splitlines() == ["P: 0", "P: 4"]
+    assert r.stdout.splitlines() == ["P: 0 0", "P: 4 4"]
+    assert "note" not in r.stderr
     assert ikaros("-b", "-s", "2", str(path), "dialect=3").stdout.splitlines() == \
-        ["P: 0", "P: 4"]
+        ["P: 0 0", "P: 4 4"]
     r = ikaros("-b", "-s", "2", "--dialect", "4", str(path))
     assert r.returncode == 2 and "--dialect" in r.stderr
 

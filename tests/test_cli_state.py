@@ -4,8 +4,8 @@ import json
 from ikaros import cli
 
 # A counter printed: P prints 0, 1, 2, ... on ticks 0, 1, 2, ... (every connection has the
-# default delay 1)
-MODEL = ('<group name="G" stop="3"><module class="Constant" name="C" data="1"/>'
+# default delay 1; an Ikaros 2 file)
+MODEL = ('<group name="G" stop="3" dialect="2"><module class="Constant" name="C" data="1"/>'
          '<module class="Add" name="S"/><module class="Print" name="P"/>'
          '<connection source="C.OUTPUT" target="S.INPUT1"/>'
          '<connection source="S.OUTPUT" target="S.INPUT2" delay="1"/>'

@@ -19,11 +19,12 @@ class Buffer:
 
     __slots__ = ("kind", "owner", "name", "optional", "flatten", "stack", "fixed", "node",
                  "shape", "incoming", "outgoing", "array", "offset", "dynamic",
-                 "dynamic_array", "use_label", "alias")
+                 "dynamic_array", "use_label", "alias", "concatenation")
 
     def __init__(self, kind: str, owner, name: str, *, optional: bool = False,
                  flatten: bool = False, stack: bool = False, fixed: str | None = None,
-                 node: Node | None = None, use_label: bool = False):
+                 node: Node | None = None, use_label: bool = False,
+                 concatenation: str = "declared"):
         self.kind = kind                  # "output", "input" or "port"
         self.owner = owner                # a ModuleInstance or a Group
         self.name = name
@@ -32,6 +33,8 @@ class Buffer:
         self.stack = stack
         self.fixed = fixed                # a fixed shape expression for an input
         self.use_label = use_label        # an input that takes its connection's label
+        # how several connections are put together (kernel/concatenation.py)
+        self.concatenation = concatenation
         self.node = node
         self.shape: tuple | None = None
         # () until the first link (most buffers have one or none; fewer objects to build

@@ -11,7 +11,7 @@ from ..access import AccessRefused, check_file_parameter, current as access_now
 from ..errors import ModelError
 from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.diagnostics import Diagnostics, collecting, warn_at
-from ..language.dialect import DIALECTS, detect_dialect
+from ..language.dialect import DIALECTS, read_dialect
 from ..language.node import INCLUDE, Node
 from ..limits import LimitError, Limits, applied, check_shape, current as current_limits
 from ..language.reader import read_file
@@ -21,6 +21,9 @@ from ..description import parse_alias
 from ..module import Clock, CRandom, Module, parameter_attribute
 from .buffers import Buffer, Link
 from .classes import ClassRegistry
+from .concatenation import (ATTRIBUTE as CONCATENATION, DEFAULT as DEFAULT_CONCATENATION,
+                            check_value as check_concatenation, warn_shared_zero_delay,
+                            window_order)
 from .layout import layout, runs_into
 from .network import Network
 from .ranges import check_parameter, fit_shape
@@ -112,6 +115,7 @@ class Builder:
         self.startup = StartupSteps()           # the time of each build step
         self._confined = True          # whether file parameters are checked (set by _build)
         self._checked_shapes: set[tuple] = set()   # output shapes that passed check_shape
+        self._concatenations: dict[Group, str] = {}   # each group's concatenation setting
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
@@ -121,7 +125,12 @@ class Builder:
                                 "choose where files are written); use ikaros -u DIR")
             del attrs["user_data"]
         attrs.update(self.overrides)
-        self.dialect = attrs.get("dialect") or detect_dialect(self.model)
+        self.dialect = attrs.get("dialect")
+        if not self.dialect:
+            reading = read_dialect(self.model, os.path.dirname(self.filename))
+            self.dialect = reading.dialect
+            if reading.reason:
+                self.diagnostics.note(reading.reason, self.model.file, self.model.line)
         if self.dialect not in DIALECTS:
             raise self.model.error(f'dialect="{self.dialect}" must be "2" (Ikaros 2) or "3" '
                                    f'(Ikaros 3)')
@@ -392,15 +401,21 @@ class Builder:
         module: Module = inst.module
         inputs, outputs = {}, {}
         dotted = "." in "".join(inst.attrs)     # INPUT.flatten="yes" and the like
+        joined = self._concatenation(inst) if module._ik_inputs else None
         for spec in module._ik_inputs.values():
             flatten, stack, use_label = spec.flatten, spec.stack, spec.use_label
+            concatenation = joined
             if dotted:
                 flatten = self._input_flag(inst, spec.name, "flatten", flatten)
                 stack = self._input_flag(inst, spec.name, "stack", stack)
                 use_label = self._input_flag(inst, spec.name, "use_label", use_label)
+                own = inst.attrs.get(f"{spec.name}.{CONCATENATION}")
+                if own:
+                    concatenation = self._concatenation_value(inst, inst.node, own)
             inputs[spec.name] = Buffer("input", inst, spec.name, optional=spec.optional,
                                        flatten=flatten, stack=stack, fixed=spec.size,
-                                       node=inst.node, use_label=use_label)
+                                       node=inst.node, use_label=use_label,
+                                       concatenation=concatenation)
         for spec in module._ik_outputs.values():
             buf = Buffer("output", inst, spec.name, optional=spec.optional, node=inst.node)
             buf.shape = module._ik_output_shapes.get(spec.name)
@@ -408,6 +423,29 @@ class Builder:
             outputs[spec.name] = buf
         self.buffers[inst] = (inputs, outputs)
         module._ik_input_buffers = inputs       # for input_parts and input_label
+
+    def _concatenation(self, comp: Component) -> str:
+        """The ``concatenation`` setting seen from a module or group: its own attribute, then
+        the enclosing groups', then the dialect's default (kernel/concatenation.py)."""
+        cached = self._concatenations.get(comp)
+        if cached is not None:
+            return cached
+        text = comp.attrs.get(CONCATENATION)
+        if text:
+            value = self._concatenation_value(comp, comp.node, text)
+        elif comp.parent is not None:
+            value = self._concatenation(comp.parent)
+        else:
+            value = DEFAULT_CONCATENATION[self.dialect]
+        if isinstance(comp, Group):
+            self._concatenations[comp] = value
+        return value
+
+    def _concatenation_value(self, scope, node: Node, text: str) -> str:
+        try:
+            return check_concatenation(substitute(text, scope))
+        except (ValueError, VariableError) as e:
+            raise node.error(str(e)) from None
 
     def _input_flag(self, inst: ModuleInstance, name: str, key: str, default: bool) -> bool:
         """An input's flag as the module element sets it (``INPUT.flatten="yes"``)."""
@@ -472,7 +510,8 @@ class Builder:
             return
         label = self._connection_attr(node, group, "label") if "label" in attrs else None
         for dst in targets:
-            Buffer.link(Link(src, dst, delays, node, order, src_sel, dst_sel, label or None))
+            Buffer.link(Link(src, dst, window_order(delays, dst.concatenation), node, order,
+                             src_sel, dst_sel, label or None))
 
     def _connection_attr(self, node: Node, group: Group, key: str) -> str | None:
         value = node.attrs.get(key)
@@ -499,6 +538,9 @@ class Builder:
         if key not in self.ports:
             flags = {k: self._flag(group, decl.get(k), k) for k in ("flatten", "stack")
                      if decl.get(k)}
+            own = decl.get(CONCATENATION)
+            flags["concatenation"] = self._concatenation_value(group, decl, own) if own \
+                else self._concatenation(group)
             self.ports[key] = Buffer("port", group, name, node=decl, **flags)
         return self.ports[key]
 
@@ -833,7 +875,10 @@ class Builder:
         for inst in self.instances:
             for buf in self.buffers[inst][0].values():
                 if buf.incoming:
-                    for run in runs_into(buf, memo):
+                    into = runs_into(buf, memo)
+                    if self.dialect == "2":
+                        warn_shared_zero_delay(into)
+                    for run in into:
                         runs.append(run)
                         if run.delay == 0:
                             edges.setdefault((run.source.owner, run.target.owner), run.node)

@@ -13,6 +13,7 @@ from ..errors import ModelError
 from ..language.values import selector_indices
 from ..limits import max_elements
 from .buffers import Buffer, Link, Run
+from .concatenation import uncover
 
 
 def _link_error(link: Link, message: str) -> ModelError:
@@ -90,10 +91,12 @@ def _highest(index) -> int:
 def layout(buffer: Buffer, fixed_shape: tuple | None = None) -> None:
     """Size an input or port from its incoming links and give each link its target indices.
 
-    Whole connections without a target position are laid end to end in declaration order
-    (flattened to a vector when there are several, or when the input says ``flatten``); a
-    single one keeps its shape; ``stack`` adds a leading axis with one slice per
-    connection. Connections with ``targetoffset`` or a target selector write where they say.
+    A single whole connection keeps its shape. Several whole connections (or one into a
+    ``flatten`` input) are laid end to end as a vector, in the order the buffer's
+    ``concatenation`` says (kernel/concatenation.py); with ``overlay`` (Ikaros 3) each one
+    writes from element 0 unless the input is ``flatten``. ``stack`` adds a leading axis
+    with one slice per connection. Connections with ``targetoffset`` or a target selector
+    write where they say.
     """
     links = buffer.incoming
     if len(links) == 1:
@@ -109,15 +112,18 @@ def layout(buffer: Buffer, fixed_shape: tuple | None = None) -> None:
         links = sorted(links, key=lambda lk: lk.order)
     for link in links:
         _piece(link)
+    overlay = buffer.concatenation == "overlay" and not (buffer.flatten or buffer.stack)
     placed = [lk for lk in links if lk.dst_sel is not None]
-    if placed and len(placed) != len(links):
+    if placed and len(placed) != len(links) and not overlay:
         raise _link_error(placed[0], f"connections into {buffer.path} mix explicit target "
                                      f"positions with end-to-end placement")
-    if placed:
+    if placed or (overlay and len(links) > 1):
         shape = _place_explicitly(buffer, links, fixed_shape)
     elif buffer.stack:
         shape = _stack(buffer, links)
     elif buffer.flatten or len(links) > 1:
+        if buffer.concatenation == "reversed":
+            links = links[::-1]
         offset = 0
         for link in links:
             n = math.prod(link.piece_shape)
@@ -152,25 +158,40 @@ def _stack(buffer: Buffer, links: list[Link]) -> tuple:
     return shape
 
 
+def _target(link: Link, offsets: bool, rank: int) -> tuple:
+    """Where a link writes: its ``targetoffset`` or target selector; a whole connection
+    (into an overlaid input) from element 0, a piece of lower rank than ``rank`` in the
+    first row (the reference does not say what Ikaros 3 does with one)."""
+    if link.dst_sel is not None:
+        return link.dst_sel
+    if offsets:
+        return ("offset", 0)
+    if link.window:
+        return ("selector", [("range", 0, n, 1) for n in link.piece_shape[1:]])
+    ones = [("range", 0, 1, 1)] * (rank - len(link.piece_shape))
+    return ("selector", ones + [("range", 0, n, 1) for n in link.piece_shape])
+
+
 def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
-    offsets = [lk for lk in links if lk.dst_sel[0] == "offset"]
-    if offsets and len(offsets) != len(links):
+    offsets = [lk for lk in links if lk.dst_sel is not None and lk.dst_sel[0] == "offset"]
+    if offsets and any(lk.dst_sel is not None and lk.dst_sel[0] != "offset" for lk in links):
         raise _link_error(links[0], f"connections into {buffer.path} mix targetoffset with "
                                     f"target selectors")
     if offsets:
         end = 0
         for link in links:
             n = math.prod(link.piece_shape)
-            start = link.dst_sel[1]
+            start = _target(link, True, 0)[1]
             if start < 0:
                 raise _link_error(link, "targetoffset must not be negative")
             link.dst_index = range(start, start + n)
             end = max(end, start + n)
         return (end,)
+    whole_rank = max(len(lk.piece_shape) for lk in links)
     rank = None
     coords_per_link = []
     for link in links:
-        dims = list(link.dst_sel[1])
+        dims = list(_target(link, False, whole_rank)[1])
         piece = list(link.piece_shape)
         if link.window:             # the window's axis leads, before the selected ones
             dims = [("range", 0, len(link.delays), 1)] + dims
@@ -202,7 +223,7 @@ def _place_explicitly(buffer: Buffer, links: list[Link], fixed_shape) -> tuple:
             raise _link_error(link, f"Cannot extend a rank-{rank} range with a "
                                     f"rank-{len(lists)} range")
         count = math.prod([len(i) for i in lists]) if lists else 0
-        if count != math.prod(link.piece_shape) or count == 0:
+        if count != math.prod(link.piece_shape) or (count == 0 and link.dst_sel is not None):
             raise _link_error(link, f"Connection could not be resolved: the target selects "
                                     f"{count} elements but the source gives "
                                     f"{math.prod(link.piece_shape)}")
@@ -262,5 +283,7 @@ def runs_into(buffer: Buffer, memo: dict, stack: tuple = ()) -> list[Run]:
                 runs.append(Run(up.source, buffer, up.delay + d, where[src_index[mask]],
                                 dst[mask], link.node, up.window or link.window,
                                 up.links + [link]))
+    if len(incoming) > 1:
+        uncover(runs, buffer.size)
     memo[buffer] = runs
     return runs

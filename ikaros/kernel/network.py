@@ -88,6 +88,7 @@ class Network:
         self.runs = runs
         self.zero_delay_edges = edges
         self.log: collections.deque = collections.deque(maxlen=1000)
+        self.log.extend((0, PRINT, "", n.as_note()) for n in builder.diagnostics.notes)
         self.log.extend((0, WARNING, "", w.located()) for w in self.warnings)
         self.log_level = PRINT
         self.tick = 0

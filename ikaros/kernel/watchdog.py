@@ -79,7 +79,8 @@ class Watchdog:
             return
         self._reported = tick
         where = self._running_module(frames, runner) or "the kernel"
-        net.time_out(where, f"tick {tick} exceeded task_timeout ({self.timeout:g} s) in "
+        # the tick as the model numbers it (the first is 1 in an Ikaros 3 file)
+        net.time_out(where, f"tick {tick + net.first_tick} exceeded task_timeout ({self.timeout:g} s) in "
                             f"{where}; waiting for the tick to finish before stopping",
                      f"the tick timed out after {self.timeout:g} s (task_timeout)")
 

@@ -26,6 +26,10 @@ class ModelWarning:
     def __str__(self) -> str:
         return f"{self._where()}warning: {self._what()}"
 
+    def as_note(self) -> str:
+        """The record as a note: ``file:line: note: message``."""
+        return f"{self._where()}note: {self._what()}"
+
     def located(self) -> str:
         """The warning without the word "warning": ``file:line: <element>: message``."""
         return self._where() + self._what()
@@ -46,6 +50,7 @@ class Diagnostics:
     def __init__(self, strict: bool = False, lenient: bool = False, quiet: bool = False):
         self.strict, self.lenient, self.quiet = strict, lenient, quiet
         self.warnings: list[ModelWarning] = []
+        self.notes: list[ModelWarning] = []      # information, never an error
 
     def fresh(self) -> "Diagnostics":
         """New, empty diagnostics with the same settings (for building the model again)."""
@@ -61,6 +66,15 @@ class Diagnostics:
         self.warnings.append(record)
         if not self.quiet:
             print(record, file=sys.stderr, flush=True)
+
+
+    def note(self, message: str, filename: str | None = None, line: int | None = None) -> None:
+        """A line of information about the load (which dialect was chosen, and why): printed
+        like a warning, but never an error, not even with --strict."""
+        record = ModelWarning(message, filename, line)
+        self.notes.append(record)
+        if not self.quiet:
+            print(record.as_note(), file=sys.stderr, flush=True)
 
 
 _current: ContextVar[Diagnostics | None] = ContextVar("ikaros_diagnostics", default=None)

@@ -233,16 +233,14 @@ class View(Element):
 
 def _delay_text(delay) -> str | None:
     """A number of ticks, a ``range`` (half-open, as in Python), a list ``[0, 2]``, or the
-    language's own text (``"1:3"``, inclusive). A range is written in the form Ikaros 2 reads
-    (``range(1, 4)`` as ``1:3``, ``range(0, 6, 2)`` as ``0, 2, 4``), not as Ikaros 3's
-    ``[1:4]``: a bracketed delay makes a file an Ikaros 3 file, with Ikaros 3's ticks."""
+    language's own text (``"1:3"``). A range or list is written as a list of its delays
+    (``range(1, 4)`` as ``1, 2, 3``), which every file reads alike: ``1:3`` is 1, 2 in an
+    Ikaros 3 file, and a bracketed ``[1:4]`` would make the model an Ikaros 3 file."""
     if delay is None or isinstance(delay, str):
         return delay
     if isinstance(delay, range):
         if len(delay) == 0:
             raise ValueError(f"{delay} holds no delay")
-        if delay.step == 1 and len(delay) > 1:
-            return f"{delay.start}:{delay.stop - 1}"
         delay = list(delay)
     if isinstance(delay, (list, tuple)):
         return ", ".join(value_text(int(d)) for d in delay)
@@ -342,7 +340,7 @@ class Group(_Ports, Element):
                 size: int | None = None, **attrs: Any) -> Connection:
         """Connect ``source`` to ``target``. ``delay``: a number of ticks, a ``range``
         (``range(1, 4)``: delays 1, 2, 3), a list ``[0, 2]``, or the language's text
-        (``"1:3"``: 1, 2, 3).
+        (``"1:3"``: 1, 2, 3 in an Ikaros 2 file, 1, 2 in an Ikaros 3 file).
         ``source_offset``, ``target_offset`` and ``size`` place a part of the source."""
         ends = {"source": source.address(self) if isinstance(source, Port) else source,
                 "target": target.address(self) if isinstance(target, Port) else target}

@@ -31,41 +31,50 @@ def test_single_delays():
     same(rows[0]["D2.OUTPUT"], [0])
 
 
-def test_inclusive_window_is_in_listed_order_along_new_leading_axis():
+def test_inclusive_window_is_longest_delay_first_along_new_leading_axis():
+    # Ikaros 2 (FORMATS §7.1): one connection per delay, the last made first
     net = load("delays.ikg")
     for n, row in enumerate(trace(net, ["W13.OUTPUT", "W13.INPUT"], 6)):
-        same(row["W13.OUTPUT"], [[x(n - 1)], [x(n - 2)], [x(n - 3)]])   # (3, 1)
-        same(row["W13.INPUT"], [[x(n - 1)], [x(n - 2)], [x(n - 3)]])
+        same(row["W13.OUTPUT"], [[x(n - 3)], [x(n - 2)], [x(n - 1)]])   # (3, 1)
+        same(row["W13.INPUT"], [[x(n - 3)], [x(n - 2)], [x(n - 1)]])
+
+
+def test_windows_in_listed_order_with_concatenation_declared():
+    net = load("delays.ikg", concatenation="declared")
+    for n, row in enumerate(trace(net, ["W13.OUTPUT", "WList.OUTPUT", "WVec.OUTPUT"], 8)):
+        same(row["W13.OUTPUT"], [[x(n - 1)], [x(n - 2)], [x(n - 3)]])
+        same(row["WList.OUTPUT"], [[x(n - d)] for d in (1, 3, 5, 6)])
+        same(row["WVec.OUTPUT"], [v(n - 1), v(n - 2), v(n - 3)])
 
 
 def test_comma_list_window():
     net = load("delays.ikg")
     for n, row in enumerate(trace(net, ["WList.OUTPUT"], 8)):
-        same(row["WList.OUTPUT"], [[x(n - d)] for d in (1, 3, 5, 6)])
+        same(row["WList.OUTPUT"], [[x(n - d)] for d in (6, 5, 3, 1)])
 
 
 def test_bracketed_window_is_half_open():
     net = load("delays.ikg")
     for n, row in enumerate(trace(net, ["WHalf.OUTPUT"], 5)):
-        same(row["WHalf.OUTPUT"], [[x(n - 1)], [x(n - 2)]])
+        same(row["WHalf.OUTPUT"], [[x(n - 2)], [x(n - 1)]])
 
 
 def test_bracketed_window_from_zero():
     net = load("delays.ikg")
     for n, row in enumerate(trace(net, ["W03.OUTPUT"], 5)):
-        same(row["W03.OUTPUT"], [[x(n)], [x(n - 1)], [x(n - 2)]])
+        same(row["W03.OUTPUT"], [[x(n - 2)], [x(n - 1)], [x(n)]])
 
 
 def test_stepped_window_with_zero_delay():
     net = load("delays.ikg")
     for n, row in enumerate(trace(net, ["WStep.OUTPUT"], 7)):
-        same(row["WStep.OUTPUT"], [[x(n)], [x(n - 2)], [x(n - 4)]])
+        same(row["WStep.OUTPUT"], [[x(n - 4)], [x(n - 2)], [x(n)]])
 
 
 def test_window_of_a_vector_source_is_delays_by_elements():
     net = load("delays.ikg")
     for n, row in enumerate(trace(net, ["WVec.OUTPUT"], 6)):
-        same(row["WVec.OUTPUT"], [v(n - 1), v(n - 2), v(n - 3)])   # (3, 2)
+        same(row["WVec.OUTPUT"], [v(n - 3), v(n - 2), v(n - 1)])   # (3, 2)
 
 
 def test_zero_delay_chain_declared_backwards_runs_in_dependency_order():

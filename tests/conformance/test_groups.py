@@ -46,13 +46,13 @@ def test_v3_ports_with_zero_delays_reproduce_v2_timing():
 def test_window_on_one_hop_is_shifted_by_the_others():
     net = load("group_ports.ikg")
     for n, row in enumerate(trace(net, ["Win.W.OUTPUT"], 7)):
-        same(row["Win.W.OUTPUT"], [[x(n - 3)], [x(n - 4)], [x(n - 5)]])
+        same(row["Win.W.OUTPUT"], [[x(n - 5)], [x(n - 4)], [x(n - 3)]])   # longest first
 
 
 def test_addressing_relative_absolute_and_climbing():
     net = load("addressing.ikg")
     net.step()
-    same(net.output("G1.G2.G.INPUT"), [7, 3, 3])    # climbing, relative, absolute
+    same(net.output("G1.G2.G.INPUT"), [3, 3, 7])    # absolute, relative, climbing
     same(net.output("Down.OUTPUT"), [3])            # relative, downward
     same(net.output("Abs.OUTPUT"), [11])            # climbing source, absolute target
 

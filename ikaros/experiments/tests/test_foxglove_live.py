@@ -75,7 +75,7 @@ IMAGES = """<group tick_duration="0.01">
   <module class="Constant" name="Angles" data="0.5, -0.25"/>
   <module class="ROS2Publisher" name="Joints" topic="/joint_states" type="JointState"
           names="shoulder, elbow" domain_id="{domain}"/>
-  <connection source="Angles.OUTPUT" target="Joints.INPUT"/>
+  <connection source="Angles.OUTPUT" target="Joints.INPUT" delay="0"/>
 </group>"""
 
 

@@ -265,7 +265,9 @@ def test_the_test_only_classes_are_found_by_name_without_a_path(tmp_path):
         '</group>')
     with ikaros.load(str(tmp_path / "m.ikg"), quiet=True) as net:
         net.run(ticks=3)
-        assert net.output("S.OUTPUT").tolist() == [2 + 5]     # tick 2 + offset
+        # tick 3 + offset: the test-only classes are Ikaros 3's, so the file is an Ikaros 3
+        # file, whose first tick is 1
+        assert net.output("S.OUTPUT").tolist() == [3 + 5]
     registry = class_finder.ClassRegistry([str(tmp_path)])
     for name in TEST_ONLY:
         assert registry.find(name) is not None, name

@@ -44,10 +44,11 @@ def test_each_connection_is_a_part_with_its_label_shape_and_place(tmp_path):
     try:
         net.run(ticks=2)
         parts = _module(net).parts
+        # in declaration order; an Ikaros 2 file lays the last declared first
         assert [(p.label, p.source, p.shape, list(p.index)) for p in parts] == [
-            ("weights", "A.OUTPUT", (2, 2), [0, 1, 2, 3]),
-            (None, "B.OUTPUT", (2,), [4, 5]),
-            ("w", "B.OUTPUT", (2, 1), [6, 7])]
+            ("weights", "A.OUTPUT", (2, 2), [4, 5, 6, 7]),
+            (None, "B.OUTPUT", (2,), [2, 3]),
+            ("w", "B.OUTPUT", (2, 1), [0, 1])]
         assert _module(net).values == {"weights": [[1, 2], [3, 4]], "B.OUTPUT": [6, 7],
                                        "w": [[5], [5]]}
         assert _module(net).labels == {"INPUT": None, "LABELLED": None}

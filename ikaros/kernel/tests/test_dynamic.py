@@ -70,7 +70,8 @@ def _model(tmp_path, body: str, **overrides):
     for code in classes:                # one file per class, named after it
         name = code.split("(")[0]
         (tmp_path / f"{name}.py").write_text(f"{header}\n\nclass {code}")
-    (tmp_path / "m.ikg").write_text(f'<group name="G">{body}</group>')
+    # Ikaros 2 files (a group port without an alias would make one an Ikaros 3 file)
+    (tmp_path / "m.ikg").write_text(f'<group name="G" dialect="2">{body}</group>')
     return ikaros.load(str(tmp_path / "m.ikg"), **overrides)
 
 

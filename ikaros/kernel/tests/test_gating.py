@@ -158,9 +158,9 @@ class Ready(Module):
 
 
 def test_input_ready_says_which_elements_hold_data_from_their_source(tmp_path):
-    """A chain S -> C (delay 1) -> R (delay 1) and S -> R (delay 0): the first element of R's
-    input (from C, two elements) holds data from tick 2 (C's step 1 + 1), the rest (from S)
-    from tick 0;
+    """A chain S -> C (delay 1) -> R (delay 1) and S -> R (delay 0): the last two elements
+    of R's input (from C, two elements, laid after S's: the last declared first) hold data
+    from tick 2 (C's step 1 + 1), the first two (from S) from tick 0;
     a delay window counts its largest delay (S -> W with delays 0:2: ready from tick 2)."""
     (tmp_path / "Ready.py").write_text(READY)
     net = _model(tmp_path, '''<module class="Counter" name="S"/>
@@ -172,6 +172,6 @@ def test_input_ready_says_which_elements_hold_data_from_their_source(tmp_path):
         <connection source="S.OUTPUT" target="W.INPUT" delay="0:2"/>''')
     net.run(3)
     f, t = False, True
-    assert net.modules["R"].module.seen == [[f, f, t, t], [f, f, t, t], [t, t, t, t]]
+    assert net.modules["R"].module.seen == [[t, t, f, f], [t, t, f, f], [t, t, t, t]]
     assert net.modules["W"].module.seen == [[f] * 6, [f] * 6, [t] * 6]
     net.close()

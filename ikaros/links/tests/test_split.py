@@ -14,7 +14,7 @@ from ikaros.errors import ModelError, RunError
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__)))))
 
-MODEL = """<group name="Split" where="worker" alias_where="worker">
+MODEL = """<group name="Split" where="worker" alias_where="worker" dialect="2">
   <module class="Sweep" name="Src" min="0" max="100" step="1"/>
   <group name="Vision" process="@where">
      <input name="IN"/>
@@ -80,8 +80,9 @@ def test_groups_in_worker_processes_give_the_values_of_one_process(model):
     assert trace(split) == expected
     assert all(p is None for p in [w.process for w in split.workers])
     assert all(p.returncode == 0 for p in processes)
-    # the values are not trivial: delays of 1, 2, 1:3, 3 and the hops through groups
-    assert expected[5] == [[6.0], [12.0], [[3.0], [0.0], [9.0]], [6.0]]
+    # the values are not trivial: delays of 1, 2, 1:3 (the longest first: an Ikaros 2
+    # file), 3 and the hops through groups
+    assert expected[5] == [[6.0], [12.0], [[9.0], [0.0], [3.0]], [6.0]]
 
 
 def test_a_zero_delay_connection_between_processes_is_a_load_error(tmp_path):

@@ -21,7 +21,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__)))))
 ENV = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
 
-MODEL = """<group name="Split" tick_duration="0.01" where="worker" stall="">
+MODEL = """<group name="Split" tick_duration="0.01" where="worker" stall="" dialect="2">
   <module class="Sweep" name="Src" min="0" max="100000" step="1"/>
   <group name="Vision" process="@where" stall_ticks="@stall">
      <input name="IN"/>

@@ -27,7 +27,8 @@ class OutputFile(ColumnWriter):
     INPUT. When none of INPUT's connections has a label, INPUT is one value named INPUT (its
     connections laid end to end); otherwise each connection is a value of its own, named by
     its label (one without a label by its source, as ``C.OUTPUT``), with its own shape (a
-    delay window adds an outer axis, one entry per delay in the order listed). A relative
+    delay window adds an outer axis, one entry per delay in the window's order: in an
+    Ikaros 2 file the longest delay first). A relative
     ``filename`` is relative to the model file's folder (or to the user-data folder given
     with ``ikaros -u``); a ``%d`` in it (or ``%03d`` and so
     on, Ikaros 2) or a run of ``#`` (Ikaros 3: ``##`` is two digits, zero-padded) is
@@ -100,7 +101,7 @@ class OutputFile(ColumnWriter):
                                "text header is always written in the NAME/n form that "
                                "InputFile reads")
     INPUT = Input("Ikaros 3: the values to write, each connection named by its label",
-                  optional=True)
+                  optional=True, flatten=True)
     NEWFILE = Input("a rise of the first element to above 0 starts a new file", optional=True)
     WRITE = Input("when connected, a record is written only when the first element is above "
                   "0", optional=True)

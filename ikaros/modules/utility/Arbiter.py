@@ -33,7 +33,8 @@ class Arbiter(Module):
 
     In an Ikaros 3 file (dialect 3) the class is Ikaros 3's: there are no INPUT_k / VALUE_k
     ports; VALUE is an input with one value per candidate (connections stacked with
-    ``stack_values``, else concatenated), and there is no VALUE output. Softmax raises the
+    ``stack_values``; else several connections overlay, as into any input of an Ikaros 3
+    file, and one connection brings all the values), and there is no VALUE output. Softmax raises the
     amplitudes themselves to the exponent (a negative amplitude with a fractional exponent
     gives NaN), NORMALIZED divides SMOOTHED by its sum (not the sum of absolute values; all
     0 when that sum is at most float32 epsilon), and by_row is not used."""
@@ -58,7 +59,7 @@ class Arbiter(Module):
     stack_inputs = Parameter(True, "Ikaros 3: each connection to INPUT is one candidate "
                              "(always so here)")
     stack_values = Parameter(False, "Ikaros 3: each connection to VALUE is one candidate's "
-                             "value (stacked); without it the connections are concatenated")
+                             "value (stacked); without it one connection brings them all")
 
     INPUT = Input("Ikaros 3: all the inputs, one connection each, stacked", optional=True,
                   stack=True)

@@ -200,7 +200,9 @@ def test_settings_are_inherited_and_states_are_not_the_scripts(tmp_path):
                                      "    module.OUTPUT[0] += 1\n"
                                      "    if module.tick == 1:\n"
                                      "        raise ValueError('x')\n")
-    (tmp_path / "m.ikg").write_text('<group name="M" on_error="log"><group name="G">'
+    # an Ikaros 2 file (its Ikaros 3 class file beside it would make it Ikaros 3's): the
+    # second tick is tick 1
+    (tmp_path / "m.ikg").write_text('<group name="M" on_error="log" dialect="2"><group name="G">'
                                     '<module class="Acc" name="A"/></group></group>')
     with ikaros.load(str(tmp_path / "m.ikg"), quiet=True) as net:
         seen = []

@@ -292,7 +292,8 @@ def test_rename_and_delete_reach_addresses_in_every_group(tmp_path):
     try:
         net.run(3)
         assert net.output("Down.INPUT").tolist() == [3.0]      # from K, at the top
-        assert net.output("G1.G2.G.INPUT").tolist() == [7.0, 3.0, 3.0]
+        # an Ikaros 2 file: the connection declared last first (absolute, relative, climbing)
+        assert net.output("G1.G2.G.INPUT").tolist() == [3.0, 3.0, 7.0]
     finally:
         net.close()
 

@@ -146,7 +146,7 @@ def run_v3(tmp_path, columns, rows, attrs="", links=()):
             '<connection source="D.Z" target="K.OBSERVATION" delay="0"/>\n' +
             "".join(f'<connection source="D.{a}" target="K.{b}" delay="0"/>\n'
                     for a, b in links))
-    net = load(tmp_path, body)
+    net = load(tmp_path, body, dialect=2)    # Ikaros 2's filter, with Ikaros 3's inputs
     out = []
     try:
         for _ in rows:

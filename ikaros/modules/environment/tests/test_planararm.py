@@ -236,7 +236,8 @@ def test_v3_gripper_grasps_only_when_closed(tmp_path):
     (tmp_path / "g.txt").write_text("G/1\n0\n0\n1\n0\n1\n")
     net = load(tmp_path, '<module class="InputFile" name="F" filename="g.txt"/>'
                          '<module class="PlanarArm" name="A" seed="5" target_size="2"/>'
-                         '<connection source="F.G" target="A.GRIPPER" delay="0"/>')
+                         '<connection source="F.G" target="A.GRIPPER" delay="0"/>',
+               dialect=2)        # Ikaros 2's arm, with Ikaros 3's GRIPPER input
     try:
         targets = [net.output("A.TARGET").copy()]
         for _ in range(5):

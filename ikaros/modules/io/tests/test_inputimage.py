@@ -11,7 +11,7 @@ def test_reads_png_and_a_hash_numbered_sequence(tmp_path):
     for k in range(3):
         Image.fromarray(np.full((2, 3), 50 * k, np.uint8), "L").save(tmp_path / f"s_{k:02d}.png")
     net = load(tmp_path, '<module class="InputImage" name="I" filename="s_##.png" '
-                         'filecount="3"/>')
+                         'filecount="3"/>', dialect=2)      # ticks from 0
     try:
         got = []
         for _ in range(4):

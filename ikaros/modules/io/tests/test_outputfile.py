@@ -164,10 +164,11 @@ def _connection(source):
 
 def test_v3_csv_with_tick_stamps(tmp_path):
     run_v3(tmp_path, 'filename="out.csv" decimals="2"', ["W.OUTPUT", "C.OUTPUT"])
+    # an Ikaros 2 file (its Sweep): the connection declared last comes first
     assert (tmp_path / "out.csv").read_text() == (
         "tick,INPUT[0],INPUT[1],INPUT[2]\n"
-        "0,1.00,1.50,-2.25\n"
-        "1,2.00,1.50,-2.25\n")
+        "0,1.50,-2.25,1.00\n"
+        "1,1.50,-2.25,2.00\n")
 
 
 def test_v3_csv_is_read_back_by_inputfile(tmp_path):
@@ -226,7 +227,8 @@ def test_v3_jsonl_keeps_shapes_and_writes_null(tmp_path):
     net = ikaros.load(str(path))
     net.run(ticks=1)
     net.close()
-    assert (tmp_path / "nan.jsonl").read_text() == '{"tick":0,"k":[null,null,null]}\n'
+    # an Ikaros 3 file by its signs (INPUT and a label): the first tick is 1
+    assert (tmp_path / "nan.jsonl").read_text() == '{"tick":1,"k":[null,null,null]}\n'
 
 
 def test_v3_json_array_is_valid_while_written_and_after(tmp_path):
@@ -283,7 +285,8 @@ def test_v3_hash_numbering_and_single_trigger(tmp_path):
     # G: 0, 1, 1, 0, 1 -> single_trigger writes on ticks 1 and 4; NEWFILE rises on tick 3
     (tmp_path / "g.txt").write_text("G/1 N/1\n0 0\n1 0\n1 0\n0 1\n1 1\n")
     path = tmp_path / "model.ikg"
-    path.write_text('<group name="Test"><module class="InputFile" name="F" filename="g.txt"/>'
+    path.write_text('<group name="Test" dialect="2">'
+                    '<module class="InputFile" name="F" filename="g.txt"/>'
                     '<module class="Constant" name="C" data="7"/>'
                     '<module class="OutputFile" name="O" filename="out_##.csv" '
                     'single_trigger="yes" decimals="0"/>'
@@ -326,9 +329,10 @@ def test_v3_jsonl_writes_a_delay_window_as_an_outer_array(tmp_path):
     net = ikaros.load(str(path))
     net.run(ticks=3)
     net.close()
+    # an Ikaros 2 file (its Sweep): the window's longest delay first
     assert (tmp_path / "out.jsonl").read_text().splitlines() == [
-        '{"history":[[1],[0],[0]]}', '{"history":[[2],[1],[0]]}',
-        '{"history":[[3],[2],[1]]}']
+        '{"history":[[0],[0],[1]]}', '{"history":[[0],[1],[2]]}',
+        '{"history":[[1],[2],[3]]}']
 
 
 @pytest.mark.parametrize("fmt, connections, message", [

@@ -79,7 +79,7 @@ MODEL = """<group tick_duration="0.02">
           domain_id="{domain}"/>
   <module class="ROS2Subscriber" name="Joints" topic="/joint_states" type="JointState"
           names="shoulder, elbow" domain_id="{domain}"/>
-  <connection source="Command.OUTPUT" target="CmdVel.INPUT"/>
+  <connection source="Command.OUTPUT" target="CmdVel.INPUT" delay="0"/>
 </group>"""
 
 

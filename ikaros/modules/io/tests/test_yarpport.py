@@ -114,7 +114,8 @@ def test_a_sender_writes_a_bottle_of_its_input_when_it_changes(tmp_path, yarp):
         for _ in range(3):
             net.step()
             activity.append(net.output("Out.YARP_ACTIVITY")[0])
-        assert port.written == [([1.0, 2.0, 3.0], True), ([4.0, 5.0, 6.0], True)]
+        # INPUT is B then A: the connection declared last comes first (Ikaros 2)
+        assert port.written == [([3.0, 1.0, 2.0], True), ([6.0, 4.0, 5.0], True)]
         assert activity == [1, 0, 1]
     finally:
         net.close()

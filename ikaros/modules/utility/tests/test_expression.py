@@ -96,7 +96,8 @@ def test_concatenated_connections_and_a_constant_expression(tmp_path):
                '<connection source="C.OUTPUT" target="K.a" delay="0"/>')
     try:
         net.step()
-        assert np.array_equal(net.output("E.OUTPUT"), [10, 40])
+        # a = [B, A] = [2, 1]: the connection declared last comes first (Ikaros 2)
+        assert np.array_equal(net.output("E.OUTPUT"), [20, 20])
         assert np.allclose(net.output("K.OUTPUT"), [np.pi, np.pi])
         assert np.array_equal(net.output("N.OUTPUT"), [3])
     finally:

@@ -39,7 +39,7 @@ def test_seeded_values_every_tick(tmp_path):
 
 def test_interval_keeps_values_between_draws(tmp_path):
     net = load(tmp_path, '<module class="Randomizer" name="R" seed="7" outputsize_x="3" '
-                         'outputsize_y="2" interval="3"/>')
+                         'outputsize_y="2" interval="3"/>', dialect=2)   # ticks from 0
     try:
         expected = draws(7, (2, 3), 0, 1, 4)
         assert net.output("R.OUTPUT").shape == (2, 3)

@@ -29,7 +29,8 @@ class FakeTime:
 
 
 def test_the_clock_each_tick(tmp_path):
-    net = load(tmp_path, '<module class="System" name="S"/>', tick_duration="0.25")
+    net = load(tmp_path, '<module class="System" name="S"/>', tick_duration="0.25",
+               dialect=2)        # ticks from 0
     try:
         before = values(net)
         assert before["TICK"] == -1 and before["TIME"] == 0

@@ -13,7 +13,7 @@ def literal(a) -> str:
 def run(tmp_path, cls: str, inputs: dict, ticks: int = 1, name: str = "M", **params):
     """Load a model with the module ``name`` of class ``cls``, each input fed with delay 0
     from a Constant that holds the given array, run ``ticks`` ticks and return the network
-    (the caller closes it). Parameters are written as given (``str``)."""
+    (the caller closes it), an Ikaros 2 file. Parameters are written as given (``str``)."""
     attrs = " ".join(f'{k}="{v}"' for k, v in params.items())
     body = [f'<module class="{cls}" name="{name}" {attrs}/>']
     for port, value in inputs.items():
@@ -21,7 +21,8 @@ def run(tmp_path, cls: str, inputs: dict, ticks: int = 1, name: str = "M", **par
         body.append(f'<module class="Constant" name="{source}" data="{literal(value)}"/>')
         body.append(f'<connection source="{source}.OUTPUT" target="{name}.{port}" '
                     f'delay="0"/>')
-    net = load_body(tmp_path, "\n".join(body))
+    # Ikaros 2 files, as before the signs of Ikaros 3 (a class's Ikaros 3 ports) counted
+    net = load_body(tmp_path, "\n".join(body), dialect=2)
     if ticks:
         net.run(ticks=ticks)
     return net
