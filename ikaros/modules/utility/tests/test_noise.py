@@ -50,7 +50,8 @@ def test_sigma_zero_adds_only_the_mean(tmp_path):
 def test_statistics(tmp_path):
     net = load(tmp_path, '<module class="Constant" name="C" outputsize="2000" data="0"/>'
                          '<module class="Noise" name="N" sigma="2" mean="3" seed="1"/>'
-                         '<connection source="C.OUTPUT" target="N.INPUT" delay="0"/>')
+                         '<connection source="C.OUTPUT" target="N.INPUT" delay="0"/>',
+               dialect="2")
     try:
         net.step()
         out = net.output("N.OUTPUT")

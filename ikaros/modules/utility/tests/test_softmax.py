@@ -10,7 +10,7 @@ RANDOM = ('<module class="Randomizer" name="R" outputsize_x="3" outputsize_y="2"
 
 
 def test_ikaros_2_default_gives_every_element_1_over_n(tmp_path):
-    with load(tmp_path, RANDOM + '<module class="Softmax" name="S"/>') as net:
+    with load(tmp_path, RANDOM + '<module class="Softmax" name="S"/>', dialect="2") as net:
         net.step()
         assert np.allclose(net.output("S.OUTPUT"), np.full((2, 3), 1 / 6))
 

@@ -127,7 +127,8 @@ def test_without_stop_there_is_no_progress(tmp_path):
 
 
 def test_real_time_mode_time_and_state(tmp_path):
-    with load(tmp_path, '<module class="System" name="S"/>', tick_duration="0.01") as net:
+    with load(tmp_path, '<module class="System" name="S"/>', tick_duration="0.01",
+              dialect="2") as net:
         net.run(3, real_time=True)
         assert net.output("S.STATE").tolist() == [4]
         assert net.output("S.RUN_STATE").tolist() == [0, 0, 0, 1, 0]
