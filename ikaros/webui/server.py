@@ -524,7 +524,7 @@ class WebUI:
             try:
                 tree = self._tree(body, filename)
                 overrides = self._overrides
-                new = await self._build(filename, tree, overrides)
+                new = await self._build(filename, tree, overrides, predecessor=self.net)
             except ModelError as e:
                 return Json(editing.error_json(e), status_code=422)
             except BuildTimeout as e:
@@ -615,10 +615,11 @@ class WebUI:
             self._changing.release()
 
     async def _build(self, filename: str, tree, overrides: dict | None,
-                     confined: bool = True):
+                     confined: bool = True, predecessor=None):
         """Build a network in a thread of its own, confined to the editor's folders (unless
         it is the command line's model built again), within the build time limit
-        (BuildTimeout)."""
+        (BuildTimeout). With ``predecessor`` (an Apply) the modules that did not change are
+        left to take over from it (``_swap(keep_state=True)``)."""
         log_level = self.net.log_level
         diagnostics = self.net.diagnostics.fresh()
 
@@ -626,7 +627,8 @@ class WebUI:
             with access.applied(self.confinement if confined else None):
                 new = Builder(filename, overrides, model=tree, diagnostics=diagnostics,
                               limits=self.build_limits,
-                              user_data=getattr(self.net, "user_data", None)).build()
+                              user_data=getattr(self.net, "user_data", None),
+                              predecessor=predecessor).build()
             new.log_level = log_level
             return new
         return await run_build(build, self.build_timeout)
