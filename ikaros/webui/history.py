@@ -106,7 +106,12 @@ class Recorder:
                 if old is not None and old.last_tick != now:
                     old = None                  # ticks ran unrecorded since it was dropped
             keep = old is not None and old.src is src and old.always == (path in events)
-            rings[path] = old if keep else Ring(src, path in events)
+            if not keep:
+                # the value it has now is the first row: a page that reloads later shows
+                # the tick this one started from (a model paused at tick 0 included)
+                old = Ring(src, path in events)
+                old.record(now)
+            rings[path] = old
         for path, ring in self.rings.items():
             if path not in rings:
                 self._retire(path, ring)

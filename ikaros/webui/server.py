@@ -45,7 +45,7 @@ from . import state as run_tools
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
-from .history import MAX_POINTS
+from .history import MAX_POINTS, MAX_TICKS as MAX_WINDOW
 from .rates import RUNNING, TickRate
 from .recording import RecordButton, ReplayBar
 from .guards import (DEFAULT_MAX_BODY, BodyLimit, BodyTooLarge, Framing,
@@ -742,7 +742,8 @@ class WebUI:
         else:
             raise ApiError(400, f'unknown message type "{kind}" (subscribe, ready, ping)')
 
-    def _subscriptions(self, msg: dict) -> tuple[list[tuple[str, str]], dict[str, int]]:
+    def _subscriptions(self, msg: dict
+                       ) -> tuple[list[tuple[str, str]], dict[str, int], dict[str, int]]:
         for key in msg:
             if key not in ("type", "buffers"):
                 raise ApiError(400, f'unknown field "{key}" in subscribe')
@@ -751,13 +752,13 @@ class WebUI:
             raise ApiError(400, 'subscribe needs "buffers": a list of {"path", "format"}')
         if len(buffers) > MAX_SUBSCRIPTIONS:
             raise ApiError(400, f"at most {MAX_SUBSCRIPTIONS} buffers")
-        subs, points = [], {}
+        subs, points, windows = [], {}, {}
         for b in buffers:
             if not isinstance(b, dict) or not isinstance(b.get("path"), str):
                 raise ApiError(400, 'each buffer must be {"path": "A.OUTPUT", "format": '
                                     '"raw"}')
             for key in b:
-                if key not in ("path", "format", "points"):
+                if key not in ("path", "format", "points", "ticks"):
                     raise ApiError(400, f'unknown field "{key}" in a buffer')
             path, fmt = b["path"].strip(), b.get("format", "raw")
             if fmt not in FORMATS:
@@ -776,8 +777,15 @@ class WebUI:
                     raise ApiError(400, f'"points" of "{path}" must be a whole number '
                                         f'1..{MAX_POINTS}, with the format "history"')
                 points[path] = n
+            if "ticks" in b:
+                n = b["ticks"]
+                if fmt != "history" or not isinstance(n, int) or isinstance(n, bool) \
+                        or not 1 <= n <= MAX_WINDOW:
+                    raise ApiError(400, f'"ticks" of "{path}" must be a whole number '
+                                        f'1..{MAX_WINDOW}, with the format "history"')
+                windows[path] = n
             subs.append((path, fmt))
-        return subs, points
+        return subs, points, windows
 
 
 def create_app(net, token: str | None = None, static_dir: str | None = None, *,

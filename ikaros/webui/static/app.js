@@ -219,12 +219,15 @@ class App {
                 const key = s.path + "|" + s.format;
                 if (!s.path) continue;
                 if (seen.has(key)) {        // a history shared by plots: the widest one's points
-                    const had = seen.get(key);
+                    const had = seen.get(key);  // and the longest one's ticks
                     if (s.points && had.points) had.points = Math.max(had.points, s.points);
+                    if (s.ticks && had.ticks) had.ticks = Math.max(had.ticks, s.ticks);
+                    else delete had.ticks;
                     continue;
                 }
                 const sub = { path: s.path, format: s.format || "raw" };
                 if (s.points) sub.points = s.points;
+                if (s.ticks) sub.ticks = s.ticks;
                 seen.set(key, sub);
                 subs.push(sub);
             }

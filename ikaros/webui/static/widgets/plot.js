@@ -57,7 +57,9 @@ export default class Plot extends Widget {
         const p = this.path("source");
         if (!p) return [];
         const points = Math.min(8192, Math.max(16, Math.round(this.body.clientWidth) || 512));
-        return [{ path: p, format: "history", points }];
+        // the latest ticks shown: a page opened or reloaded late gets those, every sample
+        // of them when they fit the plot's columns, not an envelope of the whole history
+        return [{ path: p, format: "history", points, ticks: Math.min(16384, this.window()) }];
     }
 
     /** Ticks shown: buffer_size, or the width in pixels. */

@@ -1,10 +1,12 @@
-"""Small time plots in a real headless Chromium (issue 37): at 300 x 60, 120 x 120 and
-100 x 80 a plot drops what of its axes does not fit, but no text is drawn over the plotting
-area or outside the canvas, and every value plotted lies inside the plotting area. The
-screenshot goes to test-artifacts/plot-sizes.png."""
+"""Time plots in a real headless Chromium (issue 37). At 300 x 60, 120 x 120 and 100 x 80 a
+plot drops what of its axes does not fit, but no text is drawn over the plotting area or
+outside the canvas, and every value plotted lies inside the plotting area (screenshot:
+test-artifacts/plot-sizes.png). After a reload a plot shows the samples it showed before,
+up to the current tick."""
 from __future__ import annotations
 
 import os
+import time
 
 import pytest
 
@@ -100,3 +102,63 @@ def test_small_plots_drop_what_does_not_fit_and_never_draw_over_the_data(tmp_pat
         assert not page.errors, page.errors
 
     in_own_browser(str(model), open_page, check)
+
+
+HISTORY = """<?xml version="1.0"?>
+<group name="H" tick_duration="0.001">
+    <module class="FunctionGenerator" name="Square" type="square" frequency="0.05" amplitude="1" />
+    <module class="FunctionGenerator" name="Sine" frequency="0.01" />
+    <view name="Plots">
+        <plot source="Square.OUTPUT" title="square" x="20" y="20" width="200" height="120" />
+        <plot source="Sine.OUTPUT" title="sine" x="240" y="20" width="400" height="200" />
+    </view>
+</group>
+"""
+
+SAMPLES = """() => Object.fromEntries(window.ikaros.mainView.widgets.map((w) =>
+    [w.el.dataset.title, {xs: w.xs.slice(), hi: w.hi[0].slice(), lo: w.lo[0].slice()}]))"""
+
+
+def _settled(page, tick):
+    """The plots' samples once both end at ``tick``."""
+    page.wait_for_function("(t) => window.ikaros.mainView.widgets.every((w) => "
+                           "w.xs.length && w.xs[w.xs.length - 1] === t)", arg=tick)
+    return page.evaluate(SAMPLES)
+
+
+def test_after_a_reload_plots_show_the_samples_they_showed_up_to_the_current_tick(tmp_path):
+    model = tmp_path / "history.ikg"
+    model.write_text(HISTORY)
+
+    def check(server, page):
+        # 30 steps of a model paused at tick 0: tick 0 (the value init wrote) stays
+        server.step(30)
+        before = _settled(page, 30)
+        assert before["square"]["xs"] == list(range(31)), before["square"]["xs"]
+        page.reload()
+        page.wait_for_function("() => window.ikaros && window.ikaros.socket.connected")
+        assert _settled(page, 30) == before
+        # played as fast as it goes, then paused: every tick the plot is wide, as before
+        server.post("/api/control", {"state": "play"})
+        deadline = time.monotonic() + 20
+        while server.tick() < 3000:
+            assert time.monotonic() < deadline, "the model did not run"
+            time.sleep(0.05)
+        server.post("/api/control", {"state": "pause"})
+        deadline = time.monotonic() + 10
+        while server.get("/api/status")["state"] != "pause":
+            assert time.monotonic() < deadline, "the model did not pause"
+            time.sleep(0.05)
+        tick = server.tick()
+        before = _settled(page, tick)
+        for title, width in (("square", 198), ("sine", 398)):
+            xs = before[title]["xs"]
+            assert xs == list(range(tick - len(xs) + 1, tick + 1)) and len(xs) >= width - 2, \
+                (title, len(xs), xs[:3], xs[-3:])
+        page.reload()
+        page.wait_for_function("() => window.ikaros && window.ikaros.socket.connected")
+        after = _settled(page, tick)
+        assert after == before
+        assert not page.errors, page.errors
+
+    in_own_browser(str(model), lambda server, page: None, check)
