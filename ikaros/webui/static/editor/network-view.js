@@ -8,6 +8,7 @@
 import { HEADER, PORT_H, edgeKey, portOffset } from "./layout.js";
 
 const SVG = "http://www.w3.org/2000/svg";
+const MIN_ZOOM = 0.02;   // a group of thousands of modules still fits the view
 const REST_MS = 150;     // a pan or zoom gesture is drawn anew after this long at rest
 const CULL_LIMIT = 400;  // boxes; a bigger group is drawn only around the view
 
@@ -180,14 +181,15 @@ export class NetworkView {
         const r = this.svg.getBoundingClientRect();
         const [x0, y0, x1, y1] = this.extent();
         const w = Math.max(1, r.width || 800), h = Math.max(1, r.height || 600);
-        const k = Math.min(1.25, Math.max(0.2, Math.min((w - 40) / (x1 - x0 + 1), (h - 40) / (y1 - y0 + 1))));
+        // as far out as it takes to show everything (text too small to read is left out)
+        const k = Math.min(1.25, Math.max(MIN_ZOOM, Math.min((w - 40) / (x1 - x0 + 1), (h - 40) / (y1 - y0 + 1))));
         this.setTransform({ k, x: 20 - x0 * k, y: 20 - y0 * k });
     }
 
     zoom(factor, cx = null, cy = null, gesture = false) {
         const r = this.svg.getBoundingClientRect();
         if (cx === null) { cx = r.width / 2; cy = r.height / 2; }
-        const k = Math.min(4, Math.max(0.1, this.t.k * factor));
+        const k = Math.min(4, Math.max(MIN_ZOOM, this.t.k * factor));
         const f = k / this.t.k;
         const t = { k, x: cx - (cx - this.t.x) * f, y: cy - (cy - this.t.y) * f };
         if (gesture) this.gesture(t); else this.setTransform(t);
