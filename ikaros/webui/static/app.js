@@ -50,7 +50,8 @@ class App {
             notify: (l, m) => this.messages.local(l, m),
             scope: () => (this.editor?.active ? this.editor.selectedComponentPath() : null),
         });
-        this.recordButton = new RecordButton($("#controls"), { notify: (l, m) => this.messages.local(l, m) });
+        this.recordButton = new RecordButton($("#controls"), { notify: (l, m) => this.messages.local(l, m),
+            status: () => this.status });
         this.replayBar = new ReplayBar($("#controls"), { notify: (l, m) => this.messages.local(l, m), recordButton: this.recordButton });
         this.ctx = {
             groupPath: "",
@@ -298,6 +299,7 @@ class App {
             this.status = { ...this.status, ...figures };
         }
         this.controls.show(this.status);
+        this.recordButton?.statusChanged();
         this.system.show(this.status, this.uiFigures());
         document.body.dataset.state = this.status.state || "";
     }
