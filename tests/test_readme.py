@@ -19,3 +19,24 @@ def test_the_load_snippet_prints_what_the_readme_shows():
                          timeout=60, cwd=ROOT)
     assert out.returncode == 0, out.stderr
     assert out.stdout == shown
+
+
+def test_the_test_command_leaves_the_demos_environment_alone():
+    """Issue 37, item 9: the README's test command installed the package, editable and with
+    every extra, into the .venv its demo step made, so a server running from it lost its
+    static files. The tests get an environment of their own, which git ignores."""
+    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
+        readme = f.read()
+    demo = re.search(r"python3 -m venv (\S+) && \. \1/bin/activate && pip install '\.\[web\]'",
+                     readme)
+    assert demo, "the README's demo step"
+    assert "bash scripts/test.sh" in readme
+    with open(os.path.join(ROOT, "scripts", "test.sh"), encoding="utf-8") as f:
+        script = f.read()
+    made = re.findall(r"python3 -m venv (\S+)", script)
+    assert len(made) == 1 and made[0] != demo.group(1), made
+    assert f". {made[0]}/bin/activate" in script
+    with open(os.path.join(ROOT, ".gitignore"), encoding="utf-8") as f:
+        assert f"{made[0]}/" in f.read().split()
+    with open(os.path.join(ROOT, ".ci", "run"), encoding="utf-8") as f:
+        assert "bash scripts/test.sh" in f.read()
