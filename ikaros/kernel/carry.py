@@ -79,8 +79,19 @@ def adoptable(old, builder) -> dict:
     return found
 
 
-def _follower(old, before: ModuleInstance, new, inst: ModuleInstance) -> Follower:
-    """What maps ``before``'s references into ``old`` to ``inst``'s in ``new``."""
+def _old_memory(old) -> list:
+    """The arrays of ``old`` no reference of a module handed over may point into: its arena,
+    its delay rings and the storage of its dynamic buffers."""
+    memory = [old.arena.block, old.ring_arena.block]
+    memory += [buf.array for ports in old._buffers.values() for side in ports
+               for buf in side.values() if buf.dynamic_array is not None]
+    return memory
+
+
+def _follower(old, before: ModuleInstance, new, inst: ModuleInstance,
+              memory: list) -> Follower:
+    """What maps ``before``'s references into ``old`` (its arrays ``memory``) to ``inst``'s
+    in ``new``."""
     arrays, objects = [], {before.module: inst.module, before.module.clock: inst.module.clock}
     old_ports, new_ports = old._buffers[before], new._buffers[inst]
     for old_side, new_side in zip(old_ports, new_ports):
@@ -95,9 +106,6 @@ def _follower(old, before: ModuleInstance, new, inst: ModuleInstance) -> Followe
         b = getattr(inst.module, parameter_attribute(name), None)
         if isinstance(a, np.ndarray) and isinstance(b, np.ndarray):
             arrays.append((a, b))
-    memory = [old.arena.block, old.ring_arena.block]
-    memory += [buf.array for ports in old._buffers.values() for side in ports
-               for buf in side.values() if buf.dynamic_array is not None]
     return Follower(arrays, objects, memory)
 
 
@@ -113,9 +121,9 @@ def _own_state(before: ModuleInstance, inst: ModuleInstance) -> dict:
             if k not in skip and not (k.startswith("_ik_") and k in fresh)}
 
 
-def _hand_over(old, before: ModuleInstance, new, inst: ModuleInstance) -> None:
+def _hand_over(old, before: ModuleInstance, new, inst: ModuleInstance, memory: list) -> None:
     """Give ``inst`` what ``before`` had; Unfollowable leaves ``inst`` as it was."""
-    follower = _follower(old, before, new, inst)
+    follower = _follower(old, before, new, inst, memory)
     state = {k: follower.follow(v) for k, v in _own_state(before, inst).items()}
     old_outputs, new_outputs = old._buffers[before][1], new._buffers[inst][1]
     for name, buf in new_outputs.items():
@@ -139,19 +147,23 @@ def carry_state(old, new) -> list[str]:
     new.tick = old.tick
     new.clock.tick = old.clock.tick
     new.clock.time = old.clock.time
-    for inst, before in new.take_adopted().items():
+    adopted = new.take_adopted()
+    memory = _old_memory(old) if adopted else []
+    initial: dict = {}                  # the old network's initial state, by module
+    for key, value in old.initial_state.items():
+        initial.setdefault(key.rpartition(".")[0], []).append((key, value))
+    for inst, before in adopted.items():
         try:
             if old.stopped:
                 raise Unfollowable("the running network had ended")
-            _hand_over(old, before, new, inst)
+            _hand_over(old, before, new, inst, memory)
         except Unfollowable as e:
             new.notify(WARNING, inst.path, f"starts afresh after the change: {e}")
             new.start_late(inst)
             continue
         old.hand_over(before)
         kept.append(inst.path)
-        mine = [key for key in old.initial_state if key.rpartition(".")[0] == before.path]
-        new.initial_state.update((key, old.initial_state[key]) for key in mine)
+        new.initial_state.update(initial.get(before.path, ()))
     return kept
 
 
