@@ -824,9 +824,11 @@ class Network:
 
     def apply(self, model) -> "Network":
         """The network of ``model`` (an ``ikaros.Group``, or a model tree) taking over from
-        this one, as the editor's Apply does: modules that did not change keep their state
-        and the run goes on from this tick; this network is closed. When ``model`` does not
-        build, ModelError is raised and this network is unchanged. Returns the new network."""
+        this one, as the editor's Apply does: modules that did not change go on with their
+        state (not started again; what they hold of their ports follows the new ones, see
+        kernel/carry.py) and the run goes on from this tick; this network is closed. When
+        ``model`` does not build, ModelError is raised and this network is unchanged.
+        Returns the new network."""
         tree, classes = model.model_tree() if hasattr(model, "model_tree") else (model, None)
         return rebuild(self, tree, classes)
 
