@@ -10,6 +10,7 @@ open and new build a new one). And the replay bar's endpoint, ``/api/replay``, f
 ``ikaros --replay``."""
 from __future__ import annotations
 
+import math
 import os
 import time
 
@@ -69,8 +70,8 @@ class RecordButton:
         else:           # what a recording of ``only`` would
             try:
                 signals = select_outputs(self.ui.net, only)[0]
-            except ValueError as e:
-                raise ApiError(400, str(e)) from None
+            except ValueError as e:         # a pattern that matches no output
+                raise ApiError(404, str(e)) from None
         sizes = sorted(((s.stop - s.start, s.name) for s in signals), reverse=True)
         answer.update(outputs=len(signals), values=sum(n for n, _ in sizes),
                       largest=[[path, n] for n, path in sizes[:LARGEST]])
@@ -92,8 +93,10 @@ class RecordButton:
             raise ApiError(400, f'"format" must be {" or ".join(FORMATS)}')
         only = _patterns(body.get("only"), '"only"')
         every = body.get("every", 1)
-        if not isinstance(every, int) or isinstance(every, bool) or every < 1:
+        if isinstance(every, bool) or not isinstance(every, (int, float)) or \
+                not (math.isfinite(every) and every >= 1 and every == int(every)):
             raise ApiError(400, '"every" must be a whole number of ticks >= 1')
+        every = int(every)
         current = self.recorder
         if current is not None and not current.closed:
             # between its network's ticks (that network may be another one now)
@@ -111,7 +114,7 @@ class RecordButton:
         try:
             select_outputs(net, only)
         except ValueError as e:
-            raise ApiError(400, str(e)) from None
+            raise ApiError(404, str(e)) from None
         made = not os.path.isdir(folder)
         try:
             os.makedirs(folder, exist_ok=True)

@@ -67,6 +67,23 @@ def test_a_dropped_ring_is_taken_up_again_while_nothing_ran_since():
     assert rec.read({"A.OUTPUT": -1})["A.OUTPUT"][0].tolist() == [51]
 
 
+def test_a_dropped_ring_that_missed_the_last_tick_is_taken_up_again_with_it():
+    """Issue 37, item 6: under load the copying budget may leave the last tick before a
+    pause out of a ring; a page reloaded then got a ring of the present tick alone."""
+    net, src = _Net(), np.zeros(1, np.float32)
+    rec = Recorder(net, budget=1.0)
+    rec.set_sources({"A.OUTPUT": src})
+    for t in range(1, 11):
+        net.tick = t
+        src[0] = t
+        if t < 10:                              # tick 10: the budget was spent
+            rec.hook()
+    rec.set_sources({})                         # the page reloads, nothing ran meanwhile
+    rec.set_sources({"A.OUTPUT": src})
+    ticks, rows, _ = rec.read({"A.OUTPUT": -1})["A.OUTPUT"]
+    assert ticks.tolist() == list(range(0, 11)) and rows[:, 0].tolist() == list(range(0, 11))
+
+
 def test_envelope_keeps_every_peak():
     ticks = np.arange(1, 1001)
     rows = np.zeros((1000, 1), np.float32)

@@ -33,11 +33,15 @@ def test_the_endpoint_says_what_a_recording_would_hold(tmp_path):
         some = client.get("/api/record", params={"only": "Counter.*, One.OUTPUT"}).json()
         assert (some["outputs"], some["values"]) == (2, 2)
         r = client.get("/api/record", params={"only": "Nothing.*"})
-        assert r.status_code == 400 and "Nothing.*" in r.json()["error"]
-        for bad in ({"on": True, "only": 5}, {"on": True, "only": "Nothing.*"},
-                    {"on": True, "every": 0}, {"on": True, "every": 1.5},
-                    {"on": True, "every": True}):
+        assert r.status_code == 404 and "Nothing.*" in r.json()["error"]
+        r = client.post("/api/record", json={"on": True, "only": ["Nothing.*"]})
+        assert r.status_code == 404 and "Nothing.*" in r.json()["error"]
+        for bad in ({"on": True, "only": 5}, {"on": True, "every": 0},
+                    {"on": True, "every": 1.5}, {"on": True, "every": True}):
             assert client.post("/api/record", json=bad).status_code == 400, bad
+        r = client.post("/api/record", content='{"on": true, "every": Infinity}',
+                        headers={"Content-Type": "application/json"})
+        assert r.status_code == 400
     net.close()
     assert not os.path.exists(tmp_path / "data")         # nothing started, nothing made
 
