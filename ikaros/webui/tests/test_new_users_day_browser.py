@@ -22,8 +22,9 @@ SAMPLES = """() => { const w = window.ikaros.mainView.widgets.find((w) => w.xs !
     return w ? {xs: w.xs.slice(), hi: w.hi[0].slice()} : null; }"""
 
 
+# the last tick a plot shows from its history (not the value read when the page opened)
 LAST = """() => { const w = window.ikaros.mainView.widgets.find((w) => w.xs !== undefined);
-    return w && w.xs.length ? w.xs[w.xs.length - 1] : null; }"""
+    return w && w.seenHistory && w.xs.length ? w.xs[w.xs.length - 1] : null; }"""
 
 
 def values(server, *paths):

@@ -120,9 +120,10 @@ SAMPLES = """() => Object.fromEntries(window.ikaros.mainView.widgets.map((w) =>
 
 
 def _settled(page, tick):
-    """The plots' samples once both end at ``tick``."""
+    """The plots' samples once both have their history (not only the value read when the
+    page opened) and end at ``tick``."""
     page.wait_for_function("(t) => window.ikaros.mainView.widgets.every((w) => "
-                           "w.xs.length && w.xs[w.xs.length - 1] === t)", arg=tick)
+                           "w.seenHistory && w.xs.length && w.xs[w.xs.length - 1] === t)", arg=tick)
     return page.evaluate(SAMPLES)
 
 
