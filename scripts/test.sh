@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Install what the tests need and run them all: a virtual environment with the package and
-# its test extras, and Debian's Chromium for the browser tests (installed when missing).
+# Install what the tests need and run them all: a virtual environment of their own
+# (.venv-test: the README's demo step makes .venv, and a server running from it keeps its
+# files) with the package and its test extras, and Debian's Chromium for the browser tests
+# (installed when missing). Arguments go to pytest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -x /usr/bin/chromium ]; then
@@ -9,7 +11,7 @@ if [ ! -x /usr/bin/chromium ]; then
     $SUDO apt-get update -qq
     $SUDO apt-get install -y -qq chromium
 fi
-python3 -m venv .venv
-. .venv/bin/activate
+python3 -m venv .venv-test
+. .venv-test/bin/activate
 pip install -q -e '.[test]'
 python -m pytest -q "$@"

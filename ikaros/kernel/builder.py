@@ -20,6 +20,7 @@ from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
 from ..description import parse_alias
 from ..module import Clock, CRandom, Module, parameter_attribute
 from .buffers import Buffer, Link
+from .carry import adoptable
 from .classes import ClassRegistry
 from .concatenation import (ATTRIBUTE as CONCATENATION, DEFAULT as DEFAULT_CONCATENATION,
                             check_value as check_concatenation, warn_shared_zero_delay,
@@ -90,8 +91,12 @@ class Builder:
                  notify=None, registry: ClassRegistry | None = None,
                  model: Node | None = None, diagnostics: Diagnostics | None = None,
                  limits: Limits | None = None, network_factory=None,
-                 user_data: str | None = None):
+                 user_data: str | None = None, predecessor=None):
         self.limits = limits
+        # the running network this build replaces (an Apply): the modules that did not
+        # change are taken over from it, not started again (kernel/carry.py)
+        self.predecessor = predecessor
+        self.adopting: dict = {}
         self.user_data = user_data      # where modules write relative files (-u DIR)
         self.filename = os.path.abspath(filename)
         if model is not None and model.tag != "group":
@@ -857,6 +862,8 @@ class Builder:
         with step("delays and schedule"):
             order, runs, edges = self._schedule()
             self._start_gating(runs)
+        if self.predecessor is not None:
+            self.adopting = adoptable(self.predecessor, self)
         return (self.network_factory or self.network_class)(self, top, order, runs, edges)
 
     def _start_gating(self, runs) -> None:

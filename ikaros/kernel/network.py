@@ -110,6 +110,11 @@ class Network:
         self._tap_steps: list = []         # the others' steps, at the end of _delayed
         # whether the build froze the objects (gc.freeze), given back by close()
         self.frozen_objects = False
+        # modules this network does not start or stop: those that take over from the
+        # network it replaces (carry.py; not started until take_adopted), and those it
+        # handed over to the network that replaced it (hand_over)
+        self._adopting: dict = dict(getattr(builder, "adopting", None) or {})
+        self._unowned: set = set(self._adopting)
         notify = builder.notify = self.notify
         for inst in order:
             inst.module._ik_notify = notify
@@ -131,7 +136,8 @@ class Network:
             self._compile()
         with self.startup.step("init of the modules"):
             self._init_modules()
-        self.initial_state = capture_initial(self)      # what reset_state goes back to
+        # what reset_state goes back to (the modules taken over: their own, from carry.py)
+        self.initial_state = capture_initial(self, skip=self._unowned)
         self._check_checksum()
         if self.task_timeout:
             self._watchdog = Watchdog(self, self.task_timeout, Network._tick.__code__)
@@ -433,29 +439,12 @@ class Network:
         are stopped (in order) before the error is raised; the failing one is not."""
         self.clock.tick = self.first_tick - 1
         started = []
+        starting = [inst for inst in self.schedule if inst not in self._unowned]
         try:
-            for inst in self.schedule:
+            for inst in starting:
                 inst.module._ik_before_init()
-            for inst in self.schedule:
-                for copy in self._pre_tick.get(inst, ()):
-                    copy()
-                job = self.async_modules.get(inst)
-                if job is not None:
-                    job.take_inputs()
-                error = None
-                try:
-                    inst.module.init()
-                    if job is not None:
-                        job.publish_init()
-                except module_faults() as e:
-                    if is_interrupt(e):
-                        raise
-                    error = inst.node.error(f"init failed: {fault_text(e)}")
-                if error is None and self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
-                    error = inst.node.error(f"While initializing module {inst.path}: "
-                                            f"{self.stop_reason[1]}")
-                if error is not None:
-                    raise error from None
+            for inst in starting:
+                self._init_module(inst)
                 # (an init that fails, by raising or by a fatal error, cleans up after itself)
                 started.append(inst)
         except BaseException:
@@ -469,10 +458,60 @@ class Network:
                 self._stop_modules(started)
             finally:
                 initialised = set(started)
-                for inst in self.schedule:
+                for inst in starting:
                     if inst not in initialised:
                         inst.module._ik_not_initialised()
             raise
+
+    def _init_module(self, inst: ModuleInstance) -> None:
+        """Run one module's init, its zero-delay inputs filled first; ModelError naming the
+        module when it fails."""
+        for copy in self._pre_tick.get(inst, ()):
+            copy()
+        job = self.async_modules.get(inst)
+        if job is not None:
+            job.take_inputs()
+        error = None
+        try:
+            inst.module.init()
+            if job is not None:
+                job.publish_init()
+        except module_faults() as e:
+            if is_interrupt(e):
+                raise
+            error = inst.node.error(f"init failed: {fault_text(e)}")
+        if error is None and self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
+            error = inst.node.error(f"While initializing module {inst.path}: "
+                                    f"{self.stop_reason[1]}")
+        if error is not None:
+            raise error from None
+
+    # --- taking over from a replaced network (carry.py) ------------------------------------
+    def take_adopted(self) -> dict:
+        """{instance: the replaced network's instance} of the modules left to take over
+        from it (each once): the caller hands each its state, or starts it (start_late).
+        From then on this network stops them when it ends."""
+        adopting, self._adopting = self._adopting, {}
+        self._unowned.difference_update(adopting)
+        return adopting
+
+    def start_late(self, inst: ModuleInstance) -> None:
+        """Start a module that was left to take over and could not: its init now, as at
+        load. When it fails, the run ends with that error."""
+        inst.module._ik_before_init()
+        try:
+            self._init_module(inst)
+        except ModelError as e:
+            inst.module._ik_not_initialised()
+            self._unowned.add(inst)           # never started: not stopped
+            self.notify(FATAL_ERROR, inst.path, e.reason)
+            return
+        self.initial_state.update(capture_initial(self, scope=inst.path))
+
+    def hand_over(self, inst: ModuleInstance) -> None:
+        """``inst`` goes on in the network that replaced this one: this one does not stop
+        it."""
+        self._unowned.add(inst)
 
     def _check_checksum(self) -> None:
         if self.top.attrs.get("check_sum") not in (None, ""):
@@ -564,7 +603,7 @@ class Network:
             for job in self.async_modules.values():
                 job.finish()
             self.plan.close()
-            self._stop_modules(self.schedule)
+            self._stop_modules([inst for inst in self.schedule if inst not in self._unowned])
         level, message = self.stop_reason or (TERMINATE, "closed")
         if level == FATAL_ERROR:
             where = getattr(self, "_stop_where", "")
@@ -788,9 +827,11 @@ class Network:
 
     def apply(self, model) -> "Network":
         """The network of ``model`` (an ``ikaros.Group``, or a model tree) taking over from
-        this one, as the editor's Apply does: modules that did not change keep their state
-        and the run goes on from this tick; this network is closed. When ``model`` does not
-        build, ModelError is raised and this network is unchanged. Returns the new network."""
+        this one, as the editor's Apply does: modules that did not change go on with their
+        state (not started again; what they hold of their ports follows the new ones, see
+        kernel/carry.py) and the run goes on from this tick; this network is closed. When
+        ``model`` does not build, ModelError is raised and this network is unchanged.
+        Returns the new network."""
         tree, classes = model.model_tree() if hasattr(model, "model_tree") else (model, None)
         return rebuild(self, tree, classes)
 

@@ -84,13 +84,16 @@ def _ages(ring) -> list[int]:
     return [(ring.pos - k) % ring.depth for k in range(ring.depth)]
 
 
-def values(net, scope: str | None = None, keep=np.ndarray.copy) -> dict:
+def values(net, scope: str | None = None, keep=np.ndarray.copy,
+           skip: set | frozenset = frozenset()) -> dict:
     """{item path: (kind, type, value)}: copies of the state of the modules in ``scope`` (a
-    module or group path; all modules when empty). ``type`` is "matrix", or a scalar's
-    type: the one its ``State`` declares, or that of its value. ``keep(array)`` makes what
-    is kept of an output (a copy unless told otherwise)."""
+    module or group path; all modules when empty) but those in ``skip``. ``type`` is
+    "matrix", or a scalar's type: the one its ``State`` declares, or that of its value.
+    ``keep(array)`` makes what is kept of an output (a copy unless told otherwise)."""
     out = {}
     for inst in _modules(net, scope):
+        if inst in skip:
+            continue
         _, outputs = net._buffers[inst]
         specs = inst.module._ik_outputs
         for name, buf in outputs.items():
@@ -342,8 +345,10 @@ class _Zeros:
         return np.zeros(self.shape, self.dtype)
 
 
-def capture_initial(net) -> dict:
-    """The state right after init, kept for ``reset``."""
+def capture_initial(net, scope: str | None = None,
+                    skip: set | frozenset = frozenset()) -> dict:
+    """The state right after init of the modules in ``scope`` but those in ``skip``, kept
+    for ``reset``."""
     zeros: dict[tuple, _Zeros] = {}     # one for all arrays alike
 
     def kept(array: np.ndarray):
@@ -356,7 +361,7 @@ def capture_initial(net) -> dict:
         return zero
 
     out = {}
-    for path, (_, _, value) in values(net, keep=kept).items():
+    for path, (_, _, value) in values(net, scope, keep=kept, skip=skip).items():
         if isinstance(value, np.ndarray) and not np.count_nonzero(value):
             value = kept(value)       # a delay line, dynamic output or array attribute
         out[path] = value

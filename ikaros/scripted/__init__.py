@@ -6,6 +6,7 @@ module, with the interpreter of ``python_executable``. See docs/python-scripts.m
 """
 from __future__ import annotations
 
+import hashlib
 import os
 import re
 
@@ -63,8 +64,19 @@ def script_class(description: ClassDescription, script: str,
             description.parameters.append(ParameterSpec(
                 name, kind, class_attrs.get(name, default), text, options))
     cls = type(description.name, (ScriptedModule,), {
-        "__module__": __name__, "script": script, "script_parameters": own})
+        "__module__": __name__, "script": script, "script_parameters": own,
+        "script_digest": _digest(script)})
     description.script = script
     cls.description = description
     cls.ikc_description = True
     return cls
+
+
+def _digest(script: str) -> str | None:
+    """The script's text as a digest: an Apply keeps a module only when its script is
+    the same (kernel/carry.py)."""
+    try:
+        with open(script, "rb") as f:
+            return hashlib.sha1(f.read()).hexdigest()
+    except OSError:
+        return None

@@ -80,15 +80,16 @@ class Recorder:
     """One ring per buffer subscribed with a history format (kernel side).
 
     A ring no client subscribes to any more is kept aside (up to ``RETIRED_FLOATS`` values,
-    the most recently dropped first) and taken up again by a new subscription while it is
-    still complete up to the present tick: a page reloaded, or a view opened again, on a
-    paused model shows the ticks it showed before."""
+    the most recently dropped first) and taken up again by a new subscription while no tick
+    has run since it was dropped: a page reloaded, or a view opened again, on a paused model
+    shows the ticks it showed before (and the present tick's value, should the copying
+    budget have left it out)."""
 
     def __init__(self, net, budget: float):
         self.net = net
         self.budget = budget
         self.rings: dict[str, Ring] = {}
-        self.retired: dict[str, Ring] = {}  # path -> ring, oldest first
+        self.retired: dict[str, tuple[Ring, int]] = {}  # path -> (ring, tick dropped at)
         self._split: tuple[tuple[Ring, ...], tuple[Ring, ...]] = ((), ())  # always, others
         self._start = 0                     # where the next tick begins (fair under budget)
         self.skipped = 0                    # rows not recorded for lack of time
@@ -102,11 +103,18 @@ class Recorder:
         for path, src in sources.items():
             old = self.rings.get(path)
             if old is None:
-                old = self.retired.pop(path, None)
-                if old is not None and old.last_tick != now:
+                old, dropped = self.retired.pop(path, (None, None))
+                if dropped != now:
                     old = None                  # ticks ran unrecorded since it was dropped
+                elif old.last_tick != now:
+                    old.record(now)             # the budget left the last tick out
             keep = old is not None and old.src is src and old.always == (path in events)
-            rings[path] = old if keep else Ring(src, path in events)
+            if not keep:
+                # the value it has now is the first row: a page that reloads later shows
+                # the tick this one started from (a model paused at tick 0 included)
+                old = Ring(src, path in events)
+                old.record(now)
+            rings[path] = old
         for path, ring in self.rings.items():
             if path not in rings:
                 self._retire(path, ring)
@@ -117,11 +125,11 @@ class Recorder:
 
     def _retire(self, path: str, ring: Ring) -> None:
         self.retired.pop(path, None)
-        self.retired[path] = ring
-        total = sum(r.rows.size for r in self.retired.values())
+        self.retired[path] = (ring, self.net.tick)
+        total = sum(r.rows.size for r, _ in self.retired.values())
         while total > RETIRED_FLOATS:
             oldest = next(iter(self.retired))
-            total -= self.retired.pop(oldest).rows.size
+            total -= self.retired.pop(oldest)[0].rows.size
 
     def use_network(self, net) -> None:
         """Record another network's buffers: every ring is dropped (server thread)."""

@@ -24,7 +24,10 @@ _CHANGED = {"type": "object", "properties": {"ok": {"type": "boolean"},
 
 _RECORDING = {"type": "object", "properties": {
     "recording": {"type": "boolean"}, "file": {"type": ["string", "null"]},
-    "folder": {"type": ["string", "null"]}}}
+    "folder": {"type": ["string", "null"]}, "outputs": {"type": "integer"},
+    "values": {"type": "integer"}, "every": {"type": "integer"},
+    "largest": {"type": "array", "items": {"type": "array"}}}}
+_PATTERNS = {"type": "array", "items": {"type": "string"}}
 
 
 _REPLAY = {"type": "object", "properties": {
@@ -222,13 +225,22 @@ def openapi() -> dict:
              "properties": {"name": {"type": "string", "default": "Untitled",
                                      "pattern": "^[A-Za-z_][A-Za-z0-9_-]*$",
                                      "maxLength": 100}}}, _CHANGED),
-        "/api/record": {**_get("Whether the running network is being recorded", _RECORDING),
-                        **_post("Start recording every output into a new HDF5 file in the "
-                                "models folder (on: true), or end the recording (on: false)",
+        "/api/record": {**_get("Whether the running network is being recorded, and how many "
+                               "values a tick a recording of the outputs matching only holds",
+                               _RECORDING,
+                               [_q("only", "glob patterns of output addresses, "
+                                           "comma-separated (default: every output)",
+                                   {"type": "string"})]),
+                        **_post("Start recording the outputs matching only (every output "
+                                "without it), every every-th tick, into a new HDF5 file in "
+                                "the recordings folder (on: true), or end the recording "
+                                "(on: false)",
                                 {"type": "object", "required": ["on"],
                                  "additionalProperties": False,
                                  "properties": {"on": {"type": "boolean"},
-                                                "format": {"enum": ["h5", "mcap"]}}},
+                                                "format": {"enum": ["h5", "mcap"]},
+                                                "only": _PATTERNS,
+                                                "every": {"type": "integer", "minimum": 1}}},
                                 _RECORDING,
                                 **{"409": "no models folder to record into, or the run has "
                                           "ended"})},

@@ -1,13 +1,16 @@
 """Recordings in the web UI. The record button's endpoint: ``GET /api/record`` says whether
-the running network is being recorded; ``POST /api/record {"on": true|false}`` starts a
-recording of every output into a new HDF5 file (an MCAP file of ROS 2 messages with
+the running network is being recorded, and how many values a recording of the outputs
+matching ``?only=`` (glob patterns, comma-separated; every output without it) holds per tick;
+``POST /api/record {"on": true|false}`` starts a recording of those outputs (``"only"``,
+every ``"every"``-th tick) into a new HDF5 file (an MCAP file of ROS 2 messages with
 ``"format": "mcap"``) in the user-data folder (``ikaros -u DIR``,
 else ``recordings`` in the user's data folder: never the models folder, which may be a
-source tree), or ends it. A recording also ends when its network does (the editor's apply,
+source tree), or ends it. A recording that cannot start leaves no folder it made behind. A recording also ends when its network does (the editor's apply,
 open and new build a new one). And the replay bar's endpoint, ``/api/replay``, for
 ``ikaros --replay``."""
 from __future__ import annotations
 
+import math
 import os
 import time
 
@@ -16,11 +19,27 @@ from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
 
 from ..experiments.recorders import open_recorder
+from ..experiments.signals import select_outputs
 from .requests import ApiError, Json, _body, _query
 from .snapshot import between_ticks
 
 
 FORMATS = ("h5", "mcap")
+LARGEST = 5         # the biggest outputs of a selection, named in GET /api/record
+
+
+def _patterns(value, where: str) -> list[str] | None:
+    """Glob patterns of output addresses: a list of strings, or one string of them
+    separated by commas; None (every output) when empty."""
+    if value is None:
+        return None
+    if isinstance(value, str):
+        value = value.split(",")
+    if not isinstance(value, list) or not all(isinstance(p, str) for p in value):
+        raise ApiError(400, f'{where} must be glob patterns of output addresses, such as '
+                            f'["Arm.*", "Gain.OUTPUT"]')
+    patterns = [p.strip() for p in value if p.strip()]
+    return patterns or None
 
 
 def recordings_folder(user_data: str | None) -> str:
@@ -39,46 +58,78 @@ class RecordButton:
         self.ui = ui                # the WebUI: its current network and models folder
         self.recorder = None
 
-    def _answer(self):
+    def _answer(self, only: list[str] | None = None):
         recorder = self.recorder
         on = recorder is not None and not recorder.closed and recorder.net is self.ui.net
         folder = os.path.dirname(recorder.filename) if on else self._folder()
-        return Json({"recording": on,
-                     "file": os.path.basename(recorder.filename) if on else None,
-                     "folder": folder})
+        answer = {"recording": on, "file": os.path.basename(recorder.filename) if on else None,
+                  "folder": folder}
+        if on:          # what it records
+            signals = recorder.signals
+            answer["every"] = recorder.every
+        else:           # what a recording of ``only`` would
+            try:
+                signals = select_outputs(self.ui.net, only)[0]
+            except ValueError as e:         # a pattern that matches no output
+                raise ApiError(404, str(e)) from None
+        sizes = sorted(((s.stop - s.start, s.name) for s in signals), reverse=True)
+        answer.update(outputs=len(signals), values=sum(n for n, _ in sizes),
+                      largest=[[path, n] for n, path in sizes[:LARGEST]])
+        return Json(answer)
 
     def _folder(self) -> str:
         return recordings_folder(getattr(self.ui.net, "user_data", None))
 
     async def endpoint(self, request: Request):
         if request.method == "GET":
-            _query(request)
-            return self._answer()
-        body = await _body(request, ("on",), ("format",))
+            query = _query(request, ("only",))
+            return await run_in_threadpool(self._answer,
+                                           _patterns(query.get("only"), '"only"'))
+        body = await _body(request, ("on",), ("format", "only", "every"))
         if not isinstance(body["on"], bool):
             raise ApiError(400, '"on" must be true or false')
         kind = body.get("format", "h5")
         if kind not in FORMATS:
             raise ApiError(400, f'"format" must be {" or ".join(FORMATS)}')
+        only = _patterns(body.get("only"), '"only"')
+        every = body.get("every", 1)
+        if isinstance(every, bool) or not isinstance(every, (int, float)) or \
+                not (math.isfinite(every) and every >= 1 and every == int(every)):
+            raise ApiError(400, '"every" must be a whole number of ticks >= 1')
+        every = int(every)
         current = self.recorder
         if current is not None and not current.closed:
             # between its network's ticks (that network may be another one now)
             await run_in_threadpool(between_ticks, current.net, current.close)
         self.recorder = None
         if body["on"]:
-            self.recorder = await run_in_threadpool(self._start, "." + kind)
-        return self._answer()
+            self.recorder = await run_in_threadpool(self._start, "." + kind, only, every)
+        return await run_in_threadpool(self._answer)
 
-    def _start(self, extension: str):
+    def _start(self, extension: str, only: list[str] | None = None, every: int = 1):
         folder = self._folder()
         net = self.ui.net
         if net.stopped:
             raise ApiError(409, "the run has ended; restart ikaros to record")
         try:
+            select_outputs(net, only)
+        except ValueError as e:
+            raise ApiError(404, str(e)) from None
+        made = not os.path.isdir(folder)
+        try:
             os.makedirs(folder, exist_ok=True)
         except OSError as e:
             raise ApiError(500, f"cannot make the recordings folder {folder}: "
                                 f"{e.strerror or e}") from None
+        try:
+            return self._open(net, folder, extension, only, every)
+        except BaseException:
+            if made:                        # the folder it made for nothing
+                _remove_if_empty(folder)
+            raise
+
+    @staticmethod
+    def _open(net, folder: str, extension: str, only: list[str] | None, every: int):
         stem = os.path.splitext(os.path.basename(net.filename or "model"))[0]
         name = f"{stem}-{time.strftime('%Y%m%d-%H%M%S')}"
         path, k = os.path.join(folder, name + extension), 1
@@ -86,11 +137,19 @@ class RecordButton:
             k += 1
             path = os.path.join(folder, f"{name}-{k}{extension}")
         try:
-            return between_ticks(net, open_recorder, net, path, command_line=["web UI"])
+            return between_ticks(net, open_recorder, net, path, only=only, every=every,
+                                 command_line=["web UI"])
         except ImportError as e:
             raise ApiError(501, str(e)) from None
         except OSError as e:
             raise ApiError(500, str(e)) from None
+
+
+def _remove_if_empty(folder: str) -> None:
+    try:
+        os.rmdir(folder)                    # only when empty
+    except OSError:
+        pass
 
 
 class ReplayBar:

@@ -45,7 +45,7 @@ from . import state as run_tools
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
 from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
-from .history import MAX_POINTS
+from .history import MAX_POINTS, MAX_TICKS as MAX_WINDOW
 from .rates import RUNNING, TickRate
 from .recording import RecordButton, ReplayBar
 from .guards import (DEFAULT_MAX_BODY, BodyLimit, BodyTooLarge, Framing,
@@ -524,7 +524,7 @@ class WebUI:
             try:
                 tree = self._tree(body, filename)
                 overrides = self._overrides
-                new = await self._build(filename, tree, overrides)
+                new = await self._build(filename, tree, overrides, predecessor=self.net)
             except ModelError as e:
                 return Json(editing.error_json(e), status_code=422)
             except BuildTimeout as e:
@@ -615,10 +615,11 @@ class WebUI:
             self._changing.release()
 
     async def _build(self, filename: str, tree, overrides: dict | None,
-                     confined: bool = True):
+                     confined: bool = True, predecessor=None):
         """Build a network in a thread of its own, confined to the editor's folders (unless
         it is the command line's model built again), within the build time limit
-        (BuildTimeout)."""
+        (BuildTimeout). With ``predecessor`` (an Apply) the modules that did not change are
+        left to take over from it (``_swap(keep_state=True)``)."""
         log_level = self.net.log_level
         diagnostics = self.net.diagnostics.fresh()
 
@@ -626,7 +627,8 @@ class WebUI:
             with access.applied(self.confinement if confined else None):
                 new = Builder(filename, overrides, model=tree, diagnostics=diagnostics,
                               limits=self.build_limits,
-                              user_data=getattr(self.net, "user_data", None)).build()
+                              user_data=getattr(self.net, "user_data", None),
+                              predecessor=predecessor).build()
             new.log_level = log_level
             return new
         return await run_build(build, self.build_timeout)
@@ -740,7 +742,8 @@ class WebUI:
         else:
             raise ApiError(400, f'unknown message type "{kind}" (subscribe, ready, ping)')
 
-    def _subscriptions(self, msg: dict) -> tuple[list[tuple[str, str]], dict[str, int]]:
+    def _subscriptions(self, msg: dict
+                       ) -> tuple[list[tuple[str, str]], dict[str, int], dict[str, int]]:
         for key in msg:
             if key not in ("type", "buffers"):
                 raise ApiError(400, f'unknown field "{key}" in subscribe')
@@ -749,13 +752,13 @@ class WebUI:
             raise ApiError(400, 'subscribe needs "buffers": a list of {"path", "format"}')
         if len(buffers) > MAX_SUBSCRIPTIONS:
             raise ApiError(400, f"at most {MAX_SUBSCRIPTIONS} buffers")
-        subs, points = [], {}
+        subs, points, windows = [], {}, {}
         for b in buffers:
             if not isinstance(b, dict) or not isinstance(b.get("path"), str):
                 raise ApiError(400, 'each buffer must be {"path": "A.OUTPUT", "format": '
                                     '"raw"}')
             for key in b:
-                if key not in ("path", "format", "points"):
+                if key not in ("path", "format", "points", "ticks"):
                     raise ApiError(400, f'unknown field "{key}" in a buffer')
             path, fmt = b["path"].strip(), b.get("format", "raw")
             if fmt not in FORMATS:
@@ -774,8 +777,15 @@ class WebUI:
                     raise ApiError(400, f'"points" of "{path}" must be a whole number '
                                         f'1..{MAX_POINTS}, with the format "history"')
                 points[path] = n
+            if "ticks" in b:
+                n = b["ticks"]
+                if fmt != "history" or not isinstance(n, int) or isinstance(n, bool) \
+                        or not 1 <= n <= MAX_WINDOW:
+                    raise ApiError(400, f'"ticks" of "{path}" must be a whole number '
+                                        f'1..{MAX_WINDOW}, with the format "history"')
+                windows[path] = n
             subs.append((path, fmt))
-        return subs, points
+        return subs, points, windows
 
 
 def create_app(net, token: str | None = None, static_dir: str | None = None, *,

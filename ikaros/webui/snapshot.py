@@ -222,6 +222,7 @@ class Client:
         self.status: str | None = None            # the newest status not yet sent
         self.texts: collections.deque = collections.deque(maxlen=256)
         self.points: dict[str, int] = {}          # history columns per path
+        self.windows: dict[str, int] = {}         # the latest ticks shown, per history path
         self.seen: dict[str, int] = {}            # last tick sent per history path
         self.seen_before: dict[str, int] = {}     # the same before the newest frame
         self.wake = asyncio.Event()
@@ -293,9 +294,11 @@ class Hub:
         self._update_plan()
 
     def subscribe(self, client: Client, subs: list[tuple[str, str]],
-                  points: dict[str, int] | None = None) -> None:
+                  points: dict[str, int] | None = None,
+                  windows: dict[str, int] | None = None) -> None:
         client.subs = subs
         client.points = dict(points or {})
+        client.windows = dict(windows or {})
         client.seen = {}
         client.seen_before = {}
         client.version += 1
@@ -475,6 +478,12 @@ class Hub:
             arr = snap.plan.arrays[path]
             ticks = np.append(ticks, snap.tick)
             rows = np.concatenate([rows, arr.reshape(1, -1)])
+        window = c.windows.get(path)
+        if window and fmt == "history" and len(ticks) and ticks[-1] - window > since:
+            # only the ticks the client shows: what came before would be thrown away
+            since = int(ticks[-1]) - window
+            keep = ticks > since
+            ticks, rows = ticks[keep], rows[keep]
         if fmt == "events":
             payload, head = encode_events(ticks, rows, shape, since)
         else:

@@ -26,8 +26,9 @@ def test_record_on_and_off(tmp_path):
     net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>',
                     user_data=str(models))
     with TestClient(create_app(net, models_dir=str(models))) as client:
-        assert client.get("/api/record").json() == {"recording": False, "file": None,
-                                                    "folder": str(models)}
+        assert client.get("/api/record").json() == {
+            "recording": False, "file": None, "folder": str(models), "outputs": 1,
+            "values": 1, "largest": [["Counter.OUTPUT", 1]]}
         net.run(ticks=5)
         state = client.post("/api/record", json={"on": True}).json()
         assert state["recording"] is True

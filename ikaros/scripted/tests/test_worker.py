@@ -212,21 +212,33 @@ def test_settings_are_inherited_and_states_are_not_the_scripts(tmp_path):
         assert seen == [[1], [1], [2], [3]] and net.parameter("G.A.on_error") == "log"
 
 
-def test_a_model_applied_again_has_one_worker_per_module(tmp_path):
-    """The editor's Apply: the new network's module starts its own worker (its init runs
-    again) and keeps the outputs; the old network's worker ends."""
+def test_a_model_applied_again_keeps_its_worker_until_the_script_changes(tmp_path):
+    """The editor's Apply: a scripted module that did not change goes on with its worker
+    (its init does not run again, and the old network does not end it); when its script
+    has changed, the new network's module starts a worker of its own and the old one ends."""
     net = ikaros.load(_model(tmp_path, 'gain="3"'), quiet=True)
     net.run(2)
     old_pid = _worker_pid(tmp_path)
     new = net.apply(net.model)
     try:
-        new_pid = _worker_pid(tmp_path)
-        assert new_pid != old_pid and not _alive(old_pid) and _alive(new_pid)
+        assert _worker_pid(tmp_path) == old_pid and _alive(old_pid)
         assert new.output("S.OUTPUT").tolist() == [3, 6]
+        new.set_parameter("S.gain", 2)
         new.step()
-        assert new.output("S.OUTPUT").tolist() == [3, 6]
-    finally:
+        assert new.output("S.OUTPUT").tolist() == [2, 4]
+        (tmp_path / "probe.py").write_text(SCRIPT.replace("module.INPUT * module.gain",
+                                                          "module.INPUT * module.gain + 1"))
+        newer = new.apply(new.model)
+    except BaseException:
         new.close()
+        raise
+    try:
+        new_pid = _worker_pid(tmp_path)
+        assert new_pid != old_pid and _gone_soon(old_pid) and _alive(new_pid)
+        newer.step()
+        assert newer.output("S.OUTPUT").tolist() == [3, 5]
+    finally:
+        newer.close()
     assert not _alive(new_pid)
 
 

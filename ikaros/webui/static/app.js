@@ -50,7 +50,8 @@ class App {
             notify: (l, m) => this.messages.local(l, m),
             scope: () => (this.editor?.active ? this.editor.selectedComponentPath() : null),
         });
-        this.recordButton = new RecordButton($("#controls"), { notify: (l, m) => this.messages.local(l, m) });
+        this.recordButton = new RecordButton($("#controls"), { notify: (l, m) => this.messages.local(l, m),
+            status: () => this.status });
         this.replayBar = new ReplayBar($("#controls"), { notify: (l, m) => this.messages.local(l, m), recordButton: this.recordButton });
         this.ctx = {
             groupPath: "",
@@ -219,12 +220,15 @@ class App {
                 const key = s.path + "|" + s.format;
                 if (!s.path) continue;
                 if (seen.has(key)) {        // a history shared by plots: the widest one's points
-                    const had = seen.get(key);
+                    const had = seen.get(key);  // and the longest one's ticks
                     if (s.points && had.points) had.points = Math.max(had.points, s.points);
+                    if (s.ticks && had.ticks) had.ticks = Math.max(had.ticks, s.ticks);
+                    else delete had.ticks;
                     continue;
                 }
                 const sub = { path: s.path, format: s.format || "raw" };
                 if (s.points) sub.points = s.points;
+                if (s.ticks) sub.ticks = s.ticks;
                 seen.set(key, sub);
                 subs.push(sub);
             }
@@ -295,6 +299,7 @@ class App {
             this.status = { ...this.status, ...figures };
         }
         this.controls.show(this.status);
+        this.recordButton?.statusChanged();
         this.system.show(this.status, this.uiFigures());
         document.body.dataset.state = this.status.state || "";
     }

@@ -46,6 +46,11 @@ export class ModuleInspector {
         if (this.path !== path) return;
         this.info = info;
         this.render(info);
+        // below the System inspector it would open out of sight: bring it up and focus it
+        this.el.tabIndex = -1;
+        this.el.setAttribute("aria-label", `module ${path}`);
+        this.el.scrollIntoView({ block: "start" });
+        this.el.focus({ preventScroll: true });
         this.refresh();
         this.timer = setInterval(() => this.refresh(), 500);
     }

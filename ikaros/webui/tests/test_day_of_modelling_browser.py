@@ -248,7 +248,7 @@ def test_auto_layout_fit_new_modules_and_the_feedback_line(tmp_path):
     def check(server, page):
         page.click("#ed-auto-layout")
         page.wait_for_function("() => document.querySelector('#ed-auto-layout') && "
-                               "[...document.querySelectorAll('#editor-host rect.box')].length === 8")
+                               "[...document.querySelectorAll('#editor-host rect.box')].length === 9")
         time.sleep(0.5)
         try:
             inside_pane(page, "after Auto layout")

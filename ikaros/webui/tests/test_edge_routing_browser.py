@@ -11,6 +11,8 @@ from __future__ import annotations
 import os
 import re
 
+import pytest
+
 from browsing import ARTIFACTS, in_own_browser
 
 LOOP = """<?xml version="1.0"?>
@@ -325,10 +327,14 @@ def test_a_group_of_320_modules_is_routed_around_its_boxes(tmp_path):
         # the quick layout puts the chain in a row: the skips go around the boxes they pass
         skip = next(e for e in quick["edges"] if e["from"] == "c:M10" and e["to"] == "c:M14")
         assert len(skip["points"]) > 2, skip
-        # then elkjs's layout from a Web Worker, with its routes
+        # then elkjs's layout from a Web Worker; the chain, far wider than the view, is cut
+        # into rows along its columns in both (issue 37, item 4), so the boxes stay where
+        # they are and the connections are routed around them again
         page.wait_for_selector("#editor-host[data-layout='automatic']", timeout=20_000)
         first = check_big_drawing(page, 320)
-        assert first["boxes"] != quick["boxes"]
+        assert first["boxes"] == quick["boxes"]
+        rows = sorted({box[1] for box in first["boxes"].values()})
+        assert rows[-1] - rows[0] > 1000, rows
         page.evaluate("() => window.ikaros.editor.netView.setTransform({k: 1, x: 20, y: 150})")
         page.screenshot(path=os.path.join(ARTIFACTS, "routing-big-0.png"))
 
@@ -337,6 +343,112 @@ def test_a_group_of_320_modules_is_routed_around_its_boxes(tmp_path):
         moved = check_big_drawing(page, 320)
         assert abs(moved["boxes"]["c:M2"][1] - first["boxes"]["c:M2"][1] - 150) <= 5   # snapped to 10 units
         page.screenshot(path=os.path.join(ARTIFACTS, "routing-big-1-moved.png"))
+        assert not page.errors, page.errors
+
+    in_own_browser(str(model), lambda s, p: None, check)
+
+
+WIRES = """<?xml version="1.0"?>
+<group name="W">
+    <module class="FunctionGenerator" name="FG" _x="40" _y="40" />
+    <module class="FunctionGenerator" name="FG2" _x="40" _y="300" />
+    <module class="Add" name="Add" _x="420" _y="160" />
+    <connection source="FG.OUTPUT" target="Add.INPUT1" />
+    <connection source="FG2.OUTPUT" target="Add.INPUT2" />
+</group>
+"""
+
+LANE_GAP = 40
+
+
+def one_line(p, q, u, v, gap=LANE_GAP):
+    """Whether two segments lie on one line with less than ``gap`` between their spans (they
+    read as one connection)."""
+    for axis in (0, 1):
+        other = 1 - axis
+        if p[axis] == q[axis] == u[axis] == v[axis]:
+            return min(max(p[other], q[other]), max(u[other], v[other])) + gap > \
+                max(min(p[other], q[other]), min(u[other], v[other]))
+    return False
+
+
+def test_connections_into_different_inputs_run_in_lanes_of_their_own(tmp_path):
+    """Issue 37, item 5: FG into INPUT1 and FG2 into INPUT2 of Add turned up and down on one
+    vertical line, 18 units apart: one could not tell which reached which input."""
+    model = tmp_path / "wires.ikg"
+    model.write_text(WIRES)
+
+    def check(server, page):
+        page.click("#toggle-editor")
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        r = check_drawing(page, edges=2, badges=("1", "1"))
+        (e, f) = r["edges"]
+        for p, q in zip(e["points"], e["points"][1:]):
+            for u, v in zip(f["points"], f["points"][1:]):
+                assert not one_line(p, q, u, v), (p, q, u, v)
+        page.screenshot(path=os.path.join(ARTIFACTS, "routing-lanes.png"))
+        assert not page.errors, page.errors
+
+    in_own_browser(str(model), lambda s, p: None, check)
+
+
+def test_new_modules_are_placed_with_room_for_connections(tmp_path):
+    """Issue 37, item 5: modules added one after another were placed 20 units apart."""
+    model = tmp_path / "empty.ikg"
+    model.write_text('<?xml version="1.0"?>\n<group name="E" />\n')
+
+    def check(server, page):
+        page.click("#toggle-editor")
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        for n, cls in enumerate(("FunctionGenerator", "FunctionGenerator", "Add", "Scale")):
+            page.click("#ed-add-module")
+            page.fill(".class-search", cls)
+            page.click(f".class-list li[data-class='{cls}']")
+            page.click("#add-module-ok")
+            page.wait_for_function("(n) => document.querySelectorAll('#editor-host g.box-group').length === n",
+                                   arg=n + 1)
+        boxes = list(page.evaluate(DRAWING)["boxes"].values())
+        for i, a in enumerate(boxes):
+            for b in boxes[i + 1:]:
+                apart_x = max(b[0] - a[2], a[0] - b[2])
+                apart_y = max(b[1] - a[3], a[1] - b[3])
+                assert apart_x >= 90 or apart_y >= 40, (a, b)
+        assert not page.errors, page.errors
+
+    in_own_browser(str(model), lambda s, p: None, check)
+
+
+@pytest.mark.slow
+def test_a_flat_group_of_400_modules_is_laid_out_in_a_grid_that_fit_shows_whole(tmp_path):
+    """Issue 37, item 4: Auto layout and Fit on a group of 400 modules left the view at 20 %
+    with most modules out of sight. Now the group is a grid of about the view's shape, and
+    Fit shows every box."""
+    model = tmp_path / "flat.ikg"
+    model.write_text('<?xml version="1.0"?>\n<group name="Flat">\n' + "".join(
+        f'    <module class="Constant" name="C{i}" data="{i}" />\n' for i in range(400)) + "</group>\n")
+
+    def check(server, page):
+        page.click("#toggle-editor")
+        page.wait_for_selector("#editor-host[data-ready] svg.network-view")
+        page.wait_for_selector("#editor-host[data-layout='automatic']", timeout=30_000)
+        page.click("#ed-auto-layout")
+        page.wait_for_function("() => !window.ikaros.editor.graph.boxes.some((b) => b.node.attrs._x === undefined)")
+        page.click("#ed-fit")
+        page.wait_for_timeout(500)
+        view = page.locator("#editor-host svg").bounding_box()
+        boxes = page.evaluate("""() => [...document.querySelectorAll('#editor-host svg rect.box')].map((r) => {
+            const b = r.getBoundingClientRect(); return [b.left, b.top, b.right, b.bottom]; })""")
+        assert len(boxes) == 400
+        x0, y0 = view["x"], view["y"]
+        x1, y1 = x0 + view["width"], y0 + view["height"]
+        assert all(x0 <= b[0] and b[2] <= x1 and y0 <= b[1] and b[3] <= y1 for b in boxes), \
+            [b for b in boxes if not (x0 <= b[0] and b[2] <= x1 and y0 <= b[1] and b[3] <= y1)][:3]
+        # a grid that fills the view's shape: it spans most of the view one way, half the other
+        width = max(b[2] for b in boxes) - min(b[0] for b in boxes)
+        height = max(b[3] for b in boxes) - min(b[1] for b in boxes)
+        assert max(width / view["width"], height / view["height"]) > 0.8, (width, height, view)
+        assert min(width / view["width"], height / view["height"]) > 0.5, (width, height, view)
+        page.screenshot(path=os.path.join(ARTIFACTS, "layout-400.png"))
         assert not page.errors, page.errors
 
     in_own_browser(str(model), lambda s, p: None, check)

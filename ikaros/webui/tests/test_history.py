@@ -59,11 +59,29 @@ def test_a_dropped_ring_is_taken_up_again_while_nothing_ran_since():
     rec.set_sources({})                         # the page went away
     rec.set_sources({"A.OUTPUT": src})          # and came back: nothing ran meanwhile
     ticks, rows, _ = rec.read({"A.OUTPUT": -1})["A.OUTPUT"]
-    assert ticks.tolist() == list(range(1, 51)) and rows[:, 0].tolist() == list(range(1, 51))
+    # (the first row is the value the buffer had when the ring began, at tick 0)
+    assert ticks.tolist() == list(range(0, 51)) and rows[:, 0].tolist() == list(range(0, 51))
     rec.set_sources({})
     net.tick = 51                               # a tick ran while nobody subscribed
+    rec.set_sources({"A.OUTPUT": src})          # a new ring: the value now, at tick 51
+    assert rec.read({"A.OUTPUT": -1})["A.OUTPUT"][0].tolist() == [51]
+
+
+def test_a_dropped_ring_that_missed_the_last_tick_is_taken_up_again_with_it():
+    """Issue 37, item 6: under load the copying budget may leave the last tick before a
+    pause out of a ring; a page reloaded then got a ring of the present tick alone."""
+    net, src = _Net(), np.zeros(1, np.float32)
+    rec = Recorder(net, budget=1.0)
     rec.set_sources({"A.OUTPUT": src})
-    assert rec.read({"A.OUTPUT": -1})["A.OUTPUT"][0].tolist() == []
+    for t in range(1, 11):
+        net.tick = t
+        src[0] = t
+        if t < 10:                              # tick 10: the budget was spent
+            rec.hook()
+    rec.set_sources({})                         # the page reloads, nothing ran meanwhile
+    rec.set_sources({"A.OUTPUT": src})
+    ticks, rows, _ = rec.read({"A.OUTPUT": -1})["A.OUTPUT"]
+    assert ticks.tolist() == list(range(0, 11)) and rows[:, 0].tolist() == list(range(0, 11))
 
 
 def test_envelope_keeps_every_peak():
@@ -107,14 +125,20 @@ def test_recorder_stays_within_its_budget():
     arrays = {f"A{i}": np.zeros(1, np.float32) for i in range(50)}
     rec = Recorder(Net(), budget=0.0)      # no time at all: one ring per tick
     rec.set_sources(arrays)
+    # each ring starts with the value its buffer has now
+    assert [r.ticks[0] for r in rec.rings.values()] == [1] * 50
+    counts = lambda: {p: r.count for p, r in rec.rings.items()}
+    Net.tick = 2
     rec.hook()
-    assert sum(r.count for r in rec.rings.values()) == 1 and rec.skipped == 49
+    assert sum(counts().values()) == 51 and rec.skipped == 49
     rec.hook()
-    assert sum(r.count for r in rec.rings.values()) == 2    # the next ring's turn
+    assert sum(counts().values()) == 52    # the next ring's turn
     rec.set_sources(arrays, events={"A7", "A9"})            # event buffers: every tick
+    before = counts()
+    Net.tick = 3
     rec.hook()
-    assert rec.rings["A7"].count == 1 and rec.rings["A9"].count == 1
-    assert sum(r.count for r in rec.rings.values()) == 2 + 3   # one in its turn, A7, A9
+    grown = {p for p, n in counts().items() if n > before[p]}
+    assert {"A7", "A9"} <= grown and len(grown) == 3        # A7, A9 and one in its turn
 
 
 @pytest.fixture
@@ -186,6 +210,43 @@ def test_frames_carry_every_tick_since_the_last_frame(net):
         values = np.array([expected[t] for t in range(1, 301)], np.float32)
         assert env[:, 0].tolist() == pytest.approx(values.reshape(50, 6).min(1).tolist())
         assert env[:, 1].tolist() == pytest.approx(values.reshape(50, 6).max(1).tolist())
+
+
+def test_a_subscription_gets_only_the_latest_ticks_it_shows(net):
+    """Issue 37, item 6: a plot that shows 20 ticks, subscribed (a page reloaded) after 100
+    ticks, gets those 20 as samples, up to the current tick, not an envelope of all 100."""
+    with TestClient(create_app(net)) as c, c.websocket_connect("/api/ws") as ws:
+        ws.send_json({"type": "subscribe", "buffers": [
+            {"path": "Ramp.OUTPUT", "format": "history", "points": 10}]})
+        ws.send_json({"type": "ready"})
+        _frame(ws)
+        expected = {}
+        for _ in range(100):
+            c.post("/api/control", json={"state": "step"})
+            assert _wait(lambda: net.controller.state == "pause")
+            expected[net.tick] = float(net.buffer_array("Ramp.OUTPUT")[0])
+        ws.send_json({"type": "subscribe", "buffers": [
+            {"path": "Ramp.OUTPUT", "format": "history", "points": 20, "ticks": 20}]})
+        ws.send_json({"type": "ready"})
+        header, data = _frame(ws)
+        (ramp,) = header["buffers"]
+        assert ramp["mode"] == "samples" and ramp["ticks"] == list(range(81, 101))
+        assert data["Ramp.OUTPUT"][:, 0].tolist() == pytest.approx(
+            [expected[t] for t in range(81, 101)])
+
+
+def test_ticks_are_checked(net):
+    with TestClient(create_app(net)) as c, c.websocket_connect("/api/ws") as ws:
+        for bad in ({"path": "Ramp.OUTPUT", "format": "raw", "ticks": 5},
+                    {"path": "Ramp.OUTPUT", "format": "history", "ticks": 0},
+                    {"path": "Ramp.OUTPUT", "format": "history", "ticks": 1 << 20},
+                    {"path": "Ramp.OUTPUT", "format": "history", "ticks": True}):
+            ws.send_json({"type": "subscribe", "buffers": [bad]})
+            while True:
+                msg = json.loads(ws.receive()["text"])
+                if msg["type"] == "error":
+                    break
+            assert '"ticks"' in msg["error"]
 
 
 def test_points_are_checked(net):

@@ -91,11 +91,16 @@ def test_a_scripted_class_in_the_web_ui(server, tmp_path):
 
     tree = server.get("/api/model")["tree"]
     assert server.post("/api/apply", {"tree": tree})["ok"]
-    (second,) = _settle(server, 1)
-    assert second != first                          # a new worker, the old one ended
+    (kept,) = _settle(server, 1)
+    assert kept == first                # the module did not change: it goes on, worker too
     assert server.data("A.OUTPUT")["data"]["A.OUTPUT"] == [5, 6]     # outputs kept
     server.step(1)
     assert server.data("A.OUTPUT")["data"]["A.OUTPUT"] == [15, 26]
+    (tmp_path / "acc.py").write_text(SCRIPT + "\n")        # the script changed: a new module
+    assert server.post("/api/apply", {"tree": tree})["ok"]
+    (second,) = _settle(server, 1)
+    assert second != first                          # a new worker, the old one ended
+    assert server.data("A.OUTPUT")["data"]["A.OUTPUT"] == [0, 0]     # started afresh
 
     server.post("/api/control", {"state": "stop"})
     _settle(server, 0)

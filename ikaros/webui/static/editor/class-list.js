@@ -1,6 +1,6 @@
 // The searchable class list (GET /api/classes): each class with its description, inputs,
 // outputs and parameters; choosing one adds a module of that class.
-import { dialog } from "./files.js";
+import { dialog } from "../dialog.js";
 import { descriptionElement, plainText } from "../describe.js";
 
 function h(tag, cls, text) {

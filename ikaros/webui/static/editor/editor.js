@@ -21,6 +21,9 @@ function h(tag, cls, text) {
 
 const isComponent = (n) => n && (n.tag === "module" || n.tag === "group");
 
+// the room a new box keeps from the others: as the automatic layout leaves between layers
+// (connections, their delay badges) and between boxes of a layer
+const ROOM_X = 90, ROOM_Y = 40;
 // places around the middle of the view, nearest first, for a new box (freeSpot)
 const SPOT_OFFSETS = [];
 for (let i = -40; i <= 40; i++) for (let j = -30; j <= 30; j++) SPOT_OFFSETS.push([i * 20, j * 20]);
@@ -249,7 +252,8 @@ export class Editor {
     }
 
     /** A free place for a new box of w x hgt: the free place nearest to the middle of the
-     *  view, 20 px clear of every box (those drawn, and those just added to the tree). */
+     *  view, clear of every box (those drawn, and those just added to the tree) by room for
+     *  connections and their badges: ROOM_X beside it, ROOM_Y above and below. */
     freeSpot(w = BOX_W, hgt = 80) {
         const r = this.host.getBoundingClientRect();
         const t = this.netView?.t || { k: 1, x: 0, y: 0 };
@@ -260,7 +264,8 @@ export class Editor {
             const p = (n.tag === "module" || n.tag === "group") && !drawn.has(n) && storedPosition({ node: n });
             if (p) boxes.push({ ...p, w: BOX_W, h: 80 });
         }
-        const free = (x, y) => !boxes.some((b) => x < b.x + b.w + 20 && b.x < x + w + 20 && y < b.y + b.h + 20 && b.y < y + hgt + 20);
+        const free = (x, y) => !boxes.some((b) => x < b.x + b.w + ROOM_X && b.x < x + w + ROOM_X &&
+            y < b.y + b.h + ROOM_Y && b.y < y + hgt + ROOM_Y);
         for (const [dx, dy] of SPOT_OFFSETS) {
             const x = Math.round((cx + dx) / 10) * 10, y = Math.round((cy + dy) / 10) * 10;
             if (free(x, y)) return { x, y };
@@ -341,9 +346,15 @@ export class Editor {
         });
     }
 
+    /** The network view's width / height, the shape an automatic layout aims at. */
+    viewAspect() {
+        const r = this.host?.getBoundingClientRect();
+        return r && r.width > 0 && r.height > 0 ? r.width / r.height : 1.6;
+    }
+
     async autoLayout() {
         if (!this.graph) return;
-        const quick = await layout(this.graph, { force: true });
+        const quick = await layout(this.graph, { force: true, aspect: this.viewAspect() });
         const { positions, routes } = (quick.later && await quick.later) || quick;   // a big group: elkjs's
         this.keepRoutes(this.graph, routes, positions);
         this.edit("auto layout", () => {
@@ -758,7 +769,7 @@ export class Editor {
                 this.netView.shownGroup = null;
             }
             const graph = graphOf(g, this.classes, this.expandedPorts(this.groupPath));
-            const { positions, automatic, routes, later } = await layout(graph);
+            const { positions, automatic, routes, later } = await layout(graph, { aspect: this.viewAspect() });
             if (seq !== this.renderSeq) return;
             this.keepRoutes(graph, routes, positions);
             this.graph = graph;

@@ -1,6 +1,7 @@
 // Model files: save, save as a new .ikg, a new model, open another model from the folder
 // (POST /api/save, /api/new, /api/open; GET /api/files), and the editor's small dialogs.
 import { ApiError, getJSON } from "../api.js";
+import { dialog } from "../dialog.js";
 
 const TOKEN = new URLSearchParams(location.search).get("token");
 
@@ -17,32 +18,6 @@ async function post(url, body) {
         throw e;
     }
     return answer;
-}
-
-/** A modal dialog: title, body element, buttons [[label, fn, id?]]. Returns {el, close}. */
-export function dialog(title, body, buttons) {
-    const back = document.createElement("div");
-    back.className = "editor-dialog-back";
-    const box = document.createElement("div");
-    box.className = "editor-dialog";
-    const head = document.createElement("div");
-    head.className = "pane-title";
-    head.textContent = title;
-    const foot = document.createElement("div");
-    foot.className = "dialog-buttons";
-    const close = () => back.remove();
-    for (const [label, fn, id] of buttons) {
-        const b = document.createElement("button");
-        b.className = "tool";
-        b.textContent = label;
-        if (id) b.id = id;
-        b.addEventListener("click", fn);
-        foot.appendChild(b);
-    }
-    box.append(head, body, foot);
-    back.appendChild(box);
-    document.body.appendChild(back);
-    return { el: box, close };
 }
 
 /** Ask for one line of text; resolves to the text or null. */

@@ -3,6 +3,7 @@
 import { kids, elements, splitAddress } from "./model.js";
 
 export const ELK_LIMIT = 300;   // boxes; a bigger group is drawn first with simpleLayout
+const PACK_LIMIT = 50;          // boxes; a bigger group is packed to the view's shape (packParts)
 const KEPT_LAYOUTS = 4;         // elkjs layouts of big groups kept for when they are shown again
 export const BOX_W = 170, HEADER = 38, PORT_H = 18, PIN_W = 120, PIN_H = 26;
 
@@ -138,7 +139,7 @@ export function loadElk() {
  * simpleLayout at once and by elkjs in a Web Worker: ``later`` is the promise of that
  * layout ({positions, routes}, null when elkjs failed or a newer layout replaced it).
  */
-export async function layout(graph, { force = false } = {}) {
+export async function layout(graph, { force = false, aspect = 1.6 } = {}) {
     const comps = graph.boxes.filter(isComponent);
     const stored = new Map(comps.map((b) => [b.key, storedPosition(b)]));
     const manual = !force && comps.length > 0 && comps.every((b) => stored.get(b.key));
@@ -147,11 +148,12 @@ export async function layout(graph, { force = false } = {}) {
         pos = new Map(comps.map((b) => [b.key, stored.get(b.key)]));
         placePins(graph, pos);
     } else if (graph.boxes.length > ELK_LIMIT) {
-        const sign = signature(graph), kept = bigLayouts.get(sign);
+        const sign = signature(graph, aspect), kept = bigLayouts.get(sign);
         if (kept) { pos = new Map(kept.pos); routes = kept.routes; }
         else {
-            pos = simpleLayout(graph);
-            later = elkLayout(graph, layoutInWorker).then((r) => {
+            pos = packParts(graph, simpleLayout(graph, aspect), null, aspect).pos;
+            later = elkLayout(graph, layoutInWorker, aspect).then((raw) => {
+                const r = packParts(graph, raw.pos, raw.routes, aspect, simpleLayout(graph, aspect));
                 bigLayouts.delete(sign);
                 bigLayouts.set(sign, r);
                 if (bigLayouts.size > KEPT_LAYOUTS) bigLayouts.delete(bigLayouts.keys().next().value);
@@ -163,10 +165,14 @@ export async function layout(graph, { force = false } = {}) {
         }
     } else {
         try {
-            ({ pos, routes } = await elkLayout(graph, async (g) => new (await loadElk())().layout(g)));
+            ({ pos, routes } = await elkLayout(graph, async (g) => new (await loadElk())().layout(g), aspect));
+            if (graph.boxes.length > PACK_LIMIT) {
+                ({ pos, routes } = packParts(graph, pos, routes, aspect, simpleLayout(graph, aspect)));
+            }
         } catch (e) {
             console.warn("elk layout failed, using the simple one:", e);
-            pos = simpleLayout(graph);
+            pos = simpleLayout(graph, aspect);
+            if (graph.boxes.length > PACK_LIMIT) pos = packParts(graph, pos, null, aspect).pos;
         }
     }
     return { positions: pos, automatic: !manual, routes, later };
@@ -174,9 +180,11 @@ export async function layout(graph, { force = false } = {}) {
 
 const bigLayouts = new Map();   // signature -> elkjs's {pos, routes}, the oldest first
 
-/** What a layout depends on: the boxes with their sizes and ports, and the connections. */
-function signature(graph) {
-    return JSON.stringify([graph.boxes.map((b) => [b.key, b.w, b.h, b.inputs, b.outputs]), graph.edges.map(edgeKey)]);
+/** What a layout depends on: the boxes with their sizes and ports, the connections and the
+ *  shape of the view. */
+function signature(graph, aspect) {
+    return JSON.stringify([graph.boxes.map((b) => [b.key, b.w, b.h, b.inputs, b.outputs]), graph.edges.map(edgeKey),
+        Math.round(aspect * 10)]);
 }
 
 const REPLACED = "replaced by a newer layout";
@@ -217,8 +225,10 @@ function placePins(graph, pos) {
 /** What names a connection across layouts: its source and target as written. */
 export function edgeKey(e) { return `${e.node?.attrs.source}>${e.node?.attrs.target || e.node?.attrs.name}`; }
 
-/** elkjs's layout of a graph ({pos, routes}); ``run`` lays out an elkjs graph. */
-async function elkLayout(graph, run) {
+/** elkjs's layout of a graph ({pos, routes}); ``run`` lays out an elkjs graph. Parts not
+ *  connected to each other are packed to about the view's ``aspect`` (width / height) as
+ *  elkjs does it (a big group is packed again by packParts). */
+async function elkLayout(graph, run, aspect = 1.6) {
     const pid = (b, side, port) => `${b.key}|${side}|${port}`;
     const children = graph.boxes.map((b) => {
         const ports = [
@@ -245,6 +255,7 @@ async function elkLayout(graph, run) {
             "org.eclipse.elk.padding": "[top=40,left=40,bottom=40,right=40]",
             "org.eclipse.elk.edgeRouting": "ORTHOGONAL",
             "org.eclipse.elk.layered.spacing.edgeNodeBetweenLayers": "20",
+            "org.eclipse.elk.aspectRatio": String(Math.max(0.2, Math.min(5, aspect))),
         },
         children, edges,
     });
@@ -265,8 +276,90 @@ async function elkLayout(graph, run) {
     return { pos, routes };
 }
 
-/** Longest-path layers along the connections, boxes stacked in each layer. */
-export function simpleLayout(graph) {
+/** The parts of a graph not connected to each other (pins with the part they feed), each
+ *  a list of boxes. */
+function parts(graph) {
+    const part = new Map(graph.boxes.map((b) => [b.key, b.key]));
+    const find = (k) => { while (part.get(k) !== k) { part.set(k, part.get(part.get(k))); k = part.get(k); } return k; };
+    for (const e of graph.edges) {
+        if (e.from.box && e.to.box) part.set(find(e.from.box.key), find(e.to.box.key));
+    }
+    const out = new Map();
+    for (const b of graph.boxes) {
+        const k = find(b.key);
+        if (!out.has(k)) out.set(k, []);
+        out.get(k).push(b);
+    }
+    return [...out.values()];
+}
+
+/** The extent of some boxes at ``pos``: {list, x0, y0, w, h}. */
+function extentOf(list, pos) {
+    let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    for (const b of list) {
+        const p = pos.get(b.key);
+        x0 = Math.min(x0, p.x); y0 = Math.min(y0, p.y); x1 = Math.max(x1, p.x + b.w); y1 = Math.max(y1, p.y + b.h);
+    }
+    return { list, x0, y0, w: x1 - x0, h: y1 - y0 };
+}
+
+/**
+ * A big group's layout made to fit a view of about ``aspect`` (width / height): its parts not
+ * connected to each other packed in rows, in the order of their first box, and a part wider
+ * than a row cut into strips along the data flow, one under the other (as a long line of
+ * text is wrapped), from its positions in ``columns`` (a plain layered layout). elkjs packs the parts in a square of its own liking and lays a long chain
+ * out in one row, which in a wide view leaves most of a big group out of sight. Returns
+ * {pos, routes}: the routes of the parts moved whole are moved along; a part cut into strips
+ * loses them (the editor routes those connections around the boxes).
+ */
+export function packParts(graph, pos, routes, aspect, columns = pos) {
+    const boxArea = graph.boxes.reduce((sum, b) => sum + (b.w + GAP_X) * (b.h + GAP_Y), 0);
+    const widestBox = Math.max(...graph.boxes.map((b) => b.w + GAP_X));
+    const rowWidth = Math.max(widestBox, 1.2 * Math.sqrt(boxArea * Math.max(0.2, aspect)));
+    const pieces = [];                   // [block, cut] in order
+    const at = new Map(pos);
+    for (const list of parts(graph)) {
+        const g = extentOf(list, pos);
+        if (g.w <= rowWidth) { pieces.push([g, false]); continue; }
+        // cut along the data flow: the plain layered columns of ``columns`` (elkjs spreads
+        // a long part over many lanes), a strip of them at a time
+        const whole = extentOf(list, columns), strips = new Map();
+        for (const b of list) {
+            at.set(b.key, columns.get(b.key));
+            const s = Math.floor((columns.get(b.key).x - whole.x0) / rowWidth);
+            if (!strips.has(s)) strips.set(s, []);
+            strips.get(s).push(b);
+        }
+        for (const s of [...strips.keys()].sort((a, b) => a - b)) pieces.push([extentOf(strips.get(s), columns), true]);
+    }
+    const moved = new Map(), shiftOf = new Map(), cut = new Set();
+    let x = 40, y = 40, rowHeight = 0;
+    for (const [g, wrapped] of pieces) {
+        if (x > 40 && x + g.w > 40 + rowWidth) { x = 40; y += rowHeight + GAP_Y; rowHeight = 0; }
+        const dx = x - g.x0, dy = y - g.y0;
+        for (const b of g.list) {
+            const p = at.get(b.key);
+            moved.set(b.key, { x: p.x + dx, y: p.y + dy });
+            shiftOf.set(b.key, [dx, dy]);
+            if (wrapped) cut.add(b.key);
+        }
+        x += g.w + GAP_X;
+        rowHeight = Math.max(rowHeight, g.h);
+    }
+    const newRoutes = new Map();
+    for (const e of graph.edges) {
+        const route = routes?.get(edgeKey(e));
+        if (!route || !e.from.box || cut.has(e.from.box.key)) continue;
+        const [dx, dy] = shiftOf.get(e.from.box.key);
+        newRoutes.set(edgeKey(e), route.map(([px, py]) => [px + dx, py + dy]));
+    }
+    return { pos: moved, routes: newRoutes };
+}
+
+/** Longest-path layers along the connections, boxes stacked in each layer; a layer taller
+ *  than a drawing of about ``aspect`` (width / height) allows is wrapped into more columns, so
+ *  that a big flat group is a grid that fits the view. */
+export function simpleLayout(graph, aspect = 1.6) {
     const layer = new Map(graph.boxes.map((b) => [b.key, 0]));
     for (let round = 0; round < graph.boxes.length; round++) {
         let changed = false;
@@ -283,10 +376,22 @@ export function simpleLayout(graph) {
         if (!cols.has(l)) cols.set(l, []);
         cols.get(l).push(b);
     }
+    const area = graph.boxes.reduce((sum, b) => sum + (b.w + GAP_X) * (b.h + GAP_Y), 0);
+    const tallest = Math.max(0, ...graph.boxes.map((b) => b.h + GAP_Y));
+    const height = Math.max(tallest, Math.sqrt(area / Math.max(0.2, aspect)));
     const pos = new Map();
-    for (const [l, list] of cols) {
-        let y = 40;
-        for (const b of list) { pos.set(b.key, { x: 40 + l * (BOX_W + 90), y }); y += b.h + 40; }
+    let x = 40;
+    for (const l of [...cols.keys()].sort((a, b) => a - b)) {
+        let y = 40, width = 0;
+        for (const b of cols.get(l)) {
+            if (y > 40 && y + b.h > 40 + height) { x += width + GAP_X; y = 40; width = 0; }
+            pos.set(b.key, { x, y });
+            y += b.h + GAP_Y;
+            width = Math.max(width, b.w);
+        }
+        x += width + LAYER_GAP;
     }
     return pos;
 }
+
+const GAP_X = 40, GAP_Y = 40, LAYER_GAP = 90;

@@ -8,8 +8,10 @@
 import { HEADER, PORT_H, edgeKey, portOffset } from "./layout.js";
 
 const SVG = "http://www.w3.org/2000/svg";
+const MIN_ZOOM = 0.02;   // a group of thousands of modules still fits the view
 const REST_MS = 150;     // a pan or zoom gesture is drawn anew after this long at rest
 const CULL_LIMIT = 400;  // boxes; a bigger group is drawn only around the view
+const OVERVIEW_ZOOM = 0.3;  // below it a bigger group is drawn as an overview (isOverview)
 
 const overlaps = (a, b) => a[0] < b[2] && a[2] > b[0] && a[1] < b[3] && a[3] > b[1];
 const inside = (a, b) => a[0] >= b[0] && a[1] >= b[1] && a[2] <= b[2] && a[3] <= b[3];
@@ -121,9 +123,15 @@ export class NetworkView {
         // level of detail: small text is left out when it could not be read anyway
         this.svg.classList.toggle("far", this.t.k < 0.5);
         this.svg.classList.toggle("very-far", this.t.k < 0.3);
-        // a big group is drawn only around the view: draw again when the view leaves it
-        if (this.drawn && !inside(this.visible(0), this.drawn)) this.draw();
+        // a big group is drawn only around the view: draw again when the view leaves it, or
+        // when it is zoomed across the overview's threshold
+        if ((this.drawn && !inside(this.visible(0), this.drawn)) ||
+            (this.graph && this.overview !== this.isOverview())) this.draw();
     }
+
+    /** Whether a big group is drawn as an overview at this zoom: boxes and lines only (no
+     *  ports, names or badges, which are too small to see: they would only cost time). */
+    isOverview() { return this.graph.boxes.length > CULL_LIMIT && this.t.k < OVERVIEW_ZOOM; }
 
     /** The part of the drawing in view, widened by ``margin`` views on each side. */
     visible(margin) {
@@ -180,14 +188,15 @@ export class NetworkView {
         const r = this.svg.getBoundingClientRect();
         const [x0, y0, x1, y1] = this.extent();
         const w = Math.max(1, r.width || 800), h = Math.max(1, r.height || 600);
-        const k = Math.min(1.25, Math.max(0.2, Math.min((w - 40) / (x1 - x0 + 1), (h - 40) / (y1 - y0 + 1))));
+        // as far out as it takes to show everything (text too small to read is left out)
+        const k = Math.min(1.25, Math.max(MIN_ZOOM, Math.min((w - 40) / (x1 - x0 + 1), (h - 40) / (y1 - y0 + 1))));
         this.setTransform({ k, x: 20 - x0 * k, y: 20 - y0 * k });
     }
 
     zoom(factor, cx = null, cy = null, gesture = false) {
         const r = this.svg.getBoundingClientRect();
         if (cx === null) { cx = r.width / 2; cy = r.height / 2; }
-        const k = Math.min(4, Math.max(0.1, this.t.k * factor));
+        const k = Math.min(4, Math.max(MIN_ZOOM, this.t.k * factor));
         const f = k / this.t.k;
         const t = { k, x: cx - (cx - this.t.x) * f, y: cy - (cy - this.t.y) * f };
         if (gesture) this.gesture(t); else this.setTransform(t);
@@ -223,6 +232,7 @@ export class NetworkView {
     draw() {
         const { graph, groupError } = this;
         this.drawn = graph.boxes.length > CULL_LIMIT ? this.visible(1) : null;
+        this.overview = this.isOverview();
         const shown = (b) => {
             if (!this.drawn) return true;
             const p = this.pos.get(b.key);
@@ -237,10 +247,13 @@ export class NetworkView {
         this.tempLayer = el("g", { class: "temp" }, this.root);
         for (const b of drawnBoxes) this.drawBox(boxLayer, b);
         this.labels = [];
-        graph.edges.forEach((e, i) => {
-            if (drawnBoxes.has(e.from.box) || drawnBoxes.has(e.to.box)) this.drawEdge(edgeLayer, labelLayer, e, i);
-        });
-        this.placeLabels(labelLayer);
+        if (this.overview) this.drawLines(edgeLayer);
+        else {
+            graph.edges.forEach((e, i) => {
+                if (drawnBoxes.has(e.from.box) || drawnBoxes.has(e.to.box)) this.drawEdge(edgeLayer, labelLayer, e, i);
+            });
+            this.placeLabels(labelLayer);
+        }
         if (groupError) {
             const f = el("foreignObject", { x: 8, y: 8, width: 600, height: 80, class: "group-error" }, this.svg);
             const d = document.createElement("div");
@@ -264,6 +277,7 @@ export class NetworkView {
             "data-key": b.key, "data-name": b.name, "data-kind": b.kind, transform: `translate(${p.x},${p.y})` }, layer);
         el("rect", { class: "box", width: b.w, height: b.h, rx: b.kind === "module" || b.kind === "group" ? 5 : 13,
             "data-name": b.name, "data-kind": b.kind }, g);
+        if (this.overview) return;
         if (b.kind === "module" || b.kind === "group") {
             el("line", { class: "box-rule", x1: 0, y1: HEADER - 4, x2: b.w, y2: HEADER - 4 }, g);
             const name = el("text", { class: "box-name", x: b.w / 2, y: 15, "text-anchor": "middle" }, g);
@@ -313,6 +327,19 @@ export class NetworkView {
         d.className = "editor-error";
         d.textContent = message;
         f.appendChild(d);
+    }
+
+    /** The overview's connections: one path of them all, as routed or curved. */
+    drawLines(layer) {
+        const parts = [];
+        for (const e of this.graph.edges) {
+            if (!e.from.box || !e.to.box || !this.pos.get(e.from.box.key) || !this.pos.get(e.to.box.key)) continue;
+            const route = this.routes.get(edgeKey(e));
+            if (route) { parts.push("M" + route.map((p) => p.join(",")).join(" L")); continue; }
+            const a = this.portXY(e.from.box, "out", e.from.port), b = this.portXY(e.to.box, "in", e.to.port);
+            parts.push(curve(a.x, a.y, b.x, b.y));
+        }
+        el("path", { class: "edge-line overview-lines", d: parts.join(" ") }, el("g", { class: "edge" }, layer));
     }
 
     drawEdge(layer, labels, e, i) {

@@ -13,7 +13,8 @@ const STUB = 20;           // straight run out of a port and into one
 const BEND = 40;           // the cost of a bend, in drawing units of length
 const PADS = [150, 600, Infinity];   // search areas around the ends, tried in turn
 const MAX_NODES = 120000;  // a bigger search grid is not searched (the route is a plain one)
-const SEPARATION = 6;      // between parallel segments of different connections in a channel
+const SEPARATION = 8;      // between parallel segments of different connections in a channel
+const LANE_GAP = 40;       // collinear segments of two connections at most this far apart share no line
 const PLACES = 12;         // places tried on either side of a channel's middle
 
 const strictlyInside = (p, o) => p[0] > o[0] && p[0] < o[2] && p[1] > o[1] && p[1] < o[3];
@@ -201,13 +202,14 @@ function search(s, t, rects, c, pad) {
     return null;
 }
 
-/** Whether segment p-q runs along one of ``others`` (parallel, closer than SEPARATION, with
- *  overlapping spans). */
+/** Whether segment p-q runs along one of ``others``: parallel, closer than SEPARATION, with
+ *  spans that overlap or come within LANE_GAP of each other (two connections on one line
+ *  with a short gap between them read as one: which input each reaches cannot be seen). */
 function alongside(p, q, others) {
     const axis = p[0] === q[0] ? 0 : 1, other = 1 - axis;
     const lo = Math.min(p[other], q[other]), hi = Math.max(p[other], q[other]);
-    return others.near(segmentBox(p, q, SEPARATION)).some(([u, v]) => u[axis] === v[axis] && Math.abs(u[axis] - p[axis]) < SEPARATION &&
-        Math.min(u[other], v[other]) < hi && Math.max(u[other], v[other]) > lo);
+    return others.near(segmentBox(p, q, LANE_GAP)).some(([u, v]) => u[axis] === v[axis] && Math.abs(u[axis] - p[axis]) < SEPARATION &&
+        Math.min(u[other], v[other]) < hi + LANE_GAP && Math.max(u[other], v[other]) > lo - LANE_GAP);
 }
 
 /** The path with each inner segment between two bends that turn the same way (a Z) moved

@@ -9,9 +9,17 @@
 // its [0][0] is 0), text_color, background_color, tooltip.
 import { Widget } from "./widget.js";
 
+// a widget lower than this shows its button without the title bar: the title would leave
+// the button too low for its label (title bar 17 px, button 28 px with its margins)
+const ROOM_FOR_TITLE = 48;
+
 export default class Button extends Widget {
     constructor(attrs, ctx) {
         super(attrs, ctx);
+        if (this.titleEl && this.num(["height"], ROOM_FOR_TITLE) < ROOM_FOR_TITLE) {
+            this.titleEl.remove();
+            this.titleEl = null;
+        }
         const b = document.createElement("button");
         b.className = "button-control";
         b.textContent = this.str(["label"], this.str(["title"], "Button"));

@@ -8,8 +8,10 @@
 // shown; 0 or none: as many as the plot is wide in pixels), min|y_min, max|y_max (a fixed
 // range; auto|auto_range=yes ranges over the data all the same), include_zero, unit (the
 // value axis's label), x_label (default "tick"), show_x_axis, show_y_axis (yes),
-// color|stroke_color (cycles per series), lineWidth|line_width, decimals.
+// color|stroke_color (cycles per series), lineWidth|line_width, decimals. A small plot drops
+// what of its axes does not fit (plot-layout.js).
 import uPlot from "../vendor/uplot/uPlot.esm.js";
+import { axesLayout, yValuesWidth } from "./plot-layout.js";
 import { Widget } from "./widget.js";
 
 // steps between the tick labels of the x axis: whole ticks only
@@ -55,7 +57,9 @@ export default class Plot extends Widget {
         const p = this.path("source");
         if (!p) return [];
         const points = Math.min(8192, Math.max(16, Math.round(this.body.clientWidth) || 512));
-        return [{ path: p, format: "history", points }];
+        // the latest ticks shown: a page opened or reloaded late gets those, every sample
+        // of them when they fit the plot's columns, not an envelope of the whole history
+        return [{ path: p, format: "history", points, ticks: Math.min(16384, this.window()) }];
     }
 
     /** Ticks shown: buffer_size, or the width in pixels. */
@@ -133,23 +137,31 @@ export default class Plot extends Widget {
             && !this.bool(["auto", "auto_range"], false);
         const includeZero = this.bool(["include_zero"], false);
         const decimals = this.int(["decimals"], -1);
-        const axis = (show, label) => ({
-            show, stroke: text, label, labelSize: label ? 14 : 0, labelFont: "10px sans-serif",
-            font: "10px sans-serif", size: 30, gap: 2,
-            grid: { stroke: grid, width: 0.5 }, ticks: { stroke: grid, width: 0.5, size: 3 },
+        const layout = this.layout(w, h);
+        const axis = (show, values, label, size) => ({
+            show: show && (values || label !== undefined), stroke: text, label,
+            labelSize: label !== undefined ? layout.titleSize : 0, labelGap: 0,
+            labelFont: "10px sans-serif", font: "10px sans-serif", size: values ? size : 0,
+            gap: values ? 5 : 0,
+            grid: { stroke: grid, width: 0.5 }, ticks: { show: values, stroke: grid, width: 0.5, size: 3 },
+            ...(values ? {} : { values: (u, splits) => splits.map(() => "") }),
         });
-        const xAxis = axis(this.bool(["show_x_axis"], true), this.str(["x_label"], "tick"));
-        // the x tick labels start below the lowest y label, which is centred on the x axis
-        xAxis.gap = 7;
+        const xAxis = axis(this.bool(["show_x_axis"], true), layout.xValues,
+            layout.xTitle ? this.str(["x_label"], "tick") : undefined, layout.xSize);
         xAxis.incrs = TICK_STEPS;
-        const yAxis = axis(this.bool(["show_y_axis"], true), this.str(["unit"]) || undefined);
-        yAxis.size = 44;
+        // room for each tick value: its text and a gap, at most 50 px
+        xAxis.space = (u, i, lo, hi, dim) => Math.min(50, Math.max(dim / 2.5,
+            u.ctx.measureText(Math.round(hi).toLocaleString()).width / (u.pxRatio || 1) + 10));
+        const unit = this.str(["unit"]);
+        const yAxis = axis(this.bool(["show_y_axis"], true), layout.yValues,
+            layout.yTitle && unit ? unit : undefined, 0);
+        if (layout.yValues) yAxis.size = (u, values) => yValuesWidth(values || []);
         // a low plot still labels a few values (uPlot's 30 px would leave one or none)
         yAxis.space = (u, i, lo, hi, dim) => Math.max(12, Math.min(30, dim / 3));
-        if (decimals >= 0) yAxis.values = (u, vals) => vals.map((v) => v.toFixed(decimals));
+        if (decimals >= 0 && layout.yValues) yAxis.values = (u, vals) => vals.map((v) => v.toFixed(decimals));
         return {
             width: w, height: h, legend: { show: false }, cursor: { show: true, drag: { x: false, y: false } },
-            series, bands, pxAlign: 0,
+            series, bands, pxAlign: 0, padding: layout.padding,
             scales: {
                 x: { time: false, range: () => this.tickRange() },
                 y: fixed ? { range: [this.num(["min", "y_min"]), this.num(["max", "y_max"])] }
@@ -157,6 +169,14 @@ export default class Plot extends Widget {
             },
             axes: [xAxis, yAxis],
         };
+    }
+
+    /** What of the axes fits a w x h plot (plot-layout.js). */
+    layout(w, h) {
+        return axesLayout(w, h, {
+            xAxis: this.bool(["show_x_axis"], true), yAxis: this.bool(["show_y_axis"], true),
+            xTitle: this.str(["x_label"], "tick") !== "", yTitle: this.str(["unit"]) !== "",
+        });
     }
 
     /** The last buffer_size ticks, or from the first sample while there are fewer; taken
@@ -193,7 +213,15 @@ export default class Plot extends Widget {
     resize() {
         if (!this.plot) { this.draw(); return; }     // shown at last (a view opened hidden)
         const w = this.body.clientWidth, h = this.body.clientHeight;
-        if (w && h && (w !== this.plot.width || h !== this.plot.height)) this.plot.setSize({ width: w, height: h });
+        if (!w || !h || (w === this.plot.width && h === this.plot.height)) return;
+        const before = this.layout(this.plot.width, this.plot.height), now = this.layout(w, h);
+        if (["xValues", "xTitle", "yValues", "yTitle"].every((k) => before[k] === now[k])) {
+            this.plot.setSize({ width: w, height: h });
+        } else {                                    // other parts of the axes fit now
+            this.plot.destroy();
+            this.plot = null;
+            this.draw();
+        }
     }
 
     destroy() {
