@@ -3,7 +3,7 @@ import numpy as np
 
 from ikaros.module import Module, Output, Parameter, require
 
-from . import _audio
+from ikaros.modules.sound import _audio
 
 
 class InputAudioFile(Module):

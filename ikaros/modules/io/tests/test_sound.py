@@ -7,7 +7,7 @@ import pytest
 import soundfile
 
 from ikaros.errors import ModelError
-from ikaros.modules.io import _audio
+from ikaros.modules.sound import _audio
 from ikaros.testing import load_body as load
 
 RATE = 8000
