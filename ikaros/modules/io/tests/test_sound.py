@@ -189,3 +189,97 @@ def test_the_microphone_gives_the_newest_samples(tmp_path, streams):
     finally:
         net.close()
     assert mic.closed
+
+
+def v3_sounds(tmp_path, trig_rows, attrs="", inhibition_rows=None):
+    """An Ikaros 3 SoundOutput on the silent device, its TRIG (and INHIBITION) from files;
+    the sound a.wav is 100 frames of 0.5, b.wav 40 frames of 0.25 left and 0.75 right; a
+    tick of 10 ms at 8000 Hz is 80 frames."""
+    write(tmp_path / "a.wav", np.full(100, 0.5))
+    write(tmp_path / "b.wav", np.column_stack([np.full(40, 0.25), np.full(40, 0.75)]))
+    (tmp_path / "t.txt").write_text("T/2\n" + "\n".join(trig_rows) + "\n")
+    body = ('<module class="InputFile" name="T" filename="t.txt"/>'
+            f'<module class="SoundOutput" name="S" sounds="a.wav,b.wav" device="silent" '
+            f'{attrs}/>'
+            '<connection source="T.T" target="S.TRIG" delay="0"/>')
+    if inhibition_rows is not None:
+        (tmp_path / "i.txt").write_text("I/1\n" + "\n".join(inhibition_rows) + "\n")
+        body += ('<module class="InputFile" name="I" filename="i.txt"/>'
+                 '<connection source="I.I" target="S.INHIBITION" delay="0"/>')
+    return load(tmp_path, body, tick_duration="0.01", dialect="3")
+
+
+def outputs(net):
+    return {name: net.output(f"S.{name}").tolist()
+            for name in ("PLAYING", "COMPLETED", "ACTIVE", "RMS", "VOLUME")}
+
+
+def test_ikaros_3_interface_completed_active_and_the_level_heard(tmp_path, monkeypatch):
+    monkeypatch.setattr(_audio, "_sounddevice", lambda: pytest.fail("no sound device"))
+    net = v3_sounds(tmp_path, ["1 0", "1 1", "0 0", "0 0"], 'lag="0" scale_volume="3"')
+    try:
+        got = []
+        for _ in range(4):
+            net.step()
+            got.append(outputs(net))
+    finally:
+        net.close()
+    # tick 1: a plays its first 80 frames; tick 2: its last 20, and b's 40 (mixed)
+    assert got[0] == {"PLAYING": [1, 0], "COMPLETED": [0, 0], "ACTIVE": [1],
+                      "RMS": [0.5, 0.5], "VOLUME": [1, 1]}
+    left = np.sqrt((20 * 0.75 ** 2 + 20 * 0.25 ** 2) / 80)
+    right = np.sqrt((20 * 1.0 + 20 * 0.75 ** 2) / 80)          # 0.5 + 0.75 is clipped to 1
+    assert got[1]["PLAYING"] == [0, 0] and got[1]["COMPLETED"] == [1, 1]
+    assert got[1]["ACTIVE"] == [0]
+    assert np.allclose(got[1]["RMS"], [left, right])
+    assert np.allclose(got[1]["VOLUME"], [min(1, 3 * left), min(1, 3 * right)])
+    assert got[2] == {"PLAYING": [0, 0], "COMPLETED": [0, 0], "ACTIVE": [0],
+                      "RMS": [0, 0], "VOLUME": [0, 0]}
+
+
+def test_the_lag_delays_the_level(tmp_path):
+    net = v3_sounds(tmp_path, ["1 0", "0 0", "0 0"], 'lag="10"')       # 80 frames
+    try:
+        levels = []
+        for _ in range(3):
+            net.step()
+            levels.append(net.output("S.RMS").tolist())
+    finally:
+        net.close()
+    assert levels[0] == [0, 0]
+    assert levels[1] == [0.5, 0.5]
+    assert np.allclose(levels[2], [np.sqrt(20 * 0.25 / 80)] * 2)
+
+
+def test_inhibition_stops_sounds_from_starting(tmp_path):
+    net = v3_sounds(tmp_path, ["1 0", "0 1", "0 0", "0 1"], "", ["0", "1", "0", "0"])
+    try:
+        playing, completed = [], []
+        for _ in range(4):
+            net.step()
+            playing.append(net.output("S.PLAYING").tolist())
+            completed.append(net.output("S.COMPLETED").tolist())
+    finally:
+        net.close()
+    # b's first rise was inhibited; its second plays, all 40 frames within tick 4
+    assert playing == [[1, 0], [0, 0], [0, 0], [0, 0]]
+    assert completed == [[0, 0], [1, 0], [0, 0], [0, 1]]
+
+
+def test_playing_has_one_element_per_trigger(tmp_path):
+    write(tmp_path / "a.wav", np.zeros(10))
+    net = load(tmp_path, '<module class="Constant" name="C" data="0 0 1"/>'
+                         '<module class="SoundOutput" name="S" sounds="a.wav" device="silent"/>'
+                         '<connection source="C.OUTPUT" target="S.TRIG"/>')
+    try:
+        assert net.output("S.PLAYING").shape == (3,)
+        net.step()
+        assert net.output("S.PLAYING").tolist() == [0, 0, 0]    # trigger 3 has no sound
+    finally:
+        net.close()
+
+
+def test_a_trigger_is_needed(tmp_path):
+    write(tmp_path / "a.wav", np.zeros(10))
+    with pytest.raises(ModelError, match="connect TRIG .or INPUT, its Ikaros 2 name"):
+        load(tmp_path, '<module class="SoundOutput" name="S" sounds="a.wav" device="silent"/>')

@@ -1,0 +1,121 @@
+"""Sounds started by the rises of a trigger input and mixed on one output stream, with what
+Ikaros 3's SoundOutput, EpiSpeech and EpiVoice report about them: PLAYING, COMPLETED,
+ACTIVE, and the RMS and VOLUME of the sound that is heard."""
+from __future__ import annotations
+
+import threading
+from typing import Callable
+
+import numpy as np
+
+from . import _audio
+
+CHANNELS = 2                # the sounds are played in stereo
+
+
+class History:
+    """The last ``capacity`` frames handed to the sound device (frames, channels)."""
+
+    def __init__(self, capacity: int, channels: int):
+        self.frames = np.zeros((capacity, channels), np.float32)
+        self.end = 0                    # frames handed over so far
+        self.lock = threading.Lock()
+
+    def add(self, block: np.ndarray) -> None:
+        with self.lock:
+            capacity = len(self.frames)
+            self.end += len(block) - min(len(block), capacity)
+            block = block[-capacity:]
+            at = self.end % capacity
+            first = min(len(block), capacity - at)
+            self.frames[at:at + first] = block[:first]
+            self.frames[:len(block) - first] = block[first:]
+            self.end += len(block)
+
+    def rms(self, count: int, lag: int) -> np.ndarray:
+        """The root mean square of each channel over ``count`` frames that end ``lag``
+        frames before the newest (frames not yet played count as 0)."""
+        with self.lock:
+            capacity = len(self.frames)
+            stop = self.end - lag
+            start = max(stop - count, self.end - capacity, 0)
+            if count <= 0 or stop <= start:
+                return np.zeros(self.frames.shape[1], np.float32)
+            index = np.arange(start, stop) % capacity
+            window = self.frames[index]
+        return np.sqrt(np.sum(np.square(window, dtype=np.float64), axis=0) / count)
+
+
+class TriggeredPlayer:
+    """Plays sound ``choose(i)`` (an index into ``sounds``, or None for none) when element i
+    of the trigger rises (goes above 0 after being 0 or below; the first tick counts from
+    0), unless inhibited; a sound started while it plays starts again from its beginning.
+    The sounds are (frames, 2) arrays at ``rate``, mixed on ``device`` (sounddevice's, or
+    "silent": played in the model's time, each tick taking a tick's worth)."""
+
+    def __init__(self, sounds: list[np.ndarray], rate: int, device: str, triggers: int,
+                 lag_seconds: float, tick_seconds: float):
+        self.rate = rate
+        self.mixer = _audio.Mixer(sounds, CHANNELS)
+        window = max(1, round(tick_seconds * rate))
+        lag = max(0, round(lag_seconds * rate))
+        self.history = History(window + lag + rate, CHANNELS)
+        self.owner = [-1] * triggers            # the sound trigger i started last
+        self.last = np.zeros(triggers, np.float32)
+        self.was_playing = np.zeros(triggers, bool)
+        self.playing = np.zeros(triggers, bool)
+        self.completed = np.zeros(triggers, bool)
+        self.stream = _audio.open_output_stream(rate, CHANNELS, self._fill, device)
+
+    def _fill(self, out: np.ndarray) -> None:
+        self.mixer.fill(out)
+        self.history.add(out)
+
+    def step(self, trigger: np.ndarray, inhibited: bool, choose: Callable[[int], int | None],
+             seconds: float) -> None:
+        """One tick: start the sounds whose trigger rose, let ``seconds`` of sound play (the
+        silent device), then note which play and which have ended."""
+        trigger = trigger.reshape(-1)[:len(self.last)]
+        started = np.zeros(len(self.last), bool)
+        rises = np.flatnonzero((trigger > 0) & (self.last[:len(trigger)] <= 0))
+        self.last[:len(trigger)] = trigger
+        if not inhibited:
+            for i in rises.tolist():
+                k = choose(i)
+                if k is not None:
+                    self.mixer.start(k)
+                    self.owner[i] = k
+                    started[i] = True
+        self.stream.advance(seconds)
+        sounding = self.mixer.playing()
+        self.playing[:] = [k >= 0 and sounding[k] for k in self.owner]
+        self.completed[:] = (self.was_playing | started) & ~self.playing
+        self.was_playing[:] = self.playing
+
+    def rms(self, seconds: float, lag_seconds: float) -> np.ndarray:
+        """Each channel's root mean square over ``seconds`` of the sound handed to the
+        device, ending ``lag_seconds`` before the newest (what is heard now, when the
+        device's latency is the lag)."""
+        return self.history.rms(round(seconds * self.rate), round(lag_seconds * self.rate))
+
+    def close(self) -> None:
+        self.stream.close()
+
+
+def write_outputs(module, player: TriggeredPlayer, scale_volume: float, lag_ms: float) -> None:
+    """Set a module's PLAYING, and COMPLETED, ACTIVE, RMS and VOLUME where it has them:
+    RMS over the last tick's worth of sound, ``lag_ms`` milliseconds ago; VOLUME is
+    scale_volume × RMS, at most 1."""
+    n = min(module.PLAYING.size, len(player.playing))
+    module.PLAYING.reshape(-1)[:n] = player.playing[:n]
+    completed = getattr(module, "COMPLETED", None)
+    if completed is not None:
+        completed.reshape(-1)[:n] = player.completed[:n]
+    active = getattr(module, "ACTIVE", None)
+    if active is not None:
+        active[...] = float(any(player.mixer.playing()))
+    rms = getattr(module, "RMS", None)
+    if rms is not None:
+        level = player.rms(module.clock.tick_duration, lag_ms / 1000.0)
+        rms.reshape(-1)[:] = level[:rms.size]
+        module.VOLUME.reshape(-1)[:] = np.minimum(1.0, scale_volume * level[:rms.size])
