@@ -141,6 +141,17 @@ class ImageFileReader(Module):
             self.end_of_file(f"end of the {self.format_name} sequence")
 
 
+class ReadOnce(ImageFileReader):
+    """An image reader with ``read_once``: with no, the current file is read again on every
+    tick (InputJPEG, InputImage)."""
+
+    read_once = Parameter(True, "read each file only when the sequence moves to it; with no, "
+                          "the current file is read again on every tick")
+
+    def reread_every_tick(self):
+        return not self.read_once
+
+
 class ImageInputs(Module):
     """Base of the image writers: the image comes from INPUT, INTENSITY or RED/GREEN/BLUE."""
 
