@@ -1,12 +1,12 @@
 """SoundOutput: plays sound files when its trigger input rises."""
 import math
 
-from ikaros.module import Input, Module, Output, Parameter, require
+from ikaros.module import Input, Output, Parameter, require
 from ikaros.modules.sound import _audio
-from ikaros.modules.sound._player import TriggeredPlayer, write_outputs
+from ikaros.modules.sound._player import PlayerModule
 
 
-class SoundOutput(Module):
+class SoundOutput(PlayerModule):
     """Plays sound i of ``sounds`` (a comma-separated list of files, relative to the model
     file's folder) when element i of TRIG (Ikaros 3's name; INPUT in Ikaros 2) rises: goes
     above 0 after being 0 or below on the previous tick (the first tick counts from 0).
@@ -28,20 +28,11 @@ class SoundOutput(Module):
     a sound can be restarted."""
 
     sounds = Parameter("", "the sound files, separated by commas", fixed=True)
-    device = Parameter("", "the output device: a name or number as sounddevice lists them; "
-                       "empty: the default output; silent: none", fixed=True)
-    scale_volume = Parameter(1.0, "VOLUME is RMS times this, at most 1")
-    lag = Parameter(100.0, "milliseconds between handing sound to the device and hearing "
-                    "it: RMS and VOLUME describe the sound handed over this long ago",
-                    range=(0, None))
     TRIG = Input("a rise of element i plays sound i", optional=True)
     INPUT = Input("Ikaros 2's name of TRIG", optional=True)
     INHIBITION = Input("while its first element is above 0, no sound starts", optional=True)
     PLAYING = Output("1 for each sound that is playing, else 0")
     COMPLETED = Output("1 for each sound that ended on this tick, else 0")
-    ACTIVE = Output("1 while any sound plays", size="1")
-    RMS = Output("the root mean square of the sound heard now, left and right", size="2")
-    VOLUME = Output("scale_volume × RMS, at most 1, left and right", size="2")
 
     def configure(self):
         require("soundfile", "soundfile", extra="sound")
@@ -64,7 +55,6 @@ class SoundOutput(Module):
                              "sounds")
         if self.TRIG is not None and self.INPUT is not None:
             self.warning("TRIG and INPUT are both connected: only TRIG plays the sounds")
-        self._trigger = trigger
         sounds, rate = [], None
         for name in self._files:
             data, rate = _audio.read_sound(self, name, rate, 2)
@@ -73,19 +63,5 @@ class SoundOutput(Module):
             self.warning(f"the trigger has {trigger.size} elements for {len(sounds)} sounds: "
                          f"sounds {trigger.size + 1} to {len(sounds)} never play")
         count = len(sounds)
-        self._player = TriggeredPlayer(sounds, rate, self.device, trigger.size,
-                                       self.lag / 1000.0, self.clock.tick_duration)
-        self._choose = lambda i: i if i < count else None
-
-    def tick(self):
-        inhibited = self.INHIBITION is not None and self.INHIBITION.size > 0 and \
-            self.INHIBITION.flat[0] > 0
-        self._player.step(self._trigger, inhibited, self._choose, self.clock.tick_duration)
-        write_outputs(self, self._player, self.scale_volume, self.lag)
-
-    def stop(self):
-        player = getattr(self, "_player", None)
-        if player is not None:
-            player.close()
-            self._player = None
+        self.start_player(sounds, rate, trigger, lambda i: i if i < count else None)
 

@@ -8,6 +8,8 @@ from typing import Callable
 
 import numpy as np
 
+from ikaros.module import Module, Output, Parameter
+
 from . import _audio
 
 CHANNELS = 2                # the sounds are played in stereo
@@ -103,19 +105,48 @@ class TriggeredPlayer:
 
 
 def write_outputs(module, player: TriggeredPlayer, scale_volume: float, lag_ms: float) -> None:
-    """Set a module's PLAYING, and COMPLETED, ACTIVE, RMS and VOLUME where it has them:
-    RMS over the last tick's worth of sound, ``lag_ms`` milliseconds ago; VOLUME is
-    scale_volume × RMS, at most 1."""
+    """Set a module's PLAYING, COMPLETED, ACTIVE, RMS and VOLUME: RMS over the last tick's
+    worth of sound, ``lag_ms`` milliseconds ago; VOLUME is scale_volume × RMS, at most 1."""
     n = min(module.PLAYING.size, len(player.playing))
     module.PLAYING.reshape(-1)[:n] = player.playing[:n]
-    completed = getattr(module, "COMPLETED", None)
-    if completed is not None:
-        completed.reshape(-1)[:n] = player.completed[:n]
-    active = getattr(module, "ACTIVE", None)
-    if active is not None:
-        active[...] = float(any(player.mixer.playing()))
-    rms = getattr(module, "RMS", None)
-    if rms is not None:
-        level = player.rms(module.clock.tick_duration, lag_ms / 1000.0)
-        rms.reshape(-1)[:] = level[:rms.size]
-        module.VOLUME.reshape(-1)[:] = np.minimum(1.0, scale_volume * level[:rms.size])
+    module.COMPLETED.reshape(-1)[:n] = player.completed[:n]
+    module.ACTIVE[...] = float(any(player.mixer.playing()))
+    level = player.rms(module.clock.tick_duration, lag_ms / 1000.0)
+    module.RMS[...] = level
+    module.VOLUME[...] = np.minimum(1.0, scale_volume * level)
+
+
+class PlayerModule(Module):
+    """The base of SoundOutput, EpiSpeech and EpiVoice: a TriggeredPlayer driven by the
+    module's trigger and INHIBITION, and the outputs it reports."""
+
+    scale_volume = Parameter(1.0, "VOLUME is RMS times this, at most 1")
+    lag = Parameter(100.0, "milliseconds between handing sound to the device and hearing "
+                    "it: RMS and VOLUME describe the sound handed over this long ago",
+                    range=(0, None))
+    device = Parameter("", "the output device: a name or number as sounddevice lists them; "
+                       "empty: the default output; silent: none (played in the model's "
+                       "time)", fixed=True)
+    ACTIVE = Output("1 while any sound plays", size="1")
+    RMS = Output("the root mean square of the sound heard now, left and right", size="2")
+    VOLUME = Output("scale_volume × RMS, at most 1, left and right", size="2")
+
+    def start_player(self, sounds: list[np.ndarray], rate: int, trigger: np.ndarray,
+                     choose: Callable[[int], int | None]) -> None:
+        """Call in init: play ``sounds`` (frames, 2) at ``rate``, sound ``choose(i)`` when
+        element i of ``trigger`` rises."""
+        self._trigger, self._choose = trigger, choose
+        self._player = TriggeredPlayer(sounds, rate, self.device, trigger.size,
+                                       self.lag / 1000.0, self.clock.tick_duration)
+
+    def tick(self):
+        inhibition = getattr(self, "INHIBITION", None)
+        inhibited = inhibition is not None and inhibition.size > 0 and inhibition.flat[0] > 0
+        self._player.step(self._trigger, inhibited, self._choose, self.clock.tick_duration)
+        write_outputs(self, self._player, self.scale_volume, self.lag)
+
+    def stop(self):
+        player = getattr(self, "_player", None)
+        if player is not None:
+            player.close()
+            self._player = None
