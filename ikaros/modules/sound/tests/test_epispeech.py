@@ -141,3 +141,20 @@ def test_epivoice_needs_a_recording_at_every_level(tmp_path):
         load(tmp_path, '<module class="Constant" name="C" data="1"/>'
                        '<module class="EpiVoice" name="V" sounds="laugh.wav" device="silent"/>'
                        '<connection source="C.OUTPUT" target="V.TRIG"/>')
+
+
+def test_recorded_phrases_need_no_speech_program(tmp_path, monkeypatch):
+    monkeypatch.setenv("PATH", str(tmp_path))                 # no speech program at all
+    (tmp_path / "voice").mkdir()
+    soundfile.write(tmp_path / "voice" / "hello_there.wav", np.full(50, 0.25, np.float32),
+                    8000, subtype="FLOAT")
+    soundfile.write(tmp_path / "voice" / "no.flac", np.full(30, 0.5, np.float32), 8000)
+    net = speech(tmp_path, 'text="Hello there!?,No" recordings="voice" lag="0"', ["1 0"])
+    try:
+        net.step()
+        assert net.output("S.COMPLETED").tolist() == [1, 0]
+        assert np.allclose(net.output("S.RMS"), np.sqrt(50 * 0.25 ** 2 / 80))
+    finally:
+        net.close()
+    with pytest.raises(ModelError, match="a text-to-speech program is needed"):
+        speech(tmp_path, 'text="hello there,maybe" recordings="voice"', ["1 0"])
