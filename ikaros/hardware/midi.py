@@ -201,3 +201,28 @@ def find_port(names: list[str], wanted: str) -> str | None:
         if wanted.lower() in name.lower():
             return name
     return None
+
+
+def open_wanted(wanted: str, output: bool, index: int = -1, warn=None) -> list[Port]:
+    """Open the ports a model asks for: ``sim:NAME``; else the first port whose name
+    contains ``wanted``; else port number ``index``; else (-1) every port. None found is an
+    empty list; a port that cannot be opened is left out, with ``warn(message)``."""
+    if wanted.strip().startswith(SIM_PREFIX):
+        names = [wanted]
+    else:
+        available = port_names(output)
+        if wanted:
+            found = find_port(available, wanted)
+            names = [found] if found else []
+        elif index >= 0:
+            names = available[index:index + 1]
+        else:
+            names = available
+    ports = []
+    for name in names:
+        try:
+            ports.append(open_port(name, output))
+        except DeviceError as e:
+            if warn is not None:
+                warn(str(e))
+    return ports

@@ -65,24 +65,20 @@ class LaunchpadLED(Module):
 
     def _connect(self):
         self._next_try = time.monotonic() + RETRY_SECONDS
-        if self.destination_name.startswith(midi.SIM_PREFIX):
-            name = self.destination_name
-        else:
-            available = midi.port_names(output=True)
-            self.DESTINATION_COUNT[0] = len(available)
-            name = midi.find_port(available, self.destination_name)
-        try:
-            if name is not None:
-                self._port = midi.open_port(name, output=True)
-                self._sent = {}
-                if self.programmer_mode:
-                    self._port.send(launchpad.mode_switch(programmer=True))
-        except DeviceError as e:
-            self.warning(f"{e}; trying again every {RETRY_SECONDS:g} s")
-            self._drop()
-        if self.destination_name.startswith(midi.SIM_PREFIX):
-            self.DESTINATION_COUNT[0] = len(midi.port_names(output=True))
+        ports = midi.open_wanted(self.destination_name, True, index=0, warn=self._warn)
+        self._port = ports[0] if ports else None
+        self._sent = {}
+        if self._port is not None and self.programmer_mode:
+            try:
+                self._port.send(launchpad.mode_switch(programmer=True))
+            except DeviceError as e:
+                self._warn(str(e))
+                self._drop()
+        self.DESTINATION_COUNT[0] = len(midi.port_names(output=True))
         self.CONNECTED[0] = float(self._port is not None)
+
+    def _warn(self, message: str):
+        self.warning(f"{message}; trying again every {RETRY_SECONDS:g} s")
 
     def tick(self):
         if self._port is None and time.monotonic() >= self._next_try:
@@ -101,7 +97,7 @@ class LaunchpadLED(Module):
             try:
                 self._port.send(launchpad.led_lighting(changed))
             except DeviceError as e:
-                self.warning(f"{e}; trying again every {RETRY_SECONDS:g} s")
+                self._warn(str(e))
                 self._drop()
                 return
             self._sent.update(changed)

@@ -50,26 +50,13 @@ class MidiInput(Module):
 
     def _connect(self):
         self._next_try = time.monotonic() + RETRY_SECONDS
-        if self.source_name.startswith(midi.SIM_PREFIX):
-            names = [self.source_name]
-        else:
-            available = midi.port_names(output=False)
-            self.SOURCE_COUNT[0] = len(available)
-            if self.source_name:
-                found = midi.find_port(available, self.source_name)
-                names = [found] if found else []
-            elif self.source_index >= 0:
-                names = available[self.source_index:self.source_index + 1]
-            else:
-                names = available
-        for name in names:
-            try:
-                self._ports.append(midi.open_port(name, output=False))
-            except DeviceError as e:
-                self.warning(f"{e}; trying again every {RETRY_SECONDS:g} s")
-        if self.source_name.startswith(midi.SIM_PREFIX):
-            self.SOURCE_COUNT[0] = len(midi.port_names(output=False))
+        self._ports = midi.open_wanted(self.source_name, False, self.source_index,
+                                       self._warn)
+        self.SOURCE_COUNT[0] = len(midi.port_names(output=False))
         self.CONNECTED[0] = float(bool(self._ports))
+
+    def _warn(self, message: str):
+        self.warning(f"{message}; trying again every {RETRY_SECONDS:g} s")
 
     def tick(self):
         if not self._ports and time.monotonic() >= self._next_try:
@@ -79,7 +66,7 @@ class MidiInput(Module):
             try:
                 messages += port.pending()
             except DeviceError as e:
-                self.warning(f"{e}; trying again every {RETRY_SECONDS:g} s")
+                self._warn(str(e))
                 port.close()
                 self._ports.remove(port)
         self.CONNECTED[0] = float(bool(self._ports))
