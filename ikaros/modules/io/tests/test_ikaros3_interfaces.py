@@ -7,7 +7,6 @@ import pkgutil
 
 import pytest
 
-import ikaros.modules
 
 INTERFACES = {
     "ADSREnvelope": (["GATE", "TRIG"], ["OUTPUT"], {"sample_rate": "0", "attack": "0.01", "decay": "0.1", "sustain": "0.7", "release": "0.2"}),
