@@ -16,7 +16,7 @@ COMMAND = "ikaros --modules-doc"
 DEFAULT_PATH = os.path.join("docs", "modules.md")
 
 # Categories come first in this order; any other category folder follows alphabetically.
-CATEGORY_ORDER = ("utility", "coding", "control", "io", "neural", "brain", "learning",
+CATEGORY_ORDER = ("utility", "coding", "control", "io", "sound", "neural", "brain", "learning",
                   "environment", "robot", "vision")
 CATEGORY_TITLES = {"io": "IO", "neural": "Neural network", "brain": "Brain models"}
 ROOT_CATEGORY = ""           # a class file directly in ikaros/modules, outside any category

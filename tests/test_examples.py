@@ -31,7 +31,7 @@ def test_example_runs(path, tmp_path):
 
 
 OUTPUT_CLASSES = ("OutputCSV", "OutputFile", "OutputImage", "OutputJPEG", "OutputPNG",
-                  "OutputRawImage", "OutputVideoFile")
+                  "OutputRawImage", "OutputVideoFile", "OutputAudioFile")
 
 
 def test_examples_write_files_only_into_their_ignored_output_folder():
@@ -44,7 +44,7 @@ def test_examples_write_files_only_into_their_ignored_output_folder():
             stack.extend(node.elements())
             if node.tag == "module" and node.get("class") in OUTPUT_CLASSES:
                 written.append(node.get("filename"))
-    assert len(written) == 9
+    assert len(written) == 10
     assert all(name.startswith("output/") for name in written), written
     with open(os.path.join(ROOT, ".gitignore")) as f:
         assert "examples/**/output/" in f.read().split()

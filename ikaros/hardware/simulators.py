@@ -30,6 +30,7 @@ SIMULATORS: dict[str, str] = {
     "ssc32": "ikaros.hardware.ssc32_sim",
     "opc": "ikaros.hardware.opc_sim",
     "epuck": "ikaros.hardware.epuck_sim",
+    "um7": "ikaros.hardware.um7_sim",
 }
 
 PREFIX = "sim:"

@@ -3,7 +3,7 @@ import numpy as np
 
 from ikaros.module import Module, Output, Parameter, require
 
-from . import _audio
+from ikaros.modules.sound import _audio
 
 
 class InputAudioFile(Module):
@@ -23,27 +23,34 @@ class InputAudioFile(Module):
     error names the file and both counts). ``sample_rate`` 0 keeps the file's rate; another value
     resamples the file to it when the model starts (linear interpolation, as InputSound).
     The whole file is read into memory when the model starts.
-    Ikaros 3 has a class of this name whose interface its reference does not describe:
-    these parameter and output names are this project's own, so an Ikaros 3 model that
-    uses InputAudioFile may need its attributes renamed. InputSound reads a file too (mixed
-    to any number of channels) or the microphone."""
+    Ikaros 3's interface is accepted too: ``buffer_size`` (its name for block_size; when set
+    it wins), ``repeat`` (yes: wrap), and in a file of dialect 3 its defaults (filename
+    inputaudio.wav, buffer_size 4096, channels 1, repeat yes, and no end-of-file: after the
+    end of a file that does not repeat, OUTPUT is 0 and the run goes on) and its layout:
+    OUTPUT is (channels, buffer_size), one row per channel. InputSound reads a file too
+    (mixed to any number of channels) or the microphone."""
 
     filename = Parameter("", "the sound file to read; relative to the model file's folder",
-                         fixed=True)
+                         fixed=True, default_v3="inputaudio.wav")
     block_size = Parameter(1024, "samples per tick (rows of OUTPUT)", type="int",
                            range=(1, None), fixed=True)
+    buffer_size = Parameter(0, "Ikaros 3's name of block_size (when not 0 it wins)",
+                            type="int", range=(0, None), fixed=True, default_v3=4096)
     step = Parameter(0, "samples from the start of one block to the start of the next; 0: "
                      "block_size", type="int", range=(0, None))
-    channels = Parameter(0, "the file's number of channels (columns of OUTPUT); 0: the "
-                         "file's own", type="int", range=(0, None), fixed=True)
+    channels = Parameter(0, "the file's number of channels (columns of OUTPUT; Ikaros 3: "
+                         "rows); 0: the file's own", type="int", range=(0, None), fixed=True,
+                         default_v3=1)
     sample_rate = Parameter(0, "samples per second; 0: the file's own rate, otherwise the "
                             "file is resampled to it", type="int", range=(0, None),
                             fixed=True)
     at_end = Parameter("pad", "pad: fill the last block with 0, then end; wrap: continue "
                        "from the start of the file", options="pad/wrap")
+    repeat = Parameter(False, "Ikaros 3: yes wraps as at_end=wrap does", default_v3=True)
     send_end_of_file = Parameter(True, "pad: end the run when the file is exhausted; with "
-                                 "no, OUTPUT is 0 from then on")
-    OUTPUT = Output("this tick's block: one row per sample, one column per channel")
+                                 "no, OUTPUT is 0 from then on", default_v3=False)
+    OUTPUT = Output("this tick's block: one row per sample, one column per channel (Ikaros "
+                    "3: one row per channel)")
     END = Output("1 when this tick's block holds the file's last sample (or, with pad, "
                  "comes after it), else 0", size="1")
     TIME = Output("the time in the file of the first sample of this tick's block, in "
@@ -59,20 +66,24 @@ class InputAudioFile(Module):
                              f'{"s" if channels != 1 else ""} but channels="{self.channels}"'
                              f' (0 takes the file\'s own)')
         self._channels = channels
-        self.set_output_shape("OUTPUT", (self.block_size, channels))
+        self._length = self.buffer_size or self.block_size
+        self.set_output_shape("OUTPUT", (channels, self._length) if self.dialect == "3"
+                              else (self._length, channels))
 
     def init(self):
         self._data, self._rate = _audio.read_sound(self, self.filename, self.sample_rate,
                                                    self._channels)
         self._position = 0              # the first sample of the next block
-        self._offsets = np.arange(self.block_size)
+        self._offsets = np.arange(self._length)
         self._ended = False
+        # the block as (samples, channels), whichever the layout of OUTPUT
+        self._block = self.OUTPUT.T if self.dialect == "3" else self.OUTPUT
 
     def tick(self):
-        data, out, n = self._data, self.OUTPUT, self.block_size
+        data, out, n = self._data, self._block, self._length
         frames, p = len(data), self._position
         self.TIME[0] = p / self._rate
-        wrap = self.at_end == "wrap" and frames > 0
+        wrap = (self.at_end == "wrap" or self.repeat) and frames > 0
         if not wrap and p >= frames:
             out.fill(0)
             self.END[0] = 1

@@ -32,7 +32,7 @@ class InputFile(Module):
 
     ``format`` chooses the file format; ``auto`` (the default) goes by the file's extension:
     ``.csv`` is csv, ``.tsv`` tsv, ``.json`` json, ``.jsonl`` and ``.ndjson`` jsonl, anything
-    else the Ikaros 2 text format above (``ikaros``); a .csv or .tsv file whose header is in
+    else the Ikaros 2 text format above (``ikaros``, or Ikaros 3's name ``text``); a .csv or .tsv file whose header is in
     the Ikaros 2 form (``X/2 Y/1``) is read in that format, as Ikaros 2 did. The other
     formats are those of Ikaros 3, read whole when the model loads. csv and tsv: values separated by
     ``delimiter`` (csv: "," unless set; tsv: a tab; a space means runs of spaces); with
@@ -57,7 +57,7 @@ class InputFile(Module):
                                  "is exhausted; with no, the outputs are 0 forever")
     print_iteration = Parameter(False, "print the number of each iteration as it starts")
     format = Parameter("auto", "the file format (auto: by the file's extension)",
-                       options="auto/ikaros/csv/tsv/json/jsonl")
+                       options="auto/text/csv/tsv/json/jsonl/ikaros")
     delimiter = Parameter("", 'csv and tsv: the character between values ("tab" for a tab); '
                           'empty: "," for csv, a tab for tsv')
     header = Parameter(True, "csv and tsv: the first row names the columns")
@@ -65,7 +65,7 @@ class InputFile(Module):
     # --- build time -----------------------------------------------------------------------
     def configure(self):
         self._file_path = self._resolve(self.filename)
-        kind = self.format
+        kind = "ikaros" if self.format == "text" else self.format
         if kind == "auto":
             kind = _EXTENSIONS.get(os.path.splitext(self.filename)[1].lower(), "ikaros")
             if kind in ("csv", "tsv") and self._ikaros_header():

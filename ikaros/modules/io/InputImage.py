@@ -1,9 +1,10 @@
 """InputImage: the Ikaros 3 image reader (JPEG, PNG and the other formats Pillow reads)."""
 from ._files import build_error, counter_capacity
+from ._images import ReadOnce
 from .InputPNG import InputPNG
 
 
-class InputImage(InputPNG):
+class InputImage(InputPNG, ReadOnce):
     """Ikaros 3's name for the image readers (Ikaros 2: InputJPEG, InputPNG). Reads a JPEG,
     PNG or other image file that Pillow can decode (gray or colour; an alpha channel is
     ignored), or a numbered sequence of them, and outputs it with values in 0..1: OUTPUT is

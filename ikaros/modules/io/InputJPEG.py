@@ -1,10 +1,8 @@
 """InputJPEG: reads a JPEG image or a numbered sequence of JPEG images."""
-from ikaros.module import Parameter
-
-from ._images import ImageFileReader
+from ._images import ReadOnce
 
 
-class InputJPEG(ImageFileReader):
+class InputJPEG(ReadOnce):
     """Reads a JPEG file, gray or colour, or a numbered sequence of them (a ``%d`` in
     ``filename``, ``filecount`` files), and outputs it with values in 0..1: OUTPUT is the
     colour image (3, rows, cols), RED, GREEN and BLUE its planes and INTENSITY the mean of
@@ -19,9 +17,4 @@ class InputJPEG(ImageFileReader):
     also reads other formats. The Ikaros 2 class computed INTENSITY incorrectly; here it is
     the plain mean of red, green and blue."""
 
-    read_once = Parameter(True, "read each file only when the sequence moves to it; with no, "
-                          "the current file is read again on every tick")
     format_name = "JPEG"
-
-    def reread_every_tick(self):
-        return not self.read_once

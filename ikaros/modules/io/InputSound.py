@@ -1,12 +1,8 @@
 """InputSound: sound from a microphone or a file, a block of samples and a level per tick."""
-import collections
-import threading
-
 import numpy as np
 
 from ikaros.module import Module, Output, Parameter, require
-
-from . import _audio
+from ikaros.modules.sound import _audio
 
 
 class InputSound(Module):
@@ -19,7 +15,8 @@ class InputSound(Module):
     filename it records from the microphone (sounddevice; ``device`` as sounddevice names
     it, empty for the default input) at ``samplerate`` (44100 when unset): each tick takes
     the samples that arrived since the previous one, the newest ``samples`` of them, padded
-    in front with the previous tick's when fewer came. With the default 441 samples and a
+    in front with the previous tick's when fewer came (``device="silent"``: silence, for a
+    machine without a sound card). With the default 441 samples and a
     tick of 10 ms, a tick holds 10 ms of sound at 44.1 kHz. A new class (Ikaros 2 had none
     for sound input)."""
 
@@ -31,7 +28,7 @@ class InputSound(Module):
                            "microphone)", type="int")
     loop = Parameter(False, "start the file again at its end instead of ending the run")
     device = Parameter("", "the input device for the microphone (sounddevice's name or "
-                       "number); empty: the default")
+                       "number); empty: the default; silent: no sound device, silence")
     OUTPUT = Output("this tick's samples: one row per sample, one column per channel")
     LEVEL = Output("the root mean square of each channel over this tick's samples")
 
@@ -44,30 +41,21 @@ class InputSound(Module):
         self.set_output_shape("LEVEL", (self.channels,))
 
     def init(self):
-        self._stream = None
+        self._microphone = None
         if self.filename:
             self._data, self.rate = _audio.read_sound(self, self.filename, self.samplerate,
                                                       self.channels)
             self._position = 0
             return
         self.rate = self.samplerate or 44100
-        self._blocks = collections.deque()
-        self._lock = threading.Lock()
-        self._stream = _audio.open_input_stream(self.rate, self.channels, self._take,
-                                                self.device)
-
-    def _take(self, block):
-        """Called by the audio stream's thread with each block of frames."""
-        with self._lock:
-            self._blocks.append(block.copy())
-            while sum(len(b) for b in self._blocks) > 4 * self.samples + len(block):
-                self._blocks.popleft()
+        self._microphone = _audio.Microphone(self.rate, self.channels, 4 * self.samples,
+                                             self.device)
 
     def tick(self):
-        if self._stream is None:
+        if self._microphone is None:
             self._read_file()
         else:
-            self._read_microphone()
+            self._microphone.newest_into(self.OUTPUT, self.clock.tick_duration)
         np.sqrt(np.mean(np.square(self.OUTPUT), axis=0), out=self.LEVEL)
 
     def _read_file(self):
@@ -90,16 +78,6 @@ class InputSound(Module):
             if self._position >= len(data) and filled < n:
                 self._position = 0
 
-    def _read_microphone(self):
-        with self._lock:
-            blocks, self._blocks = list(self._blocks), collections.deque()
-        if not blocks:
-            return                          # nothing new: keep the last samples
-        new = np.concatenate(blocks)[-self.samples:]
-        out = self.OUTPUT
-        out[:len(out) - len(new)] = out[len(new):].copy()
-        out[len(out) - len(new):] = new
-
     def stop(self):
-        if self._stream is not None:
-            self._stream.close()
+        if self._microphone is not None:
+            self._microphone.close()

@@ -58,9 +58,15 @@ class OutputFile(ColumnWriter):
     1, 2 ... per file), ``time`` (the nominal time, tick × tick_duration), ``real_time``
     (seconds since the run started) or ``none``; Ikaros 2's yes and no are tick and none.
 
-    An existing file is replaced, unless ``append`` is set: then the records go after those
-    it has; its header must be the one this module writes (else the run stops with an
-    error), and a JSON file must hold an array, which stays one valid array.
+    An existing file is replaced (``existing_file`` overwrite), or refused (error: the model
+    does not start, or a new file is not begun), or added to (append, or ``append`` yes):
+    then the records go after those it has; its header must be the one this module writes
+    (else the run stops with an error), and a JSON file must hold an array, which stays one
+    valid array. Records are flushed to the disk after every ``flush_interval`` records (0:
+    only when the file is closed).
+
+    In a file of dialect 3 the defaults are Ikaros 3's: filename output.csv, format csv,
+    timestamp time and existing_file error.
 
     When WRITE is connected a record is written only on ticks when its first element is
     above 0 (with ``single_trig``, or its Ikaros 3 name ``single_trigger``, only on ticks
@@ -76,15 +82,15 @@ class OutputFile(ColumnWriter):
 
     filename = Parameter("output.txt", "the file to write; may contain %d or ## for the file "
                          "number; relative to the model file's folder or the user-data "
-                         "folder (ikaros -u)")
+                         "folder (ikaros -u)", default_v3="output.csv")
     format = Parameter("auto", "the file format (auto: by the file's extension)",
-                       options="auto/text/csv/tsv/json/jsonl")
+                       options="auto/text/csv/tsv/json/jsonl", default_v3="csv")
     decimals = Parameter(4, "number of decimals of the columns that do not set their own",
                          type="int")
     number_format = Parameter("fixed", "fixed: decimals decimals; full: every digit needed",
                               options="fixed/full")
     timestamp = Parameter("tick", "the stamp of each record: tick, line, time, real_time "
-                          "or none (Ikaros 2: yes is tick, no is none)")
+                          "or none (Ikaros 2: yes is tick, no is none)", default_v3="time")
     delimiter = Parameter("", 'csv and tsv: one character between values ("tab" for a '
                           'tab); empty: "," for csv, a tab for tsv')
     header = Parameter(True, "csv and tsv: write a header row")
@@ -95,6 +101,11 @@ class OutputFile(ColumnWriter):
     single_trigger = Parameter(False, "Ikaros 3 name of single_trig")
     append = Parameter(False, "add to an existing file instead of replacing it (its header "
                        "must be the same; a JSON file must hold an array)")
+    existing_file = Parameter("overwrite", "what happens to a file that exists: overwrite "
+                              "it, refuse to write it (error), or append to it",
+                              options="error/overwrite/append", default_v3="error")
+    flush_interval = Parameter(1, "records between flushes to the disk; 0: only when the "
+                               "file is closed", type="int", range=(0, None))
     start_index = Parameter(0, "the number of the first file (for %d or ## in filename)",
                             type="int", range=(0, None))
     use_old_format = Parameter(False, "accepted for compatibility and has no effect: the "
@@ -158,9 +169,12 @@ class OutputFile(ColumnWriter):
         self._value_formats = [f"%.{max(0, d)}f" for d, shape in
                                zip(self._decimals, self._shapes) for _ in range(_size(shape))]
         self._full = self.number_format == "full"
+        self._appending = self.append or self.existing_file == "append"
         self._folder = self._make_folder()
         if self._folder is not None:
             why = self._open(self._path())
+            if why is not None and "already exists" in why:
+                raise ValueError(f"OutputFile {why}")
             if why is not None:
                 self.fatal_error(f"cannot write output file {why}")
 
@@ -273,9 +287,12 @@ class OutputFile(ColumnWriter):
         or None; then the current file stays open."""
         if path == self._path_open:
             self._close()
+        elif self.existing_file == "error" and not self._appending and os.path.exists(path):
+            return f'"{path}" already exists (existing_file="error"; overwrite or append to ' \
+                   f'write it)'
         try:
             os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
-            existing = self.append and os.path.exists(path) and os.path.getsize(path) > 0
+            existing = self._appending and os.path.exists(path) and os.path.getsize(path) > 0
             if existing:
                 file, records = self._reopen(path)
             else:
@@ -286,7 +303,9 @@ class OutputFile(ColumnWriter):
         self._close()
         self._file, self._path_open = file, path
         self._line, self._records = 0, records
+        self._unflushed = 0
         self._end_json()
+        self._file.flush()
         return None
 
     def _reopen(self, path: str):
@@ -320,7 +339,6 @@ class OutputFile(ColumnWriter):
         if self._kind == "json":
             self._file.write("\n]\n")
             self._file.seek(self._file.tell() - 3)
-        self._file.flush()
 
     def tick(self):
         if self.NEWFILE is not None:
@@ -341,6 +359,10 @@ class OutputFile(ColumnWriter):
         self._line += 1
         self._records += 1
         self._end_json()
+        self._unflushed += 1
+        if self.flush_interval and self._unflushed >= self.flush_interval:
+            self._file.flush()
+            self._unflushed = 0
 
     def _next_file(self):
         """NEWFILE rose: go on in the file with the next number; when that cannot be, warn

@@ -59,12 +59,16 @@ class FrameGrabber:
     """
 
     def __init__(self, open_reader: Callable, reconnect: bool, retry: float = 1.0,
-                 name: str = "camera"):
+                 name: str = "camera", paced: bool = False):
         self.cv2 = require("cv2", "opencv-python-headless", extra="vision")
         self.open_reader, self.reconnect, self.retry = open_reader, reconnect, retry
         self.size: tuple[int, int] | None = None     # (rows, cols) of the planes
         self.flip = False
+        # paced: after each frame the grabber waits until a tick has taken it
+        self.paced = paced
+        self._taken = threading.Event()
         self._lock = threading.Lock()
+        self._new_frame = threading.Condition(self._lock)
         self._frame: np.ndarray | None = None
         self._time = 0.0
         self.count = 0
@@ -137,11 +141,24 @@ class FrameGrabber:
             with self._lock:
                 self._frame, self._time = planes, time.monotonic()
                 self.count += 1
+                self._taken.clear()
+                self._new_frame.notify_all()
+            while self.paced and not self._taken.wait(0.05):
+                if self._stopping.is_set():
+                    return
 
     def latest(self) -> tuple[np.ndarray | None, float, int]:
         """The newest frame's planes, its time (time.monotonic) and its number."""
         with self._lock:
+            self._taken.set()
             return self._frame, self._time, self.count
+
+    def wait_newer(self, count: int, timeout: float) -> None:
+        """Wait (at most ``timeout`` seconds) until a frame newer than number ``count`` has
+        been grabbed."""
+        with self._new_frame:
+            self._new_frame.wait_for(lambda: self.count > count or self.ended.is_set(),
+                                     timeout)
 
     def start_publishing(self, size: tuple[int, int], flip: bool, first: np.ndarray):
         """Set the output size (rows, cols) and publish the first frame."""
@@ -184,6 +201,14 @@ class CameraInput(Module):
     end_of_source = False     # the source ending ends the run (files)
     flip_frames = False
 
+    def waits_for_frames(self) -> bool:
+        """Whether a tick waits (at most ``timeout``) for a frame newer than the last."""
+        return False
+
+    def paces_the_grabber(self) -> bool:
+        """Whether the grabber reads a frame only after a tick has taken the last."""
+        return False
+
     def source_name(self) -> str:
         raise NotImplementedError
 
@@ -199,7 +224,8 @@ class CameraInput(Module):
         require("cv2", "opencv-python-headless", extra="vision")
         try:
             self._grabber = FrameGrabber(self.open_reader, self.reconnect,
-                                         retry=min(1.0, self.timeout), name=self.name)
+                                         retry=min(1.0, self.timeout), name=self.name,
+                                         paced=self.paces_the_grabber())
         except OSError as e:
             raise OSError(f"cannot open {self.source_name()}: {e}") from None
         first = self._grabber.wait_first(self.timeout)
@@ -239,6 +265,8 @@ class CameraInput(Module):
             self._stale_reported = False
 
     def tick(self):
+        if self.waits_for_frames():
+            self._grabber.wait_newer(self._shown, self.timeout)
         self._publish()
         if self.end_of_source and self._grabber.ended.is_set() and \
                 self._grabber.latest()[2] == self._shown:

@@ -141,6 +141,17 @@ class ImageFileReader(Module):
             self.end_of_file(f"end of the {self.format_name} sequence")
 
 
+class ReadOnce(ImageFileReader):
+    """An image reader with ``read_once``: with no, the current file is read again on every
+    tick (InputJPEG, InputImage)."""
+
+    read_once = Parameter(True, "read each file only when the sequence moves to it; with no, "
+                          "the current file is read again on every tick")
+
+    def reread_every_tick(self):
+        return not self.read_once
+
+
 class ImageInputs(Module):
     """Base of the image writers: the image comes from INPUT, INTENSITY or RED/GREEN/BLUE."""
 
@@ -237,18 +248,25 @@ class ImageFileWriter(ImageInputs):
         self._last_write = False
         self._failing = False
 
+    def single_trigger_on(self) -> bool:
+        """Whether WRITE writes only on its rises."""
+        return self.single_trig
+
+    def file_name(self, counter: int) -> str:
+        """The name of the file written with this counter (files written or ticks so far)."""
+        return numbered(self.filename, self.offset + counter)
+
     def tick(self):
         write = True
         if self.WRITE is not None:
             on = bool(self.WRITE.flat[0] > 0)
-            write = on and not (self.single_trig and self._last_write)
+            write = on and not (self.single_trigger_on() and self._last_write)
             self._last_write = on
         if self._ticks < self.suppress:
             write = False
         self._ticks += 1
-        number = self.offset + self._counter
         if write:
-            self._write(numbered(self.filename, number))
+            self._write(self.file_name(self._counter))
         if write or not self.increase_file_no_on_trig:
             self._counter += 1
 

@@ -249,3 +249,77 @@ def test_an_http_error_is_a_clear_load_error(tmp_path, file_server):
     with pytest.raises(ModelError, match=r'cannot open stream ".*/missing.mjpg": HTTP 404'):
         load(tmp_path, f'<module class="InputVideoStream" name="S" '
                        f'url="{file_server}/missing.mjpg"/>')
+
+
+def test_input_video_finds_a_camera_by_its_name(tmp_path, monkeypatch):
+    from ikaros.modules.io import InputVideo
+    for number, name in ((0, "Integrated Webcam"), (2, "USB Camera: HD Pro Webcam C920")):
+        folder = tmp_path / "sys" / f"video{number}"
+        folder.mkdir(parents=True)
+        (folder / "name").write_text(name + "\n")
+    monkeypatch.setattr(InputVideo, "VIDEO4LINUX", str(tmp_path / "sys"))
+    assert InputVideo.camera_named("c920") == "/dev/video2"
+    with pytest.raises(ValueError, match='no camera named "Kinect" .cameras: video0: '
+                                         'Integrated Webcam; video2: USB Camera'):
+        InputVideo.camera_named("Kinect")
+    with pytest.raises(ModelError, match='cannot open camera "/dev/video2"'):
+        load(tmp_path, '<module class="InputVideo" name="V" device_name="HD Pro"/>')
+
+
+def test_input_video_by_device_index_and_ikaros_3_sizes(tmp_path, scene):
+    write_movie(tmp_path / "cam.avi", scene)
+    with pytest.raises(ModelError, match="cannot open camera 7"):
+        load(tmp_path, '<module class="InputVideo" name="V" device_index="7" id="1"/>')
+    net = load(tmp_path, f'<module class="InputVideo" name="V" device="{tmp_path}/cam.avi" '
+                         f'device_index="7"/>', dialect="3")
+    try:
+        assert net.output("V.OUTPUT").shape == (3, 720, 1280)       # Ikaros 3's defaults
+    finally:
+        net.close()
+
+
+def frame_number(net, name, scene):
+    out = net.output(f"{name}.OUTPUT")
+    errors = [np.abs(out - planes_of(scene.frame(n)[0])).mean() for n in range(300)]
+    assert min(errors) < 0.01
+    return int(np.argmin(errors))
+
+
+def test_a_synchronized_stream_shows_every_frame_in_turn(tmp_path, server, scene):
+    net = load(tmp_path, f'<module class="InputVideoStream" name="S" url="{server.url}" '
+                         f'size_x="{COLS}" size_y="{ROWS}" synchronized_framegrabber="yes" '
+                         f'synchronized_tick="yes"/>')
+    try:
+        numbers = []
+        for _ in range(6):
+            net.step()
+            numbers.append(frame_number(net, "S", scene))
+            time.sleep(0.06)                    # slower than the stream's 50 frames/s
+        assert np.diff(numbers[1:]).tolist() == [1, 1, 1, 1]
+    finally:
+        net.close()
+
+
+def test_unsynchronized_ticks_skip_frames_and_ikaros_3_waits_for_a_new_one(tmp_path, server,
+                                                                           scene):
+    net = load(tmp_path, f'<module class="InputVideoStream" name="S" url="{server.url}" '
+                         f'size_x="{COLS}" size_y="{ROWS}"/>')
+    try:
+        numbers = []
+        for _ in range(4):
+            net.step()
+            numbers.append(frame_number(net, "S", scene))
+            time.sleep(0.1)
+        assert min(np.diff(numbers)) > 1        # the newest frame: others were skipped
+    finally:
+        net.close()
+    net = load(tmp_path, f'<module class="InputVideoStream" name="S" url="{server.url}" '
+                         f'size_x="{COLS}" size_y="{ROWS}"/>', dialect="3")
+    try:
+        numbers = []
+        for _ in range(4):
+            net.step()                          # no pause: each tick waits for a frame
+            numbers.append(frame_number(net, "S", scene))
+        assert min(np.diff(numbers)) >= 1
+    finally:
+        net.close()

@@ -130,3 +130,60 @@ def test_the_file_and_block_size_are_fixed_while_running(tmp_path):
         assert blocks(net, 2) == [[0, 1], [1, 2]]
     finally:
         net.close()
+
+
+def audio3(tmp_path, attrs: str):
+    return load(tmp_path, f'<module class="InputAudioFile" name="A" {attrs}/>', dialect="3")
+
+
+def test_ikaros_3_layout_is_channels_by_buffer_size_and_repeats(tmp_path):
+    soundfile.write(tmp_path / "s.wav", stereo(6), RATE, subtype="FLOAT")
+    net = audio3(tmp_path, 'filename="s.wav" buffer_size="4" channels="2"')
+    try:
+        assert net.output("A.OUTPUT").shape == (2, 4)
+        rows = []
+        for _ in range(3):
+            net.step()
+            rows.append((net.output("A.OUTPUT") * 64).tolist())
+        assert rows == [[[0, 1, 2, 3], [0, -1, -2, -3]],
+                        [[4, 5, 0, 1], [-4, -5, 0, -1]],          # repeat: wraps
+                        [[2, 3, 4, 5], [-2, -3, -4, -5]]]
+        assert not net.stopped
+    finally:
+        net.close()
+
+
+def test_ikaros_3_without_repeat_pads_and_goes_on(tmp_path):
+    soundfile.write(tmp_path / "m.aiff", stereo(5)[:, :1], RATE, subtype="PCM_16")
+    net = audio3(tmp_path, 'filename="m.aiff" buffer_size="4" repeat="false"')
+    try:
+        rows = []
+        for _ in range(4):
+            net.step()
+            rows.append((net.output("A.OUTPUT") * 64).tolist())
+        assert rows == [[[0, 1, 2, 3]], [[4, 0, 0, 0]], [[0, 0, 0, 0]], [[0, 0, 0, 0]]]
+        assert not net.stopped                    # no end-of-file in an Ikaros 3 file
+    finally:
+        net.close()
+
+
+def test_ikaros_3_defaults(tmp_path):
+    soundfile.write(tmp_path / "inputaudio.wav", stereo(5000)[:, :1], RATE, subtype="FLOAT")
+    net = audio3(tmp_path, "")
+    try:
+        assert net.output("A.OUTPUT").shape == (1, 4096)
+    finally:
+        net.close()
+    soundfile.write(tmp_path / "inputaudio.wav", stereo(10), RATE, subtype="FLOAT")
+    with pytest.raises(ModelError, match='has 2 channels but channels="1"'):
+        audio3(tmp_path, "")                       # Ikaros 3: a channel mismatch fails
+
+
+def test_buffer_size_wins_over_block_size_in_ikaros_2_files(tmp_path):
+    soundfile.write(tmp_path / "s.wav", stereo(10), RATE, subtype="FLOAT")
+    net = audio(tmp_path, 'filename="s.wav" block_size="4" buffer_size="3" repeat="yes"')
+    try:
+        assert net.output("A.OUTPUT").shape == (3, 2)
+        assert blocks(net, 4) == [[0, 1, 2], [3, 4, 5], [6, 7, 8], [9, 0, 1]]
+    finally:
+        net.close()

@@ -321,3 +321,12 @@ def test_v3_iterations_and_print_iteration(tmp_path):
 def test_v2_table_named_csv_is_still_read_as_ikaros_2(tmp_path):
     net = load_file(tmp_path, "old.csv", "X/2 Y/1\n1 2 3\n")
     assert ticks(net, ["X", "Y"], 1) == [([1, 2], [3])]
+
+
+def test_ikaros_3_names_the_text_format_text(tmp_path):
+    net = load_file(tmp_path, "d.json", "X/2 Y/1\n1 2 3\n4 5 6\n", 'format="text"')
+    try:
+        net.step()
+        assert net.output("F.X").tolist() == [1, 2] and net.output("F.Y").tolist() == [3]
+    finally:
+        net.close()

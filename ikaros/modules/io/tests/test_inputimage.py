@@ -54,3 +54,21 @@ def test_unreadable_frame_keeps_the_previous_image_with_a_warning(tmp_path):
         assert any("cannot read image file" in e[3] for e in net.log)
     finally:
         net.close()
+
+
+def test_read_once_no_reads_the_file_again_on_every_tick(tmp_path):
+    Image.fromarray(np.full((2, 2), 200, np.uint8), "L").save(tmp_path / "x.png")
+    once = load(tmp_path, '<module class="InputImage" name="I" filename="x.png"/>')
+    again = load(tmp_path, '<module class="InputImage" name="I" filename="x.png" '
+                           'read_once="no"/>')
+    try:
+        once.step()
+        again.step()
+        Image.fromarray(np.full((2, 2), 10, np.uint8), "L").save(tmp_path / "x.png")
+        once.step()
+        again.step()
+        assert np.allclose(once.output("I.INTENSITY"), 200 / 255)
+        assert np.allclose(again.output("I.INTENSITY"), 10 / 255)
+    finally:
+        once.close()
+        again.close()

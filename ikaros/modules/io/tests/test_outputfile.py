@@ -435,3 +435,66 @@ def test_v3_jsonl_with_labels_is_read_back_by_inputfile(tmp_path):
         assert net.output("F.w").tolist() == [2]
     finally:
         net.close()
+
+
+def test_existing_file_error_refuses_and_leaves_the_file(tmp_path):
+    (tmp_path / "out.csv").write_text("keep\n")
+    with pytest.raises(ModelError, match='OutputFile ".*out.csv" already exists '
+                                         r'\(existing_file="error"'):
+        run_v3(tmp_path, 'filename="out.csv" existing_file="error"', ["C.OUTPUT"])
+    assert (tmp_path / "out.csv").read_text() == "keep\n"
+
+
+def test_existing_file_append_and_overwrite(tmp_path):
+    run_v3(tmp_path, 'filename="out.csv" existing_file="error" decimals="1"', ["C.OUTPUT"])
+    run_v3(tmp_path, 'filename="out.csv" existing_file="append" decimals="1"', ["C.OUTPUT"],
+           ticks=1)
+    assert (tmp_path / "out.csv").read_text() == (
+        "tick,INPUT[0],INPUT[1]\n0,1.5,-2.2\n1,1.5,-2.2\n0,1.5,-2.2\n")
+    run_v3(tmp_path, 'filename="out.csv" existing_file="overwrite" decimals="1"',
+           ["C.OUTPUT"], ticks=1)
+    assert (tmp_path / "out.csv").read_text() == "tick,INPUT[0],INPUT[1]\n0,1.5,-2.2\n"
+
+
+def test_a_new_file_that_exists_is_not_begun_with_existing_file_error(tmp_path):
+    (tmp_path / "r_1.csv").write_text("keep\n")
+    path = tmp_path / "model.ikg"
+    path.write_text('<group name="Test">\n<module class="Constant" name="C" data="5"/>'
+                    '<module class="Sweep" name="N" min="0" max="1" step="1"/>'
+                    '<module class="OutputFile" name="O" filename="r_#.csv" decimals="0" '
+                    'existing_file="error"/>'
+                    '<connection source="C.OUTPUT" target="O.INPUT" delay="0" label="v"/>'
+                    '<connection source="N.OUTPUT" target="O.NEWFILE" delay="0"/></group>')
+    with ikaros.load(str(path)) as net:
+        net.run(ticks=2)
+        assert any("cannot start a new file" in e[3] and "already exists" in e[3]
+                   for e in net.log)
+    assert (tmp_path / "r_1.csv").read_text() == "keep\n"
+    assert (tmp_path / "r_0.csv").read_text() == "tick,v\n0,5\n1,5\n"
+
+
+def test_flush_interval_writes_to_the_disk_every_n_records(tmp_path):
+    path = tmp_path / "model.ikg"
+    path.write_text('<group name="Test"><module class="Constant" name="C" data="5"/>'
+                    '<module class="OutputFile" name="O" filename="out.csv" decimals="0" '
+                    'flush_interval="3"/>'
+                    '<connection source="C.OUTPUT" target="O.INPUT" delay="0"/></group>')
+    with ikaros.load(str(path)) as net:
+        on_disk = []
+        for _ in range(4):
+            net.step()
+            on_disk.append((tmp_path / "out.csv").read_text().count("\n"))
+    assert on_disk == [1, 1, 4, 4]                  # the header, then three records at once
+    assert (tmp_path / "out.csv").read_text().count("\n") == 5      # all of them when closed
+
+
+def test_ikaros_3_defaults_csv_output_time_stamps_and_no_overwriting(tmp_path):
+    path = tmp_path / "model.ikg"
+    path.write_text('<group name="Test" tick_duration="0.5"><module class="Constant" name="C" '
+                    'data="5"/><module class="OutputFile" name="O"/>'
+                    '<connection source="C.OUTPUT" target="O.INPUT" delay="0"/></group>')
+    with ikaros.load(str(path), dialect="3") as net:
+        net.run(ticks=2)
+    assert (tmp_path / "output.csv").read_text() == "time,INPUT\n0.5,5.0000\n1,5.0000\n"
+    with pytest.raises(ModelError, match="already exists"):
+        ikaros.load(str(path), dialect="3")

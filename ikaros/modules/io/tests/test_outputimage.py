@@ -39,3 +39,32 @@ def test_jpeg_by_extension_and_by_format(tmp_path):
 def test_unknown_extension_without_format_is_an_error(tmp_path):
     with pytest.raises(ModelError, match='cannot tell the image format of "a.img"'):
         write(tmp_path, 'filename="a.img"')
+
+
+def test_start_index_directory_and_single_trigger(tmp_path):
+    (tmp_path / "w.txt").write_text("W/1\n1\n1\n0\n1\n")
+    net = load(tmp_path, GRAY + '<module class="InputFile" name="W" filename="w.txt"/>'
+                                '<module class="OutputImage" name="O" filename="t_#.png" '
+                                'directory="shots" start_index="3" single_trigger="yes"/>'
+                                '<connection source="C.OUTPUT" target="O.INPUT" delay="0"/>'
+                                '<connection source="W.W" target="O.WRITE" delay="0"/>')
+    try:
+        net.run(ticks=4)
+    finally:
+        net.close()
+    assert sorted(p.name for p in (tmp_path / "shots").iterdir()) == ["t_3.png", "t_6.png"]
+
+
+def test_ikaros_3_defaults_write_output_jpg_at_quality_90(tmp_path):
+    import io
+    net = load(tmp_path, GRAY + '<module class="OutputImage" name="O"/>'
+                                '<connection source="C.OUTPUT" target="O.INPUT" delay="0"/>',
+               dialect="3")
+    try:
+        net.run(ticks=1)
+    finally:
+        net.close()
+    expected = io.BytesIO()
+    Image.fromarray(np.uint8([[0, 128], [255, 64]]), "L").save(expected, format="JPEG",
+                                                                quality=90)
+    assert (tmp_path / "output.jpg").read_bytes() == expected.getvalue()
