@@ -33,11 +33,11 @@ class PyramidalLucasKanadeTracker(Module):
     new positions is fitted with RANSAC (3 pixels), and its inliers stay tracked. With fewer
     than ``min_points`` left the target is lost (RESULT found 0, no points) until the next
     seed. RESULT is (found, template, points, points kept this tick as a share of those
-    before, mean forward-backward error in pixels, 1 - mean residual (the seed's mean score on the
-    tick it is taken), area of the points'
-    convex hull as a share of the frame, points as a share of those seeded), the same 8
-    values as RobustTransformEstimator's RESULT so TemplateTrackingController can weigh
-    both. IMAGE is scaled to the ``image_width`` x ``image_height`` frame of the points.
+    before, mean forward-backward error in pixels, 1 - mean residual (on the tick a seed is
+    taken: the seed's mean score), area of the points' convex hull as a share of the frame,
+    points as a share of those seeded): the same 8 values as RobustTransformEstimator's
+    RESULT, so that TemplateTrackingController can weigh both. IMAGE is scaled to the
+    ``image_width`` x ``image_height`` frame of the points.
     The behaviour is this project's reading of the Ikaros 3 interface
     (docs/vision-tracking.md)."""
 
