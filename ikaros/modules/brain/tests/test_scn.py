@@ -34,19 +34,10 @@ def reference(light, hours_per_tick, tau, max_lux=10000.0):
 
 
 def run_scn(tmp_path, light, tick_duration, **params):
-    np.save(tmp_path / "light.npy", np.asarray(light, np.float32).reshape(-1, 1))
-    (tmp_path / "Light.py").write_text(
-        "import numpy as np\nfrom ikaros import Module, Output, Parameter\n\n\n"
-        "class Light(Module):\n"
-        "    file = Parameter('', 'the .npy file')\n"
-        "    OUTPUT = Output('the light', size='1')\n\n"
-        "    def init(self):\n"
-        "        self.values, self.k = np.load(self.file), 0\n\n"
-        "    def tick(self):\n"
-        "        self.OUTPUT[:] = self.values[self.k]\n"
-        "        self.k += 1\n")
+    """Run the SCN on one light value a tick; return OUTPUT and DIFF of each tick."""
     attrs = " ".join(f'{k}="{v}"' for k, v in params.items())
-    body = (f'<module class="Light" name="L" file="{tmp_path}/light.npy"/>'
+    values = " ".join(repr(float(v)) for v in light)
+    body = (f'<module class="ListIterator" name="L" listdata="{values}"/>'
             f'<module class="SCN" name="M" {attrs}/>'
             '<connection source="L.OUTPUT" target="M.INPUT" delay="0"/>')
     x, diff = [], []
@@ -98,4 +89,4 @@ def test_free_runs_with_its_period_in_the_dark_and_is_entrained_by_a_day(tmp_pat
 
 def test_a_frequency_of_zero_is_refused(tmp_path):
     with pytest.raises(ModelError, match="frequency must be above 0"):
-        run_scn(tmp_path, [0.0], 60, frequency="0")
+        run_scn(tmp_path, [0.0, 0.0], 60, frequency="0")

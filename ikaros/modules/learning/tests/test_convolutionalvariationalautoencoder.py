@@ -23,22 +23,15 @@ def bars(size=8):
 
 
 def network(tmp_path, images, cls=CLASS, extra="", **params):
-    np.save(tmp_path / "images.npy", np.asarray(images, np.float32))
-    (tmp_path / "Images.py").write_text(
-        "import numpy as np\nfrom ikaros import Module, Output, Parameter\n\n\n"
-        "class Images(Module):\n"
-        "    file = Parameter('', 'a .npy file')\n"
-        "    OUTPUT = Output('one image a tick, round and round')\n\n"
-        "    def configure(self):\n"
-        "        self.images = np.load(self.file)\n"
-        "        self.set_output_shape('OUTPUT', self.images.shape[1:])\n\n"
-        "    def init(self):\n"
-        "        self.k = 0\n\n"
-        "    def tick(self):\n"
-        "        self.OUTPUT[...] = self.images[self.k % len(self.images)]\n"
-        "        self.k += 1\n")
+    """A model that shows the images one a tick, round and round, to the module M."""
+    images = np.asarray(images, np.float32)
+    rows = "; ".join(" ".join(str(float(v)) for v in image.ravel()) for image in images)
+    if len(images) == 1:                   # a list of one row would be stepped by element
+        rows += "; " + rows
     attrs = " ".join(f'{k}="{v}"' for k, v in params.items())
-    body = (f'<module class="Images" name="In" file="{tmp_path}/images.npy"/>'
+    body = (f'<module class="ListIterator" name="List" listdata="{rows}" repeat="yes"/>'
+            f'<module class="ArrayToMatrix" name="In" array_length="{images.shape[-1]}"/>'
+            '<connection source="List.OUTPUT" target="In.INPUT" delay="0"/>'
             f'<module class="{cls}" name="M" seed="3" {attrs}/>'
             '<connection source="In.OUTPUT" target="M.INPUT" delay="0"/>' + extra)
     return load_body(tmp_path, body)

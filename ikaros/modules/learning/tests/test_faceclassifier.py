@@ -19,27 +19,17 @@ def embedding(centre, rng, spread=0.1):
     return centre + spread * noise / np.linalg.norm(noise)
 
 
+def rows_text(rows):
+    return "; ".join(" ".join(repr(float(v)) for v in np.ravel(row)) for row in rows)
+
+
 def classify(tmp_path, inputs, learn=None, **params):
     """Run the classifier on one embedding per tick; return the outputs of each tick."""
-    np.save(tmp_path / "inputs.npy", np.asarray(inputs, np.float32))
-    np.save(tmp_path / "learn.npy", np.asarray(
-        np.ones(len(inputs)) if learn is None else learn, np.float32).reshape(-1, 1))
-    (tmp_path / "Rows.py").write_text(
-        "import numpy as np\nfrom ikaros import Module, Output, Parameter\n\n\n"
-        "class Rows(Module):\n"
-        "    file = Parameter('', 'a .npy file')\n"
-        "    OUTPUT = Output('one row a tick')\n\n"
-        "    def configure(self):\n"
-        "        self.rows = np.load(self.file)\n"
-        "        self.set_output_shape('OUTPUT', self.rows.shape[1:])\n\n"
-        "    def init(self):\n"
-        "        self.k = 0\n\n"
-        "    def tick(self):\n"
-        "        self.OUTPUT[...] = self.rows[self.k]\n"
-        "        self.k += 1\n")
+    learn = np.ones(len(inputs)) if learn is None else np.asarray(learn, float)
     attrs = " ".join(f'{k}="{v}"' for k, v in params.items())
-    body = (f'<module class="Rows" name="In" file="{tmp_path}/inputs.npy"/>'
-            f'<module class="Rows" name="Learn" file="{tmp_path}/learn.npy"/>'
+    body = (f'<module class="ListIterator" name="In" listdata="{rows_text(inputs)}"/>'
+            f'<module class="ListIterator" name="Learn" '
+            f'listdata="{rows_text(learn.reshape(-1, 1))}"/>'
             f'<module class="FaceClassifier" name="M" {attrs}/>'
             '<connection source="In.OUTPUT" target="M.INPUT" delay="0"/>'
             '<connection source="Learn.OUTPUT" target="M.LEARN" delay="0"/>')
