@@ -68,7 +68,7 @@ def generated_example(desc: ClassDescription) -> Example:
 
 def record_outputs(path: str, name: str, ticks: int) -> dict[str, np.ndarray] | None:
     """The outputs of the first module of class ``name`` in the model at ``path``, tick by
-    tick (ticks, ...), or None when the model does not run here (a missing device or
+    tick (ticks, ...), those whose shape stays the same, or None when the model does not run here (a missing device or
     optional package, a file it needs)."""
     quiet = io.StringIO()
     try:
@@ -89,7 +89,9 @@ def record_outputs(path: str, name: str, ticks: int) -> dict[str, np.ndarray] | 
                         break
     except Exception:   # noqa: BLE001: an example that needs what this machine lacks
         return None
-    return {k: np.array(v) for k, v in rows.items() if v and np.asarray(v[0]).size}
+    # a dynamic output (a list whose length changes) is left out of the plot
+    return {k: np.array(v) for k, v in rows.items()
+            if v and np.asarray(v[0]).size and len({np.shape(x) for x in v}) == 1}
 
 
 def example_and_plot(desc: ClassDescription, models: dict[str, str],
