@@ -55,7 +55,7 @@ class ColorTransform(ThreePlanes):
         self._total = np.zeros(self.OUTPUT.shape[1:], np.float32)
         self._nonzero = np.zeros(self.OUTPUT.shape[1:], bool)
 
-    def compute(self):
+    def tick(self):
         transform = "RGB->Lab" if self.ignore_transform else self.transform
         if transform == "RGB->rgI":
             self._rgi()
@@ -72,16 +72,23 @@ class ColorTransform(ThreePlanes):
 
     def _rgi(self):
         """r = R/(R+G+B), g = G/(R+G+B) (1/3 where the sum is 0), I = (R+G+B) / scale, in
-        float32 on buffers made once (the chromaticities do not depend on scale)."""
+        float32 on buffers made once (the chromaticities do not depend on scale). With
+        scale 1 the sum is made in I's plane itself."""
         red, green, blue = self.planes_in
-        total, out = self._total, self.OUTPUT
+        out = self.OUTPUT
+        total = out[2] if self.scale == 1 else self._total
         np.add(red, green, out=total)
         total += blue
-        np.not_equal(total, 0.0, out=self._nonzero)
-        for src, dst in ((red, out[0]), (green, out[1])):
-            dst.fill(1.0 / 3.0)
-            np.divide(src, total, out=dst, where=self._nonzero)
-        np.divide(total, self.scale, out=out[2])
+        if total.all():
+            np.divide(red, total, out=out[0])
+            np.divide(green, total, out=out[1])
+        else:
+            np.not_equal(total, 0.0, out=self._nonzero)
+            for src, dst in ((red, out[0]), (green, out[1])):
+                dst.fill(1.0 / 3.0)
+                np.divide(src, total, out=dst, where=self._nonzero)
+        if total is not out[2]:
+            np.divide(total, self.scale, out=out[2])
 
     def _linear(self, rgb):
         return srgb_expand(rgb) if self.gamma == "srgb" else rgb
