@@ -4,6 +4,7 @@ import numpy as np
 from ikaros.module import Parameter
 
 from ._colour import ThreePlanes
+from ._cv import opencv
 from ._colour_spaces import (RGB_TO_XYZ, XYZ_TO_RGB, lab_to_xyz, mix, rgb_to_lab_float32,
                              srgb_compress, srgb_expand, xyz_to_lab)
 
@@ -46,6 +47,9 @@ class ColorTransform(ThreePlanes):
     gamma = Parameter("none", "none: linear RGB, as in Ikaros; srgb: sRGB-encoded RGB "
                       "(OpenCV's conversion)", options="none/srgb")
 
+    def configure(self):
+        self.cv2 = opencv()
+
     def init(self):
         super().init()
         if self.scale == 0:
@@ -77,11 +81,12 @@ class ColorTransform(ThreePlanes):
         red, green, blue = self.planes_in
         out = self.OUTPUT
         total = out[2] if self.scale == 1 else self._total
-        np.add(red, green, out=total)
-        total += blue
-        if total.all():
-            np.divide(red, total, out=out[0])
-            np.divide(green, total, out=out[1])
+        cv2 = self.cv2
+        cv2.add(red, green, dst=total)
+        cv2.add(total, blue, dst=total)
+        if cv2.countNonZero(total) == total.size:
+            cv2.divide(red, total, dst=out[0])
+            cv2.divide(green, total, dst=out[1])
         else:
             np.not_equal(total, 0.0, out=self._nonzero)
             for src, dst in ((red, out[0]), (green, out[1])):
