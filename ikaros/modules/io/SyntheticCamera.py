@@ -63,11 +63,12 @@ class SyntheticCamera(Module):
 
     def init(self):
         self._scale = np.array([self.size_x, self.size_y], np.float32)
+        self._frame = np.zeros((self.size_y, self.size_x, 3), np.uint8)
         self._levels = [np.zeros((self.size_y, self.size_x), np.uint8) for _ in range(3)]
         self._show(0)
 
     def _show(self, n):
-        img, truth = self.scene.frame(n)
+        img, truth = self.scene.frame(n, self._frame)
         cv2 = self.scene.cv2
         cv2.mixChannels([img], self._levels, [0, 0, 1, 1, 2, 2])    # planes of 8-bit levels
         for levels, plane in zip(self._levels, self.OUTPUT):
