@@ -10,9 +10,8 @@ those centroids change (or that starts a cluster) are settled at once, that pixe
 settled by its own rule, and the next window starts after it. Where such events come every
 few pixels (scattered pixels, clusters that restart), a window costs more than it settles:
 then the pixels are taken one by one, until a run of them has joined clusters without
-starting one. The centroids and distances are the same
-float64 operations either way (sums of whole numbers, one division), so the result is the
-same to the last bit.
+starting one. The centroids and distances are the same float64 operations either way
+(sums of whole numbers, one division), so the result is the same to the last bit.
 """
 from __future__ import annotations
 
