@@ -99,9 +99,14 @@ class SyntheticScene:
         top = self.rows - s - max(gap, (self.rows - self.blob_area_rows - s) // 2)
         return [(gap + shift + i * (s + gap), top) for i in range(len(self.markers))]
 
-    def frame(self, n: int) -> tuple[np.ndarray, Truth]:
-        """Frame n as (rows, cols, 3) RGB uint8, and its truth."""
-        img = self.background.copy()
+    def frame(self, n: int, out: np.ndarray | None = None) -> tuple[np.ndarray, Truth]:
+        """Frame n as (rows, cols, 3) RGB uint8, and its truth. With ``out`` (an array of
+        that shape and type) the frame is drawn into it and it is returned."""
+        if out is None:
+            img = self.background.copy()
+        else:
+            img = out
+            np.copyto(img, self.background)
         truth = Truth(blob_radius=self.radius)
         centres = self.blob_centres(n)
         for (x, y), colour in zip(centres, BLOB_COLOURS):
@@ -124,5 +129,5 @@ class SyntheticScene:
             truth.face_box = (x0, y0, x0 + s, y0 + s)
         if self.noise > 0:
             noisy = img + self.rng.normal(0, self.noise * 255, img.shape)
-            img = np.clip(noisy, 0, 255).astype(np.uint8)
+            np.copyto(img, np.clip(noisy, 0, 255), casting="unsafe")
         return img, truth

@@ -76,3 +76,22 @@ def test_the_pools_follow_the_mode_when_it_changes():
     assert pools.report()["pools"][0]["threads"] == 1
     pools.set_realtime(False)
     assert _blas_threads() == before
+
+
+def test_opencv_threads_are_limited_in_real_time_and_given_back(tmp_path):
+    cv2 = pytest.importorskip("cv2")
+    before = cv2.getNumThreads()
+    cv2.setNumThreads(2)
+    try:
+        path = tmp_path / "m.ikg"
+        path.write_text(MODEL.format(settings=' blas_threads="1"'))
+        with ikaros.load(str(path)) as net:
+            seen = []
+            net.controller.tick_hooks.append(lambda: seen.append(cv2.getNumThreads()))
+            net.run(ticks=3, real_time=True)
+            net.run(ticks=2)
+            pools = net.figures()["thread_pools"]["pools"]
+        assert seen == [1, 1, 1, 2, 2]
+        assert {"api": "opencv", "library": "opencv", "threads": 2} in pools
+    finally:
+        cv2.setNumThreads(before)

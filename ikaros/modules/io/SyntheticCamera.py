@@ -5,6 +5,9 @@ from ikaros.module import Module, Output, Parameter
 
 from ikaros.hardware.synthetic_camera import BLOB_COLOURS, SyntheticScene
 
+# each 8-bit level as a float32 value 0..1: level * float32(1/255)
+LEVELS = np.multiply(np.arange(256, dtype=np.uint8), np.float32(1 / 255))
+
 
 class SyntheticCamera(Module):
     """A camera for tests and demonstrations: coloured discs that move on fixed paths over a
@@ -27,9 +30,9 @@ class SyntheticCamera(Module):
 
     OUTPUT = Output("the colour frame, (3, rows, cols), planes red, green, blue in 0..1",
                     shape="3, @size_y, @size_x")
-    RED = Output("the red plane (rows, cols)", shape="@size_y, @size_x")
-    GREEN = Output("the green plane (rows, cols)", shape="@size_y, @size_x")
-    BLUE = Output("the blue plane (rows, cols)", shape="@size_y, @size_x")
+    RED = Output("the red plane (rows, cols)", alias="OUTPUT[0]")
+    GREEN = Output("the green plane (rows, cols)", alias="OUTPUT[1]")
+    BLUE = Output("the blue plane (rows, cols)", alias="OUTPUT[2]")
     INTENSITY = Output("the intensity (rows, cols): the mean of red, green and blue",
                        shape="@size_y, @size_x")
     POSITIONS = Output("the disc centres, one row (x, y) per disc, in 0..1 (empty without "
@@ -60,15 +63,21 @@ class SyntheticCamera(Module):
 
     def init(self):
         self._scale = np.array([self.size_x, self.size_y], np.float32)
+        self._frame = np.zeros((self.size_y, self.size_x, 3), np.uint8)
+        self._levels = [np.zeros((self.size_y, self.size_x), np.uint8) for _ in range(3)]
         self._show(0)
 
     def _show(self, n):
-        img, truth = self.scene.frame(n)
-        np.multiply(img.transpose(2, 0, 1), np.float32(1 / 255), out=self.OUTPUT)
-        self.RED[...] = self.OUTPUT[0]
-        self.GREEN[...] = self.OUTPUT[1]
-        self.BLUE[...] = self.OUTPUT[2]
-        np.mean(self.OUTPUT, axis=0, out=self.INTENSITY)
+        img, truth = self.scene.frame(n, self._frame)
+        cv2 = self.scene.cv2
+        cv2.mixChannels([img], self._levels, [0, 0, 1, 1, 2, 2])    # planes of 8-bit levels
+        for levels, plane in zip(self._levels, self.OUTPUT):
+            cv2.LUT(levels, LEVELS, dst=plane)
+        red, green, blue = self.OUTPUT
+        # the mean of the planes, as np.mean(axis=0) makes it: (red + green) + blue, / 3
+        np.add(red, green, out=self.INTENSITY)
+        self.INTENSITY += blue
+        self.INTENSITY /= np.float32(3)
         if self.blobs:
             self.POSITIONS[...] = (truth.blob_centres + 0.5) / self._scale
         if truth.marker_ids:

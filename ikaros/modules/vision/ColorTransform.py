@@ -4,6 +4,7 @@ import numpy as np
 from ikaros.module import Parameter
 
 from ._colour import ThreePlanes
+from ._cv import opencv
 from ._colour_spaces import (RGB_TO_XYZ, XYZ_TO_RGB, lab_to_xyz, mix, rgb_to_lab_float32,
                              srgb_compress, srgb_expand, xyz_to_lab)
 
@@ -46,6 +47,9 @@ class ColorTransform(ThreePlanes):
     gamma = Parameter("none", "none: linear RGB, as in Ikaros; srgb: sRGB-encoded RGB "
                       "(OpenCV's conversion)", options="none/srgb")
 
+    def configure(self):
+        self.cv2 = opencv()
+
     def init(self):
         super().init()
         if self.scale == 0:
@@ -55,7 +59,7 @@ class ColorTransform(ThreePlanes):
         self._total = np.zeros(self.OUTPUT.shape[1:], np.float32)
         self._nonzero = np.zeros(self.OUTPUT.shape[1:], bool)
 
-    def compute(self):
+    def tick(self):
         transform = "RGB->Lab" if self.ignore_transform else self.transform
         if transform == "RGB->rgI":
             self._rgi()
@@ -72,16 +76,24 @@ class ColorTransform(ThreePlanes):
 
     def _rgi(self):
         """r = R/(R+G+B), g = G/(R+G+B) (1/3 where the sum is 0), I = (R+G+B) / scale, in
-        float32 on buffers made once (the chromaticities do not depend on scale)."""
+        float32 on buffers made once (the chromaticities do not depend on scale). With
+        scale 1 the sum is made in I's plane itself."""
         red, green, blue = self.planes_in
-        total, out = self._total, self.OUTPUT
-        np.add(red, green, out=total)
-        total += blue
-        np.not_equal(total, 0.0, out=self._nonzero)
-        for src, dst in ((red, out[0]), (green, out[1])):
-            dst.fill(1.0 / 3.0)
-            np.divide(src, total, out=dst, where=self._nonzero)
-        np.divide(total, self.scale, out=out[2])
+        out = self.OUTPUT
+        total = out[2] if self.scale == 1 else self._total
+        cv2 = self.cv2
+        cv2.add(red, green, dst=total)
+        cv2.add(total, blue, dst=total)
+        if cv2.countNonZero(total) == total.size:
+            cv2.divide(red, total, dst=out[0])
+            cv2.divide(green, total, dst=out[1])
+        else:
+            np.not_equal(total, 0.0, out=self._nonzero)
+            for src, dst in ((red, out[0]), (green, out[1])):
+                dst.fill(1.0 / 3.0)
+                np.divide(src, total, out=dst, where=self._nonzero)
+        if total is not out[2]:
+            np.divide(total, self.scale, out=out[2])
 
     def _linear(self, rgb):
         return srgb_expand(rgb) if self.gamma == "srgb" else rgb

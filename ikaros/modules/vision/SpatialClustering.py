@@ -3,6 +3,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
+from ._clustering import raster_clusters
 from ._cv import GrayImage, as_image, image_shape
 
 
@@ -61,29 +62,14 @@ class SpatialClustering(Module):
         self._size = np.array([cols, rows], np.float64)
         self._tracked = False
         self._positions = np.zeros(self.OUTPUT.shape, np.float32)
+        self._above = np.zeros((rows, cols), bool)
 
     def _find(self) -> list[tuple[np.ndarray, int]]:
         """The kept clusters of this tick: ((column, row) centroid in pixels, count)."""
-        limit = self.no_of_clusters
+        np.greater(self._gray(), self.threshold, out=self._above)
+        rows, cols = np.divmod(np.flatnonzero(self._above), self._above.shape[1])
         radius2 = (self.cluster_radius * self._size[0]) ** 2
-        sums: list[list[float]] = []            # per cluster: sum of columns, of rows, count
-        rows, cols = np.nonzero(self._gray() > self.threshold)    # in raster order
-        for row, col in zip(rows.tolist(), cols.tolist()):
-            best, nearest = -1, radius2
-            for i, (sx, sy, n) in enumerate(sums):
-                dx, dy = sx / n - col, sy / n - row
-                d2 = dx * dx + dy * dy
-                if d2 < nearest or (best < 0 and d2 == nearest):
-                    best, nearest = i, d2
-            if best >= 0:
-                cluster = sums[best]
-                cluster[0] += col
-                cluster[1] += row
-                cluster[2] += 1
-            elif len(sums) < limit:
-                sums.append([col, row, 1])
-            else:
-                sums[-1] = [col, row, 1]
+        sums = raster_clusters(rows, cols, radius2, self.no_of_clusters)
         least = self.min_cluster_area * self._size.prod()
         return [(np.array([sx / n, sy / n]), n) for sx, sy, n in sums if n > least]
 

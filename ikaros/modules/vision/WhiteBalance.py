@@ -61,7 +61,7 @@ class WhiteBalance(ThreePlanes):
         c0, c1 = max(int(x0), 0), min(int(x1), cols)
         return (slice(r0, r1), slice(c0, c1)) if r1 > r0 and c1 > c0 else None
 
-    def compute(self):
+    def tick(self):
         region = self._region(self.x0, self.x1, self.y0, self.y1)
         targets = (self.red_target, self.green_target, self.blue_target)
         for plane, out, target in zip(self.planes_in, self.OUTPUT, targets):

@@ -48,8 +48,9 @@ def plane_inputs(module: Module, prefix: str = "INPUT") -> list[np.ndarray] | No
 
 
 class ThreePlanes(Module):
-    """Reads three planes from INPUT or from INPUT0, INPUT1 and INPUT2, and after
-    ``compute`` has written OUTPUT, copies its planes to OUTPUT0, OUTPUT1 and OUTPUT2."""
+    """Reads three planes from INPUT or from INPUT0, INPUT1 and INPUT2 (``self.planes_in``)
+    and writes OUTPUT, whose planes are OUTPUT0, OUTPUT1 and OUTPUT2 (views of the same
+    memory, so nothing is copied)."""
 
     INPUT = Input("a colour image (3, rows, cols); or connect INPUT0, INPUT1 and INPUT2",
                   optional=True)
@@ -58,26 +59,14 @@ class ThreePlanes(Module):
     INPUT1 = Input("the second plane (rows, cols)", optional=True)
     INPUT2 = Input("the third plane (rows, cols)", optional=True)
     OUTPUT = Output("the result as one image (3, rows, cols)")
-    OUTPUT0 = Output("the first plane of OUTPUT")
-    OUTPUT1 = Output("the second plane of OUTPUT")
-    OUTPUT2 = Output("the third plane of OUTPUT")
+    OUTPUT0 = Output("the first plane of OUTPUT", alias="OUTPUT[0]")
+    OUTPUT1 = Output("the second plane of OUTPUT", alias="OUTPUT[1]")
+    OUTPUT2 = Output("the third plane of OUTPUT", alias="OUTPUT[2]")
 
     def set_sizes(self):
         shape = plane_inputs_shape(self)
         if shape:
             self.set_output_shape("OUTPUT", (3,) + shape)
-            for i in range(3):
-                self.set_output_shape(f"OUTPUT{i}", shape)
 
     def init(self):
         self.planes_in = plane_inputs(self)
-        self._copies = list(zip(self.OUTPUT, (self.OUTPUT0, self.OUTPUT1, self.OUTPUT2)))
-
-    def compute(self) -> None:
-        """Read ``self.planes_in`` and write ``self.OUTPUT``."""
-        raise NotImplementedError
-
-    def tick(self):
-        self.compute()
-        for plane, out in self._copies:
-            np.copyto(out, plane)

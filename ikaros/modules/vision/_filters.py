@@ -3,6 +3,8 @@ where its whole kernel fits (as in Ikaros 2, the output is kernel size - 1 rows 
 smaller than the input), for gray and colour images alike."""
 from __future__ import annotations
 
+import threading
+
 import numpy as np
 
 from ikaros.module import Input, Module, Output
@@ -10,10 +12,24 @@ from ikaros.module import Input, Module, Output
 from ._cv import as_image, image_shape, interior, opencv, planes, shrunk
 
 
+_work = threading.local()
+
+
+def work_plane(shape: tuple) -> np.ndarray:
+    """A float32 work plane of this shape, one per thread and shape, made once and shared
+    by the filters that tick in that thread (each uses it only during its tick), so that
+    a chain of filters keeps one plane in the cache instead of one each."""
+    planes = _work.__dict__.setdefault("planes", {})
+    plane = planes.get(shape)
+    if plane is None:
+        plane = planes[shape] = np.zeros(shape, np.float32)
+    return plane
+
+
 class ValidFilter(Module):
-    """Filters each plane into a full-size buffer with OpenCV and copies the part where the
-    kernel fits into OUTPUT. Subclasses give ``kernel_shape`` and ``filter``; those with a
-    kernel that depends on parameters give ``kernel_key`` and ``make_kernel``, and the
+    """Filters each plane into a full-size work plane with OpenCV and copies the part where
+    the kernel fits into OUTPUT. Subclasses give ``kernel_shape`` and ``filter``; those with
+    a kernel that depends on parameters give ``kernel_key`` and ``make_kernel``, and the
     kernel is made again when the key changes between ticks."""
 
     INPUT = Input("the image: gray (rows, cols), colour (3, rows, cols) or a vector (one "
@@ -52,8 +68,8 @@ class ValidFilter(Module):
     def init(self):
         rows, cols = self.kernel_rows, self.kernel_cols = self.kernel_shape()
         image, out = as_image(self.INPUT), as_image(self.OUTPUT)
-        self._full = np.zeros(image.shape[-2:], np.float32)
-        self._valid = interior(self._full, rows // 2, cols // 2, *out.shape[-2:])
+        self._plane_shape = image.shape[-2:]
+        self._valid_part = (rows // 2, cols // 2) + out.shape[-2:]
         self._pairs = list(zip(planes(image), planes(out)))
         self._key = self.kernel_key()
         self.make_kernel()
@@ -63,9 +79,11 @@ class ValidFilter(Module):
         if key != self._key:
             self._key = key
             self.make_kernel()
+        full = work_plane(self._plane_shape)
+        valid = interior(full, *self._valid_part)
         for src, dst in self._pairs:
-            self.filter(src, self._full)
-            np.copyto(dst, self._valid)
+            self.filter(src, full)
+            np.copyto(dst, valid)
 
 
 class KernelFilter(ValidFilter):

@@ -178,6 +178,32 @@ def test_classifier_width_is_either_side_and_saturation_bounds_are_strict(tmp_pa
     assert np.array_equal(out[0], [1, 1, 0, 1, 0, 1, 0])
 
 
+def test_classifier_bounds_to_the_last_bit_in_a_mostly_gray_image(tmp_path):
+    # a gray image with rows of chromaticities that step one float32 at a time across the
+    # saturation bounds (0.05, 0.5) and the hue bounds (117 +- 15): the selection is the
+    # test in float32, d . u >= |d| cos(width) and 0.05 < |d| < 0.5, pixel for pixel
+    third = np.float32(1 / 3)
+    r = np.full((48, 64), third, np.float32)
+    g = r.copy()
+    steps = np.arange(-32, 32, dtype=np.float32)
+    for row, (hue, sat) in enumerate([(117, 0.05), (117, 0.5), (102, 0.2), (132, 0.2),
+                                      (90, 0.05), (300, 0.3)]):
+        t = np.radians(hue)
+        r0 = np.float32(1 / 3 + sat * np.sin(t))
+        r[8 * row] = r0 + steps * np.spacing(r0)
+        g[8 * row] = np.float32(1 / 3 + sat * np.cos(t))
+    out, = outputs(tmp_path, "ColorClassifier", {"R": r, "G": g, "I": r + g},
+                   "OUTPUT", color="117", width="15", diagnostics="no")
+    dr, dg = r - third, g - third
+    sat = np.hypot(dr, dg)
+    c, w = np.radians(117), np.radians(15)
+    along = dr * np.float32(np.sin(c)) + dg * np.float32(np.cos(c))
+    expected = ((along >= sat * np.float32(np.cos(w))) & (sat > np.float32(0.05))
+                & (sat < np.float32(0.5)))
+    assert 0 < expected.sum() < 64 * 3
+    assert np.array_equal(out, expected.astype(np.float32))
+
+
 def test_classifier_compensation_removes_a_colour_cast(tmp_path):
     cast = np.array([1.0, 1.0, 1.4])[:, None, None]
     grays = pixels((0.5, 0.5, 0.5), (0.3, 0.3, 0.3), (0.6, 0.6, 0.6))

@@ -29,20 +29,23 @@ def raster_clusters(image, threshold, radius, limit):
     """The clustering, written out: pixels above threshold in raster order join the nearest
     cluster whose running centroid is within ``radius`` pixels, or start one; when there are
     ``limit`` clusters already, the last one starts anew (Ikaros 2's golden outputs)."""
-    clusters = []                                     # lists of (col, row)
+    clusters, sums = [], []                           # lists of (col, row); their sums
     for r in range(image.shape[0]):
         for c in range(image.shape[1]):
             if image[r, c] <= threshold:
                 continue
-            near = [(np.hypot(*(np.mean(k, axis=0) - (c, r))), i)
-                    for i, k in enumerate(clusters)]
+            near = [(np.hypot(sc / len(k) - c, sr / len(k) - r), i)
+                    for i, (k, (sc, sr)) in enumerate(zip(clusters, sums))]
             near = [d_i for d_i in near if d_i[0] <= radius]
             if near:
-                clusters[min(near)[1]].append((c, r))
+                i = min(near)[1]
+                clusters[i].append((c, r))
+                sums[i] = (sums[i][0] + c, sums[i][1] + r)
             elif len(clusters) < limit:
                 clusters.append([(c, r)])
+                sums.append((c, r))
             else:
-                clusters[-1] = [(c, r)]
+                clusters[-1], sums[-1] = [(c, r)], (c, r)
     return clusters
 
 
@@ -81,6 +84,25 @@ def test_running_centroid_and_capped_confidence(tmp_path):
         # 1 / 0 pixels: capped; the fourth and later isolated pixels restart the last
         assert np.array_equal(net.output("M.CONFIDENCE"), [1, 1, 1])
         assert np.allclose(net.output("M.OUTPUT")[:, 0], [0.0, 0.1, 0.8])
+
+
+@pytest.mark.parametrize("discs, fraction, limit", [
+    ([(60, 60, 50, 1.0)], 0.3, 1), ([(60, 60, 50, 1.0)], 0.1, 3),
+    ([(40, 40, 22, 1.0), (95, 45, 22, 1.0), (135, 70, 18, 1.0)], 0.15, 3)])
+def test_thousands_of_pixels_cluster_as_pixel_by_pixel(tmp_path, discs, fraction, limit):
+    # discs wider than the radius: centroids that drift, pixels that start clusters anew,
+    # long runs that join; the module settles many pixels at a time
+    image = disc_map(120, 200, discs)
+    with run(tmp_path, "SpatialClustering", {"INPUT": image}, no_of_clusters=str(limit),
+             cluster_radius=str(fraction), min_cluster_area="0", positions="current") as net:
+        out, conf = net.output("M.OUTPUT"), net.output("M.CONFIDENCE")
+    radius = fraction * 200
+    clusters = raster_clusters(image, 0.1, radius, limit)
+    assert len(clusters) == limit
+    expected = [np.mean(k, axis=0) / (200, 120) for k in clusters]
+    assert np.allclose(out, expected, atol=1e-6)
+    assert np.allclose(conf, [min(len(k) / (2 * np.pi * radius ** 2), 1) for k in clusters],
+                       atol=1e-6)
 
 
 def test_threshold_is_strict(tmp_path):
