@@ -30,7 +30,7 @@ from .dynamic import DynamicRing, delayed_copy
 from .execution import AsyncModule, Plan, module_tick
 from .gating import gated
 from .fusion import fuse
-from .portguard import port_attributes
+from .portguard import bound_ports, port_attributes, replaced_in_init
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .firsttick import FIRST_TICK, empty_history
 from .limits import check_memory as _check_memory
@@ -97,6 +97,7 @@ class Network:
         self.timing = Timing()
         self._controller: Controller | None = None
         self.stop_reason: tuple[int, str] | None = None
+        self.stop_printed = False           # whether the stop reason has been printed
         self._stopped = False
         self._buffers = builder.buffers
         self.modules = {inst.path: inst for inst in order}
@@ -430,6 +431,7 @@ class Network:
         are stopped (in order) before the error is raised; the failing one is not."""
         self.clock.tick = self.first_tick - 1
         started = []
+        ports = dict(port_attributes(self.schedule, self._buffers))
         try:
             for inst in self.schedule:
                 inst.module._ik_before_init()
@@ -440,8 +442,12 @@ class Network:
                 if job is not None:
                     job.take_inputs()
                 error = None
+                bound = bound_ports(inst.module, ports[inst])
                 try:
                     inst.module.init()
+                    replaced = replaced_in_init(inst.module, ports[inst], bound)
+                    if replaced is not None:
+                        raise replaced
                     if job is not None:
                         job.publish_init()
                 except module_faults() as e:
@@ -502,6 +508,7 @@ class Network:
                 (level == FATAL_ERROR and self.stop_reason[0] != FATAL_ERROR)):
             self.stop_reason = (level, message)      # a fatal error wins over a clean end
             self._stop_where = where
+            self.stop_printed = level <= self.log_level
         if level <= self.log_level:
             text = f"{where}: {message}" if where else message
             # one write per line, so that lines printed by other threads are not mixed in
@@ -520,6 +527,7 @@ class Network:
         if self.stop_reason is None or self.stop_reason[0] != FATAL_ERROR:
             self._stop_where = where
             self.stop_reason = (FATAL_ERROR, reason)
+            self.stop_printed = False
 
     # --- running -------------------------------------------------------------------------
     @property
@@ -565,7 +573,8 @@ class Network:
         level, message = self.stop_reason or (TERMINATE, "closed")
         if level == FATAL_ERROR:
             where = getattr(self, "_stop_where", "")
-            raise RunError(f"{where}: {message}" if where else message)
+            raise RunError(f"{where}: {message}" if where else message,
+                           printed=self.stop_printed)
 
     def _stop_modules(self, modules: list[ModuleInstance]) -> None:
         """Call stop() of each module once. A stop() that fails is a fatal error (the run
