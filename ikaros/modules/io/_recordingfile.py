@@ -1,6 +1,6 @@
 """An ikaros recording (HDF5) opened for reading and checked against itself: what the file
-says it holds (its size, its count of rows written whole, the checksum of its header)
-against what it holds. Shared by the Replay module and ``ikaros.experiments``
+says it holds (its size, its count of rows written whole, its checksums) against what it
+holds. Shared by the Replay module and ``ikaros.experiments``
 (``open_recording``, ``ikaros --replay``).
 
 A damaged file is refused at once with one line naming it and the damage, or, when it is
@@ -17,7 +17,9 @@ and can only be opened for SWMR reading; a file cut off can only be read that wa
 (HDF5's plain open refuses a file shorter than it should be). For SWMR reading HDF5 retries
 a metadata read that fails its checksum 100 times with growing sleeps (minutes on a
 damaged file, with Ctrl-C unheard, as the main thread never leaves HDF5); here it retries
-``READ_ATTEMPTS`` times, a few milliseconds (``H5Pset_metadata_read_attempts``).
+``READ_ATTEMPTS`` times, a few milliseconds (``H5Pset_metadata_read_attempts``). A file
+marked as being written that fails a check is looked at again for up to SETTLE_SECONDS
+(its writer may be in the middle of a flush) before the failure is told.
 """
 import ctypes
 import json
@@ -34,7 +36,7 @@ FORMAT_VERSION = 3      # 2: "stored" counts the rows written whole; 3: checksum
 TIME_SERIES = ("tick", "time", "real_time")
 NUMBERS = ("every", "tick_duration", "first_tick", "finished")     # attributes
 READ_ATTEMPTS = 20      # about 5 ms of retries in all (HDF5's default of 100: minutes)
-SETTLE_SECONDS = 0.5    # a file being written may be short of its end while it flushes
+SETTLE_SECONDS = 0.5    # a file being written may fail its checks while its writer flushes
 SIGNATURE = b"\x89HDF\r\n\x1a\n"
 SWMR_WRITING = 0x04     # superblock flag: open for SWMR writing (or its writer killed)
 WRITING = 0x01          # open for writing
@@ -116,7 +118,19 @@ class RecordingFile:
     def __init__(self, path: str):
         import h5py
         self.path = path
-        self.damage: str | None = None
+        self.writing = False        # whether the file is marked as being written
+        deadline = time.monotonic() + SETTLE_SECONDS
+        while True:
+            self.damage = None
+            try:
+                self._open_and_check(h5py)
+                return
+            except RecordingError:  # a file being written: its writer may be flushing
+                if not self.writing or time.monotonic() >= deadline:
+                    raise
+            time.sleep(0.02)
+
+    def _open_and_check(self, h5py) -> None:
         self._file = self._open(h5py)
         try:
             self._check()
@@ -134,11 +148,7 @@ class RecordingFile:
             raise RecordingError(f"cannot read the recording {path}: "
                                  f"{e.strerror or e}") from None
         flags, end = superblock if superblock else (0, 0)
-        if self.size < end and flags & SWMR_WRITING:    # its writer may be flushing
-            deadline = time.monotonic() + SETTLE_SECONDS
-            while self.size < end and time.monotonic() < deadline:
-                time.sleep(0.02)
-                self.size = os.path.getsize(path)
+        self.writing = bool(flags & SWMR_WRITING)
         self.cut = self.size < end
         if self.cut:
             self._cut_text = (f"is cut off: the file has {self.size} of the {end} bytes "
