@@ -236,16 +236,14 @@ def test_a_recording_of_format_2_still_reads_and_its_damage_is_found(tmp_path):
     paths = [damaged(tmp_path, path, "heap.h5", overwrite=(heap + 128, bytes(256))),
              damaged(tmp_path, path, "ticks.h5", overwrite=(ticks + 800, bytes(256)))]
     heap_answer, ticks_answer = open_in_child(paths)
-    assert heap_answer == {"error": "RecordingError", "seconds": heap_answer["seconds"],
-                           "message": f"the recording {paths[0]} is damaged: its global "
-                                      f"heap at byte {heap} has an object of a wrong size "
-                                      f"at byte {heap + 128}"} or \
-        heap_answer["message"].startswith(f"the recording {paths[0]} is damaged: its "
-                                          f"global heap at byte {heap}"), heap_answer
+    assert heap_answer["error"] == "RecordingError"
+    assert heap_answer["message"].startswith(f"the recording {paths[0]} is damaged: its "
+                                             f"global heap at byte {heap} has an object of "
+                                             f"a wrong size at byte "), heap_answer
     assert ticks_answer["error"] == "RecordingError"
     assert ticks_answer["message"] == (
-        f"the recording {paths[1]} is damaged: its tick values go back at row 1124 (a "
-        f"recording of format 2, without checksums)")
+        f"the recording {paths[1]} is damaged: the time of its row 1124 is not its tick "
+        f"times tick_duration")
 
 
 def test_a_file_that_is_not_a_recording_is_named(tmp_path):

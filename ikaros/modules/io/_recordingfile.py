@@ -196,6 +196,9 @@ class RecordingFile:
                 self.header = legacy_header(f.attrs)
             self.header.update({key: f.attrs[key].item() for key in NUMBERS})
             self.model = self._text("model")
+            if "\0" in self.model or not self.model.strip():    # (zeros written over it)
+                raise RecordingError(f"the recording {self.path} is damaged: its model "
+                                     f"text is empty or holds NUL characters")
             self.signals = [(str(name), tuple(int(n) for n in shape), int(start),
                              int(stop))
                             for name, shape, start, stop in self.header["signals"]]
@@ -305,14 +308,23 @@ class RecordingFile:
 
 def check_time_series(recording: RecordingFile, ticks: np.ndarray, times: np.ndarray,
                       real_times: np.ndarray) -> None:
-    """A recording of format 1 or 2 (no checksums on its values): refused when its tick
-    numbers do not increase or its times go back, as damage would make them."""
+    """Refuse time series that damage has changed: every time is its tick × tick_duration,
+    as the recorder writes it (format 2 on); a recording of format 1 or 2, which has no
+    checksums on its values, must also have tick numbers that increase and real times that
+    do not go back, nor are 0 after the first row."""
+    damaged = f"the recording {recording.path} is damaged:"
+    if recording.version >= 2:
+        off = np.flatnonzero(times != ticks * float(recording.header["tick_duration"]))
+        if off.size:
+            raise RecordingError(f"{damaged} the time of its row {off[0]} is not its tick "
+                                 f"times tick_duration")
     if recording.version >= 3:
         return
-    for name, back in (("tick", np.diff(ticks) <= 0), ("time", np.diff(times) < 0),
-                       ("real_time", np.diff(real_times) < 0)):
+    # (only the first row's real time is 0: rows are ticks apart)
+    for name, back in (("tick", np.diff(ticks) <= 0),
+                       ("real_time", (np.diff(real_times) < 0) | (real_times[1:] == 0))):
         bad = np.flatnonzero(back)
         if bad.size:
-            raise RecordingError(f"the recording {recording.path} is damaged: its {name} "
-                                 f"values go back at row {bad[0] + 1} (a recording of "
-                                 f"format {recording.version}, without checksums)")
+            raise RecordingError(f"{damaged} its {name} values are out of order at row "
+                                 f"{bad[0] + 1} (a recording of format "
+                                 f"{recording.version}, without checksums)")
