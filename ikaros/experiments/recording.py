@@ -34,7 +34,7 @@ from datetime import datetime, timezone
 import numpy as np
 
 from .. import priority
-from ..modules.io._recordingfile import FORMAT, FORMAT_VERSION, write_text
+from ..modules.io._recordingfile import FORMAT, FORMAT_VERSION, stored_count, write_text
 from ..kernel import switching
 from ..kernel.taps import ROW, SIGNAL, TICK
 from ..module import FATAL_ERROR, WARNING
@@ -191,8 +191,7 @@ class Recorder:
         self._changes = f.create_dataset("parameter_changes", (0,), maxshape=(None,),
                                          dtype=CHANGE_DTYPE, chunks=(16,),
                                          compression="gzip")
-        self._stored = f.create_dataset("stored", data=np.zeros(1, np.int64), chunks=(1,),
-                                        fletcher32=True)
+        self._stored = f.create_dataset("stored", data=stored_count(0))
 
     # --- the kernel thread ---------------------------------------------------------------
     def _start_block(self) -> None:
@@ -402,7 +401,7 @@ class Recorder:
         end, last_tick = self._written
         self._file.flush()
         if end > self.stored:
-            self._stored[0] = end
+            self._stored[:] = stored_count(end)
             self._file.flush()
             self.stored, self._last_tick = end, last_tick
         self._file_flushed = time.perf_counter()

@@ -8,8 +8,9 @@ cut off, read up to its last whole chunk with a note that says so (``damage``). 
 checks catch the rest when values are read: the checksums of its metadata, the Adler-32
 of each compressed chunk (the values; in format 3 also the model's text and the header's
 JSON text, kept in datasets rather than in HDF5's unchecked variable-length strings), and
-(format 3) Fletcher-32 on the tick and time datasets and the count of rows, which a
-finished recording also keeps in the checked attribute ``ticks_recorded``.
+(format 3) Fletcher-32 on the tick and time datasets; the count of rows is kept with its
+complement beside it, and a finished recording also keeps it in the checked attribute
+``ticks_recorded``.
 Format 1 and 2 files are checked as far as they can be (_legacyrecording.py).
 
 A file that is being written, or whose writer was killed, is marked so in its superblock
@@ -48,6 +49,13 @@ class RecordingError(OSError):
 
 class NotARecording(ValueError):
     """An HDF5 file that is not an ikaros recording."""
+
+
+def stored_count(rows: int) -> np.ndarray:
+    """What the dataset "stored" holds (format 3): the count of rows written whole, then
+    its bitwise complement, so that damage to it (zeros, noise) is seen: a checksum filter
+    would have every flush rewrite a chunk, which costs a fast flush much."""
+    return np.array([rows, ~rows], np.int64)
 
 
 def write_text(f, name: str, text: str) -> None:
@@ -233,7 +241,11 @@ class RecordingFile:
         shapes = {name: f[name].shape[0] for name in names}
         n = min(shapes.values())
         if "stored" in f:
-            stored = int(f["stored"][0])
+            counts = f["stored"][:]
+            stored = int(counts[0])
+            if self.version >= 3 and (counts.size != 2 or counts[1] != ~counts[0]):
+                raise RecordingError(f"the recording {self.path} is damaged: its count of "
+                                     f"rows written whole is not what it was written as")
             closed = int(f.attrs["ticks_recorded"]) if self.header["finished"] and \
                 "ticks_recorded" in f.attrs else stored
             if self.version >= 3 and not (0 <= stored <= n and stored == closed):
