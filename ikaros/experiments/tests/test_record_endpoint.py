@@ -129,20 +129,28 @@ def test_a_recording_whose_disk_fills_ends_at_once_and_its_empty_file_goes(tmp_p
     net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>',
                     user_data=str(tmp_path))
     net.log_level = -1
-    with TestClient(create_app(net, models_dir=str(tmp_path))) as client:
-        file = client.post("/api/record", json={"on": True}).json()["file"]
-        assert (tmp_path / file).exists()
+    try:
+        with TestClient(create_app(net, models_dir=str(tmp_path))) as client:
+            file = client.post("/api/record", json={"on": True}).json()["file"]
+            assert (tmp_path / file).exists()
 
-        def ended():                        # the writer writes a second after the start
-            if not net.stopped:
-                try:
-                    net.run(ticks=5)
-                except RunError:            # the run stops (on_error="stop")
-                    pass
-            return client.get("/api/record").json()["recording"] is False
-        assert wait_for(ended, 60, 0.02)
-        assert not (tmp_path / file).exists()      # now, not when the server quits
-        assert [m for _, _, _, m in net.log if "No space" in m] == [
-            f"writing the recording {tmp_path / file} failed (No space left on device); "
-            f"it holds no ticks (the file is removed); the run stops"]
-    net.close()
+            def run():
+                if not net.stopped:
+                    try:
+                        net.run(ticks=5)
+                    except RunError:        # the run stops (on_error="stop")
+                        pass
+                return net.stopped
+            def recording_ended():          # the writer writes a second after the start
+                if client.get("/api/record").json()["recording"] is False:
+                    return True
+                run()
+                return False
+            assert wait_for(recording_ended, 60, 0.02)
+            assert not (tmp_path / file).exists()      # now, not when the server quits
+            assert wait_for(run, 60, 0.02)             # the failure is told at a tick
+            assert [m for _, _, _, m in net.log if "No space" in m] == [
+                f"writing the recording {tmp_path / file} failed (No space left on "
+                f"device); it holds no ticks (the file is removed); the run stops"]
+    finally:
+        net.close()
