@@ -232,8 +232,12 @@ def _save_state(net, opts) -> bool:
     from .kernel.state import StateError
     try:
         net.save_state(_state_file(opts.save_state))
-    except (StateError, OSError) as e:
-        print(f"ikaros: error: cannot save the state: {getattr(e, 'strerror', None) or e}",
+    except StateError as e:
+        print(f"ikaros: error: cannot save the state: {e}", file=sys.stderr)
+        return False
+    except OSError as e:
+        where = f" to {e.filename}" if e.filename else ""
+        print(f"ikaros: error: cannot save the state{where}: {e.strerror or e}",
               file=sys.stderr)
         return False
     return True
@@ -382,6 +386,7 @@ def _main(argv: list[str]) -> int:
         except argparse.ArgumentTypeError as e:
             p.error(f"user_data: {e}")
     folders = [os.path.dirname(os.path.abspath(model))] if model else []
+    net = None
     try:
         if opts.modules_doc is not None:
             from .docgen import module_reference
@@ -503,10 +508,16 @@ def _main(argv: list[str]) -> int:
             traceback.print_exc()
         return EXIT_ERROR
     except RunError as e:
-        print(f"ikaros: run stopped: {e}", file=sys.stderr)
+        if not e.printed:           # (a module's fatal error is in the log's lines)
+            print(f"ikaros: run stopped: {e}", file=sys.stderr)
         if opts.verbose:
             traceback.print_exc()
         return EXIT_ERROR
     except KeyboardInterrupt:
-        print("ikaros: interrupted", file=sys.stderr)
+        if net is not None and net.stop_reason and net.stop_reason[0] == FATAL_ERROR:
+            if not net.stop_printed:        # the run had failed before the Ctrl-C came
+                print(f"ikaros: run stopped: {net.stop_reason[1]}\n", end="",
+                      file=sys.stderr)
+            return EXIT_ERROR
+        print("ikaros: interrupted\n", end="", file=sys.stderr)    # (one write)
         return EXIT_OK

@@ -34,4 +34,9 @@ class ModelError(Exception):
 
 
 class RunError(Exception):
-    """A run stopped because of a module's fatal error or exception."""
+    """A run stopped because of a module's fatal error or exception. ``printed``: the
+    network's log has printed the message already (the command line does not repeat it)."""
+
+    def __init__(self, message: str, printed: bool = False):
+        super().__init__(message)
+        self.printed = printed

@@ -69,8 +69,8 @@ def _arm(grace: float) -> None:
 
 
 def _give_up(grace: float) -> None:
-    print(f"ikaros: interrupted; forced to exit (not done {grace:g} s after Ctrl-C)",
-          file=sys.stderr)
+    print(f"ikaros: interrupted; forced to exit (not done {grace:g} s after Ctrl-C)\n",
+          end="", file=sys.stderr)        # one write: the main thread may be printing
     force_exit()
 
 

@@ -53,13 +53,15 @@ def test_fatal_error_stops_after_the_tick_calls_stop_and_exits_1():
     r = ikaros("-b", "-s", "10", os.path.join(MODELS, "fail.ikg"))
     assert r.returncode == 1
     assert r.stdout.splitlines() == ["F: stopped at tick 2"]
-    assert "fatal error: F: broken at tick 2" in r.stderr
+    assert r.stderr == "fatal error: F: broken at tick 2\n"          # once
+    r = ikaros("-b", "-q", "-s", "10", os.path.join(MODELS, "fail.ikg"))
+    assert (r.returncode, r.stderr) == (1, "fatal error: F: broken at tick 2\n")
 
 
 def test_exception_in_tick_is_a_fatal_error_naming_the_module():
     r = ikaros("-b", "-s", "10", os.path.join(MODELS, "fail.ikg"), "how=raise")
     assert r.returncode == 1
-    assert "fatal error: F: RuntimeError: boom" in r.stderr
+    assert r.stderr == "fatal error: F: RuntimeError: boom\n"
 
 
 def test_end_of_file_stops_cleanly_with_exit_0():

@@ -1,5 +1,9 @@
 """ikaros -W / -L: the state saved at the end of a run and loaded after init."""
 import json
+import os
+import resource
+import subprocess
+import sys
 
 from ikaros import cli
 
@@ -42,7 +46,24 @@ def test_state_files_that_cannot_be_read_or_written_exit_1(tmp_path, capsys):
     model = _model(tmp_path)
     assert cli.main(["-b", f"-W{tmp_path}/no/such/folder.state", model]) == 1
     err = capsys.readouterr().err
-    assert "ikaros: error: cannot save the state: No such file or directory" in err
+    assert f"ikaros: error: cannot save the state to {tmp_path}/no/such/folder.state: No " \
+           f"such file or directory" in err
     assert cli.main(["-b", "--load-state", str(tmp_path / "none.state"), model]) == 1
     err = capsys.readouterr().err
     assert "ikaros: error: cannot load the state: cannot read none.state: No such file" in err
+
+
+def test_a_state_that_does_not_fit_on_the_disk_is_named_and_leaves_no_file(tmp_path):
+    """A file-size limit stands in for a full disk (the write fails the same way)."""
+    def limit():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (100, 100))     # the state is ~400 bytes
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    env = dict(os.environ, PYTHONPATH=root + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    state = tmp_path / "out.state"
+    done = subprocess.run([sys.executable, "-m", "ikaros", "-b", "-q", "-W", str(state),
+                           _model(tmp_path)], env=env, preexec_fn=limit,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1
+    assert done.stderr == f"ikaros: error: cannot save the state to {state}: File too " \
+                          f"large\n"
+    assert sorted(os.listdir(tmp_path)) == ["ramp.ikg"]       # no out.state, no .tmp

@@ -150,6 +150,7 @@ class McapRecorder:
                         self._writer.add_message(channel, stamp, data, stamp, int(tick))
                     self.ticks_recorded += 1
             except Exception as e:      # noqa: BLE001  (a full disk): the run is told
+                remove_recording(self.filename)     # now: a cut MCAP file is no use
                 self._error = e
                 self._tap.request()
 

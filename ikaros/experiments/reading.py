@@ -2,11 +2,13 @@
 from __future__ import annotations
 
 import fnmatch
-import json
+import os
+import warnings
 
 import numpy as np
 
-from .recording import FORMAT, h5py_module
+from ..modules.io._recordingfile import (TIME_SERIES, RecordingFile, check_time_series)
+from .recording import h5py_module
 from .signals import Signal
 
 
@@ -43,24 +45,12 @@ def to_dataset(signals: list[Signal], rows: np.ndarray, ticks: np.ndarray,
     return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
-def _open(h5py, filename: str):
-    """Open a recording, also one still being written or cut off (SWMR)."""
-    try:
-        return h5py.File(filename, "r")
-    except OSError as first:
-        try:
-            return h5py.File(filename, "r", swmr=True)
-        except OSError:
-            raise OSError(f"cannot read the recording {filename}: {first}") from None
-
-
-def readable_rows(f) -> int:
-    """The rows of an open recording file that were written whole: up to its ``stored``
-    count (rows past it may be half written, by a full disk or a kill; a file of format
-    version 1 has no count)."""
-    n = min(f["tick"].shape[0], f["time"].shape[0], f["real_time"].shape[0],
-            f["data"].shape[0])
-    return min(n, int(f["stored"][0])) if "stored" in f else n
+def open_file(filename: str) -> RecordingFile:
+    """A recording open for reading and checked (modules/io/_recordingfile.py): a
+    damaged one is refused with a RecordingError (an OSError) that names the file and the
+    damage, or read up to its last whole chunk (``damage`` says so)."""
+    h5py_module()
+    return RecordingFile(os.path.abspath(filename))
 
 
 def open_recording(filename: str, only: list[str] | str | None = None):
@@ -70,43 +60,47 @@ def open_recording(filename: str, only: list[str] | str | None = None):
     written, or cut off by a crash or a full disk, is read up to its last flushed row
     (never a row that was not written).
 
+    A damaged file (cut short, overwritten) is refused with an OSError naming the file and
+    the damage, or, when only its end is missing, read up to its last whole chunk: then
+    ``attrs["damage"]`` says what is missing, and a RecordingWarning says it too. Values
+    that fail the file's checks are never returned.
+
     The attributes hold the model file's name and text (``model``), the parameters at the
     start and their changes while running (``parameter_changes``: (tick, address, value)),
     the seeds, the command line, the ikaros version, ``every`` and ``finished``."""
-    h5py = h5py_module()
-    with _open(h5py, filename) as f:
-        if f.attrs.get("format") != FORMAT:
-            raise ValueError(f"{filename} is not an ikaros recording")
-        signals = [Signal(name, tuple(shape), start, stop)
-                   for name, shape, start, stop in json.loads(f.attrs["signals"])]
+    with open_file(filename) as f:
+        signals = [Signal(*s) for s in f.signals]
         if only is not None:
             patterns = [only] if isinstance(only, str) else list(only)
             signals = [s for s in signals
                        if any(fnmatch.fnmatchcase(s.name, p) for p in patterns)]
-        n = readable_rows(f)
+        n = f.rows
         if signals:
             first = min(s.start for s in signals)
             last = max(s.stop for s in signals)
-            rows = f["data"][:n, first:last]
+            rows = f.read("data", 0, n, slice(first, last))
             signals = [Signal(s.name, s.shape, s.start - first, s.stop - first)
                        for s in signals]
         else:
             rows = np.zeros((n, 0), np.float32)
+        ticks, times, real_times = (f.read(name, 0, n) for name in TIME_SERIES)
+        check_time_series(f, ticks, times, real_times)
         attrs = _attributes(f)
-        return to_dataset(signals, rows, f["tick"][:n], f["time"][:n], attrs,
-                          f["real_time"][:n])
+        if f.damage:
+            warnings.warn(f.damage, RecordingWarning, stacklevel=2)
+            attrs["damage"] = f.damage
+        return to_dataset(signals, rows, ticks, times, attrs, real_times)
 
 
-def _attributes(f) -> dict:
-    a = f.attrs
-    model = f["model"][()]
-    changes = [(int(c["tick"]), c["path"].decode(), c["value"].decode())
-               for c in f["parameter_changes"][:]]
-    return {"model_file": str(a["model_file"]), "top_group": str(a["top_group"]),
-            "model": model.decode() if isinstance(model, bytes) else str(model),
-            "parameters": json.loads(a["parameters"]), "seeds": json.loads(a["seeds"]),
-            "parameter_changes": changes,
-            "command_line": json.loads(a["command_line"]),
-            "ikaros_version": str(a["ikaros_version"]), "created": str(a["created"]),
-            "every": int(a["every"]), "tick_duration": float(a["tick_duration"]),
-            "finished": bool(a["finished"])}
+class RecordingWarning(UserWarning):
+    """A recording read only in part (it is damaged): the message says what is missing."""
+
+
+def _attributes(f: RecordingFile) -> dict:
+    h = f.header
+    return {"model_file": h["model_file"], "top_group": h["top_group"], "model": f.model,
+            "parameters": h["parameters"], "seeds": h["seeds"],
+            "parameter_changes": f.parameter_changes(), "command_line": h["command_line"],
+            "ikaros_version": h["ikaros_version"], "created": h["created"],
+            "every": int(h["every"]), "tick_duration": float(h["tick_duration"]),
+            "finished": bool(h["finished"])}

@@ -34,6 +34,7 @@ from datetime import datetime, timezone
 import numpy as np
 
 from .. import priority
+from ..modules.io._recordingfile import FORMAT, FORMAT_VERSION, stored_count, write_text
 from ..kernel import switching
 from ..kernel.taps import ROW, SIGNAL, TICK
 from ..module import FATAL_ERROR, WARNING
@@ -43,8 +44,6 @@ from .signals import model_text, module_parameters, seeds, select_outputs
 from .writefaults import (check_on_error, failure_text, probe_room, reason,
                           remove_recording)
 
-FORMAT = "ikaros-recording"
-FORMAT_VERSION = 2             # 2: the dataset "stored" says how many rows may be read
 # HDF5 takes about 0.1 ms (holding the GIL) per chunk written and per dataset write,
 # whatever its size: big chunks, written a block of them at a time, keep that small per tick
 CHUNK_BYTES = 16 << 20        # at most this many bytes of values per chunk
@@ -161,23 +160,23 @@ class Recorder:
                 from None
 
     def _write_header(self, command_line: list[str] | None) -> None:
+        """The attributes (numbers, and the format's name) and the header's text (JSON)
+        and the model's, as datasets with checksums."""
         net, f = self.net, self._file
         parameters = module_parameters(net)
-        f.attrs.update({
-            "format": FORMAT, "format_version": FORMAT_VERSION,
+        f.attrs.update({"format": np.bytes_(FORMAT), "format_version": FORMAT_VERSION,
+                        "every": self.every, "tick_duration": net.clock.tick_duration,
+                        "first_tick": net.tick, "finished": False,
+                        # set when closed: in place, the file's end is not rewritten
+                        "ticks_recorded": 0})
+        write_text(f, "header", json.dumps({
             "ikaros_version": __version__, "model_file": net.filename or "",
             "top_group": net.top.name,
-            "command_line": json.dumps(command_line if command_line is not None
-                                       else sys.argv),
+            "command_line": command_line if command_line is not None else sys.argv,
             "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
-            "every": self.every, "tick_duration": net.clock.tick_duration,
-            "first_tick": net.tick,
-            "signals": json.dumps([[s.name, list(s.shape), s.start, s.stop]
-                                   for s in self.signals]),
-            "parameters": json.dumps(parameters), "seeds": json.dumps(seeds(parameters)),
-            "finished": False,
-        })
-        f.create_dataset("model", data=model_text(net))
+            "signals": [[s.name, list(s.shape), s.start, s.stop] for s in self.signals],
+            "parameters": parameters, "seeds": seeds(parameters)}))
+        write_text(f, "model", model_text(net))
 
     def _create_datasets(self, columns: int) -> None:
         f, T = self._file, self.chunk_ticks
@@ -186,13 +185,13 @@ class Recorder:
             chunks=(T, max(columns, 1)), compression="gzip",
             compression_opts=COMPRESSION_LEVEL, shuffle=True)
         self._times = {name: f.create_dataset(name, (0,), maxshape=(None,), dtype=dtype,
-                                              chunks=(T,))
+                                              chunks=(T,), fletcher32=True)
                        for name, dtype in (("tick", "<i8"), ("time", "<f8"),
                                            ("real_time", "<f8"))}
         self._changes = f.create_dataset("parameter_changes", (0,), maxshape=(None,),
                                          dtype=CHANGE_DTYPE, chunks=(16,),
                                          compression="gzip")
-        self._stored = f.create_dataset("stored", data=np.zeros(1, np.int64))
+        self._stored = f.create_dataset("stored", data=stored_count(0))
 
     # --- the kernel thread ---------------------------------------------------------------
     def _start_block(self) -> None:
@@ -281,7 +280,8 @@ class Recorder:
 
     @property
     def closed(self) -> bool:
-        """Whether the recording has ended."""
+        """Whether the recording has been closed (``failure`` says whether writing it
+        failed before)."""
         return self._closed
 
     def _close_with_network(self) -> None:
@@ -319,8 +319,8 @@ class Recorder:
         if self._error is None:
             try:
                 with h5py_module().File(self.filename, "a") as f:
-                    f.attrs["finished"] = complete
-                    f.attrs["ticks_recorded"] = self.stored
+                    f.attrs.modify("finished", complete)      # (in place)
+                    f.attrs.modify("ticks_recorded", self.stored)
             except Exception as e:      # noqa: BLE001: reported below
                 self._error = e
         if self._error is not None:     # what was flushed stays readable, not "finished"
@@ -401,7 +401,7 @@ class Recorder:
         end, last_tick = self._written
         self._file.flush()
         if end > self.stored:
-            self._stored[0] = end
+            self._stored[:] = stored_count(end)
             self._file.flush()
             self.stored, self._last_tick = end, last_tick
         self._file_flushed = time.perf_counter()
@@ -416,8 +416,11 @@ class Recorder:
 
     def _fail(self, error: BaseException) -> None:
         """Writing failed: nothing more goes into the file (it keeps the rows counted in
-        ``stored``); the kernel thread hears of it at its next call back."""
+        ``stored``; one that holds none is removed now, not at close); the kernel thread
+        hears of it at its next call back."""
         _detach(self._file)
+        if self.stored == 0:
+            remove_recording(self.filename)
         self._error = error
         self._tap.request()
 

@@ -2,11 +2,9 @@
 Replay of its outputs (``ikaros --replay run.h5``)."""
 from __future__ import annotations
 
-import json
 import os
 
-from .reading import _open
-from .recording import FORMAT, h5py_module
+from .reading import open_file
 
 DROPPED = ("connection", "input")       # nothing is computed, so nothing flows in
 
@@ -21,16 +19,12 @@ def replay_network(filename: str, quiet: bool = True):
     from ..kernel.builder import Builder
     from ..language.diagnostics import Diagnostics
     from ..language.reader import read_file
-    h5py = h5py_module()
     path = os.path.abspath(filename)
-    with _open(h5py, path) as f:
-        if f.attrs.get("format") != FORMAT:
-            raise ValueError(f"{filename} is not an ikaros recording")
-        model_file = str(f.attrs["model_file"]) or os.path.join(os.path.dirname(path),
-                                                                 "recorded.ikg")
-        model = f["model"][()]
-        model = model.decode() if isinstance(model, bytes) else str(model)
-        modules = {name.rsplit(".", 1)[0] for name, *_ in json.loads(f.attrs["signals"])}
+    with open_file(path) as f:
+        model_file = f.header["model_file"] or os.path.join(os.path.dirname(path),
+                                                             "recorded.ikg")
+        model = f.model
+        modules = {name.rsplit(".", 1)[0] for name, *_ in f.signals}
     tree = read_file(model_file, model, root_tag="group")
     tree.attrs.pop("stop", None)
     _replace(tree, "", modules, path)

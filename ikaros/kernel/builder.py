@@ -13,7 +13,8 @@ from ..interrupt import fault_text, is_interrupt, module_faults
 from ..language.diagnostics import Diagnostics, collecting, warn_at
 from ..language.dialect import DIALECTS, read_dialect
 from ..language.node import INCLUDE, Node
-from ..limits import LimitError, Limits, applied, check_shape, current as current_limits
+from ..limits import (LimitError, Limits, applied, check_module_count, check_shape,
+                      current as current_limits, max_modules)
 from ..language.reader import read_file
 from ..language.values import (ValueError_, parse_bool, parse_delays, parse_int,
                                split_selectors, value_text)
@@ -124,6 +125,9 @@ class Builder:
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
+        # so many modules that building them would pass the memory limit: refused first
+        _check_module_count(self.model, _count_modules(self.model))
+        self._most_modules = max_modules()
         attrs = dict(self.model.attrs)
         if "user_data" in attrs:
             warn_at(self.model, "user_data in a model file is ignored (a model may not "
@@ -255,6 +259,8 @@ class Builder:
             merged, file = self._merge_file(node, entry.group, files)
             merged.attrs["name"] = name
             return self._group(merged, group, name, merged.attrs, files + (file,))
+        if len(self.instances) >= self._most_modules:        # (group files add modules)
+            _check_module_count(node, len(self.instances) + 1, growing=True)
         inst = ModuleInstance(name, node, group, entry, len(self.instances))
         self.instances.append(inst)
         return inst
@@ -931,6 +937,24 @@ def _confined(node: Node, name: str, what: str) -> None:
             confinement.check(name, os.path.dirname(node.file or "."), what)
         except AccessRefused as e:
             raise node.error(str(e)) from None
+
+
+def _count_modules(tree: Node) -> int:
+    """The <module> elements of a model's own files (group files used as classes add
+    theirs as they are built)."""
+    count, pending = 0, [tree]
+    while pending:
+        node = pending.pop()
+        count += node.tag == "module"
+        pending.extend(node.children)
+    return count
+
+
+def _check_module_count(node: Node, count: int, growing: bool = False) -> None:
+    try:
+        check_module_count(count, growing)
+    except LimitError as e:
+        raise node.error(str(e)) from None
 
 
 def _check_depth(node: Node, parent: Group | None) -> None:

@@ -5,8 +5,10 @@ from __future__ import annotations
 import hashlib
 import importlib
 import importlib.util
+import io
 import os
 import sys
+import tokenize
 from dataclasses import dataclass
 from importlib.metadata import entry_points
 
@@ -325,12 +327,19 @@ def _is_composite(ikc: str) -> bool:
 def _defines_class(path: str, name: str) -> bool:
     """Whether a user folder's Python file defines a Module class called ``name`` (a cheap
     text check, so helper scripts and scripts for other programs beside a model are not
-    imported: a module of this project uses ikaros)."""
+    imported: a module of this project uses ikaros). The file is read as Python reads it
+    (its coding declaration, else UTF-8); one that cannot be read so is looked at as bytes
+    (importing it then says what is wrong with it, naming it)."""
     try:
-        with open(path, encoding="utf-8") as f:
-            text = f.read()
-    except (OSError, UnicodeDecodeError):
+        with open(path, "rb") as f:
+            raw = f.read()
+    except OSError:
         return False
+    try:
+        encoding, _ = tokenize.detect_encoding(io.BytesIO(raw).readline)
+        text = raw.decode(encoding)
+    except (SyntaxError, UnicodeDecodeError):
+        return f"class {name}(".encode() in raw and b"ikaros" in raw
     return f"class {name}(" in text and "ikaros" in text
 
 

@@ -30,7 +30,7 @@ from .dynamic import DynamicRing, delayed_copy
 from .execution import AsyncModule, Plan, module_tick
 from .gating import gated
 from .fusion import fuse
-from .portguard import port_attributes
+from .portguard import bound_ports, port_attributes, replaced_in_init
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .firsttick import FIRST_TICK, empty_history
 from .limits import check_memory as _check_memory
@@ -99,6 +99,7 @@ class Network:
         self.timing = Timing()
         self._controller: Controller | None = None
         self.stop_reason: tuple[int, str] | None = None
+        self.stop_printed = False           # whether the stop reason has been printed
         self._stopped = False
         self._buffers = builder.buffers
         self.modules = {inst.path: inst for inst in order}
@@ -472,8 +473,13 @@ class Network:
         if job is not None:
             job.take_inputs()
         error = None
+        ports = dict(port_attributes([inst], self._buffers))[inst]
+        bound = bound_ports(inst.module, ports)
         try:
             inst.module.init()
+            replaced = replaced_in_init(inst.module, ports, bound)
+            if replaced is not None:
+                raise replaced
             if job is not None:
                 job.publish_init()
         except module_faults() as e:
@@ -544,6 +550,7 @@ class Network:
                 (level == FATAL_ERROR and self.stop_reason[0] != FATAL_ERROR)):
             self.stop_reason = (level, message)      # a fatal error wins over a clean end
             self._stop_where = where
+            self.stop_printed = level <= self.log_level
         if level <= self.log_level:
             text = f"{where}: {message}" if where else message
             # one write per line, so that lines printed by other threads are not mixed in
@@ -562,6 +569,7 @@ class Network:
         if self.stop_reason is None or self.stop_reason[0] != FATAL_ERROR:
             self._stop_where = where
             self.stop_reason = (FATAL_ERROR, reason)
+            self.stop_printed = False
 
     # --- running -------------------------------------------------------------------------
     @property
@@ -607,7 +615,8 @@ class Network:
         level, message = self.stop_reason or (TERMINATE, "closed")
         if level == FATAL_ERROR:
             where = getattr(self, "_stop_where", "")
-            raise RunError(f"{where}: {message}" if where else message)
+            raise RunError(f"{where}: {message}" if where else message,
+                           printed=self.stop_printed)
 
     def _stop_modules(self, modules: list[ModuleInstance]) -> None:
         """Call stop() of each module once. A stop() that fails is a fatal error (the run

@@ -22,14 +22,31 @@ class ReplacedPort(Exception):
     """A module's tick assigned to one of its ports instead of writing into it."""
 
 
-def _message(attr: str, is_output: bool) -> str:
+def _message(attr: str, is_output: bool, when: str = "the tick") -> str:
     if is_output:
-        return (f"the tick replaced its output {attr} (self.{attr} = ...), so the value "
+        return (f"{when} replaced its output {attr} (self.{attr} = ...), so the value "
                 f"never reaches the output: write into the array instead, "
                 f"self.{attr}[:] = ...")
-    return (f"the tick assigned to its input {attr} (self.{attr} = ...): a module never "
+    return (f"{when} assigned to its input {attr} (self.{attr} = ...): a module never "
             f"replaces or writes its inputs; read them (or work on a copy, "
             f"x = self.{attr}.copy())")
+
+
+def bound_ports(module, ports: dict) -> dict:
+    """The objects bound to a module's port attributes now (``ports``: {attribute:
+    is_output}, as port_attributes gives)."""
+    attributes = vars(module)
+    return {attr: attributes.get(attr) for attr in ports}
+
+
+def replaced_in_init(module, ports: dict, before: dict) -> ReplacedPort | None:
+    """A ReplacedPort when ``init`` bound a port attribute to another object than the
+    kernel's array it held before (``before``: bound_ports then)."""
+    attributes = vars(module)
+    for attr, is_output in ports.items():
+        if before[attr] is not None and attributes.get(attr) is not before[attr]:
+            return ReplacedPort(_message(attr, is_output, "init"))
+    return None
 
 
 def port_attributes(schedule: list, buffers: dict) -> list:

@@ -32,6 +32,7 @@ is left as it was.
 """
 from __future__ import annotations
 
+import contextlib
 import datetime
 import json
 import os
@@ -269,9 +270,14 @@ def save(net, filename: str, scope: str | None = None) -> dict:
             "item_count": len(items), "items": items}
     text = json.dumps(data, allow_nan=False)
     temporary = filename + ".tmp"
-    with open(temporary, "w", encoding="utf-8") as f:
-        f.write(text)
-    os.replace(temporary, filename)
+    try:
+        with open(temporary, "w", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(temporary, filename)
+    except OSError as e:        # a full disk: no half-written file is left, the error names it
+        with contextlib.suppress(OSError):
+            os.remove(temporary)
+        raise OSError(e.errno, e.strerror or str(e), filename) from None
     return {k: v for k, v in data.items() if k != "items"}
 
 

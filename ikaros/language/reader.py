@@ -156,6 +156,18 @@ def _parse(text: str, path: str, stack: tuple[str, ...] | None) -> list[Node]:
     return builder.top
 
 
+class IncludeError(ModelError):
+    """An error found through an include, told once where it is (an include above it
+    passes it on as it is, not wrapped again)."""
+
+
+def _chain(stack: tuple[str, ...]) -> str:
+    """" (through top.ikg > a.ikg > b.ikg)" when an include is nested, else ""."""
+    if len(stack) < 2:
+        return ""
+    return f" (through {' > '.join(os.path.basename(p) for p in stack)})"
+
+
 def _include(file: str | None, path: str, line: int, stack: tuple[str, ...]) -> Node:
     node = Node(INCLUDE, {"file": file or ""}, [], path, line)
     if not file:
@@ -168,18 +180,22 @@ def _include(file: str | None, path: str, line: int, stack: tuple[str, ...]) -> 
             raise ModelError(str(e), path, line) from None
     target = os.path.normpath(os.path.join(os.path.dirname(path), file))
     if target in stack:
-        raise ModelError(f'<?include file="{file}"?> includes itself', path, line)
+        raise IncludeError(f'<?include file="{file}"?> includes itself{_chain(stack)}',
+                           path, line)
     if len(stack) >= MAX_INCLUDE_DEPTH:
-        raise ModelError(f"includes nest deeper than {MAX_INCLUDE_DEPTH} levels", path, line)
+        raise IncludeError(f"includes nest deeper than {MAX_INCLUDE_DEPTH} levels"
+                           f"{_chain(stack)}", path, line)
     if not os.path.isfile(target):
-        raise ModelError(f'included file "{file}" not found', path, line)
+        raise IncludeError(f'included file "{file}" not found{_chain(stack)}', path, line)
     try:
         items = read_items(target, stack=stack + (target,))
+    except IncludeError:
+        raise                           # told where it is, once
     except ModelError as e:
         if e.filename != target:
             raise                       # the error of a file that one includes
-        raise ModelError(f'included file "{file}" is not model text: {e}', path,
-                         line) from None
+        raise IncludeError(f'included file "{file}" is not model text{_chain(stack)}: {e}',
+                           path, line) from None
     node.children.extend(items)
     return node
 

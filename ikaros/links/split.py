@@ -122,6 +122,7 @@ class SplitNetwork(PartNetwork):
         self.workers = [WorkerLink(g, where, *crossings(runs, groups, g))
                         for g, where in groups.items()]
         self._hold = SignalHold()           # link messages whole through a Ctrl-C
+        self._closing = False               # close() called: the run is being ended
         for worker in self.workers:
             worker.hold = self._hold
         self._source_text = builder._text
@@ -173,6 +174,8 @@ class SplitNetwork(PartNetwork):
             try:
                 log = worker.receive_tick()
             except LinkError as e:
+                if self._closing:       # ended (Ctrl-C): a worker gone is no news
+                    continue
                 log = [(FATAL_ERROR, worker.group.path, str(e))]
             self._relay(log, tick)
 
@@ -212,6 +215,10 @@ class SplitNetwork(PartNetwork):
             super().command(path, name, x, y, value)
         else:
             worker.requests.append(["command", path, name, x, y, _plain(value)])
+
+    def close(self) -> None:
+        self._closing = True
+        super().close()
 
     def _end(self) -> None:
         try:

@@ -25,6 +25,7 @@ POLL_SECONDS = 0.5          # how often a wait checks that the peer is still the
 STALL_TICKS = 50            # a worker silent this many tick durations is lost (stall_ticks)
 MIN_STALL_SECONDS = 0.2     # but never less (a loaded machine's scheduling)
 END_SECONDS = 1.5           # for a lost worker's process to end after SIGTERM (then SIGKILL)
+STOP_SECONDS = 2.0          # for a worker to acknowledge the end of its session
 
 
 def stall_seconds(group: Group, tick_duration: float) -> float:
@@ -225,11 +226,14 @@ class WorkerLink:
     def stop(self) -> None:
         """End the worker's session and close the link (once)."""
         if self.socket is not None:
-            if not self.lost:
+            if not self.lost and not self._gone():
                 with self.hold:
                     self.socket.send_multipart(encode({"type": "stop"}, key=self.key))
-                if self.serving:
-                    self.socket.poll(2000)         # its acknowledgement, once stopped
+                if self.serving:                    # its acknowledgement, once stopped
+                    deadline = time.monotonic() + STOP_SECONDS
+                    while not self.socket.poll(POLL_SECONDS * 100) and not self._gone() \
+                            and time.monotonic() < deadline:
+                        pass
             self.socket.disable_monitor()
             self.monitor.close(0)
             self.socket.close(0)
@@ -243,6 +247,12 @@ class WorkerLink:
                 self.process.kill()
                 self.process.wait()
             self.process = None
+
+    def _gone(self) -> bool:
+        """Whether the worker is known to be gone: its process here has ended, or the
+        connection was lost (say it gave up on this process while it was stopped)."""
+        return (self.process is not None and self.process.poll() is not None) or \
+            bool(self.monitor.poll(0))
 
     def _end_process(self) -> None:
         """A worker started here that no longer answers (stopped, hung), or is still

@@ -1,12 +1,14 @@
 """Guards on what clients send: the size of request bodies and the nesting of JSON, both
 checked before anything is decoded (so no request can exhaust memory or the stack); and
-quiet logs for WebSockets refused on purpose."""
+quiet logs for WebSockets refused on purpose and for clients that go away mid-request."""
 from __future__ import annotations
 
 import logging
 import re
+import sys
 
 import numpy as np
+from starlette.responses import Response
 
 DEFAULT_MAX_BODY = 4 << 20     # bytes of one request body or WebSocket message
 MAX_JSON_DEPTH = 512           # nesting of arrays and objects (a model tree needs ~2 per level)
@@ -108,3 +110,12 @@ def quiet_refused_websockets() -> None:
     log = logging.getLogger("uvicorn.error")
     if not any(isinstance(f, _RefusedWebSocket) for f in log.filters):
         log.addFilter(_RefusedWebSocket())
+
+
+async def client_gone(request, error) -> Response:
+    """A client that went away before sending the whole body its Content-Length promised
+    (starlette's ClientDisconnect): one line in the log, not a traceback; the answer goes
+    nowhere."""
+    print(f"ikaros: web UI: {request.method} {request.url.path}: the client went away "
+          f"before sending the whole request", file=sys.stderr, flush=True)
+    return Response(status_code=400)

@@ -188,6 +188,10 @@ def openapi() -> dict:
                            {"type": "object", "properties": {
                                "file": {"type": "string"}, "folder": {"type": "string"},
                                "tree": _NODE,
+                               "version": {"type": ["string", "null"],
+                                           "description": "the version of the model's "
+                                                          "file (null: not saved yet), "
+                                                          "for /api/save"},
                                "error": {"$ref": "#/components/schemas/ModelError",
                                          "description": "only while the model the "
                                                         "server started with fails to "
@@ -204,12 +208,18 @@ def openapi() -> dict:
                                                                   "Network"}}}),
         "/api/save": _editor_post(
             "Write the tree to the model's file, or save as a plain .ikg name in the models "
-            "folder (does not rebuild)",
+            "folder (does not rebuild); with a version, 409 (and the file's version now) "
+            "when the file is at another one: another editor saved it since",
             {"type": "object", "required": ["tree"], "additionalProperties": False,
              "properties": {"tree": _ROOT, "filename": {"type": "string",
-                                                        "example": "copy.ikg"}}},
+                                                        "example": "copy.ikg"},
+                            "version": {"type": ["string", "null"],
+                                        "description": "the version of the file the "
+                                                       "edits were made from "
+                                                       "(/api/model), null for none"}}},
             {"type": "object", "properties": {"ok": {"type": "boolean"},
-                                              "file": {"type": "string"}}}),
+                                              "file": {"type": "string"},
+                                              "version": {"type": ["string", "null"]}}}),
         "/api/files": _get("The .ikg models in the models folder",
                            {"type": "object", "properties": {
                                "folder": {"type": "string"},

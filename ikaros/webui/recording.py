@@ -18,6 +18,7 @@ import platformdirs
 from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
 
+from ..experiments.reading import open_file
 from ..experiments.recorders import open_recorder
 from ..experiments.signals import select_outputs
 from .requests import ApiError, Json, _body, _query
@@ -60,7 +61,8 @@ class RecordButton:
 
     def _answer(self, only: list[str] | None = None):
         recorder = self.recorder
-        on = recorder is not None and not recorder.closed and recorder.net is self.ui.net
+        on = recorder is not None and not recorder.closed and recorder.failure is None \
+            and recorder.net is self.ui.net
         folder = os.path.dirname(recorder.filename) if on else self._folder()
         answer = {"recording": on, "file": os.path.basename(recorder.filename) if on else None,
                   "folder": folder}
@@ -163,11 +165,8 @@ class ReplayBar:
 
     def _recorded_ticks(self, path: str) -> list:
         if self._ticks is None or self._ticks[0] != path:
-            from ..experiments.reading import _open, readable_rows
-            from ..experiments.recording import h5py_module
-            with _open(h5py_module(), path) as f:
-                n = readable_rows(f)
-                self._ticks = (path, [int(t) for t in f["tick"][:n]])
+            with open_file(path) as f:
+                self._ticks = (path, [int(t) for t in f.read("tick", 0, f.rows)])
         return self._ticks[1]
 
     def _replays(self) -> list:

@@ -25,7 +25,7 @@ import numpy as np
 from starlette.applications import Starlette
 from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException
-from starlette.requests import Request
+from starlette.requests import ClientDisconnect, Request
 from starlette.responses import FileResponse
 from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
@@ -38,9 +38,8 @@ from ..kernel.builder import Builder
 from ..kernel.carry import take_over
 from ..kernel.classes import classes as find_classes
 from ..kernel.control import PAUSE, STATES, STEP, STOP
-from ..language.writer import write_file
 from ..module import Module
-from . import compat, editing, settings
+from . import compat, editing, saving, settings
 from . import state as run_tools
 from .builds import DEFAULT_BUILD_TIMEOUT, BuildTimeout, run_build
 from .confine import AccessRefused, check_parameter_value, editor_confinement
@@ -48,7 +47,7 @@ from .encoding import FORMATS, IMAGE_FORMATS, image_shape_ok
 from .history import MAX_POINTS, MAX_TICKS as MAX_WINDOW
 from .rates import RUNNING, TickRate
 from .recording import RecordButton, ReplayBar
-from .guards import (DEFAULT_MAX_BODY, BodyLimit, BodyTooLarge, Framing,
+from .guards import (DEFAULT_MAX_BODY, BodyLimit, BodyTooLarge, Framing, client_gone,
                      quiet_refused_websockets)
 from .openapi import openapi
 from .requests import ApiError, Json, _body, _error, _loads, _query
@@ -497,10 +496,11 @@ class WebUI:
         if self.failure:
             f = self.failure
             return {"file": f["file"], "folder": self._folder(), "tree": f["tree"],
+                    "version": saving.file_version(net.filename),
                     "error": {k: f[k] for k in ("error", "node", "path")}}
         tree = editing.tree_json(net.model, os.path.dirname(os.path.abspath(net.filename)))
         return {"file": os.path.basename(net.filename or ""), "folder": self._folder(),
-                "tree": tree}
+                "tree": tree, "version": saving.file_version(net.filename)}
 
     async def model(self, request: Request):
         _query(request)
@@ -533,7 +533,7 @@ class WebUI:
         return Json({"ok": True, "network": await self._call(network_json, self.net)})
 
     async def save(self, request: Request):
-        body = await _body(request, ("tree",), ("filename",))
+        body = await _body(request, ("tree",), ("filename", "version"))
         name = body.get("filename")
         if name is None:
             path = self.net.filename
@@ -541,9 +541,17 @@ class WebUI:
             if not isinstance(name, str):
                 raise ApiError(400, '"filename" must be a string')
             path = self._file(name)
+        version = body.get("version")
+        if version is not None and not isinstance(version, str):
+            raise ApiError(400, '"version" must be a string or null')
         tree = self._tree(body, path, reread=False)
         try:                    # the text is made before a file is: nothing half-written
-            await run_in_threadpool(write_file, tree, path)
+            version = await run_in_threadpool(saving.save, tree, path, version,
+                                              "version" in body)
+        except saving.SaveConflict as e:
+            return Json({"error": f"{os.path.basename(path)} was saved by another editor "
+                                  f"(or changed on disk) since these edits began",
+                         "version": e.version}, status_code=409)
         except ValueError as e:
             raise ApiError(400, f"the tree can not be written as XML: {e}") from None
         except OSError as e:
@@ -552,7 +560,7 @@ class WebUI:
         if path != self.net.filename:       # save as: the model's file is the new one now
             self.net.filename = path
             self._set_model_dir(os.path.dirname(path))
-        return Json({"ok": True, "file": os.path.basename(path)})
+        return Json({"ok": True, "file": os.path.basename(path), "version": version})
 
     def _file(self, name: str) -> str:
         try:
@@ -865,7 +873,7 @@ def create_app(net, token: str | None = None, static_dir: str | None = None, *,
 
     app = Starlette(routes=routes, exception_handlers={
         ApiError: api_error, HTTPException: http_error, BodyTooLarge: body_too_large,
-        Exception: server_error})
+        ClientDisconnect: client_gone, Exception: server_error})
     app.state.ui = ui
     app.add_middleware(BodyLimit, limit=max_body,
                        too_large=_error(413, str(BodyTooLarge(max_body))))

@@ -95,10 +95,8 @@ BUILD_ERRORS = {
 
 # Errors of the run (exit status 1): the lines on stderr.
 RUN_ERRORS = {
-    "exit_in_tick": ["fatal error: E: the module called sys.exit()",
-                     "ikaros: run stopped: E: the module called sys.exit()"],
-    "interrupt_in_tick": ["fatal error: E: the module raised KeyboardInterrupt",
-                          "ikaros: run stopped: E: the module raised KeyboardInterrupt"],
+    "exit_in_tick": ["fatal error: E: the module called sys.exit()"],
+    "interrupt_in_tick": ["fatal error: E: the module raised KeyboardInterrupt"],
     "stop_fails": ["fatal error: SF: stop failed: RuntimeError: stop broke"],
 }
 

@@ -115,3 +115,43 @@ def test_an_apply_ends_the_recording_of_the_network_it_replaces(tmp_path):
     ds = open_recording(str(tmp_path / file))
     assert ds.attrs["finished"] is True
     np.testing.assert_array_equal(ds["Counter.OUTPUT"].values[:, 0], np.arange(1, 11))
+
+
+def test_a_recording_whose_disk_fills_ends_at_once_and_its_empty_file_goes(tmp_path,
+                                                                          monkeypatch):
+    import errno
+    from ikaros.errors import RunError
+    from ikaros.experiments import recording
+    from ikaros.testing import wait_for
+
+    def full(*args):                       # the writer thread's writes fail, as on a full disk
+        raise OSError(errno.ENOSPC, "No space left on device")
+    monkeypatch.setattr(recording, "shuffled_deflate", full)
+    net = load_body(tmp_path, '<module class="Sweep" name="Counter" step="1" max="1e9"/>',
+                    user_data=str(tmp_path))
+    net.log_level = -1
+    try:
+        with TestClient(create_app(net, models_dir=str(tmp_path))) as client:
+            file = client.post("/api/record", json={"on": True}).json()["file"]
+            assert (tmp_path / file).exists()
+
+            def run():
+                if not net.stopped:
+                    try:
+                        net.run(ticks=5)
+                    except RunError:        # the run stops (on_error="stop")
+                        pass
+                return net.stopped
+            def recording_ended():          # the writer writes a second after the start
+                if client.get("/api/record").json()["recording"] is False:
+                    return True
+                run()
+                return False
+            assert wait_for(recording_ended, 60, 0.02)
+            assert not (tmp_path / file).exists()      # now, not when the server quits
+            assert wait_for(run, 60, 0.02)             # the failure is told at a tick
+            assert [m for _, _, _, m in net.log if "No space" in m] == [
+                f"writing the recording {tmp_path / file} failed (No space left on "
+                f"device); it holds no ticks (the file is removed); the run stops"]
+    finally:
+        net.close()

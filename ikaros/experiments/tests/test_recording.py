@@ -177,8 +177,9 @@ def test_a_run_killed_mid_way_is_readable_up_to_its_last_flushed_chunk(tmp_path)
     k = np.arange(n, dtype=np.float32)
     np.testing.assert_array_equal(ds["Counter.OUTPUT"].values[:, 0], k + 1)
     np.testing.assert_array_equal(ds["Double.OUTPUT"].values[:, 0], 2 * (k + 1))
-    with h5py.File(out, "r", swmr=True) as f:
-        assert json.loads(f.attrs["command_line"])[0] == "ikaros"
+    assert ds.attrs["command_line"][0] == "ikaros"
+    with h5py.File(out, "r", swmr=True) as f:     # the header: JSON, with a checksum
+        assert json.loads(f["header"][()].tobytes())["command_line"][0] == "ikaros"
 
 
 def test_a_failing_recording_asked_to_continue_stops_with_a_warning_and_the_run_goes_on(

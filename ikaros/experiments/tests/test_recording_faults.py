@@ -175,9 +175,11 @@ def test_readers_stop_at_the_rows_the_file_counts_as_stored(tmp_path):
     with net.record(path, only="Counter.OUTPUT"):
         net.run(ticks=10)
     net.close()
-    with h5py.File(path, "a") as f:        # as if rows 4-9 were cut off half written
-        assert f["stored"][0] == 10
-        f["stored"][0] = 4
+    with h5py.File(path, "a") as f:        # as if the run was killed with rows 4-9 half
+        assert f["stored"][0] == 10        # written
+        f["stored"][:] = [4, ~4]           # (the count, and its complement)
+        f.attrs.modify("finished", False)
+        f.attrs.modify("ticks_recorded", 0)
     assert open_recording(path).sizes["tick"] == 4
     replay = load_body(tmp_path, f'<module class="Replay" name="R" filename="{path}" '
                                  f'signal="Counter.OUTPUT"/>')

@@ -191,6 +191,24 @@ def test_a_broken_python_file_beside_a_model_is_left_out_of_the_class_list(tmp_p
     assert "Plot.py" in capsys.readouterr().err
 
 
+def test_a_python_file_that_is_not_utf_8_is_read_as_python_reads_it(tmp_path):
+    latin = PY_CLASS.replace('"""Doubles its input."""', '"""Doubles its input (d\xe9j\xe0)."""')
+    (tmp_path / "Twice.py").write_bytes(b"# -*- coding: latin-1 -*-\n" + latin.encode("latin-1"))
+    (tmp_path / "m.ikg").write_text(MODEL)
+    net = ikaros.load(str(tmp_path / "m.ikg"))          # its coding declaration is read
+    net.step()
+    assert net.output("T.OUTPUT").tolist() == [2, 4]
+    assert ikaros.classes(str(tmp_path))["Twice"].description.endswith("(d\xe9j\xe0).")
+    other = tmp_path / "undeclared"
+    other.mkdir()
+    (other / "Twice.py").write_bytes(latin.encode("latin-1"))      # no declaration
+    (other / "m.ikg").write_text(MODEL)
+    with pytest.raises(ikaros.ModelError) as e:     # (Python cannot import it either)
+        ikaros.load(str(other / "m.ikg"))
+    assert f'class "Twice": {other / "Twice.py"}: cannot import: SyntaxError: (unicode ' \
+           f"error) 'utf-8' codec can't decode byte 0xe9" in str(e.value)
+
+
 def test_a_class_declared_twice_is_an_error(tmp_path):
     (tmp_path / "Twice.ikc").write_text(IKC_CLASS)
     (tmp_path / "Twice.py").write_text(PY_CLASS)

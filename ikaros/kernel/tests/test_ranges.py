@@ -120,3 +120,27 @@ def test_parse_bytes():
         with pytest.raises(LimitError):
             parse_bytes(bad)
     assert Limits().with_memory("1G").max_memory == 1 << 30
+
+
+def test_a_model_of_more_modules_than_the_memory_limit_can_build_is_refused_first(folder):
+    """Building a module takes about 6 KB besides its buffers (10^6 modules took 5.4 GB):
+    a model of more than the memory limit can build is refused before any is built."""
+    (folder / "Unbuilt.py").write_text(
+        "from ikaros.module import Module\n\n\nclass Unbuilt(Module):\n"
+        "    def configure(self):\n        raise RuntimeError('built')\n")
+    modules = "".join(f'<module class="Unbuilt" name="U{k}"/>' for k in range(3000))
+    (folder / "many.ikg").write_text(f'<group name="M">{modules}</group>')
+    with pytest.raises(ikaros.ModelError) as e:
+        ikaros.load(str(folder / "many.ikg"), max_memory="16M")
+    assert str(e.value) == (f'{folder / "many.ikg"}:1: <group name="M">: the model has 3000 '
+                            f'modules; the memory limit of 16.0 MB can build at most 2730 '
+                            f'(about 6.0 KB each; set with --max-memory or max_memory=)')
+    # group files used as classes add theirs while the model is built
+    block = "".join(f'<module class="Unbuilt" name="U{k}"/>' for k in range(1000))
+    (folder / "Block.ikg").write_text(f'<group name="Block">{block}</group>')
+    (folder / "blocks.ikg").write_text('<group name="M">' + "".join(
+        f'<module class="Block" name="B{k}"/>' for k in range(3)) + "</group>")
+    with pytest.raises(ikaros.ModelError, match="the model has more than 2730 modules; "
+                                               "the memory limit of 16.0 MB can build at "
+                                               "most 2730"):
+        ikaros.load(str(folder / "blocks.ikg"), max_memory="16M")

@@ -18,7 +18,10 @@ class Replacer(Module):
     INPUT = Input(optional=True)
     OUTPUT = Output(size=2)
     port = Parameter("OUTPUT", "the port to assign to")
-    at = Parameter(0, "the tick")
+    at = Parameter(0, "the tick (-2: in init)")
+    def init(self):
+        if self.at == -2:
+            setattr(self, self.port, np.array([1.0, 2.0], np.float32))
     def tick(self):
         if self.clock.tick == self.at:
             setattr(self, self.port, np.array([1.0, 2.0], np.float32))
@@ -75,3 +78,16 @@ def test_a_module_that_writes_into_its_output_runs_on(folder):
     net = load_body(folder, '<module class="Replacer" name="R" at="-1"/>')
     net.run(ticks=5)
     np.testing.assert_array_equal(net.output("R.OUTPUT"), [4, 4])
+
+
+def test_an_output_replaced_in_init_is_reported_as_init_before_any_tick(folder):
+    from ikaros.errors import ModelError
+    for port, what in (("OUTPUT", "replaced its output OUTPUT"),
+                       ("INPUT", "assigned to its input INPUT")):
+        with pytest.raises(ModelError) as e:
+            load_body(folder, f'<module class="Constant" name="C" data="5 6"/>\n'
+                              f'<module class="Replacer" name="R" port="{port}" at="-2"/>\n'
+                              f'<connection source="C.OUTPUT" target="R.INPUT"/>')
+        assert e.value.element == '<module name="R">'
+        assert e.value.reason.startswith(f"init failed: ReplacedPort: init {what} "
+                                         f"(self.{port} = ...)"), e.value.reason

@@ -62,6 +62,25 @@ def test_include_errors(tmp_path):
         read_file(str(tmp_path / "m.ikg"), '<group><?include file="self.ikg"?></group>')
 
 
+def test_includes_nested_too_deep_are_told_once_where_they_are_with_the_chain(tmp_path):
+    for k in range(40):             # i0 includes i1 includes ... i40
+        (tmp_path / f"i{k}.ikg").write_text(f'\n<?include file="i{k + 1}.ikg"?>\n')
+    (tmp_path / "i40.ikg").write_text('<module class="Constant" name="C"/>')
+    with pytest.raises(ModelError) as e:
+        read_file(str(tmp_path / "m.ikg"), '<group><?include file="i0.ikg"?></group>')
+    chain = " > ".join(["m.ikg"] + [f"i{k}.ikg" for k in range(31)])
+    assert str(e.value) == (f"{tmp_path}/i30.ikg:2: includes nest deeper than 32 levels "
+                            f"(through {chain})")
+    (tmp_path / "i3.ikg").write_text('<?include file="notes.txt"?>')
+    (tmp_path / "notes.txt").write_text("not a model")
+    with pytest.raises(ModelError) as e:
+        read_file(str(tmp_path / "m.ikg"), '<group><?include file="i0.ikg"?></group>')
+    assert str(e.value) == (f'{tmp_path}/i3.ikg:1: included file "notes.txt" is not model '
+                            f'text (through m.ikg > i0.ikg > i1.ikg > i2.ikg > i3.ikg): '
+                            f'{tmp_path}/notes.txt:1: text outside the elements: "not a '
+                            f'model"')
+
+
 def test_root_must_be_the_expected_kind(tmp_path):
     with pytest.raises(ModelError, match="must be <group>") as e:
         read_file(str(tmp_path / "m.ikg"), "<class name='X'/>", root_tag="group")

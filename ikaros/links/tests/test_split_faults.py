@@ -178,3 +178,45 @@ def test_a_stall_ticks_that_is_not_a_whole_number_is_a_load_error(model):
                                              f'stall_ticks "{bad}" must be a whole number '
                                              f'of ticks >= 1'):
             ikaros.load(model, stall=bad)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_ctrl_c_after_the_main_process_was_stopped_until_its_worker_gave_up_ends_at_once(
+        model, signum):
+    """SIGSTOP the main process until its worker has given up on it (it hears nothing for
+    its heartbeat timeout, ends its session and exits), then SIGCONT and Ctrl-C (or
+    SIGTERM): the run ends at once (no wait for the gone worker's answer, so the 2 s
+    watchdog of Ctrl-C does not force the exit), with one line and status 0."""
+    folder = os.path.dirname(model)
+    ticks = os.path.join(folder, "ticks.txt")          # a line a tick, flushed
+    with open(os.path.join(folder, "written.ikg"), "w") as f:
+        f.write(MODEL.rstrip()[:-len("</group>")] + '<module class="OutputFile" name="Out" '
+                'filename="ticks.txt"><column name="X"/></module>'
+                '<connection source="Sum.OUTPUT" target="Out.X"/></group>\n')
+    run = subprocess.Popen([sys.executable, "-m", "ikaros", "-b", f.name], env=ENV,
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                           start_new_session=True)
+    try:
+        assert wait_for(lambda: running_processes(parent=run.pid), 60)
+        worker = running_processes(parent=run.pid)[0]
+        assert wait_for(lambda: _lines(ticks) >= 3, 60)     # the header, then two ticks
+        os.kill(run.pid, signal.SIGSTOP)
+        assert wait_for(lambda: worker not in running_processes(), 60)
+        os.kill(run.pid, signal.SIGCONT)
+        os.kill(run.pid, signum)
+        _, err = run.communicate(timeout=60)
+    finally:
+        if run.poll() is None:
+            os.killpg(run.pid, signal.SIGKILL)
+            run.wait()
+    assert (run.returncode, err) == (0, "ikaros: interrupted\n")
+
+
+
+def _lines(path: str) -> int:
+    try:
+        with open(path) as f:
+            return len(f.read().splitlines())
+    except OSError:
+        return 0

@@ -1,13 +1,14 @@
 """Replay: plays one recorded output of an ikaros recording (HDF5) back, tick by tick."""
-import json
+import weakref
 
 import numpy as np
 
 from ikaros.module import Module, Parameter, attribute_name, require
 
 from ._files import build_error, resolve
+from ._recordingfile import RecordingFile
 
-BLOCK_TICKS = 1024     # recorded rows read from the file at a time, unless chunked
+_warned: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()   # network: files told of
 
 
 class Replay(Module):
@@ -23,8 +24,12 @@ class Replay(Module):
     the last row, ``end`` says what happens: ``stop`` sends end-of-file on the tick that
     outputs the last row, which stops the run after that tick; ``loop`` starts again from
     the first row; ``hold`` keeps the last row. The command ``seek`` with x = a row number
-    makes that row the next one; ``row`` is the row shown (-1 before the first tick). A recording cut off by a crash is played up to its last flushed row. Needs h5py
-    (``pip install 'ikaros[record]'``)."""
+    makes that row the next one; ``row`` is the row shown (-1 before the first tick). A
+    recording cut off by a crash is played up to its last flushed row. A damaged recording
+    is refused when the model is built, naming the damage, or, when only its end is
+    missing, played up to its last whole chunk with a warning (once per file); values
+    that fail the file's checksums stop the run with an error naming the rows, never
+    played. Needs h5py (``pip install 'ikaros[record]'``)."""
 
     filename = Parameter("", "the recording (.h5); relative to the model file's folder")
     signal = Parameter("", "the address of the recorded output to play as OUTPUT, e.g. "
@@ -35,18 +40,21 @@ class Replay(Module):
                     "hold the last row", options="stop/loop/hold")
 
     def configure(self):
-        h5py = require("h5py", "h5py", extra="record")
+        require("h5py", "h5py", extra="record")
         self._path = resolve(self, self.filename)
         try:
-            self._file = _open(h5py, self._path)
-        except OSError as e:
-            raise build_error(self, f'cannot read the recording "{self.filename}": '
-                                    f'{e}') from None
-        f = self._file
-        if f.attrs.get("format") != "ikaros-recording":
-            raise build_error(self, f'"{self.filename}" is not an ikaros recording')
-        signals = {name: (tuple(shape), start, stop)
-                   for name, shape, start, stop in json.loads(f.attrs["signals"])}
+            self._file = RecordingFile(self._path)
+        except (OSError, ValueError) as e:
+            raise build_error(self, str(e)) from None
+        try:
+            self._choose(self._file)
+        except BaseException:
+            self._file.close()
+            raise
+
+    def _choose(self, f: RecordingFile) -> None:
+        """The outputs: the recorded signals chosen by ``signal`` or ``module``."""
+        signals = {name: (shape, start, stop) for name, shape, start, stop in f.signals}
         if bool(self.signal) == bool(self.module):
             raise build_error(self, "give either signal (one recorded output) or module "
                                     "(all recorded outputs of a module)")
@@ -62,11 +70,8 @@ class Replay(Module):
             if not chosen:
                 raise build_error(self, f'the recording "{self.filename}" has no outputs '
                                         f'of module "{self.module}"')
-        self._rows = min(f["data"].shape[0], f["tick"].shape[0])
-        if "stored" in f:       # rows past the file's count of rows written whole
-            self._rows = min(self._rows, int(f["stored"][0]))
-        # a block is a chunk of the file (decompressed once), or BLOCK_TICKS rows
-        self._block_ticks = f["data"].chunks[0] if f["data"].chunks else BLOCK_TICKS
+        self._rows = f.rows
+        self._block_ticks = f.chunk_rows     # a chunk of the file, decompressed once
         if self._rows == 0:
             raise build_error(self, f'the recording "{self.filename}" has no rows')
         self._start = min(start for _, start, _ in chosen.values())
@@ -77,6 +82,11 @@ class Replay(Module):
             self.add_output(name, shape, description="the recorded values of the current tick")
 
     def init(self):
+        network = getattr(self._ik_notify, "__self__", None)
+        told = _warned.setdefault(network, set()) if network is not None else set()
+        if self._file.damage and self._path not in told:
+            told.add(self._path)
+            self.warning(self._file.damage)
         self.row = -1                   # the row shown
         self._next = 0                  # the row to output on the next tick
         self._block_first = 0
@@ -87,7 +97,8 @@ class Replay(Module):
         if not (self._block_first <= k < self._block_first + self._block.shape[0]):
             first = k - k % self._block_ticks
             last = min(first + self._block_ticks, self._rows)
-            self._block = self._file["data"][first:last, self._start:self._stop]
+            self._block = self._file.read("data", first, last,
+                                          slice(self._start, self._stop))
             self._block_first = first
         return self._block[k - self._block_first]
 
@@ -116,10 +127,3 @@ class Replay(Module):
     def stop(self):
         self._file.close()
 
-
-def _open(h5py, path: str):
-    """Open a recording, also one still being written or cut off (SWMR)."""
-    try:
-        return h5py.File(path, "r")
-    except OSError:
-        return h5py.File(path, "r", swmr=True)

@@ -5,6 +5,7 @@ POST /api/save."""
 from __future__ import annotations
 
 import glob
+import hashlib
 import json
 import os
 import shutil
@@ -191,8 +192,9 @@ def test_save_unchanged_keeps_everything_and_loads_to_the_same_network(client, n
     before = (folder / "e.ikg").read_text()
     tree = client.get("/api/model").json()["tree"]
     r = client.post("/api/save", json={"tree": tree})
-    assert r.status_code == 200 and r.json() == {"ok": True, "file": "e.ikg"}
     text = (folder / "e.ikg").read_text()
+    assert r.status_code == 200 and r.json() == {"ok": True, "file": "e.ikg", "version": (
+        hashlib.sha256(text.encode()).hexdigest()[:20])}        # the version of the file
     assert text.startswith('<?xml version="1.0"?>\n<!-- before the model -->\n<group name="E"')
     assert text.endswith('</group>\n<!-- after the model -->\n') and before
     for kept in ('<!-- a comment inside the model -->', 'mystery="kept"', 'color="red"',
@@ -217,7 +219,7 @@ def test_save_as_and_the_writer_keep_attribute_order(client, folder):
     _, c = _find(tree, "module", "C")
     c["attrs"] = {"_y": "5", "name": "C", "class": "Constant", "data": "4 5 6", "_x": 7}
     r = client.post("/api/save", json={"tree": tree, "filename": "copy.ikg"})
-    assert r.json() == {"ok": True, "file": "copy.ikg"}
+    assert r.json()["ok"] is True and r.json()["file"] == "copy.ikg"
     text = (folder / "copy.ikg").read_text()
     assert '<module _y="5" name="C" class="Constant" data="4 5 6" _x="7"/>' in text
     saved = ikaros.load(str(folder / "copy.ikg"))
@@ -449,8 +451,8 @@ def test_save_into_the_models_folder_given(net, folder, tmp_path):
     with TestClient(app) as client:
         assert client.get("/api/files").json() == {"folder": str(other), "files": ["z.ikg"]}
         tree = client.get("/api/model").json()["tree"]
-        assert client.post("/api/save", json={"tree": tree, "filename": "s.ikg"}).json() == \
-            {"ok": True, "file": "s.ikg"}
+        assert client.post("/api/save", json={"tree": tree, "filename": "s.ikg"}).json()[
+            "file"] == "s.ikg"
         assert (other / "s.ikg").exists() and not (folder / "s.ikg").exists()
         # saving without a name writes the model's file: the one saved as
         assert client.post("/api/save", json={"tree": tree}).json()["file"] == "s.ikg"
@@ -521,7 +523,7 @@ def test_new(client, app, net, folder):
     assert r.json()["file"] == "Fresh.ikg" and r.json()["network"]["name"] == "Fresh"
     assert not (folder / "Fresh.ikg").exists()               # not yet saved
     m = client.get("/api/model").json()
-    assert m["file"] == "Fresh.ikg"
+    assert m["file"] == "Fresh.ikg" and m["version"] is None         # no file yet
     tree = m["tree"]
     assert tree["tag"] == "group" and tree["attrs"] == {"name": "Fresh"}
     assert tree["children"] == []
@@ -529,8 +531,8 @@ def test_new(client, app, net, folder):
     tree["children"].append({"tag": "module", "attrs": {"class": "Constant", "name": "K",
                                                         "data": "4"}})
     assert client.post("/api/apply", json={"tree": tree}).status_code == 200
-    assert client.post("/api/save", json={"tree": tree}).json() == {"ok": True,
-                                                                    "file": "Fresh.ikg"}
+    saving = client.post("/api/save", json={"tree": tree, "version": None}).json()
+    assert saving["ok"] is True and saving["file"] == "Fresh.ikg"
     saved = ikaros.load(str(folder / "Fresh.ikg"))
     try:
         saved.step()

@@ -4,7 +4,7 @@
 import { api } from "../api.js";
 import { WIDGETS } from "../widgets/index.js";
 import { pickClass } from "./class-list.js";
-import { ask, files, pickFile } from "./files.js";
+import { ask, dialog, files, pickFile } from "./files.js";
 import { EditorInspector } from "./inspector.js";
 import { BOX_W, ELK_LIMIT, HEADER, PORT_H, graphOf, layout, loadElk, storedPosition } from "./layout.js";
 import { EditorModel, GROUP_WIDGETS, clone, elements, kids, node, setWidgetBox, treeAsNetwork, viewsOf, widgetBox } from "./model.js";
@@ -856,15 +856,37 @@ export class Editor {
             if (!filename.endsWith(".ikg")) filename += ".ikg";
             if (filename !== this.model.file && !(await this.mayReplace(filename))) return;
         }
+        await this.write(filename, filename && filename !== this.model.file ? undefined : this.model.version);
+    }
+
+    /** Save to filename (null: the model's file), checked against version (undefined:
+     *  not checked); a save over another editor's is refused (409): reload or overwrite. */
+    async write(filename, version) {
         try {
-            const a = await files.save(this.model.tree, filename);
+            const a = await files.save(this.model.tree, filename, version);
             this.model.file = a.file || filename || this.model.file;
+            this.model.version = a.version ?? null;
             this.model.unsaved = false;
             this.updateTitle();
             this.setStatus("ok", `Saved ${this.model.file}.`);
         } catch (e) {
+            if (e.status === 409 && "version" in (e.body || {})) return this.conflict(filename, e);
             this.setStatus("error", "Not saved: " + e.message);
         }
+    }
+
+    /** Another editor saved the file since these edits began: say so, and reload it (the
+     *  edits here are lost) or overwrite it (the other editor's are). */
+    conflict(filename, e) {
+        this.setStatus("error", "Not saved: " + e.message + ".");
+        const body = document.createElement("p");
+        body.className = "dialog-note";
+        body.textContent = e.message + ". Reload it (your edits here are lost) or overwrite it (the other edits are)?";
+        const d = dialog("The file was changed", body, [
+            ["Cancel", () => d.close(), "conflict-cancel"],
+            ["Reload", async () => { d.close(); await this.reload(); this.setStatus("ok", "Reloaded the saved file."); }, "conflict-reload"],
+            ["Overwrite", () => { d.close(); this.write(filename, e.body.version); }, "conflict-overwrite"],
+        ]);
     }
 
     /** Whether a save-as may write filename: it is new, or the user agrees to replace it. */

@@ -44,7 +44,10 @@ export function ask(title, label, value = "", id = "dialog-input") {
 export const files = {
     model: () => getJSON("/api/model"),
     list: () => getJSON("/api/files"),
-    save: (tree, filename) => post("/api/save", filename ? { tree, filename } : { tree }),
+    /** version: the file's version the edits began from (undefined: overwrite as is). */
+    save: (tree, filename, version) => post("/api/save", {
+        tree, ...(filename ? { filename } : {}), ...(version !== undefined ? { version } : {}),
+    }),
     apply: (tree, state) => post("/api/apply", state ? { tree, state } : { tree }),
     open: (filename) => post("/api/open", { filename }),
     newModel: (name) => post("/api/new", { name }),

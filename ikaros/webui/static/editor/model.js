@@ -96,10 +96,11 @@ export class EditorModel extends EventTarget {
         this.unsaved = false;      // edited since the last save
     }
 
-    load({ tree, file, folder }) {
+    load({ tree, file, folder, version }) {
         this.tree = tree;
         this.file = file || "";
         this.folder = folder || "";
+        this.version = version ?? null;    // of the file the edits begin from (a save checks it)
         this.undoStack = [];
         this.redoStack = [];
         this.dirty = false;
