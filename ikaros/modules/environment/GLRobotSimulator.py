@@ -11,9 +11,12 @@ MAX_ROWS = 50
 EMPTY = -99999.0                 # Ikaros 2's value for no object and no target
 
 
-def _empty_table() -> np.ndarray:
-    """BLOCKS or LANDMARKS without objects as Ikaros 2 writes them: -99999 in the first 100
-    values (row by row) and in the first two places of every row, 0 elsewhere."""
+def _empty_table(whole_rows: bool) -> np.ndarray:
+    """BLOCKS or LANDMARKS without objects: -99999 in every place, or as Ikaros 2 writes
+    them, in the first 100 values (row by row) and the first two places of every row, 0
+    elsewhere."""
+    if whole_rows:
+        return np.full((MAX_ROWS, 6), EMPTY)
     table = np.zeros((MAX_ROWS, 6))
     table.reshape(-1)[:2 * MAX_ROWS] = EMPTY
     table[:, :2] = EMPTY
@@ -82,7 +85,8 @@ class GLRobotSimulator(Module):
     whole row are not objects (a warning). OBJECTS_OUT is OBJECTS_IN with the objects as
     they are now. BLOCKS and LANDMARKS list them (id, x, y, z, colour, held), up to 50 rows;
     without objects they hold -99999 in their first 100 values and in the first two places
-    of every row, 0 elsewhere, as Ikaros 2 writes them.
+    of every row, 0 elsewhere, as Ikaros 2 writes them (a defect of the original:
+    ``empty_rows="whole"`` puts -99999 in every place of an empty row).
 
     DIRECT_CONTROL (dx, dy, -, dheading) drives the robot while any of its values is not 0:
     the heading turns by dheading at once, and the robot moves by (dx, dy) after the
@@ -129,7 +133,9 @@ class GLRobotSimulator(Module):
     just counter-clockwise of the heading (sector 16), each the distance to the nearest
     point of whole millimetres on the walls in it, ``range_limit`` (1700) where none is
     nearer (the rule is in ``_gl_ranges``); it reproduces the golden files of Ikaros 2 to
-    the last digit. Blocks and landmarks on the floor count at the distance of their edge
+    the last digit. The original truncates the sector's quotient towards 0, which makes the
+    sector behind the robot wider than the others; ``range_sectors="even"`` gives 32 equal
+    sectors. Blocks and landmarks on the floor count at the distance of their edge
     in the sector of their centre, and RANGE_COLOR is the colour of the object a sector
     holds (0: a wall or nothing); the golden files, which have no objects, do not show how
     the original counts them. TRANSFORMS draws the scene in the web UI's 3-D view
@@ -158,6 +164,13 @@ class GLRobotSimulator(Module):
                       type="array")
     view_distance = Parameter(450.0, "distance of VIEW_FIELD ahead of the robot, mm")
     range_limit = Parameter(1700.0, "RANGE_MAP where nothing is nearer, mm")
+    empty_rows = Parameter("ikaros2", "how BLOCKS and LANDMARKS mark rows without an object: "
+                           "ikaros2 (-99999 in the first 100 values and the first two places "
+                           "of each row, as the original writes them) or whole (-99999 in "
+                           "every place)", options="ikaros2,whole")
+    range_sectors = Parameter("ikaros2", "RANGE_MAP's sectors: ikaros2 (the original's, the "
+                              "one behind the robot wider) or even (all 2 pi / 32)",
+                              options="ikaros2,even")
     robot_radius = Parameter(100.0, "radius of the robot's round body, mm")
     block_size = Parameter(50.0, "edge of a block (and diameter of a landmark), mm")
 
@@ -537,7 +550,8 @@ class GLRobotSimulator(Module):
         chosen = np.flatnonzero(self._objects[:, 0] == kind)
         if mask is not None:
             chosen = chosen[mask[chosen]]
-        table = _empty_table() if mask is None else np.zeros((MAX_ROWS, 6))
+        table = np.zeros((MAX_ROWS, 6)) if mask is not None else \
+            _empty_table(self.empty_rows == "whole")
         for k, i in enumerate(chosen):
             table[k, :5] = self._objects[i, 1:6]
             table[k, 5] = 1.0 if i == self._held else 0.0
@@ -592,7 +606,8 @@ class GLRobotSimulator(Module):
                    for i, (kind, _, ox, oy, _, colour) in enumerate(self._objects)
                    if kind in (BLOCK, LANDMARK) and i != self._held]
         self.RANGE_MAP[...], self.RANGE_COLOR[...] = range_map(
-            self._walls, x, y, heading, self.range_limit, objects)
+            self._walls, x, y, heading, self.range_limit, objects,
+            even=self.range_sectors == "even")
 
     def _write_transforms(self):
         x, y, heading = self._pose

@@ -5,9 +5,10 @@ The walls are the points of whole millimetres along the four sides of the arena.
 goes to the sector ``32 - trunc((angle - heading + pi) / (2 pi / 32))`` (brought into
 0 .. 31 by adding or subtracting 32 once; a point still outside is not counted), so sector
 16 is the one just counter-clockwise of the heading, the sectors run clockwise, and sector 0
-is behind the robot, made wider by the truncation towards 0. A sector holds the distance of
-its nearest point, or the limit when it has none nearer. Those rules are what the golden
-files of Ikaros 2 show, to the last digit.
+is behind the robot, made wider by the truncation towards 0 (with ``even`` the quotient is
+rounded down instead, so every sector spans 2 pi / 32). A sector holds the distance of its
+nearest point, or the limit when it has none nearer. Those rules are what the golden files
+of Ikaros 2 show, to the last digit.
 """
 import math
 
@@ -29,18 +30,18 @@ def wall_points(width: float, depth: float) -> np.ndarray:
                            np.stack([np.full_like(ys, w), ys], 1)])
 
 
-def sectors(dx: np.ndarray, dy: np.ndarray, heading: float) -> np.ndarray:
+def sectors(dx: np.ndarray, dy: np.ndarray, heading: float, even=False) -> np.ndarray:
     """The sector of each offset (dx, dy) from the robot; -1 where none."""
     angle = np.arctan2(dy.astype(np.float32), dx.astype(np.float32))
     q = (angle - np.float32(heading) + _PI) / _WIDTH
-    index = SECTORS - np.trunc(q).astype(np.int64)
+    index = SECTORS - (np.floor(q) if even else np.trunc(q)).astype(np.int64)
     index = np.where(index < 0, index + SECTORS, index)
     index = np.where(index >= SECTORS, index - SECTORS, index)
     return np.where((index >= 0) & (index < SECTORS), index, -1)
 
 
 def range_map(walls: np.ndarray, x: float, y: float, heading: float, limit: float,
-              objects=None):
+              objects=None, even=False):
     """(ranges, colours) of the 32 sectors: the nearest wall point, or object given as rows
     (x, y, radius, colour) counted at its centre's sector with its centre distance less its
     radius; colour 0 for a wall or nothing."""
@@ -48,14 +49,14 @@ def range_map(walls: np.ndarray, x: float, y: float, heading: float, limit: floa
     colours = np.zeros(SECTORS, np.float32)
     dx = walls[:, 0] - np.float32(x)
     dy = walls[:, 1] - np.float32(y)
-    index = sectors(dx, dy, heading)
+    index = sectors(dx, dy, heading, even)
     inside = index >= 0
     np.minimum.at(ranges, index[inside], np.sqrt(dx * dx + dy * dy)[inside])
     if objects is not None and len(objects):
         objects = np.asarray(objects, np.float32)
         ox, oy = objects[:, 0] - np.float32(x), objects[:, 1] - np.float32(y)
         distance = np.maximum(np.sqrt(ox * ox + oy * oy) - objects[:, 2], 0)
-        for k, d, colour in zip(sectors(ox, oy, heading), distance, objects[:, 3]):
+        for k, d, colour in zip(sectors(ox, oy, heading, even), distance, objects[:, 3]):
             if k >= 0 and d < ranges[k]:
                 ranges[k], colours[k] = d, colour
     return ranges, colours

@@ -205,6 +205,36 @@ def test_range_map_and_view(tmp_path):
         net.close()
 
 
+def test_the_options_for_empty_rows_and_even_sectors(tmp_path):
+    """empty_rows="whole": -99999 in every place of an empty row. range_sectors="even":
+    32 equal sectors. From (100, 100) facing 0.7 rad, sector 0 spans the directions
+    0.7 - pi .. 0.7 - pi + 2 pi / 32 (about -2.44 .. -2.25 rad), where the floor (y = 0)
+    is nearest at -2.25: 100 mm down and ceil(100 tan(0.674)) = 80 mm along; sector 3 spans
+    about -3.03 .. -2.83 rad, where the left wall is nearest at 12 mm off its normal. In
+    Ikaros 2 the truncation moves the directions just clockwise of straight left into
+    sector 3 (the left wall 1 mm off its normal) and shifts sectors 0-2 by one (the golden
+    file: sector 0 is 56 mm off the floor's normal)."""
+    net = build(tmp_path, script("MOVE_BLOCK/3", ("0 0 0", 1)), objects="0 0 0 0 0 0",
+                params='start="100 100 0.7" empty_rows="whole" range_sectors="even"')
+    try:
+        run(net, 1)
+        assert net.output("R.BLOCKS").tolist() == [[-99999] * 6] * 50
+        ranges = net.output("R.RANGE_MAP")
+        assert ranges[0] == pytest.approx(np.hypot(100, 80))
+        assert ranges[3] == pytest.approx(np.hypot(100, 12))
+    finally:
+        net.close()
+    net = build(tmp_path, script("MOVE_BLOCK/3", ("0 0 0", 1)), objects="0 0 0 0 0 0",
+                params='start="100 100 0.7"')
+    try:
+        run(net, 1)
+        ranges = net.output("R.RANGE_MAP")
+        assert ranges[0] == pytest.approx(np.hypot(100, 56))
+        assert ranges[3] == pytest.approx(np.hypot(100, 1))
+    finally:
+        net.close()
+
+
 def test_transforms_draw_the_scene_in_metres(tmp_path):
     net = build(tmp_path, script("MOVE_BLOCK/3", ("2 500 500", 2)))
     try:
