@@ -17,10 +17,12 @@ class AttentionWindow(Module):
     window is ``window_size_x`` x ``window_size_y`` pixels when both are set, otherwise a
     square of 2·window_radius + 1 pixels. Bounds with no area are ignored. When nothing
     gives a window, OUTPUT is 0. A vector is a one-row image. (The reference gives Ikaros
-    2's interface and purpose; its one golden case, with one-row images, is a record that
-    stops inside tick 0, 61 of the 64 rows of OUTPUT with the last partly empty and no
-    later tick, which no computation gives. The window rules here are this project's
-    reading.)"""
+    2's interface and purpose; the window rules here are this project's reading. Ikaros 2's
+    one golden case, every input a changing 4-element vector, shows only tick 0: there,
+    with all inputs still 0, OUTPUT is 0 as here; then the original stopped before its
+    output file was written out (the file ends inside that record, after 61 of OUTPUT's
+    64 rows), so what it computes once the inputs change, and why it stopped, is not
+    known.)"""
 
     window_radius = Parameter(15, "half the side of the square window around a position, "
                               "in pixels")

@@ -111,14 +111,16 @@ def test_block_matching_counts_only_no_of_points(tmp_path):
         assert net.output("M.FLOW-SIZE")[0] == 1
 
 
-def flow_table(points, vectors):
-    return np.hstack([points, vectors]).astype(np.float32)
+def pair_table(points, motions):
+    """Rows (x0, y0, x1, y1): each point and where it moved to."""
+    points = np.asarray(points, np.float32)
+    return np.hstack([points, points + np.asarray(motions, np.float32)])
 
 
-def direction(tmp_path, table, **params):
+def direction(tmp_path, table, ticks=1, **params):
     from vision_models import run
     attrs = {k: str(v) for k, v in params.items()}
-    with run(tmp_path, "DirectionDetector", {"INPUT": table}, **attrs) as net:
+    with run(tmp_path, "DirectionDetector", {"INPUT": table}, ticks=ticks, **attrs) as net:
         return {n: net.output(f"M.{n}").copy() for n in (
             "MOTION-VECTOR", "MOTION-DIRECTION", "LOOMING", "LEFT-FIELD-MOTION",
             "RIGHT-FIELD-MOTION", "MOTION-VECTOR-DRAW")}
@@ -126,30 +128,40 @@ def direction(tmp_path, table, **params):
 
 def test_direction_detector_global_motion(tmp_path):
     points = np.array([[10, 10], [30, 10], [10, 30], [30, 30]])
-    out = direction(tmp_path, flow_table(points, [[2, -2]] * 4))
-    assert np.allclose(out["MOTION-VECTOR"], [2, -2])
-    sector, angle, magnitude, count = out["MOTION-DIRECTION"]
-    assert sector == 1 and np.isclose(angle, np.pi / 4) and np.isclose(magnitude, np.sqrt(8))
-    assert count == 4
+    out = direction(tmp_path, pair_table(points, [[2, -1]] * 4))
+    assert np.allclose(out["MOTION-VECTOR"], [8, -4])              # the sum over the rows
+    assert out["MOTION-DIRECTION"].tolist() == [0, 1, 0, 0]        # mostly to the right
     assert np.isclose(out["LOOMING"][0], 0)
-    assert np.isclose(out["LEFT-FIELD-MOTION"][0], 2) and np.isclose(
-        out["RIGHT-FIELD-MOTION"][0], 2)
-    assert np.allclose(out["MOTION-VECTOR-DRAW"], [20, 20, 22, 18])
+    assert np.isclose(out["LEFT-FIELD-MOTION"][0], 2 * np.sqrt(5))
+    assert np.isclose(out["RIGHT-FIELD-MOTION"][0], 2 * np.sqrt(5))
+    assert np.allclose(out["MOTION-VECTOR-DRAW"], [0.5, 0.5, 8.5, -3.5])
+
+
+def test_direction_detector_keeps_0_7_of_the_previous_vector(tmp_path):
+    out = direction(tmp_path, pair_table([[10, 10]], [[0, 3]]), ticks=3)
+    assert np.allclose(out["MOTION-VECTOR"], [0, 3 * (1 + 0.7 + 0.49)])
+    assert out["MOTION-DIRECTION"].tolist() == [0, 0, 0, 1]        # down (y points down)
 
 
 def test_direction_detector_looming_and_fields(tmp_path):
     points = np.array([[10, 20], [30, 20], [20, 10], [20, 30]])
-    out = direction(tmp_path, flow_table(points, [[-1, 0], [1, 0], [0, -1], [0, 1]]))
+    out = direction(tmp_path, pair_table(points, [[-1, 0], [1, 0], [0, -1], [0, 1]]))
     assert np.allclose(out["MOTION-VECTOR"], 0)
+    assert out["MOTION-DIRECTION"].tolist() == [0, 0, 0, 0]
     assert np.isclose(out["LOOMING"][0], 1)                   # every point moves out by 1
-    assert np.isclose(out["LEFT-FIELD-MOTION"][0], -1)
+    assert np.isclose(out["LEFT-FIELD-MOTION"][0], 1)
     assert np.isclose(out["RIGHT-FIELD-MOTION"][0], 1)
 
 
-def test_direction_detector_crop_ignores_long_vectors(tmp_path):
-    points = np.array([[10, 10], [30, 10]])
-    out = direction(tmp_path, flow_table(points, [[1, 0], [40, 0]]), crop=10)
-    assert np.allclose(out["MOTION-VECTOR"], [1, 0])
+def test_direction_detector_crop_and_no_of_rows(tmp_path):
+    points = np.array([[10, 10], [30, 10], [50, 10]])
+    out = direction(tmp_path, pair_table(points, [[1, 0], [40, 0], [2, 0]]), crop=10)
+    assert np.allclose(out["MOTION-VECTOR"], [3, 0])
+    from vision_models import run
+    table = pair_table(points, [[1, 0], [40, 0], [2, 0]])
+    with run(tmp_path, "DirectionDetector", {"INPUT": table, "NO-OF-ROWS": np.array([2.0])}) \
+            as net:
+        assert np.allclose(net.output("M.MOTION-VECTOR"), [41, 0])
 
 
 def mixture(values, rate, variance, k, t, threshold):
