@@ -26,6 +26,7 @@ from .concatenation import (ATTRIBUTE as CONCATENATION, DEFAULT as DEFAULT_CONCA
                             check_value as check_concatenation, warn_shared_zero_delay,
                             window_order)
 from .layout import layout, runs_into
+from .loadwarnings import configuring
 from .network import Network
 from .ranges import check_parameter, fit_shape
 from .schedule import schedule
@@ -307,6 +308,7 @@ class Builder:
         for name, value in inst.values.items():
             setattr(module, parameter_attribute(name), value)
         inst.module = module
+        module._ik_notify = configuring(self.diagnostics, module._ik_notify)
         self._run_settings(inst)
         try:
             module.configure()
