@@ -31,6 +31,7 @@ from .network import Network
 from .ranges import check_parameter, fit_shape
 from .schedule import schedule
 from .startup import StartupSteps
+from .topdefaults import top_level_defaults
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
 from .dynamic import check_dynamic_connections, unresolved_capacity
 from .gating import MODULE_START, StartSteps, first_tick
@@ -147,6 +148,8 @@ class Builder:
                files: tuple) -> Group:
         _check_depth(node, parent)
         group = Group(name, node, parent, dict(attrs))
+        if parent is None:
+            group.defaults = top_level_defaults(self.dialect, self.filename)
         anonymous = 0
         for child in node.elements():
             tag = child.tag

@@ -37,6 +37,7 @@ from .limits import check_memory as _check_memory
 from .loadwarnings import module_warning
 from .ranges import check_parameter, fit_shape
 from .taps import OutputTap
+from .topdefaults import DEFAULT_TICK_DURATION
 from .threadpools import ThreadPools, parse_setting as parse_threadpool_setting
 from .runfacts import RunFacts
 from .timing import Timing
@@ -45,9 +46,6 @@ from .scope import VariableError, from_python
 from . import state as _state
 from .state import capture_initial
 from .tree import Group, ModuleInstance, find_component
-
-# seconds, when a model sets none: Ikaros 2 files get 0.01, Ikaros 3 files Ikaros 3's 1 s
-DEFAULT_TICK_DURATION = {"2": 0.01, "3": 1.0}
 
 
 def _bind_alias(buf) -> None:
