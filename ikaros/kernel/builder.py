@@ -27,10 +27,12 @@ from .concatenation import (ATTRIBUTE as CONCATENATION, DEFAULT as DEFAULT_CONCA
                             check_value as check_concatenation, warn_shared_zero_delay,
                             window_order)
 from .layout import layout, runs_into
+from .loadwarnings import configuring
 from .network import Network
 from .ranges import check_parameter, fit_shape
 from .schedule import schedule
 from .startup import StartupSteps
+from .topdefaults import top_level_defaults
 from .scope import VariableError, convert, from_python, lookup_parameter, substitute
 from .dynamic import check_dynamic_connections, unresolved_capacity
 from .gating import MODULE_START, StartSteps, first_tick
@@ -150,6 +152,8 @@ class Builder:
                files: tuple) -> Group:
         _check_depth(node, parent)
         group = Group(name, node, parent, dict(attrs))
+        if parent is None:
+            group.defaults = top_level_defaults(self.dialect, self.filename)
         anonymous = 0
         for child in node.elements():
             tag = child.tag
@@ -313,6 +317,7 @@ class Builder:
         for name, value in inst.values.items():
             setattr(module, parameter_attribute(name), value)
         inst.module = module
+        module._ik_notify = configuring(self.diagnostics, module._ik_notify)
         self._run_settings(inst)
         try:
             module.configure()

@@ -19,7 +19,7 @@ from ..language.writer import write_file
 from .. import priority
 from ..priority import PriorityError, PriorityRequest
 from ..module import (END_OF_FILE, EXCEPTION, FATAL_ERROR, LEVEL_NAMES, PRINT, TERMINATE,
-                      WARNING, attribute_name, parameter_attribute)
+                      WARNING, Module, attribute_name, parameter_attribute)
 from . import compiled
 from .buffers import Run, alias_view
 from .carry import rebuild
@@ -34,8 +34,10 @@ from .portguard import bound_ports, port_attributes, replaced_in_init
 from .memory import Arena, BulkCopy, Ring, compile_copy, compile_ring_copy
 from .firsttick import FIRST_TICK, empty_history
 from .limits import check_memory as _check_memory
+from .loadwarnings import module_warning
 from .ranges import check_parameter, fit_shape
 from .taps import OutputTap
+from .topdefaults import DEFAULT_TICK_DURATION
 from .threadpools import ThreadPools, parse_setting as parse_threadpool_setting
 from .runfacts import RunFacts
 from .timing import Timing
@@ -44,9 +46,6 @@ from .scope import VariableError, from_python
 from . import state as _state
 from .state import capture_initial
 from .tree import Group, ModuleInstance, find_component
-
-# seconds, when a model sets none: Ikaros 2 files get 0.01, Ikaros 3 files Ikaros 3's 1 s
-DEFAULT_TICK_DURATION = {"2": 0.01, "3": 1.0}
 
 
 def _bind_alias(buf) -> None:
@@ -89,7 +88,7 @@ class Network:
         self.zero_delay_edges = edges
         self.log: collections.deque = collections.deque(maxlen=1000)
         self.log.extend((0, PRINT, "", n.as_note()) for n in builder.diagnostics.notes)
-        self.log.extend((0, WARNING, "", w.located()) for w in self.warnings)
+        self.log.extend((0, WARNING, w.module or "", w.located()) for w in self.warnings)
         self.log_level = PRINT
         self.tick = 0
         self.dialect = builder.dialect          # "2" or "3": the file's Ikaros version
@@ -116,6 +115,8 @@ class Network:
         # handed over to the network that replaced it (hand_over)
         self._adopting: dict = dict(getattr(builder, "adopting", None) or {})
         self._unowned: set = set(self._adopting)
+        # until the modules' init has run, their warnings are model warnings (loadwarnings.py)
+        self._loading = True
         notify = builder.notify = self.notify
         for inst in order:
             inst.module._ik_notify = notify
@@ -137,6 +138,7 @@ class Network:
             self._compile()
         with self.startup.step("init of the modules"):
             self._init_modules()
+        self._loading = False
         # what reset_state goes back to (the modules taken over: their own, from carry.py)
         self.initial_state = capture_initial(self, skip=self._unowned)
         self._check_checksum()
@@ -483,7 +485,7 @@ class Network:
             if job is not None:
                 job.publish_init()
         except module_faults() as e:
-            if is_interrupt(e):
+            if is_interrupt(e) or (isinstance(e, ModelError) and e.filename is not None):
                 raise
             error = inst.node.error(f"init failed: {fault_text(e)}")
         if error is None and self.stop_reason and self.stop_reason[0] == FATAL_ERROR:
@@ -544,6 +546,11 @@ class Network:
     def notify(self, level: int, module, message: str) -> None:
         """Receive a notification from a module (or the kernel when ``module`` is None)."""
         where = module if isinstance(module, str) else getattr(module, "path", "") or ""
+        if level == WARNING and self._loading and isinstance(module, Module):
+            record = module_warning(self.diagnostics, module, message)
+            if record is not None:
+                self.log.append((self.tick, level, where, record.located()))
+            return
         self.log.append((self.tick, level, where, message))
         if level in (FATAL_ERROR, END_OF_FILE, TERMINATE) and (
                 self.stop_reason is None or

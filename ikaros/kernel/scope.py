@@ -31,8 +31,11 @@ class UndefinedVariable(VariableError):
 def lookup_variable(name: str, scope, depth: int = 0, own: str | None = None) -> str:
     """The value of ``@name`` seen from a scope: its own attributes, then enclosing groups.
     A value that itself holds variables is resolved where it is defined. In the value of
-    attribute ``own``, ``@own`` means the same name further out (``factor="@factor"``)."""
+    attribute ``own``, ``@own`` means the same name further out (``factor="@factor"``).
+    Last, the top-level settings' defaults (``@tick_duration`` when no group sets it)."""
+    outermost = scope
     for s in scope.chain():
+        outermost = s
         if name in s.attrs and not (name == own and s is scope):
             raw = s.attrs[name]
             value = substitute(raw, s, depth + 1, own=name)
@@ -44,6 +47,9 @@ def lookup_variable(name: str, scope, depth: int = 0, own: str | None = None) ->
                 except ExpressionError as e:
                     raise VariableError(f'"{raw}": {e}') from None
             return value
+    default = getattr(outermost, "defaults", {}).get(name)
+    if default is not None:
+        return default
     raise UndefinedVariable(f'Variable "@{name}" not defined.')
 
 

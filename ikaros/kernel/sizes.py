@@ -206,7 +206,7 @@ def shape_expression(inst: ModuleInstance, text: str, input_shapes: dict) -> tup
         parts = [p for p in item.split(",")] if "," in item else [item]
         for part in parts:
             try:
-                value = int(evaluate_arithmetic(part))
+                value = whole_dimension(evaluate_arithmetic(part))
             except ExpressionError as e:
                 raise SizeError(f'shape "{text}": {e}') from None
             if value == 0 and optional:
@@ -215,6 +215,15 @@ def shape_expression(inst: ModuleInstance, text: str, input_shapes: dict) -> tup
                 raise SizeError(f'shape "{text}" gives a dimension of {value}')
             dims.append(value)
     return tuple(dims)
+
+
+def whole_dimension(value: float) -> int:
+    """A dimension from the value of its expression: cut down to a whole number, except
+    that a value within a millionth of one is that number (``0.29*100`` is 29, not 28)."""
+    if not math.isfinite(value):
+        raise ExpressionError(f"{value} is not a size")
+    nearest = round(value)
+    return int(nearest) if abs(value - nearest) <= 1e-6 else int(value)
 
 
 def _split_top_level(text: str) -> list[str]:

@@ -36,6 +36,9 @@ class Component:
 
 
 class Group(Component):
+    #: the top group's: the top-level settings' defaults, where a variable's lookup ends
+    defaults: dict[str, str] = {}
+
     def __init__(self, name: str, node: Node, parent: "Group | None",
                  attrs: dict | None = None):
         super().__init__(name, node, parent, attrs)

@@ -17,11 +17,13 @@ from ..errors import ModelError
 
 @dataclass(frozen=True)
 class ModelWarning:
-    """One load-time warning: where (file, line, element) and what."""
+    """One load-time warning: where (file, line, element) and what; ``module`` is the path
+    of the module that gave it (a module's warning in configure or init)."""
     message: str
     filename: str | None = None
     line: int | None = None
     element: str | None = None
+    module: str | None = None
 
     def __str__(self) -> str:
         return f"{self._where()}warning: {self._what()}"
@@ -57,16 +59,17 @@ class Diagnostics:
         return Diagnostics(self.strict, self.lenient, self.quiet)
 
     def warn(self, message: str, filename: str | None = None, line: int | None = None,
-             element: str | None = None) -> None:
+             element: str | None = None, module: str | None = None) -> ModelWarning | None:
+        """Keep (and print) a warning; None when the same one was given before."""
         if self.strict:
             raise ModelError(f"{message} (an error with --strict)", filename, line, element)
-        record = ModelWarning(message, filename, line, element)
+        record = ModelWarning(message, filename, line, element, module)
         if record in self.warnings:
-            return
+            return None
         self.warnings.append(record)
         if not self.quiet:
             print(record, file=sys.stderr, flush=True)
-
+        return record
 
     def note(self, message: str, filename: str | None = None, line: int | None = None) -> None:
         """A line of information about the load (which dialect was chosen, and why): printed

@@ -2,6 +2,8 @@
 .ikc classes, and the checksum."""
 import pytest
 
+import ikaros
+
 from conformance_util import load, same, trace
 
 SHAPES = {
@@ -82,3 +84,14 @@ def test_an_ikaros_3_check_sum_is_reported_as_not_verified(capsys):
     assert 'check_sum="4312" (Ikaros 3) is not verified' in text
     assert "Checksum match (144)" in text          # the Ikaros 2 checksum is still checked
     assert net.checksum_ok is True
+
+
+@pytest.mark.parametrize("shape, expected", [("0.29*100", (29,)), ("4.5", (4,)),
+                                             ("2.9999999, 3", (3, 3)), ("@n*0.29", (29,))])
+def test_a_fractional_dimension_is_cut_down_unless_it_is_whole_but_for_rounding(
+        tmp_path, shape, expected):
+    # 0.29*100 is 28.999999999999996 in binary floating point: still 29 samples
+    (tmp_path / "m.ikg").write_text(f'<group n="100"><module class="Randomizer" name="R" '
+                                    f'shape="{shape}"/></group>')
+    with ikaros.load(str(tmp_path / "m.ikg"), quiet=True) as net:
+        assert net.output("R.OUTPUT").shape == expected

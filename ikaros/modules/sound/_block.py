@@ -1,5 +1,6 @@
 """The base of the sound-synthesis modules: one block of samples per tick, sample_rate ×
-tick_duration of them, as Ikaros 3's audio classes declare (``size=@sample_rate*@tick_duration``)."""
+tick_duration of them, as Ikaros 3's audio classes declare (``size=@sample_rate*@tick_duration``:
+the language's ``@tick_duration``, the model's tick duration or its default)."""
 from __future__ import annotations
 
 import numpy as np
@@ -9,41 +10,55 @@ from ikaros.module import Module, Output, Parameter
 
 class AudioBlock(Module):
     """A module whose OUTPUT is one block of samples per tick: sample_rate × tick_duration
-    samples (rounded when within a millionth of a sample of a whole number, else cut down,
-    with a warning). A sample rate of 0 or below is a build error, as in Ikaros 3 (where the
-    output's size becomes 0 and the model does not build)."""
+    samples, sized as Ikaros 3 declares it (``@sample_rate*@tick_duration``, where
+    ``@tick_duration`` is the model's, or its default when the model sets none; a fraction
+    of a sample is cut down, with a warning). A sample rate of 0 or below is a build error,
+    as in Ikaros 3 (where the output's size becomes 0 and the model does not build)."""
 
     sample_rate = Parameter(0.0, "samples per second (usually set once on the top group); "
                             "0 does not build", fixed=True)
-    tick_duration = Parameter(0.01, "the model's tick duration in seconds, which sizes the "
-                              "block: read from the top group's tick_duration (or ikaros "
-                              "-d); not set here", default_v3=1.0, fixed=True)
-    OUTPUT = Output("this tick's block of samples, sample_rate × tick_duration of them")
+    OUTPUT = Output("this tick's block of samples, sample_rate × tick_duration of them",
+                    shape="@sample_rate*@tick_duration")
 
     def configure(self):
-        self.set_output_shape("OUTPUT", block_length(self.sample_rate, self.tick_duration))
+        check_sample_rate(self.sample_rate)
 
     def init(self):
         self.rate = float(self.sample_rate)
-        warn_if_not_whole(self, self.sample_rate, self.tick_duration)
-        if abs(self.clock.tick_duration - self.tick_duration) > 1e-9 * self.tick_duration:
-            self.warning(f"the block is sized for a tick of {self.tick_duration:g} s, but "
-                         f"the model ticks every {self.clock.tick_duration:g} s")
+        seconds = self.clock.tick_duration
+        exact = self.rate * seconds
+        if self.OUTPUT.size != whole_samples(exact):
+            self.warning(f"the block has {self.OUTPUT.size} samples (a tick_duration set "
+                         f"inside the model sizes it), but the model ticks every "
+                         f"{seconds:g} s: sample_rate × {seconds:g} s = {exact:g} samples")
+        else:
+            warn_if_not_whole(self, self.rate, seconds)
+
+
+def check_sample_rate(sample_rate: float) -> None:
+    """A ValueError unless the sample rate is above 0."""
+    if not sample_rate > 0:
+        raise ValueError(f"sample_rate is {sample_rate:g}: set it to the samples per second "
+                         f"(usually on the top group, e.g. sample_rate=\"44100\")")
 
 
 def block_length(sample_rate: float, seconds: float) -> int:
     """The number of samples in ``seconds`` at ``sample_rate``: rounded when within a
     millionth of a whole number, else cut down; a rate of 0 or below, or no sample, is a
     ValueError."""
-    if not sample_rate > 0:
-        raise ValueError(f"sample_rate is {sample_rate:g}: set it to the samples per second "
-                         f"(usually on the top group, e.g. sample_rate=\"44100\")")
+    check_sample_rate(sample_rate)
     exact = sample_rate * seconds
-    n = round(exact) if abs(exact - round(exact)) <= 1e-6 else int(np.floor(exact))
+    n = whole_samples(exact)
     if n < 1:
         raise ValueError(f"sample_rate × {seconds:g} s = {exact:g}: a block needs at least "
                          f"one sample")
     return n
+
+
+def whole_samples(exact: float) -> int:
+    """A number of samples cut down to a whole number, except that one within a millionth
+    of a whole number is that number (as the kernel sizes a shape expression)."""
+    return round(exact) if abs(exact - round(exact)) <= 1e-6 else int(np.floor(exact))
 
 
 def warn_if_not_whole(module: Module, sample_rate: float, seconds: float) -> None:

@@ -5,7 +5,6 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from ._cv import warn_here
 
 POINT = 12          # values read per point: a 3 x 4 homogeneous matrix
 WRITTEN = 16        # values written per point: a 4 x 4 homogeneous matrix
@@ -42,7 +41,7 @@ class DepthTransform(Module):
         width = self.INPUT.shape[-1] if self.INPUT.ndim else 1
         count = flat.size // POINT
         if count and width != POINT:
-            warn_here(self, f"INPUT rows are {width} wide, not {POINT} (a 3 x 4 matrix): the "
+            self.warning(f"INPUT rows are {width} wide, not {POINT} (a 3 x 4 matrix): the "
                       f"original reads and writes them as 12-value points all the same")
         self._read = np.arange(count)[:, None] * width + np.array([3, 7, 11])
         # each output position holds the value of the last point that writes it

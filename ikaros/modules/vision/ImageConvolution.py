@@ -3,7 +3,7 @@ import numpy as np
 
 from ikaros.module import Input, Module, Output, Parameter
 
-from ._cv import as_image, image_shape, interior, opencv, planes, warn_here, with_size
+from ._cv import as_image, image_shape, interior, opencv, planes, with_size
 
 
 class ImageConvolution(Module):
@@ -54,7 +54,7 @@ class ImageConvolution(Module):
         if self._shape[0]:
             self._valid = interior(self._full, 0, 0, *self.OUTPUT.shape[-2:])
         else:
-            warn_here(self, "no kernel is set: the kernel is empty and OUTPUT holds bias, "
+            self.warning("no kernel is set: the kernel is empty and OUTPUT holds bias, "
                       "as in the original")
         self._pairs = list(zip(planes(image), planes(self.OUTPUT)))
         self._key = None

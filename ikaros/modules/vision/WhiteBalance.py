@@ -4,7 +4,6 @@ import numpy as np
 from ikaros.module import Parameter
 
 from ._colour import ThreePlanes
-from ._cv import warn_here
 
 
 class WhiteBalance(ThreePlanes):
@@ -50,7 +49,7 @@ class WhiteBalance(ThreePlanes):
         super().init()
         if self._region(self.x0, self.x1, self.y0, self.y1) is None:
             rows, cols = self.OUTPUT.shape[1:]
-            warn_here(self, f"the reference region (columns x0={self.x0} to x1={self.x1}, "
+            self.warning(f"the reference region (columns x0={self.x0} to x1={self.x1}, "
                       f"rows y0={self.y0} to y1={self.y1}, ends excluded) has no pixel in "
                       f"the {rows} x {cols} image: the output is NaN, as in the original")
 

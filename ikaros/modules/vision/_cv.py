@@ -45,14 +45,6 @@ def as_image(array: np.ndarray) -> np.ndarray:
     return array.reshape(1, -1) if array.ndim == 1 else array
 
 
-def warn_here(module, message: str) -> None:
-    """A warning from a module (in ``init`` or later) that names the file and line of its
-    element."""
-    node = module.element
-    where = f"{node.file}:{node.line}: " if getattr(node, "file", None) else ""
-    module.warning(where + message)
-
-
 def warn_other_version(module, ikaros2: tuple, ikaros3: tuple) -> None:
     """Warn (from ``init``) when the module's element sets parameters of the other Ikaros
     version than its file's, which a class with both versions' interfaces does not use."""
@@ -60,8 +52,8 @@ def warn_other_version(module, ikaros2: tuple, ikaros3: tuple) -> None:
     given = getattr(module.element, "attrs", {})
     unused = [p for p in (ikaros2 if v3 else ikaros3) if p in given]
     if unused:
-        warn_here(module, f"{', '.join(unused)}: not used in an Ikaros {'3' if v3 else '2'} "
-                  f"file (see the class description)")
+        module.warning(f"{', '.join(unused)}: not used in an Ikaros {'3' if v3 else '2'} "
+                       f"file (see the class description)")
 
 
 def warn_one_row(module, port: str = "INPUT", result: str = "the output is always 0") -> None:
@@ -69,8 +61,8 @@ def warn_one_row(module, port: str = "INPUT", result: str = "the output is alway
     meaningless; the original runs it alike."""
     shape = getattr(module, port.replace("-", "_")).shape
     if len(shape) == 1 or shape[-2] == 1:
-        warn_here(module, f"{port} is a one-row image {tuple(shape)}: {result}, as in the "
-                  f"original")
+        module.warning(f"{port} is a one-row image {tuple(shape)}: {result}, as in the "
+                       f"original")
 
 
 def check_image(shape: tuple | None, port: str = "INPUT") -> None:

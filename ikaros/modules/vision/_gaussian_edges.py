@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from ._cv import interior, warn_here
+from ._cv import interior
 
 # (column, row) offsets of the neighbour ahead for the directions k · 45°, k = 0 .. 7
 # (y pointing down, as the rows)
@@ -32,7 +32,7 @@ def ikaros2_kernels(scale: float) -> tuple[np.ndarray, np.ndarray]:
 def warn_scale(module) -> None:
     """Warn (from ``init``) when ``scale`` is not 1, which the original cannot run."""
     if module.scale != 1:
-        warn_here(module, f"scale {module.scale}: the original runs only scale 1 (with "
+        module.warning(f"scale {module.scale}: the original runs only scale 1 (with "
                   f"another its output sizes are unresolved); this kernel is this project's "
                   f"reading")
 

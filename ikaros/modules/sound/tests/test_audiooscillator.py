@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+import ikaros
 from ikaros.errors import ModelError
 from ikaros.testing import load_body as load
 
@@ -127,10 +128,27 @@ def test_a_block_that_is_not_whole_is_cut_down_with_a_warning(tmp_path):
 def test_the_block_follows_the_tick_duration_of_the_command_line(tmp_path):
     (tmp_path / "m.ikg").write_text('<group sample_rate="1000"><module class="AudioOscillator"'
                                     ' name="O"/></group>')
-    import ikaros
     with ikaros.load(str(tmp_path / "m.ikg"), tick_duration="0.05") as net:
         assert net.output("O.OUTPUT").shape == (50,)
-    with ikaros.load(str(tmp_path / "m.ikg")) as net:                 # Ikaros 2: 10 ms
+    with ikaros.load(str(tmp_path / "m.ikg"), dialect="2") as net:    # Ikaros 2: 10 ms
         assert net.output("O.OUTPUT").shape == (10,)
-    with ikaros.load(str(tmp_path / "m.ikg"), dialect="3") as net:    # Ikaros 3: 1 s
+    with ikaros.load(str(tmp_path / "m.ikg")) as net:                 # Ikaros 3: 1 s
+        assert net.dialect == "3"
         assert net.output("O.OUTPUT").shape == (1000,)
+
+
+def test_the_block_is_sized_by_the_languages_tick_duration_not_a_parameter(tmp_path):
+    # Ikaros 3's interface has no tick_duration parameter: @tick_duration is the variable,
+    # which a group inside the model may set (with a warning: the model ticks otherwise)
+    assert "tick_duration" not in [p.name for p in
+                                   ikaros.classes()["AudioOscillator"].parameters]
+    (tmp_path / "m.ikg").write_text(
+        '<group sample_rate="1000" tick_duration="0.01">\n'
+        '  <group name="G" tick_duration="0.02">\n'
+        '    <module class="AudioOscillator" name="O"/>\n  </group>\n</group>\n')
+    with ikaros.load(str(tmp_path / "m.ikg"), quiet=True) as net:
+        assert net.output("G.O.OUTPUT").shape == (20,)
+        [warning] = net.warnings
+        assert (warning.line, warning.message) == (
+            3, "the block has 20 samples (a tick_duration set inside the model sizes it), "
+               "but the model ticks every 0.01 s: sample_rate × 0.01 s = 10 samples")
