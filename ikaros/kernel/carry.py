@@ -92,7 +92,8 @@ def _follower(old, before: ModuleInstance, new, inst: ModuleInstance,
               memory: list) -> Follower:
     """What maps ``before``'s references into ``old`` (its arrays ``memory``) to ``inst``'s
     in ``new``."""
-    arrays, objects = [], {before.module: inst.module, before.module.clock: inst.module.clock}
+    arrays = []
+    objects = [(before.module, inst.module), (before.module.clock, inst.module.clock)]
     old_ports, new_ports = old._buffers[before], new._buffers[inst]
     for old_side, new_side in zip(old_ports, new_ports):
         for name, buf in new_side.items():
@@ -100,7 +101,7 @@ def _follower(old, before: ModuleInstance, new, inst: ModuleInstance,
             if source.array is not None and buf.array is not None:
                 arrays.append((source.array, buf.array))
             if source.dynamic_array is not None and buf.dynamic_array is not None:
-                objects[source.dynamic_array] = buf.dynamic_array
+                objects.append((source.dynamic_array, buf.dynamic_array))
     for name in inst.values:
         a = getattr(before.module, parameter_attribute(name), None)
         b = getattr(inst.module, parameter_attribute(name), None)
@@ -190,9 +191,10 @@ def take_over(old, new) -> list[str]:
     kept = carry_state(old, new)
     new.log_level = old.log_level
     new.profiling = old.profiling
-    hooks = list(old.controller.tick_hooks)
-    old.controller.tick_hooks.clear()
-    new.controller.tick_hooks.extend(hooks)
+    if old._controller is not None:      # (a network stepped from Python has none)
+        hooks = list(old.controller.tick_hooks)
+        old.controller.tick_hooks.clear()
+        new.controller.tick_hooks.extend(hooks)
     return kept
 
 
@@ -200,16 +202,22 @@ def rebuild(old, tree, classes: dict | None = None):
     """Build ``tree`` (the model tree of ``old``, edited) with the settings ``old`` was
     loaded with, and make it take over from ``old``, which is closed. When the tree does not
     build, ModelError is raised and ``old`` runs on unchanged. The new network is made by
-    the builder class that made ``old``."""
+    the builder class that made ``old``. A tree without a ``dialect`` attribute is read in
+    ``old``'s dialect: an edit (a module added in the editor) does not change how the rest
+    of the model is read."""
+    overrides = dict(old._overrides)
+    if "dialect" not in tree.attrs:
+        overrides.setdefault("dialect", old.dialect)
     registry = None
     if classes:
         registry = CodeClassRegistry([os.path.dirname(old.filename)], classes)
-    new = old.builder_class(old.filename, old._overrides, model=tree, registry=registry,
+    new = old.builder_class(old.filename, overrides, model=tree, registry=registry,
                             diagnostics=old.diagnostics.fresh(), limits=old.limits,
                             user_data=getattr(old, "user_data", None),
                             predecessor=old).build()
-    old.controller.stop()
-    old.controller.join(30)
+    if old._controller is not None:
+        old.controller.stop()
+        old.controller.join(30)
     take_over(old, new)
     old.close()
     return new

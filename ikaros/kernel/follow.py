@@ -36,13 +36,13 @@ class Follower:
     """Maps objects of a replaced network to the new network's.
 
     ``arrays``: (old, new) pairs of one module's arrays (ports, array parameters): a view
-    of an old one becomes the same view of the new one. ``objects``: old object -> new object,
-    replaced as they are. ``memory``: the old network's other arrays (its whole arena), into
+    of an old one becomes the same view of the new one. ``objects``: (old, new) pairs of
+    objects replaced as they are (by identity: they need not be hashable). ``memory``: the old network's other arrays (its whole arena), into
     which no reference may point."""
 
-    def __init__(self, arrays: list, objects: dict, memory: list):
-        self._objects = {id(old): new for old, new in objects.items()}
-        self._keep = list(objects)               # (the ids stay valid)
+    def __init__(self, arrays: list, objects: list, memory: list):
+        self._objects = {id(old): new for old, new in objects}
+        self._keep = [old for old, _ in objects]   # (the ids stay valid)
         self._arrays = [(_bounds(old), old, new) for old, new in arrays
                         if old.shape == new.shape and old.dtype == new.dtype
                         and old.strides == new.strides]
