@@ -93,8 +93,6 @@ INPUTS = {
 }
 ELEMENTS = {"FadeCandy": [Node("channel", {"name": "STRIP", "channel": "0", "size": "8"})]}
 PARAMETERS = {"Idle": {"init": "0", "duration": "0"},
-              # 200 sub-steps in a tick of 1 s instead of 40 000
-              "ConductanceNeuronPopulation": {"maximum_internal_step": "0.005"},
               "WhiteBalance": {"x0": "2", "x1": "5", "y0": "2", "y1": "5"},
               "InputAudioFile": {"filename": "sound.wav", "block_size": "4"},
               "Replay": {"filename": "recording.h5", "signal": "Ramp.OUTPUT"}}

@@ -6,6 +6,7 @@ import numpy as np
 from ikaros.module import Input, Module, Output, Parameter
 
 from . import _conductance as eq
+from ._conductance_kernels import HH_PARAMETERS, ML_PARAMETERS, kernels
 
 
 class ConductanceNeuronPopulation(Module):
@@ -91,15 +92,36 @@ class ConductanceNeuronPopulation(Module):
             self._restart(self.RESET > 0)
         current = self._input("CURRENT")
         g_e, g_i = self._input("EXCITATORY_CONDUCTANCE"), self._input("INHIBITORY_CONDUCTANCE")
+        hh = self.model == "hodgkin_huxley"
+        count = np.zeros(self.population_size)
+        compiled = kernels()
+        if compiled is not None:
+            self._compiled_steps(compiled, hh, current, g_e, g_i, steps, dt, count)
+        else:
+            self._steps(hh, current, g_e, g_i, steps, dt, count)
+        self.SPIKE_COUNT[...] = count
+        self.SPIKES[...] = count > 0
+        self.FIRING_RATE[...] = count / T
 
+    def _compiled_steps(self, compiled, hh, current, g_e, g_i, steps, dt, count):
+        names = HH_PARAMETERS if hh else ML_PARAMETERS
+        p = np.array([getattr(self, name) for name in names], np.float64)
+        state = self._gates if hh else self.RECOVERY
+        loop = compiled.hodgkin_huxley if hh else compiled.morris_lecar
+        loop(self.VOLTAGE, state, current, g_e, g_i, float(self.excitatory_reversal_potential),
+             float(self.inhibitory_reversal_potential), p, steps, dt,
+             float(self.spike_threshold), count)
+        if hh:
+            self.RECOVERY[...] = self._gates[2]
+
+    def _steps(self, hh, current, g_e, g_i, steps, dt, count):
+        """The NumPy form: all neurons at once, sub-step by sub-step."""
         def synaptic(V):
             return g_e * (self.excitatory_reversal_potential - V) + \
                 g_i * (self.inhibitory_reversal_potential - V)
 
-        hh = self.model == "hodgkin_huxley"
         derivatives = (lambda s: eq.hh_derivatives(self, s, current, synaptic)) if hh else \
             (lambda s: eq.ml_derivatives(self, s, current, synaptic))
-        count = np.zeros(self.population_size)
         for _ in range(steps):
             V = self.VOLTAGE.astype(np.float64)
             state = (V, *self._gates.astype(np.float64)) if hh else \
@@ -112,6 +134,3 @@ class ConductanceNeuronPopulation(Module):
                 self.RECOVERY[...] = self._gates[2]
             else:
                 self.RECOVERY[...] = np.clip(new[1], 0, 1)
-        self.SPIKE_COUNT[...] = count
-        self.SPIKES[...] = count > 0
-        self.FIRING_RATE[...] = count / T

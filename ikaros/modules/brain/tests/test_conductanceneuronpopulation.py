@@ -60,3 +60,33 @@ def test_hodgkin_huxley_rests_without_input_and_fires_with_it(tmp_path):
         assert spikes[0] in (2, 3) and spikes[1] == 0
     finally:
         net.close()
+
+
+@pytest.mark.parametrize("model", ["hodgkin_huxley", "morris_lecar"])
+def test_the_compiled_loops_give_the_numpy_forms_values(tmp_path, model, monkeypatch):
+    """With numba the sub-steps run compiled (a tick of 1 s is 40 000 of them); without it
+    NumPy computes them: the same values and spikes, tick by tick."""
+    pytest.importorskip("numba")
+    from ikaros.modules.brain import _conductance_kernels
+
+    def trace():
+        with load(tmp_path, '<module class="Constant" name="I" data="0,5,10,40"/>'
+                            f'<module class="ConductanceNeuronPopulation" name="N" '
+                            f'model="{model}" population_size="4"/>'
+                            '<connection source="I.OUTPUT" target="N.CURRENT" delay="0"/>',
+                  tick_duration="0.01") as net:
+            rows = []
+            for _ in range(4):
+                net.step()
+                rows.append(np.concatenate([net.output(f"N.{o}") for o in
+                                            ("VOLTAGE", "RECOVERY", "SPIKE_COUNT")]))
+            return np.array(rows)
+
+    assert _conductance_kernels.kernels() is not None
+    compiled = trace()
+    monkeypatch.setattr(_conductance_kernels, "_kernels", [None])
+    numpy_form = trace()
+    np.testing.assert_array_equal(compiled, numpy_form)
+    if model == "hodgkin_huxley":           # the undriven neuron rests, the driven ones fire
+        spikes = compiled[:, 8:].sum(axis=0)
+        assert spikes[0] == 0 and spikes[3] > spikes[2] > 0
