@@ -36,6 +36,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 # (the folder of copies here, the folder in shared/, the dialect to force, the first record)
 SETS = {"3": ("files", "golden", "3", 1), "2": ("files-v2", "golden-v2", None, 0)}
 
+# Ikaros 2 cases whose values are not reproduced yet (issue 35): each class's description says
+# so. Marked strict: a case that comes to agree fails here until it is taken off the list.
+NOT_REPRODUCED = {
+    "v2-BackProp-vector", "v2-BackProp-matrix", "v2-BackProp-varying",
+    "v2-NeuralArray-vector", "v2-NeuralArray-matrix", "v2-NeuralArray-varying",
+    "v2-DirectionDetector-matrix", "v2-MazeGenerator-vector", "v2-StaufferGrimson-varying",
+}
+
 RTOL = ATOL = 1e-5
 # golden/README.md: classes that integrate at sub-tick steps may need rtol 1e-4
 LOOSER = {"IntegrateAndFirePopulation": 1e-4, "RatePopulation": 1e-4, "KalmanFilter": 1e-4}
@@ -48,8 +56,12 @@ def _cases() -> list:
             with open(file, encoding="utf-8") as f:
                 golden = json.load(f)
             for case in golden["cases"]:
-                cases.append(pytest.param(version, golden["class"], case,
-                                          id=f'v{version}-{golden["class"]}-{case["name"]}'))
+                name = f'v{version}-{golden["class"]}-{case["name"]}'
+                marks = [pytest.mark.xfail(strict=True, reason="Ikaros 2's values on this case "
+                                           "are not reproduced yet (issue 35)")] \
+                    if name in NOT_REPRODUCED else []
+                cases.append(pytest.param(version, golden["class"], case, id=name,
+                                          marks=marks))
     return cases
 
 

@@ -4,7 +4,8 @@
 import { api } from "../api.js";
 import { WIDGETS } from "../widgets/index.js";
 import { pickClass } from "./class-list.js";
-import { ask, dialog, files, pickFile } from "./files.js";
+import { dialog } from "../dialog.js";
+import { ask, files, pickFile } from "./files.js";
 import { EditorInspector } from "./inspector.js";
 import { BOX_W, ELK_LIMIT, HEADER, PORT_H, graphOf, layout, loadElk, storedPosition } from "./layout.js";
 import { EditorModel, GROUP_WIDGETS, clone, elements, kids, node, setWidgetBox, treeAsNetwork, viewsOf, widgetBox } from "./model.js";
