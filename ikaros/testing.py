@@ -84,7 +84,8 @@ def running_processes(group: int | None = None, parent: int | None = None) -> li
 # Examples whose values differ from run to run whatever the kernel does: servos of a
 # simulator that move in real time, and OpenCV's float filters, which round the last bit
 # differently from run to run (docs/images.md) and so may tip a threshold.
-_NOT_REPEATABLE = {"epi.ikg", "lucs_arm.ikg", "arm_playback.ikg"}
+# robots and sensors whose simulators move or stream in real time
+_NOT_REPEATABLE = {"epi.ikg", "lucs_arm.ikg", "arm_playback.ikg", "UM7_example.ikg"}
 
 
 def repeatable_examples(root: str) -> list[str]:

@@ -138,7 +138,7 @@ def test_user_data_folder_takes_written_files_and_the_model_cannot_choose_it(tmp
     import ikaros
     model = tmp_path / "m.ikg"
     model.write_text('<group user_data="elsewhere"><module class="Constant" name="C" data="5"/>'
-                     '<module class="OutputFile" name="O" filename="o.csv" decimals="1"/>'
+                     '<module class="OutputFile" name="O" filename="o.csv" timestamp="tick" decimals="1"/>'
                      '<connection source="C.OUTPUT" target="O.INPUT" delay="0" label="v"/>'
                      '</group>')
     net = ikaros.load(str(model), user_data=str(tmp_path / "data"), quiet=True)

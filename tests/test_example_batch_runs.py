@@ -37,5 +37,5 @@ def test_every_example_in_the_readme_says_what_it_did():
                                      "Reach: distance to the target = ")]
     assert len(distance) == 12 and max(distance[-3:]) < 0.02, distance
     # the robot has put its blocks down
-    where = values(run("gl_robot_builder.ikg", 480), "Where: robot x, y, heading, block = ")
-    assert len(where) == 8 and where[-1][3] == 0, where
+    where = values(run("gl_robot_builder.ikg", 480), "Where: robot x, y, held block, heading = ")
+    assert len(where) == 8 and 3 in [w[2] for w in where] and where[-1][2] == 0, where

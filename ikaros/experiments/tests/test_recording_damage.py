@@ -193,10 +193,11 @@ def test_a_replay_of_a_recording_cut_at_its_end_plays_its_whole_chunks_and_warns
     net.log_level = -1
     played = net.run(ticks=TICKS, record="A.OUTPUT")["A.OUTPUT"].values
     np.testing.assert_array_equal(played[:, 0], whole["Counter.OUTPUT"].values[:32768, 0])
+    # a load-time warning: once, at the line of the module that opened the file first
     warned = [m for _, _, _, m in net.log if "cut off" in m]
-    assert warned == [f"the recording {path} is cut off: the file has {end} of the "
-                      f"{source.stat().st_size} bytes it says it holds; only its first "
-                      f"32768 of {TICKS} rows are read"]
+    assert warned == [f'{tmp_path / "model.ikg"}:2: <module name="A">: the recording {path} '
+                      f"is cut off: the file has {end} of the {source.stat().st_size} bytes "
+                      f"it says it holds; only its first 32768 of {TICKS} rows are read"]
     net.close()
 
 

@@ -46,7 +46,7 @@ def test_every_class_description_is_rendered_without_raw_marks():
         assert found["problems"] == [], found["problems"][:10]
         assert ["ColorTransform", "linear"] in found["strong"], found["strong"]
         assert ["WilsonCowan", "of the previous tick"] in found["strong"], found["strong"]
-        assert ["GridWorld", "not"] in found["em"], found["em"]
+        assert ["MotionRecorder", "record"] in found["em"], found["em"]
         assert found["code"] > 1000
         assert not page.errors, page.errors
 

@@ -51,7 +51,7 @@ def light(tmp_path, attrs, ticks, **top):
 def test_direct_light_through_a_day_in_lund(tmp_path):
     # one tick an hour from midnight UTC on 21 June 2024 at Lund (55.7° N, 13.2° E)
     got = light(tmp_path, 'year="2024" month="6" day="21" latitude="55.7" longitude="13.2" '
-                          'radiation="800"', 24, tick_duration="3600")
+                          'radiation="800"', 24, tick_duration="3600", dialect="2")
     expected = []
     for hour in range(24):                  # Ikaros 2 files: tick k is at k hours
         e = _solar.elevation(datetime(2024, 6, 21, hour), 55.7, 13.2)
@@ -65,7 +65,7 @@ def test_direct_light_through_a_day_in_lund(tmp_path):
 def test_on_off_and_the_time_of_day(tmp_path):
     got = light(tmp_path, 'method="OnOff" year="2024" month="6" day="21" time="1" '
                           'latitude="55.7" longitude="13.2" radiation="2"', 3,
-                tick_duration="3600")
+                tick_duration="3600", dialect="2")
     # 01:00, 02:00, 03:00 UTC: the sun rises at Lund at about 02:25 UTC (04:25 summer time)
     assert got == [0, 0, 2]
 

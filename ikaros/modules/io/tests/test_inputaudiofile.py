@@ -16,7 +16,7 @@ def stereo(frames: int) -> np.ndarray:
 
 
 def audio(tmp_path, attrs: str):
-    return load(tmp_path, f'<module class="InputAudioFile" name="A" {attrs}/>')
+    return load(tmp_path, f'<module class="InputAudioFile" name="A" {attrs}/>', dialect="2")
 
 
 def blocks(net, ticks: int) -> list:

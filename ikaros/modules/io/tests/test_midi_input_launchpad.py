@@ -138,7 +138,7 @@ def animation(tmp_path, attrs, rows=None, ticks=1, tick_duration="0.05"):
                  '<connection source="K.K" target="A.KEY" delay="0"/>'
                  '<connection source="K.T" target="A.TRIG" delay="0"/>'
                  '<connection source="K.E" target="A.EVENT_COUNT" delay="0"/>')
-    net = load(tmp_path, body, tick_duration=tick_duration)
+    net = load(tmp_path, body, tick_duration=tick_duration, dialect="2")   # time 0 first
     frames = []
     try:
         for _ in range(ticks):

@@ -221,7 +221,8 @@ def test_v3_jsonl_keeps_shapes_and_writes_null(tmp_path):
     path = tmp_path / "nan.ikg"
     path.write_text('<group name="Test"><module class="Constant" name="K" '
                     'data="nan inf -inf"/>'
-                    '<module class="OutputFile" name="O" filename="nan.jsonl"/>'
+                    '<module class="OutputFile" name="O" filename="nan.jsonl" format="jsonl" '
+                    'timestamp="tick"/>'
                     '<connection source="K.OUTPUT" target="O.INPUT" delay="0" label="k"/>'
                     '</group>')
     net = ikaros.load(str(path))
@@ -242,7 +243,7 @@ def test_v3_empty_json_recording_is_an_empty_array(tmp_path):
     path = tmp_path / "model.ikg"
     path.write_text('<group name="Test"><module class="InputFile" name="G" filename="g.txt"/>'
                     '<module class="Constant" name="C" data="1"/>'
-                    '<module class="OutputFile" name="O" filename="out.json"/>'
+                    '<module class="OutputFile" name="O" filename="out.json" format="json"/>'
                     '<connection source="C.OUTPUT" target="O.INPUT" delay="0" label="c"/>'
                     '<connection source="G.G" target="O.WRITE" delay="0"/></group>')
     net = ikaros.load(str(path))

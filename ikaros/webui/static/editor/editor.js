@@ -267,9 +267,15 @@ export class Editor {
         }
         const free = (x, y) => !boxes.some((b) => x < b.x + b.w + ROOM_X && b.x < x + w + ROOM_X &&
             y < b.y + b.h + ROOM_Y && b.y < y + hgt + ROOM_Y);
-        for (const [dx, dy] of SPOT_OFFSETS) {
-            const x = Math.round((cx + dx) / 10) * 10, y = Math.round((cy + dy) / 10) * 10;
-            if (free(x, y)) return { x, y };
+        // the view in the drawing's units: a place in it first, then the nearest elsewhere
+        const vx0 = (20 - t.x) / t.k, vy0 = (20 - t.y) / t.k;
+        const vx1 = ((r.width || 800) - 20 - t.x) / t.k, vy1 = ((r.height || 600) - 20 - t.y) / t.k;
+        const inView = (x, y) => x >= vx0 && y >= vy0 && x + w <= vx1 && y + hgt <= vy1;
+        for (const inside of [true, false]) {
+            for (const [dx, dy] of SPOT_OFFSETS) {
+                const x = Math.round((cx + dx) / 10) * 10, y = Math.round((cy + dy) / 10) * 10;
+                if ((!inside || inView(x, y)) && free(x, y)) return { x, y };
+            }
         }
         return { x: Math.round(cx / 10) * 10, y: Math.round((Math.max(cy, ...boxes.map((b) => b.y + b.h)) + 40) / 10) * 10 };
     }
@@ -285,13 +291,17 @@ export class Editor {
         const cls = await pickClass(this.classes);
         if (!cls) return;
         const g = this.group();
-        const at = this.freeSpot(BOX_W, this.boxHeight(cls));
+        const h = this.boxHeight(cls);
+        const at = this.freeSpot(BOX_W, h);
         const added = this.edit(`add ${cls}`, () => {
             this.freeze(g);
             const m = node("module", { class: cls, name: this.model.uniqueName(g, cls), _x: String(at.x), _y: String(at.y) });
             return EditorModel.insert(g, m);
         });
-        if (added) this.select([added]);
+        if (added) {
+            this.select([added]);
+            this.netView?.reveal(at.x, at.y, BOX_W, h);     // no free place in the view: pan to it
+        }
     }
 
     addGroup() {

@@ -182,6 +182,17 @@ export class NetworkView {
         return [x0, y0, x1, y1];
     }
 
+    /** Pan as little as it takes (at this zoom) to bring the rectangle x, y, w, h of the
+     *  drawing into the view, 20 px from its edges. */
+    reveal(x, y, w, h) {
+        const r = this.svg.getBoundingClientRect();
+        const { k } = this.t;
+        const shift = (lo, hi, size) => (lo < 20 || hi - lo > size - 40) ? 20 - lo : hi > size - 20 ? size - 20 - hi : 0;
+        const dx = shift(x * k + this.t.x, (x + w) * k + this.t.x, r.width || 800);
+        const dy = shift(y * k + this.t.y, (y + h) * k + this.t.y, r.height || 600);
+        if (dx || dy) this.setTransform({ k, x: this.t.x + dx, y: this.t.y + dy });
+    }
+
     /** Fit the drawing into the view. */
     fit() {
         if (!this.graph || !this.graph.boxes.length) { this.setTransform({ k: 1, x: 20, y: 20 }); return; }
