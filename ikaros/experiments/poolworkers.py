@@ -6,7 +6,7 @@ its parent dies (``prctl(PR_SET_PDEATHSIG)``, so also when the sweep is killed w
 SIGKILL); elsewhere a thread watches the parent. SIGTERM during a run interrupts the run
 (its modules are stopped and its recording closed as not finished, and the run's row says
 "interrupted" with the ticks it ran), and the worker exits at once if its parent is gone,
-within ``GRACE`` seconds in any case. SIGTERM between runs exits when the parent is gone;
+within ``CLOSE_GRACE`` seconds in any case. SIGTERM between runs exits when the parent is gone;
 else the sweep, which sent it, ends the worker once the rows of the runs cut off are back
 (an idle worker that exits at once would make the pool fail those runs' rows).
 """
@@ -20,11 +20,15 @@ import sys
 import threading
 import time
 
-from ..interrupt import GRACE, Interrupted
+from ..interrupt import Interrupted
 
 PR_SET_PDEATHSIG = 1            # linux/prctl.h
 EXIT_TERMINATED = 128 + signal.SIGTERM
 WATCH_SECONDS = 0.2             # how often the watching thread looks for the parent
+# how long an interrupted run may take to stop its modules and close its recording before
+# the worker exits anyway: longer than Ctrl-C's 2 s, as on a busy machine closing can take
+# that long, and a worker ended while it closes leaves its file marked open for writing
+CLOSE_GRACE = 8.0
 
 _state = {"parent": None, "running": False, "counters": None}
 
@@ -79,7 +83,7 @@ def _terminated(signum, frame) -> None:
         if os.getppid() != _state["parent"]:
             _exit()
         return          # the sweep ends this idle worker itself, once the runs are back
-    timer = threading.Timer(GRACE, _exit)
+    timer = threading.Timer(CLOSE_GRACE, _exit)
     timer.daemon = True
     timer.start()
     raise Interrupted()

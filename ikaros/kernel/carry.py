@@ -215,6 +215,7 @@ def rebuild(old, tree, classes: dict | None = None):
                             diagnostics=old.diagnostics.fresh(), limits=old.limits,
                             user_data=getattr(old, "user_data", None),
                             predecessor=old).build()
+    new._overrides = old._overrides      # (the dialect kept above is not a setting of the run)
     if old._controller is not None:
         old.controller.stop()
         old.controller.join(30)

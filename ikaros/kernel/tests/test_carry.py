@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 import ikaros
+from ikaros.language.node import Node
 
 
 class Counter(ikaros.Module):
@@ -97,3 +98,27 @@ def test_a_model_that_does_not_build_leaves_the_network_running():
     assert not net.stopped
     net.step()
     assert np.array_equal(net.output("Total.OUTPUT"), [3.0])
+
+
+def test_an_edit_keeps_the_dialect_and_the_clock_of_the_running_network(tmp_path):
+    """A file read as Ikaros 3 (by its class Clip) stays Ikaros 3 when the edit adds a
+    module whose spaced matrix alone would make it an Ikaros 2 file: the tick numbering and
+    every class's dialect go on as they were; a model that names its dialect gets it."""
+    path = tmp_path / "m.ikg"
+    path.write_text('<group name="M"><module class="Constant" name="C" data="2"/>'
+                    '<module class="Clip" name="K"/><module class="System" name="S"/>'
+                    '<connection source="C.OUTPUT" target="K.INPUT"/></group>')
+    net = ikaros.load(str(path), quiet=True)
+    assert net.dialect == "3"
+    net.run(ticks=3)
+    tree = net.model.copy()
+    tree.children.append(Node("module", {"class": "Constant", "name": "D", "data": "1 2 3"}))
+    net = net.apply(tree)
+    assert net.dialect == "3"
+    net.step()
+    assert net.output("S.TICK").tolist() == [4.0]     # Ikaros 3 numbers the first tick 1
+    named = net.model.copy()
+    named.attrs["dialect"] = "2"
+    net = net.apply(named)
+    assert net.dialect == "2"
+    net.close()
