@@ -2,6 +2,7 @@
 Subscriber that connects, reports a lost peer and reconnects by itself (ZeroMQ PUB/SUB)."""
 from __future__ import annotations
 
+import errno
 import math
 import time
 
@@ -12,6 +13,7 @@ from .wire import BadMessage, LinkError, WrongKey, decode, encode
 HEARTBEAT_MS = 500          # a silent TCP peer is declared lost after HEARTBEAT_TIMEOUT_MS
 HEARTBEAT_TIMEOUT_MS = 2000
 RECONNECT_MS = 100
+BIND_WAIT = 1.0             # seconds a port still held by a socket just closed is waited for
 
 
 def zmq_module():
@@ -29,14 +31,22 @@ class Publisher:
         self.socket = zmq.Context.instance().socket(zmq.PUB)
         self.socket.setsockopt(zmq.LINGER, 0)
         self.socket.setsockopt(zmq.SNDHWM, queue)
-        try:
-            if port == 0:
-                port = self.socket.bind_to_random_port(tcp(host, 0).rpartition(":")[0])
-            else:
-                self.socket.bind(tcp(host, port))
-        except zmq.ZMQError as e:
-            self.socket.close()
-            raise LinkError(f"cannot bind {tcp(host, port)}: {e}") from None
+        # ZeroMQ lets go of a closed socket's port in its own thread, a moment later: a
+        # model loaded again right after the last one closed waits for it, up to BIND_WAIT
+        deadline = time.monotonic() + BIND_WAIT
+        while True:
+            try:
+                if port == 0:
+                    port = self.socket.bind_to_random_port(tcp(host, 0).rpartition(":")[0])
+                else:
+                    self.socket.bind(tcp(host, port))
+                break
+            except zmq.ZMQError as e:
+                if e.errno == errno.EADDRINUSE and time.monotonic() < deadline:
+                    time.sleep(0.02)
+                    continue
+                self.socket.close()
+                raise LinkError(f"cannot bind {tcp(host, port)}: {e}") from None
         self.port = port
 
     def send(self, header: dict, arrays=()) -> None:

@@ -186,3 +186,12 @@ def test_another_machine_needs_a_key(tmp_path, monkeypatch):
 def test_bad_shape_is_a_load_error(tmp_path):
     with pytest.raises(ModelError, match='shape="2, x"'):
         load(tmp_path, client_body(9100, 'shape="2, x"'))
+
+
+def test_a_model_loaded_again_at_once_binds_the_port_its_last_run_let_go(tmp_path):
+    """ZeroMQ releases a closed socket's port a moment later: loading the model again right
+    after closing it (a reload, the next of several runs) waits for the port."""
+    port = free_port()
+    for _ in range(5):
+        with load(tmp_path, server_body(port)) as net:
+            net.step()
