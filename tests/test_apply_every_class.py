@@ -64,7 +64,8 @@ NEEDS_A_DEVICE = {
 # the simulators the robot classes open by name
 SIMULATED = {
     "Dynamixel": {"device": "sim:dynamixel?ids=1-3&protocol=1", "servo_id": "1 2 3"},
-    "DynamixelConfigure": {"device": "sim:dynamixel?ids=1-3&protocol=1", "field": "LED"},
+    "DynamixelConfigure": {"device": "sim:dynamixel?ids=1-3&protocol=1", "field": "LED",
+                           "max_servo_id": "3", "protocol": "1"},     # (no pings that time out)
     "Epuck": {"port": "sim:epuck"},
     "SSC32": {"port": "sim:ssc32"},
     "FadeCandy": {"address": "sim:opc", "start_server": "no"},
