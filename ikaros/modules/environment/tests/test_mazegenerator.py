@@ -1,8 +1,11 @@
 """Tests of the MazeGenerator module: perfect mazes are spanning trees of the rooms, the seed
 fixes the maze, regeneration happens on schedule, and the L- and T-mazes are as drawn."""
 import collections
+import ctypes
+import sys
 
 import numpy as np
+import pytest
 
 from ikaros.testing import load_body as load
 
@@ -101,5 +104,62 @@ def test_l_and_t_mazes(tmp_path):
         expected[1, 1:6] = 0                 # the cross bar along the top room row
         expected[1:6, 3] = 0                 # the stem up the middle room column
         assert np.array_equal(t, expected)
+    finally:
+        net.close()
+
+
+def glibc_rand_stream(seed):
+    """The C library's rand() after srand(seed), from the library itself (Linux: glibc, the
+    generator Ikaros 2 ran with for the golden files)."""
+    libc = ctypes.CDLL(None)
+    libc.srand(seed)
+    return libc.rand
+
+
+def depth_first_maze(size, rand):
+    """Ikaros 2's perfect maze as its golden file shows it, written out on its own: start in
+    room rand() % size² (x = s % size, y = s / size); each room entered draws k = rand() % 4
+    and tries left, right, up, down from the k-th in turn, entering each unvisited one."""
+    maze = np.ones((2 * size + 1, 2 * size + 1))
+    seen = set()
+
+    def visit(x, y):
+        seen.add((x, y))
+        maze[2 * y + 1, 2 * x + 1] = 0
+        k = rand() % 4
+        for i in range(4):
+            dx, dy = ((-1, 0), (1, 0), (0, -1), (0, 1))[(k + i) % 4]
+            if 0 <= x + dx < size and 0 <= y + dy < size and (x + dx, y + dy) not in seen:
+                maze[2 * y + 1 + dy, 2 * x + 1 + dx] = 0
+                visit(x + dx, y + dy)
+
+    start = rand() % (size * size)
+    visit(start % size, start // size)
+    return maze
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="needs glibc's rand()")
+def test_the_seed_draws_as_srand_does(tmp_path):
+    for size, seed in ((8, 1), (5, 2), (11, 12345)):
+        net = load(tmp_path, f'<module class="MazeGenerator" name="M" size="{size}" '
+                             f'seed="{seed}"/>')
+        try:
+            assert np.array_equal(net.output("M.OUTPUT"),
+                                  depth_first_maze(size, glibc_rand_stream(seed)))
+        finally:
+            net.close()
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="needs glibc's rand()")
+def test_unseeded_mazes_share_the_networks_rand_stream(tmp_path):
+    # Ikaros 2 never seeds rand(): the first maze is srand(1)'s, the second goes on drawing
+    rand = glibc_rand_stream(1)
+    first, second = depth_first_maze(4, rand), depth_first_maze(4, rand)
+    net = load(tmp_path, '<module class="MazeGenerator" name="A" size="4"/>'
+                         '<module class="MazeGenerator" name="B" size="4"/>')
+    try:
+        assert np.array_equal(net.output("A.OUTPUT"), first)
+        assert np.array_equal(net.output("B.OUTPUT"), second)
+        assert not np.array_equal(first, second)
     finally:
         net.close()
