@@ -41,7 +41,7 @@ SETS = {"3": ("files", "golden", "3", 1), "2": ("files-v2", "golden-v2", None, 0
 NOT_REPRODUCED = {
     "v2-BackProp-vector", "v2-BackProp-matrix", "v2-BackProp-varying",
     "v2-NeuralArray-vector", "v2-NeuralArray-matrix", "v2-NeuralArray-varying",
-    "v2-DirectionDetector-matrix", "v2-StaufferGrimson-varying",
+    "v2-DirectionDetector-matrix",
 }
 
 RTOL = ATOL = 1e-5

@@ -32,10 +32,19 @@ class StaufferGrimson(Module):
     0..255); the parameters of the other version are not used (a warning when set).
 
     The reference names the method but neither version's update formulas, so the formulas
-    above are this project's reading of the paper. Ikaros 2's golden outputs agree on
-    images that do not change, but not on a changing one: there a value that strays from
-    the first image by less than about 0.9 stays background, far beyond threshold ·
-    initialStandardDeviation = 0.05, which no reading of the method tried here gives."""
+    above are this project's reading of the paper. In an Ikaros 2 file the match test cuts
+    the fraction off the distance |value - mean| (``match="truncated"``), as C's integer
+    abs() does to a float difference: a value matches while it lies less than 1 from the
+    mean, and threshold · standard deviation (0.05 at first) only counts once it reaches 1.
+    That is this project's reading of Ikaros 2's golden outputs, not a fact from its code:
+    on a sine from -1.2 to 1.7, every value less than 1 from the first image (0) stays
+    background and every one further away is foreground (the constant cases fit any
+    reading). One case cannot tell a cut at 1 from another between 0.77 and 1.04; the cut
+    at 1 is taken because Ikaros 2's ChangeDetector takes the same integer absolute value
+    of a float difference (its golden outputs show it). So Ikaros 2's module finds no
+    foreground in an image of 0..1 unless a pixel moves a whole 1 from its background.
+    ``match="exact"`` (the default in an Ikaros 3 file) compares the distance itself, as
+    the method does."""
 
     alpha = Parameter(0.005, "Ikaros 2: the learning rate")
     T = Parameter(0.8, "the part of the weight that is background")
@@ -47,6 +56,9 @@ class StaufferGrimson(Module):
     max_gaussians = Parameter(5, "Ikaros 3: the number of Gaussians per pixel", type="int")
     initial_variance = Parameter(100.0, "Ikaros 3: the variance of a new Gaussian")
     learning_rate = Parameter(0.01, "Ikaros 3: the learning rate")
+    match = Parameter("truncated", "truncated: the whole part of |value - mean| is tested, as "
+                      "this project reads Ikaros 2 (a defect); exact: |value - mean|",
+                      options="truncated/exact", default_v3="exact")
     INPUT = Input("the image: gray (rows, cols), colour (3, rows, cols) or a vector (one "
                   "row)")
     OUTPUT = Output("1 for foreground pixels, 0 for background (rows, cols)")
@@ -106,6 +118,7 @@ class StaufferGrimson(Module):
             return
         b = self._buffers
         limit = np.float32(self.threshold ** 2)
+        truncated = self.match == "truncated"
         rate32, keep = np.float32(rate), np.float32(1.0 - rate)
         # the matching Gaussian ranked first, and the Gaussian ranked last (first on ties)
         b.best_rank.fill(-np.inf)
@@ -115,6 +128,8 @@ class StaufferGrimson(Module):
         for k in range(self._k):
             self._rank(k, b.rank)
             np.subtract(x, m[k], out=b.d2)
+            if truncated:
+                np.trunc(b.d2, out=b.d2)
             np.square(b.d2, out=b.d2)
             np.multiply(v[k], limit, out=b.t)
             np.less_equal(b.d2, b.t, out=b.match)

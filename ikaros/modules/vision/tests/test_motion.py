@@ -52,7 +52,7 @@ def test_stauffer_grimson_finds_a_new_object_and_learns_it(tmp_path):
         frames.append(f)
     frames = np.array(frames, np.float32)
     out = run_sequence(tmp_path, frames, '<module class="StaufferGrimson" name="M" '
-                       'alpha="0.05"/>', "OUTPUT")
+                       'alpha="0.05" match="exact"/>', "OUTPUT")
     assert all(out[k][0].sum() == 0 for k in range(30))      # the noisy background
     expected = np.zeros(background.shape)
     expected[5:10, 6:14] = 1
@@ -62,7 +62,7 @@ def test_stauffer_grimson_finds_a_new_object_and_learns_it(tmp_path):
     with_object[5:10, 6:14] = 0.95
     still = np.array([background] * 5 + [with_object] * 12, np.float32)
     out = run_sequence(tmp_path, still, '<module class="StaufferGrimson" name="M" '
-                       'alpha="0.5"/>', "OUTPUT")
+                       'alpha="0.5" match="exact"/>', "OUTPUT")
     assert out[5][0].sum() == 40 and out[-1][0].sum() == 0
 
 
@@ -164,14 +164,16 @@ def test_direction_detector_crop_and_no_of_rows(tmp_path):
         assert np.allclose(net.output("M.MOTION-VECTOR"), [41, 0])
 
 
-def mixture(values, rate, variance, k, t, threshold):
-    """The mixture of one pixel, value by value, as StaufferGrimson's description says:
+def mixture(values, rate, variance, k, t, threshold, truncated=False):
+    """The mixture of one pixel, value by value, as StaufferGrimson's description says
+    (``truncated``: the match test on the whole part of the distance, Ikaros 2's reading):
     returns the foreground flags and the last weights, means and variances."""
     w, m, v = [1.0] + [0.0] * (k - 1), [values[0]] + [0.0] * (k - 1), [variance] * k
     flags = [0]
     for x in values[1:]:
         rank = [w[i] / v[i] ** 0.5 for i in range(k)]
-        matches = [i for i in range(k) if (x - m[i]) ** 2 <= threshold ** 2 * v[i]]
+        distance = [float(np.trunc(x - m[i])) if truncated else x - m[i] for i in range(k)]
+        matches = [i for i in range(k) if distance[i] ** 2 <= threshold ** 2 * v[i]]
         chosen = max(matches, key=lambda i: rank[i]) if matches else min(range(k),
                                                                           key=lambda i: rank[i])
         w = [(1 - rate) * wi for wi in w]
@@ -215,3 +217,24 @@ def test_stauffer_grimson_with_ikaros3_parameters_and_model_outputs(tmp_path):
             assert np.allclose(last[2][r, c], m, rtol=1e-5)
             assert np.allclose(last[3][r, c], v, rtol=1e-4)
     assert [o[0][1, 2] for o in out][6:9] == [1, 1, 1]
+
+
+def test_stauffer_grimson_ikaros2_matches_on_the_whole_part_of_the_distance(tmp_path):
+    """An Ikaros 2 file: a value matches a Gaussian while the whole part of its distance is
+    within threshold standard deviations, so a background at 0.5 takes in values up to
+    0.9 away (1.4, -0.3) where the exact test takes in none; a jump of 2 is foreground
+    while its own Gaussian has little weight."""
+    values = np.array([0.5, 1.4, -0.3, 0.9, 2.5, 2.6, 0.5, -0.6, 3.2, 2.4, 2.45, 0.2],
+                      np.float32)
+    frames = np.tile(values[:, None, None], (1, 1, 2))
+    frames[:, 0, 1] += 10                           # the same steps around another level
+    out = run_sequence(tmp_path, frames, '<module class="StaufferGrimson" name="M" '
+                       'alpha="0.05"/>', "OUTPUT")
+    for c in range(2):
+        flags, *_ = mixture(frames[:, 0, c].astype(np.float64), 0.05, 0.02 ** 2, 5, 0.8, 2.5,
+                            truncated=True)
+        assert [int(o[0][0, c]) for o in out] == flags
+    assert [int(o[0][0, 0]) for o in out] == [0, 0, 0, 0, 1, 1, 0, 1, 1, 0, 0, 0]
+    exact = run_sequence(tmp_path, frames, '<module class="StaufferGrimson" name="M" '
+                         'alpha="0.05" match="exact"/>', "OUTPUT")
+    assert [int(o[0][0, 0]) for o in exact][1:4] == [1, 1, 1]
