@@ -1,7 +1,7 @@
 """How the classes that draw as Ikaros 2 does (Perceptron's initial weights, Trainer's random
-order, DataBuffer, EventTrigger, MazeGenerator, PlanarArm, Perception) choose their stream of the C
-library's ``rand()`` (``ikaros.module.CRandom``: glibc's generator, which Ikaros 2 never
-seeds), or NumPy's generator where the original's numbers are not the point."""
+order, DataBuffer, EventTrigger, MazeGenerator, PlanarArm, Perception) choose their stream
+of the C library's ``rand()`` (``ikaros.module.CRandom``: glibc's generator, which Ikaros 2
+never seeds), or NumPy's generator where the original's numbers are not the point."""
 import secrets
 
 import numpy as np
