@@ -15,10 +15,17 @@ class NeuralArray(Module):
     ACTIVITY) + alpha * (1 - ACTIVITY) + noise * N(0, 1), so alpha is a slow passive increase
     towards 1; ACTIVITY starts at 0. OUTPUT = beta * max(ACTIVITY, 0). The ``seed`` fixes the
     noise. This implements the equation of the class description (Ikaros 3 has no
-    NeuralArray). It does not give Ikaros 2's values: the golden files of Ikaros 2 show its
-    OUTPUT always 0, and ACTIVITY 0 or about alpha (0.001, changed by its random numbers)
-    on elements that change from tick to tick, for an INHIBITION alone, a rule this project
-    has not worked out."""
+    NeuralArray). It does not give Ikaros 2's values, a rule this project has not worked
+    out. What the golden files of Ikaros 2 show, for an INHIBITION alone and the default
+    parameters: OUTPUT stays 0; ACTIVITY is alpha plus a small random deviation (at most
+    about 0.00023, exactly 0 on about a quarter of the elements) where an element is free,
+    grows by about alpha a tick while it stays free, and is 0 otherwise; a negative
+    INHIBITION element does not raise ACTIVITY (here it would); with a 3 x 4 INHIBITION that
+    does not change, the free elements are a run of neighbours (wrapping from the last to
+    the first) that moves from tick to tick. The deviations are the same on every run, but
+    they are not any scaling of glibc's rand() / RAND_MAX values or of the usual Gaussian
+    methods on them (Box-Muller, Marsaglia's polar method, the sum of 12), from any
+    starting point in the first 300 000 draws."""
 
     alpha = Parameter(0.001, "passive increase of the activity towards 1, per tick")
     beta = Parameter(1.0, "gain of the output")

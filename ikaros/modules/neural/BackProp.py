@@ -12,12 +12,18 @@ class BackProp(Module):
     squared error with learning rate ``lr`` and ``momentum`` times the previous change
     added). ERROR is the Euclidean norm of the difference between T_TARGET and the response
     to T_INPUT before the step. That OUTPUT comes before the tick's step and that ERROR is a
-    norm is what the Ikaros 2 golden files show; the class is not in Ikaros 3. The original
-    draws its initial weights from the C library's rand() (the same on every run) in an
-    order and range no reference gives, and its learning rule is not documented either, so
-    this class does not reproduce the original's numbers: here the initial weights are
-    uniform in [-0.5, 0.5] from NumPy's generator (the same ``seed`` gives the same run; unset
-    or 0, a different run every time). (The catalogue gives ``lr`` no default; here it is a
+    norm is what the Ikaros 2 golden files show; the class is not in Ikaros 3. The original's
+    initial weights are the same on every run and in its two models of the same sizes, and
+    small (its outputs at a zero INPUT are 0.49 to 0.53, as from weights of about +-0.05),
+    but the order and formula it draws them by are not known: no layout of the weights
+    (either layer first, row or column order, the bias first, last or absent) filled from
+    glibc's rand() / RAND_MAX, scaled, or from Gaussian numbers made from it (Box-Muller,
+    Marsaglia's polar method), from any of its first 150 draws on, gives its outputs. Its
+    learning rule is not documented either (its first step agrees with the one here for lr
+    times the sum of the squared hidden outputs of about 0.65), so this class does not
+    reproduce the original's numbers: here the initial weights are uniform in [-0.5, 0.5]
+    from NumPy's generator (the same ``seed`` gives the same run; unset or 0, a different
+    run every time). (The catalogue gives ``lr`` no default; here it is a
     number, 0.2.)"""
 
     lr = Parameter(0.2, "the learning rate", range=(0, None))
