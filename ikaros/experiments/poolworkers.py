@@ -9,6 +9,13 @@ SIGKILL); elsewhere a thread watches the parent. SIGTERM during a run interrupts
 within ``CLOSE_GRACE`` seconds in any case. SIGTERM between runs exits when the parent is gone;
 else the sweep, which sent it, ends the worker once the rows of the runs cut off are back
 (an idle worker that exits at once would make the pool fail those runs' rows).
+
+A run is interrupted once: a SIGTERM that comes while it ends is the same news again. The
+sweep's death brings several: Linux sends the signal whenever the *thread* that is the
+worker's parent exits, and hands the worker on to another thread of the parent while it
+has one, so a dying sweep's threads, exiting one after another (tens of milliseconds
+apart on a busy machine), each send one. Raised again, the second would cut off the
+closing of the run's recording and leave its file marked open for writing.
 """
 from __future__ import annotations
 
@@ -30,7 +37,7 @@ WATCH_SECONDS = 0.2             # how often the watching thread looks for the pa
 # that long, and a worker ended while it closes leaves its file marked open for writing
 CLOSE_GRACE = 8.0
 
-_state = {"parent": None, "running": False, "counters": None}
+_state = {"parent": None, "running": False, "interrupted": False, "counters": None}
 
 
 def start(parent: int, counters=None) -> None:
@@ -52,6 +59,7 @@ def run(function, spec):
     """``function(spec, report)`` in a worker, ``report`` recording the ticks done by the
     run (or None); after a run cut off by SIGTERM whose sweep is gone, the worker exits."""
     _state["running"] = True
+    _state["interrupted"] = False
     counters = _state["counters"]
     try:
         return function(spec, counters.reporter(spec.index) if counters is not None else None)
@@ -83,6 +91,9 @@ def _terminated(signum, frame) -> None:
         if os.getppid() != _state["parent"]:
             _exit()
         return          # the sweep ends this idle worker itself, once the runs are back
+    if _state["interrupted"]:
+        return          # the run is ending already (the module's docstring says why)
+    _state["interrupted"] = True
     timer = threading.Timer(CLOSE_GRACE, _exit)
     timer.daemon = True
     timer.start()
