@@ -153,13 +153,14 @@ def test_a_sweep_killed_with_sigkill_leaves_no_worker(folder):
         assert f.attrs["ticks_recorded"] == n
 
 
-# A worker's run that its sweep's death interrupts, and that hears of it again while it
-# closes (Linux sends PDEATHSIG as each thread of the dying sweep exits): here sent by hand
+# A worker's run that SIGTERM interrupts and that hears of it again while it closes (a
+# dying sweep sends PDEATHSIG as each of its threads exits), and one that hears of it
+# after its ticks: here sent by hand. Each closes and returns its row.
 REPEATED_SIGTERM = """import os, signal
 from ikaros.experiments import poolworkers
 
 
-def function(spec, report):
+def interrupted(spec, report):
     try:
         os.kill(os.getpid(), signal.SIGTERM)        # the run is cut off here
         return "not interrupted"
@@ -168,18 +169,24 @@ def function(spec, report):
         return "closed"
 
 
+def done(spec, report):
+    poolworkers.closing()                           # its ticks are done
+    os.kill(os.getpid(), signal.SIGTERM)
+    return "closed"
+
+
 poolworkers.start(os.getppid())
-print(poolworkers.run(function, None))
+print(poolworkers.run(interrupted, None), poolworkers.run(done, None))
 """
 
 
-def test_a_sigterm_again_while_an_interrupted_run_closes_lets_it_close(tmp_path):
+def test_a_sigterm_while_a_run_closes_lets_it_close(tmp_path):
     script = tmp_path / "worker.py"
     script.write_text(REPEATED_SIGTERM)
     env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
     done = subprocess.run([sys.executable, str(script)], env=env, capture_output=True,
                           text=True, timeout=60)
-    assert (done.returncode, done.stdout, done.stderr) == (0, "closed\n", "")
+    assert (done.returncode, done.stdout, done.stderr) == (0, "closed closed\n", "")
 
 
 STOPPER = '''from ikaros import Module, Parameter
