@@ -9,6 +9,14 @@ SIGKILL); elsewhere a thread watches the parent. SIGTERM during a run interrupts
 within ``CLOSE_GRACE`` seconds in any case. SIGTERM between runs exits when the parent is gone;
 else the sweep, which sent it, ends the worker once the rows of the runs cut off are back
 (an idle worker that exits at once would make the pool fail those runs' rows).
+
+A run is interrupted once, and not once its ticks are done (``closing``): a SIGTERM that
+comes while it stops its modules and closes its recording lets it finish (within
+``CLOSE_GRACE``), as an exception raised there would cut off the closing and leave the
+file marked open for writing. A dying sweep sends several: Linux sends the signal whenever
+the *thread* that is the worker's parent exits, and hands the worker on to another thread
+of the parent while it has one, so the sweep's threads, exiting one after another (tens of
+milliseconds apart on a busy machine), each send one.
 """
 from __future__ import annotations
 
@@ -30,7 +38,8 @@ WATCH_SECONDS = 0.2             # how often the watching thread looks for the pa
 # that long, and a worker ended while it closes leaves its file marked open for writing
 CLOSE_GRACE = 8.0
 
-_state = {"parent": None, "running": False, "counters": None}
+_state = {"parent": None, "running": False, "closing": False, "timer": None,
+          "counters": None}
 
 
 def start(parent: int, counters=None) -> None:
@@ -52,6 +61,8 @@ def run(function, spec):
     """``function(spec, report)`` in a worker, ``report`` recording the ticks done by the
     run (or None); after a run cut off by SIGTERM whose sweep is gone, the worker exits."""
     _state["running"] = True
+    _state["closing"] = False
+    _state["timer"] = None
     counters = _state["counters"]
     try:
         return function(spec, counters.reporter(spec.index) if counters is not None else None)
@@ -59,6 +70,12 @@ def run(function, spec):
         _state["running"] = False
         if os.getppid() != _state["parent"]:
             _exit()
+
+
+def closing() -> None:
+    """Tell the worker that its run's ticks are done (or cut off): a SIGTERM from now on
+    lets the run end (see the module's docstring). Outside a worker it does nothing."""
+    _state["closing"] = True
 
 
 def _die_with_parent() -> bool:
@@ -83,10 +100,13 @@ def _terminated(signum, frame) -> None:
         if os.getppid() != _state["parent"]:
             _exit()
         return          # the sweep ends this idle worker itself, once the runs are back
-    timer = threading.Timer(CLOSE_GRACE, _exit)
-    timer.daemon = True
-    timer.start()
-    raise Interrupted()
+    if _state["timer"] is None:
+        _state["timer"] = threading.Timer(CLOSE_GRACE, _exit)
+        _state["timer"].daemon = True
+        _state["timer"].start()
+    if not _state["closing"]:
+        _state["closing"] = True
+        raise Interrupted()
 
 
 def _exit() -> None:

@@ -318,7 +318,9 @@ class Recorder:
             self._error = self._error or e
         if self._error is None:
             try:
-                with h5py_module().File(self.filename, "a") as f:
+                # without HDF5's lock: a reader in another process that has the file
+                # open (as SWMR lets it) holds it, and the file would stay not finished
+                with h5py_module().File(self.filename, "a", locking=False) as f:
                     f.attrs.modify("finished", complete)      # (in place)
                     f.attrs.modify("ticks_recorded", self.stored)
             except Exception as e:      # noqa: BLE001: reported below

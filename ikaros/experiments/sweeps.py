@@ -8,6 +8,7 @@ import logging
 import math
 import os
 import sys
+import threading
 import time
 import traceback
 from dataclasses import dataclass, field
@@ -161,15 +162,23 @@ def _set_in_tree(tree, path: str, value: str) -> bool:
 def _run(net, spec: RunSpec, report=None) -> dict:
     """Run (recording when asked); the final values of the recorded outputs."""
     if not spec.record:
-        run_in_steps(net, spec.ticks, report)
+        _ticks(net, spec, report)
         return {}
     signals, index = select_outputs(net, spec.record)
     if spec.recording:
         with Recorder(net, spec.recording, only=spec.record, every=spec.every):
-            run_in_steps(net, spec.ticks, report)
+            _ticks(net, spec, report)
     else:
-        run_in_steps(net, spec.ticks, report)
+        _ticks(net, spec, report)
     return final_metrics(signals, net.arena.block[index])
+
+
+def _ticks(net, spec: RunSpec, report) -> None:
+    """The run's ticks; after them (in a worker) a SIGTERM lets the run close."""
+    try:
+        run_in_steps(net, spec.ticks, report)
+    finally:
+        poolworkers.closing()
 
 
 def _shortest(value) -> float:
@@ -392,9 +401,11 @@ def _pool(count: int, context, counters: TickCounters):
 
 
 def _end_workers(pool, running: dict, reporter) -> None:
-    """On Ctrl-C or SIGTERM: SIGTERM to every worker, the rows of the runs they cut off
-    (those that come back within CUT_OFF_SECONDS) to the reporter, then SIGKILL to the
-    workers still there (their runs have ended, or had their time)."""
+    """On Ctrl-C or SIGTERM: SIGTERM to every worker, and the rows of the runs they cut off
+    (those that come back within CUT_OFF_SECONDS) to the reporter. A worker is never
+    killed while it may still be closing its run's recording (a file closed half way stays
+    marked open for writing): each ends by itself (poolworkers.py), and one still there
+    when its grace is over is stuck, and killed."""
     processes = list((getattr(pool, "_processes", None) or {}).values())
     for process in processes:
         process.terminate()
@@ -407,10 +418,17 @@ def _end_workers(pool, running: dict, reporter) -> None:
         row["attempts"] = attempt
         reporter.done(row)
     pool.shutdown(wait=False, cancel_futures=True)
+    threading.Thread(target=_kill_stuck, args=(processes, poolworkers.CLOSE_GRACE + 1.0),
+                     name="ikaros-sweep-end", daemon=True).start()
+
+
+def _kill_stuck(processes: list, seconds: float) -> None:
+    """Kill the processes still there ``seconds`` from now."""
+    deadline = time.monotonic() + seconds
     for process in processes:
+        process.join(max(deadline - time.monotonic(), 0))
         if process.is_alive():
             process.kill()
-        process.join(1)
 
 
 def _alone(spec: RunSpec, context, reporter) -> dict:

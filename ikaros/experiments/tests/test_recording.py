@@ -148,6 +148,34 @@ def test_command_line_errors(tmp_path, capsys):
     assert e.value.code == 2
 
 
+READER = """import sys
+import h5py
+with h5py.File(sys.argv[1], "r", swmr=True):
+    print("open", flush=True)
+    sys.stdin.readline()
+"""
+
+
+def test_a_recording_read_while_it_closes_is_marked_finished(tmp_path):
+    """A reader in another process (SWMR) that has the file open as the recording ends
+    does not keep it from being marked finished."""
+    net = load_body(tmp_path, BODY)
+    recorder = net.record(str(tmp_path / "run.h5"))
+    net.run(ticks=100)
+    reader = subprocess.Popen([sys.executable, "-c", READER, str(tmp_path / "run.h5")],
+                              stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    try:
+        assert reader.stdout.readline() == "open\n"
+        recorder.close()
+        assert recorder.failure is None
+    finally:
+        reader.communicate("\n", timeout=30)
+    net.close()
+    with h5py.File(tmp_path / "run.h5", "r") as f:
+        assert bool(f.attrs["finished"]) is True
+        assert f.attrs["ticks_recorded"] == 100
+
+
 def test_a_run_killed_mid_way_is_readable_up_to_its_last_flushed_chunk(tmp_path):
     out = tmp_path / "run.h5"
     env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
