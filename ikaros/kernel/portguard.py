@@ -12,7 +12,6 @@ within ports / SLICE ticks). Only when an identity differs is the culprit looked
 from __future__ import annotations
 
 import operator
-from itertools import repeat
 
 from ..module import attribute_name
 
@@ -73,18 +72,13 @@ class PortGuard:
     each) as they are bound now."""
 
     def __init__(self, modules: list):
-        owners, dicts, names, arrays = [], [], [], []
-        for inst, ports in modules:
-            attributes = vars(inst.module)
-            count = len(ports)
-            owners += [(inst, ports)] * count
-            dicts += [attributes] * count
-            names += ports
-            arrays += map(attributes.get, ports)
-        if not all(map(operator.is_not, arrays, repeat(None))):    # unbound: not watched
-            kept = [k for k, array in enumerate(arrays) if array is not None]
-            owners, dicts, names, arrays = ([column[k] for k in kept]
-                                            for column in (owners, dicts, names, arrays))
+        watched = [((inst, ports), attributes, attr, array)
+                   for inst, ports in modules
+                   for attributes in (vars(inst.module),)
+                   for attr, array in zip(ports, map(attributes.get, ports))
+                   if array is not None]        # (an unbound port is not watched)
+        owners, dicts, names, arrays = (list(column) for column in zip(*watched)) \
+            if watched else ([], [], [], [])
         self._owners = owners       # (instance, {attribute: is_output}) of each entry
         self._all = (dicts, names, arrays)
         self._slices = [(dicts[k:k + SLICE], names[k:k + SLICE], arrays[k:k + SLICE])
