@@ -124,6 +124,7 @@ class Builder:
         self._confined = True          # whether file parameters are checked (set by _build)
         self._checked_shapes: set[tuple] = set()   # output shapes that passed check_shape
         self._concatenations: dict[Group, str] = {}   # each group's concatenation setting
+        self._configuring: dict = {}   # a module's notify while configured, per notify
 
     # --- the tree ------------------------------------------------------------------------
     def build_tree(self) -> Group:
@@ -317,7 +318,11 @@ class Builder:
         for name, value in inst.values.items():
             setattr(module, parameter_attribute(name), value)
         inst.module = module
-        module._ik_notify = configuring(self.diagnostics, module._ik_notify)
+        notify = self._configuring.get(module._ik_notify)      # one for modules alike
+        if notify is None:
+            notify = self._configuring[module._ik_notify] = configuring(self.diagnostics,
+                                                                        module._ik_notify)
+        module._ik_notify = notify
         self._run_settings(inst)
         try:
             module.configure()
@@ -443,18 +448,15 @@ class Builder:
     def _concatenation(self, comp: Component) -> str:
         """The ``concatenation`` setting seen from a module or group: its own attribute, then
         the enclosing groups', then the dialect's default (kernel/concatenation.py)."""
-        cached = self._concatenations.get(comp)
-        if cached is not None:
-            return cached
         text = comp.attrs.get(CONCATENATION)
         if text:
-            value = self._concatenation_value(comp, comp.node, text)
-        elif comp.parent is not None:
-            value = self._concatenation(comp.parent)
-        else:
-            value = DEFAULT_CONCATENATION[self.dialect]
-        if isinstance(comp, Group):
-            self._concatenations[comp] = value
+            return self._concatenation_value(comp, comp.node, text)
+        parent = comp.parent
+        if parent is None:
+            return DEFAULT_CONCATENATION[self.dialect]
+        value = self._concatenations.get(parent)
+        if value is None:
+            value = self._concatenations[parent] = self._concatenation(parent)
         return value
 
     def _concatenation_value(self, scope, node: Node, text: str) -> str:
@@ -750,12 +752,13 @@ class Builder:
         shapes = self._input_shapes(inst)
         module._ik_input_shapes = shapes
         sized = []
-        waiting = False
+        waiting = aliases = False
         for name, buf in outputs.items():
             if buf.shape is not None:
                 continue
             spec = module._ik_outputs[name]
             if "alias" in spec.rule:
+                aliases = True
                 continue                # sized below, from the output it views
             try:
                 shape = rule_shape(inst, spec, shapes, partial) if spec.rule else WAIT
@@ -789,7 +792,7 @@ class Builder:
                         raise inst.node.error(f'size of output "{name}": {e}') from None
                     buf.shape = shape
                     sized.append(buf)
-        return sized + self._size_aliases(inst, outputs)
+        return sized + self._size_aliases(inst, outputs) if aliases else sized
 
     def _size_aliases(self, inst: ModuleInstance, outputs: dict) -> list[Buffer]:
         """Outputs that are aliases (Ikaros 3 ``alias="OUTPUT[1]"``) take the shape of the
@@ -905,7 +908,8 @@ class Builder:
 
 def _refuse_private_state(inst: ModuleInstance, port: str, path: str, node: Node) -> None:
     """A connection to or from a module's <state> item is an error (Ikaros 3)."""
-    if any(st.name == port for st in inst.module.description.states):
+    states = inst.module.description.states
+    if states and any(st.name == port for st in states):
         raise node.error(f'connection endpoint "{path}": {inst.path}.{port} is private state '
                          f'and can not be connected')
 
@@ -947,11 +951,12 @@ def _confined(node: Node, name: str, what: str) -> None:
 def _count_modules(tree: Node) -> int:
     """The <module> elements of a model's own files (group files used as classes add
     theirs as they are built)."""
-    count, pending = 0, [tree]
+    count, pending = int(tree.tag == "module"), [tree]
     while pending:
-        node = pending.pop()
-        count += node.tag == "module"
-        pending.extend(node.children)
+        for child in pending.pop().children:
+            count += child.tag == "module"
+            if child.children:
+                pending.append(child)
     return count
 
 

@@ -237,7 +237,8 @@ class Network:
             buf.array, buf.offset = views[k], offsets[k]
         for inst in self.schedule:
             for buf in self._buffers[inst][1].values():
-                _bind_alias(buf)
+                if buf.alias is not None:
+                    _bind_alias(buf)
         for buf in dynamic:
             buf.dynamic_array = DynamicArray(buf.shape)
             buf.array = buf.dynamic_array.storage
@@ -332,9 +333,10 @@ class Network:
                     return result
             return fuse(self.schedule, self.zero_delay_edges, self._buffers, block, calls,
                         pre_tick)
+        ports = port_attributes(self.schedule, self._buffers)
+        self._port_attributes = dict(ports)
         self.plan = Plan(self.schedule, pre_tick, tick_of, self.zero_delay_edges,
-                         self.threads or 1, self._module_cost, fuser,
-                         port_attributes(self.schedule, self._buffers))
+                         self.threads or 1, self._module_cost, fuser, ports)
         self._bulk = bulk if bulk_copy is not None else None
         self.compiled_since = 0 if self.compiled_modules else None
         if self.compiled_since is not None:
@@ -475,7 +477,7 @@ class Network:
         if job is not None:
             job.take_inputs()
         error = None
-        ports = dict(port_attributes([inst], self._buffers))[inst]
+        ports = self._port_attributes[inst]
         bound = bound_ports(inst.module, ports)
         try:
             inst.module.init()

@@ -32,29 +32,39 @@ def _message(attr: str, is_output: bool, when: str = "the tick") -> str:
             f"x = self.{attr}.copy())")
 
 
-def bound_ports(module, ports: dict) -> dict:
-    """The objects bound to a module's port attributes now (``ports``: {attribute:
-    is_output}, as port_attributes gives)."""
-    attributes = vars(module)
-    return {attr: attributes.get(attr) for attr in ports}
+def bound_ports(module, ports: dict) -> list:
+    """The objects bound to a module's port attributes now, in the order of ``ports``
+    ({attribute: is_output}, as port_attributes gives)."""
+    return list(map(vars(module).get, ports))
 
 
-def replaced_in_init(module, ports: dict, before: dict) -> ReplacedPort | None:
+def replaced_in_init(module, ports: dict, before: list) -> ReplacedPort | None:
     """A ReplacedPort when ``init`` bound a port attribute to another object than the
     kernel's array it held before (``before``: bound_ports then)."""
     attributes = vars(module)
-    for attr, is_output in ports.items():
-        if before[attr] is not None and attributes.get(attr) is not before[attr]:
+    if all(map(operator.is_, map(attributes.get, ports), before)):
+        return None
+    for (attr, is_output), array in zip(ports.items(), before):
+        if array is not None and attributes.get(attr) is not array:
             return ReplacedPort(_message(attr, is_output, "init"))
     return None
 
 
 def port_attributes(schedule: list, buffers: dict) -> list:
     """(instance, {attribute: is_output}) of each module in ``schedule`` (``buffers``:
-    {instance: (inputs, outputs)} by port name)."""
-    return [(inst, {**{attribute_name(n): False for n in buffers[inst][0]},
-                    **{attribute_name(n): True for n in buffers[inst][1]}})
-            for inst in schedule]
+    {instance: (inputs, outputs)} by port name). Modules with the same port names share
+    one dict (it is only read)."""
+    shared: dict = {}
+    result = []
+    for inst in schedule:
+        inputs, outputs = buffers[inst]
+        names = (tuple(inputs), tuple(outputs))
+        ports = shared.get(names)
+        if ports is None:
+            ports = shared[names] = {**{attribute_name(n): False for n in inputs},
+                                     **{attribute_name(n): True for n in outputs}}
+        result.append((inst, ports))
+    return result
 
 
 class PortGuard:
@@ -62,23 +72,21 @@ class PortGuard:
     each) as they are bound now."""
 
     def __init__(self, modules: list):
-        self._where = []            # (instance, attribute, is_output) of each entry
-        dicts, names, arrays = [], [], []
-        for inst, ports in modules:
-            attributes = vars(inst.module)
-            for attr, is_output in ports.items():
-                if attributes.get(attr) is not None:
-                    self._where.append((inst, attr, is_output))
-                    dicts.append(attributes)
-                    names.append(attr)
-                    arrays.append(attributes[attr])
+        watched = [((inst, ports), attributes, attr, array)
+                   for inst, ports in modules
+                   for attributes in (vars(inst.module),)
+                   for attr, array in zip(ports, map(attributes.get, ports))
+                   if array is not None]        # (an unbound port is not watched)
+        owners, dicts, names, arrays = (list(column) for column in zip(*watched)) \
+            if watched else ([], [], [], [])
+        self._owners = owners       # (instance, {attribute: is_output}) of each entry
         self._all = (dicts, names, arrays)
         self._slices = [(dicts[k:k + SLICE], names[k:k + SLICE], arrays[k:k + SLICE])
                         for k in range(0, len(dicts), SLICE)]
         self._next = -1             # the slice to check next; -1: all of them
 
     def __len__(self) -> int:
-        return len(self._where)
+        return len(self._owners)
 
     def check(self) -> tuple | None:
         """None when the ports checked now hold their arrays, else (instance,
@@ -88,7 +96,7 @@ class PortGuard:
         self._next = (k + 1) % len(self._slices)
         if all(map(operator.is_, map(dict.get, dicts, names), arrays)):
             return None
-        for (inst, attr, is_output), attributes, array in zip(self._where, *self._all[::2]):
+        for (inst, ports), attributes, attr, array in zip(self._owners, *self._all):
             if attributes.get(attr) is not array:
-                return inst, ReplacedPort(_message(attr, is_output))
+                return inst, ReplacedPort(_message(attr, ports[attr]))
         return None

@@ -53,12 +53,24 @@ def declared(module) -> tuple[str, ...]:
     """The attribute names a module's class declares as its state: the names in ``state``
     (checked when the class is defined, in ikaros/module.py) and its scalar ``State``
     items (Ikaros 3 ``<state>``)."""
-    return tuple(getattr(type(module), "state", ())) + tuple(_scalar_types(module))
+    return _declarations(module)[0]
 
 
 def _scalar_types(module) -> dict[str, str]:
     """{name: declared type} of the scalar state items of a module's class."""
-    return {st.name: st.type for st in module.description.states if st.type != "matrix"}
+    return _declarations(module)[1]
+
+
+def _declarations(module) -> tuple[tuple[str, ...], dict[str, str]]:
+    """(declared, _scalar_types) of a module's class, made once per class description (a
+    model of 10,000 modules then makes them once)."""
+    cls = type(module)
+    made = cls.__dict__.get("_ik_state_declarations")
+    if made is None or made[0] is not cls.description:
+        types = {st.name: st.type for st in cls.description.states if st.type != "matrix"}
+        made = (cls.description, tuple(getattr(cls, "state", ())) + tuple(types), types)
+        cls._ik_state_declarations = made
+    return made[1], made[2]
 
 
 def _modules(net, scope: str | None):
@@ -108,8 +120,8 @@ def values(net, scope: str | None = None, keep=np.ndarray.copy,
             if ring is not None:
                 out[path + "@delay"] = ("delay", "matrix",
                                         np.stack([ring.rows[k] for k in _ages(ring)]))
-        types = _scalar_types(inst.module)
-        for attr in declared(inst.module):
+        names, types = _declarations(inst.module)
+        for attr in names:
             if not hasattr(inst.module, attr):
                 raise StateError(f'{inst.path}: the state "{attr}" is not an attribute of '
                                  f'the module')

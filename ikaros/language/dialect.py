@@ -78,9 +78,10 @@ def detect_dialect(top: Node, folder: str | None = None) -> str:
 
 def read_dialect(top: Node, folder: str | None = None) -> Reading:
     """The dialect of a file without a ``dialect`` attribute, and why (see the module)."""
-    if ikaros3_form(top) is not None:
+    nodes = _walk(top)
+    if _first_form(top, nodes) is not None:
         return Reading("3")
-    signs = _signs(top, folder)
+    signs = _signs(top, nodes, folder)
     v3 = [s for s in signs if s.version == "3"]
     v2 = [s for s in signs if s.version == "2"]
     strong = [s for s in v3 if s.strong]
@@ -98,18 +99,24 @@ def read_dialect(top: Node, folder: str | None = None) -> Reading:
 
 def ikaros3_form(top: Node) -> str | None:
     """A short description of the first Ikaros 3-only form in the file, or None."""
+    return _first_form(top, _walk(top))
+
+
+def _first_form(top: Node, nodes: list) -> str | None:
     for key in top.attrs:
         if key in IKAROS3_SETTINGS:
             return f'the top-group setting "{key}"'
-    stack = [top]
-    while stack:
-        node = stack.pop()
-        for child in node.elements():
-            found = _form(child)
+    for node, _ in nodes:
+        # (a connection's form is a bracketed delay)
+        if node.tag in _FORM_TAGS and (node.tag != "connection" or
+                                       "[" in node.attrs.get("delay", "")):
+            found = _form(node)
             if found is not None:
                 return found
-            stack.append(child)
     return None
+
+
+_FORM_TAGS = frozenset(("widget", "group", "connection"))
 
 
 def _form(node: Node) -> str | None:
@@ -125,28 +132,29 @@ def _form(node: Node) -> str | None:
     return None
 
 
-def _signs(top: Node, folder: str | None) -> list[Sign]:
-    """Every sign of either version in the file, in document order."""
+def _signs(top: Node, nodes: list, folder: str | None) -> list[Sign]:
+    """Every sign of either version in the file (``nodes``: _walk's), in document order."""
     signs = [Sign("3", f'the top-group setting "{key}"', top, strong=False)
              for key in IKAROS3_RUN_SETTINGS if key in top.attrs]
     if "checksum" in top.attrs:
         signs.append(Sign("2", 'the top-group "checksum"', top))
     classes: dict[str, str | None] = {}       # module name -> class (None: ambiguous)
-    nodes = list(_walk(top))
     for node, _ in nodes:
         if node.tag == "module":
             name, cls = node.attrs.get("name"), node.attrs.get("class", "")
             if name is not None:
                 classes[name] = cls if classes.get(name, cls) == cls else None
-    class_files = _ClassFiles(folder)
+    # a connection's ports are looked at only when a class with ports of one version is used
+    ported = any(cls in IKAROS3_PORTS or cls in IKAROS2_PORTS for cls in classes.values())
+    profiles = _ClassProfiles(folder)
     for node, parent in nodes:
         tag, attrs = node.tag, node.attrs
         if tag == "module":
-            signs += _module_signs(node, class_files)
+            _module_signs(node, profiles, signs)
         elif tag in ("input", "output") and parent.tag == "group":
             signs += _port_signs(node)
         elif tag == "connection":
-            signs += _connection_signs(node, classes)
+            _connection_signs(node, classes if ported else None, signs)
         elif tag == "view":
             signs.append(Sign("2", "a <view> element", node))
         elif tag == "parameter" and parent.tag == "group" and attrs.get("target"):
@@ -154,36 +162,76 @@ def _signs(top: Node, folder: str | None) -> list[Sign]:
     return signs
 
 
-def _walk(top: Node):
+def _walk(top: Node) -> list[tuple[Node, Node]]:
+    """(element, its parent) of every element below ``top``, each element's children
+    together, includes spliced in."""
+    pairs = []
     stack = [top]
     while stack:
         node = stack.pop()
         children = list(node.elements())
-        for child in children:
-            yield child, node
-        stack.extend(reversed(children))
+        pairs += [(child, node) for child in children]
+        stack += [child for child in reversed(children) if child.children]
+    return pairs
 
 
-def _module_signs(node: Node, class_files: "_ClassFiles") -> list[Sign]:
+@dataclass(frozen=True)
+class _ClassProfile:
+    """What a module element's class alone says, and which of its attributes may say more."""
+    sign: str | None            # the version whose class it is only, if one
+    parameters: frozenset       # Ikaros 3's parameters of the class
+    labels: dict                # attribute -> Ikaros 3's option labels of the class
+    ikaros3_file: bool          # an Ikaros 3 class file beside the model
+    named: frozenset            # the attributes of either of the two before
+
+
+class _ClassProfiles(dict):
+    """The profile of each class, made when a module element first names it."""
+
+    def __init__(self, folder: str | None):
+        super().__init__()
+        self.class_files = _ClassFiles(folder)
+
+    def __missing__(self, cls: str) -> _ClassProfile:
+        sign = "3" if cls in IKAROS3_CLASSES else "2" if cls in IKAROS2_CLASSES else None
+        prefix = f"{cls}."
+        labels = {key[len(prefix):]: values for key, values in IKAROS3_LABELS.items()
+                  if key.startswith(prefix)}
+        parameters = IKAROS3_PARAMETERS.get(cls, frozenset())
+        profile = self[cls] = _ClassProfile(sign, parameters, labels,
+                                            self.class_files.ikaros3(cls),
+                                            parameters | labels.keys())
+        return profile
+
+
+_WHITESPACE = re.compile(r"\s")
+
+
+def _module_signs(node: Node, profiles: _ClassProfiles, signs: list) -> None:
     attrs = node.attrs
     cls = attrs.get("class", "")
-    signs = []
-    if cls in IKAROS3_CLASSES:
-        signs.append(Sign("3", f'the class "{cls}"', node))
-    elif cls in IKAROS2_CLASSES:
-        signs.append(Sign("2", f'the class "{cls}"', node))
+    profile = profiles[cls]
+    if profile.sign is not None:
+        signs.append(Sign(profile.sign, f'the class "{cls}"', node))
+    # an attribute is a sign only when it is a parameter or option label of Ikaros 3, an
+    # input flag (it has a dot) or a matrix with spaces (it has white space)
+    values = "".join(attrs.values())
+    if (profile.named.isdisjoint(attrs) and "." not in "".join(attrs)
+            and (values.isalnum() or _WHITESPACE.search(values) is None)):
+        if profile.ikaros3_file:
+            signs.append(Sign("3", f'the Ikaros 3 class file "{cls}.ikc" beside it', node))
+        return
     for key, value in attrs.items():
-        if key in IKAROS3_PARAMETERS.get(cls, ()):
+        if key in profile.parameters:
             signs.append(Sign("3", f'the parameter "{key}" of {cls}', node, strong=False))
-        elif value in IKAROS3_LABELS.get(f"{cls}.{key}", ()):
+        elif value in profile.labels.get(key, ()):
             signs.append(Sign("3", f'{key}="{value}" of {cls}', node, strong=False))
         elif key.rpartition(".")[2] in _PORT_FLAGS and "." in key:
             signs.append(Sign("3", f'the input flag "{key}"', node))
         elif _SPACED.match(value) and not key.startswith("_"):
             signs.append(Sign("2", f'the matrix {key}="{value}" written with spaces', node))
-    if class_files.ikaros3(cls):
+    if profile.ikaros3_file:
         signs.append(Sign("3", f'the Ikaros 3 class file "{cls}.ikc" beside it', node))
-    return signs
 
 
 def _port_signs(node: Node) -> list[Sign]:
@@ -196,15 +244,21 @@ def _port_signs(node: Node) -> list[Sign]:
     return signs
 
 
-def _connection_signs(node: Node, classes: dict) -> list[Sign]:
+_OFFSETS = frozenset(("sourceoffset", "targetoffset", "size"))
+
+
+def _connection_signs(node: Node, classes: dict | None, signs: list) -> None:
+    """The signs of a connection (``classes``: module name -> class, None when no class
+    used has ports of only one version)."""
     attrs = node.attrs
-    signs = []
     if "label" in attrs:
         signs.append(Sign("3", "a connection label", node))
-    if any(k in attrs for k in ("sourceoffset", "targetoffset", "size")):
+    if not _OFFSETS.isdisjoint(attrs):
         signs.append(Sign("2", "a connection with sourceoffset/targetoffset/size", node))
     if "," in attrs.get("delay", ""):
         signs.append(Sign("2", f'the delay list "{attrs["delay"]}"', node))
+    if classes is None:
+        return
     for key in ("source", "target"):
         path, _, port = attrs.get(key, "").partition("[")[0].rpartition(".")
         cls = classes.get(path.rpartition(".")[2])
@@ -212,7 +266,6 @@ def _connection_signs(node: Node, classes: dict) -> list[Sign]:
             signs.append(Sign("3", f'the port {port} of {cls}', node, strong=False))
         elif cls and port in IKAROS2_PORTS.get(cls, ()):
             signs.append(Sign("2", f'the port {port} of {cls}', node))
-    return signs
 
 
 class _ClassFiles:
