@@ -4,13 +4,15 @@ A run may ask (top-group ``priority``, ``cpus`` and ``lock_memory``; ``ikaros --
 for its tick thread and the threads that talk to devices to run under a real-time scheduling
 policy (``SCHED_FIFO`` or ``SCHED_RR``), or failing that at the best ``nice`` value the
 process may take, pinned to chosen cores, with the process's memory locked. The other threads
-of ikaros (the web UI's server, the recorder's writer) then run below them. What was granted
+of ikaros (the web UI's server, the recorder's writer) then run below them, and a thread whose
+work must keep pace with the ticks (the web UI's image encoder) runs under the real-time
+policy just below them. What was granted
 and what was refused is kept in :func:`report`; nothing is changed for a run that does not ask.
 
 One request holds per process. The kernel calls :func:`configure` when a network is built and
 :func:`tick_thread` in the thread that runs the ticks; drivers call :func:`device_thread` in
-their I/O threads and the web UI and recorder call :func:`background_thread` in theirs, in
-any order: a thread registered before the request is given its priority when the request
+their I/O threads, the web UI and recorder call :func:`background_thread` in theirs and the
+web UI's image encoder :func:`below_tick_thread`, in any order: a thread registered before the request is given its priority when the request
 comes.
 """
 from __future__ import annotations
@@ -28,6 +30,7 @@ POLICIES = {"fifo": "SCHED_FIFO", "rr": "SCHED_RR"}
 DEFAULT_RT_PRIORITY = 40
 DEFAULT_NICE = -10
 BACKGROUND_NICE = 5             # the web UI and the recorder, below the tick when it asks
+BELOW_TICK = 10                 # real-time levels between the tick and a below_tick_thread
 OFF = ("", "no", "off", "none", "false", "0")
 
 _RTPRIO_HELP = ("run as root, give the interpreter the capability (sudo setcap "
@@ -138,6 +141,7 @@ class _State:
     background: dict = field(default_factory=dict)    # thread -> what it was given
     pending_devices: list = field(default_factory=list)
     pending_background: list = field(default_factory=list)
+    pending_below_tick: list = field(default_factory=list)
 
 
 _state = _State()
@@ -161,6 +165,8 @@ def configure(request: PriorityRequest | None) -> None:
             _state.devices[thread] = _apply_rt(thread.native_id, request, "device thread")
         for thread in _state.pending_background:
             _state.background[thread] = _lower(thread.native_id)
+        for thread in _state.pending_below_tick:
+            _state.background[thread] = _below_tick(thread.native_id, request)
 
 
 def tick_thread() -> dict | None:
@@ -198,6 +204,21 @@ def background_thread() -> None:
             _state.background[thread] = _lower(thread.native_id)
 
 
+def below_tick_thread() -> None:
+    """Call first thing in a thread of ikaros whose work must keep pace with the ticks
+    without taking their time (the web UI's image encoder): when the tick asks for a
+    real-time policy, it runs under that policy ``BELOW_TICK`` levels lower (so the tick
+    preempts it, and the other processes do not while it holds Python's lock); under any
+    other request it runs as a :func:`background_thread`. It is listed with those."""
+    thread = threading.current_thread()
+    with _lock:
+        _forget_dead()
+        if _state.request is None:
+            _state.pending_below_tick.append(thread)
+        else:
+            _state.background[thread] = _below_tick(thread.native_id, _state.request)
+
+
 def report() -> dict | None:
     """What was asked for, granted and refused (None when nothing was asked for)."""
     with _lock:
@@ -227,7 +248,8 @@ def _forget_dead() -> None:
     for table in (_state.devices, _state.background):
         for thread in [t for t in table if not t.is_alive()]:
             del table[thread]
-    for pending in (_state.pending_devices, _state.pending_background):
+    for pending in (_state.pending_devices, _state.pending_background,
+                    _state.pending_below_tick):
         pending[:] = [t for t in pending if t.is_alive()]
 
 
@@ -288,6 +310,24 @@ def _lower(tid: int) -> str:
         return f"nice {nice}"
     except OSError as error:        # the thread ended meanwhile
         return f"unchanged ({error.strerror})"
+
+
+def _below_tick(tid: int, request: PriorityRequest) -> str:
+    """Run thread ``tid`` under the request's real-time policy ``BELOW_TICK`` levels below
+    the tick (level 1 at least); as :func:`_lower` when the request is not real-time, the
+    tick is at level 1 already, or the policy is not permitted (the tick's own refusal says
+    so)."""
+    if request.policy in POLICIES and request.level > 1:
+        name = POLICIES[request.policy]
+        level = max(1, request.level - BELOW_TICK)
+        try:
+            os.sched_setscheduler(tid, getattr(os, name), os.sched_param(level))
+            return f"{name} {level}"
+        except PermissionError:
+            pass
+        except OSError as error:        # the thread ended meanwhile
+            return f"unchanged ({error.strerror})"
+    return _lower(tid)
 
 
 MCL_CURRENT, MCL_FUTURE = 1, 2
