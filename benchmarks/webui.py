@@ -83,7 +83,7 @@ def serve_in_thread(net, **options):
                                            lifespan="off", ws_per_message_deflate=False))
 
     def serve():
-        priority.background_thread()
+        priority.below_tick_thread()
         try:
             server.run(sockets=[sock])
         finally:

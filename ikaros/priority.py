@@ -4,15 +4,15 @@ A run may ask (top-group ``priority``, ``cpus`` and ``lock_memory``; ``ikaros --
 for its tick thread and the threads that talk to devices to run under a real-time scheduling
 policy (``SCHED_FIFO`` or ``SCHED_RR``), or failing that at the best ``nice`` value the
 process may take, pinned to chosen cores, with the process's memory locked. The other threads
-of ikaros (the web UI's server, the recorder's writer) then run below them, and a thread whose
-work must keep pace with the ticks (the web UI's image encoder) runs under the real-time
-policy just below them. What was granted
+of ikaros (the recorder's writer) then run below them, and the threads that run Python code
+often while the ticks run (the web UI's server and image encoder) under the real-time policy
+just below them. What was granted
 and what was refused is kept in :func:`report`; nothing is changed for a run that does not ask.
 
 One request holds per process. The kernel calls :func:`configure` when a network is built and
 :func:`tick_thread` in the thread that runs the ticks; drivers call :func:`device_thread` in
-their I/O threads, the web UI and recorder call :func:`background_thread` in theirs and the
-web UI's image encoder :func:`below_tick_thread`, in any order: a thread registered before the request is given its priority when the request
+their I/O threads, the recorder calls :func:`background_thread` in its writer and the web UI
+:func:`below_tick_thread` in its server and image encoder, in any order: a thread registered before the request is given its priority when the request
 comes.
 """
 from __future__ import annotations
@@ -29,7 +29,7 @@ POLICIES = {"fifo": "SCHED_FIFO", "rr": "SCHED_RR"}
 # below the 50 that Linux gives its threaded interrupt handlers (serial ports, USB)
 DEFAULT_RT_PRIORITY = 40
 DEFAULT_NICE = -10
-BACKGROUND_NICE = 5             # the web UI and the recorder, below the tick when it asks
+BACKGROUND_NICE = 5             # background threads, below the tick when it asks
 BELOW_TICK = 10                 # real-time levels between the tick and a below_tick_thread
 OFF = ("", "no", "off", "none", "false", "0")
 
@@ -193,8 +193,8 @@ def device_thread() -> None:
 
 
 def background_thread() -> None:
-    """Call first thing in a thread of ikaros that must not take the tick's time (the web UI's
-    server, the recorder's writer): when a priority is asked for, it runs below the tick."""
+    """Call first thing in a thread of ikaros that must not take the tick's time (the
+    recorder's writer): when a priority is asked for, it runs below the tick."""
     thread = threading.current_thread()
     with _lock:
         _forget_dead()
@@ -205,11 +205,12 @@ def background_thread() -> None:
 
 
 def below_tick_thread() -> None:
-    """Call first thing in a thread of ikaros whose work must keep pace with the ticks
-    without taking their time (the web UI's image encoder): when the tick asks for a
-    real-time policy, it runs under that policy ``BELOW_TICK`` levels lower (so the tick
-    preempts it, and the other processes do not while it holds Python's lock); under any
-    other request it runs as a :func:`background_thread`. It is listed with those."""
+    """Call first thing in a thread of ikaros that runs Python code often while the ticks
+    run and must not take their time (the web UI's server and image encoder): when the tick
+    asks for a real-time policy, it runs under that policy ``BELOW_TICK`` levels lower, so
+    the tick preempts it and the other processes of the machine do not (preempted while it
+    holds Python's lock, it would keep the tick waiting for the lock); under any other
+    request it runs as a :func:`background_thread`. It is listed with those."""
     thread = threading.current_thread()
     with _lock:
         _forget_dead()
@@ -314,14 +315,15 @@ def _lower(tid: int) -> str:
 
 def _below_tick(tid: int, request: PriorityRequest) -> str:
     """Run thread ``tid`` under the request's real-time policy ``BELOW_TICK`` levels below
-    the tick (level 1 at least); as :func:`_lower` when the request is not real-time, the
-    tick is at level 1 already, or the policy is not permitted (the tick's own refusal says
-    so)."""
+    the tick (level 1 at least; the threads it starts do not inherit the policy); as
+    :func:`_lower` when the request is not real-time, the tick is at level 1 already, or the
+    policy is not permitted (the tick's own refusal says so)."""
     if request.policy in POLICIES and request.level > 1:
         name = POLICIES[request.policy]
         level = max(1, request.level - BELOW_TICK)
         try:
-            os.sched_setscheduler(tid, getattr(os, name), os.sched_param(level))
+            os.sched_setscheduler(tid, getattr(os, name) | os.SCHED_RESET_ON_FORK,
+                                  os.sched_param(level))
             return f"{name} {level}"
         except PermissionError:
             pass

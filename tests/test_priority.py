@@ -187,7 +187,8 @@ def _below_tick_thread_of(request: PriorityRequest, before: bool) -> tuple:
         priority.below_tick_thread()
         registered.set()
         release.wait(10)
-        seen.append((os.sched_getscheduler(0), os.sched_getparam(0).sched_priority,
+        seen.append((os.sched_getscheduler(0) & ~os.SCHED_RESET_ON_FORK,
+                     os.sched_getparam(0).sched_priority,
                      os.getpriority(os.PRIO_PROCESS, threading.get_native_id())))
     if not before:
         priority.configure(request)
@@ -212,19 +213,27 @@ def test_a_below_tick_thread_runs_under_the_real_time_policy_below_the_tick(befo
 
 
 @pytest.mark.skipif(os.geteuid() != 0, reason="granting SCHED_FIFO needs root here")
-def test_a_below_tick_thread_is_listed_with_the_background_threads():
+def test_a_below_tick_thread_is_listed_with_the_background_threads_and_not_inherited():
     priority.configure(PriorityRequest("fifo", 30))
-    registered, release = threading.Event(), threading.Event()
+    registered, release, started = threading.Event(), threading.Event(), []
+
+    def child():
+        started.append(os.sched_getscheduler(0))
 
     def helper():
         priority.below_tick_thread()
+        thread = threading.Thread(target=child)
+        thread.start()
+        thread.join(10)
         registered.set()
         release.wait(10)
     thread = threading.Thread(target=helper)
     thread.start()
     registered.wait(10)
     try:
-        assert priority.report()["background_threads"] == [f"SCHED_FIFO {30 - priority.BELOW_TICK}"]
+        assert priority.report()["background_threads"] == \
+            [f"SCHED_FIFO {30 - priority.BELOW_TICK}"]
+        assert started == [os.SCHED_OTHER]     # a thread it starts runs at the normal policy
     finally:
         release.set()
         thread.join(10)

@@ -4,8 +4,15 @@ number of clients, and only for a client that asks for it."""
 from __future__ import annotations
 
 import io
+import json
 import os
+import signal
+import socket
+import subprocess
+import sys
 import threading
+import time
+import urllib.request
 import warnings
 
 import numpy as np
@@ -213,8 +220,43 @@ def test_images_are_encoded_in_a_thread_below_a_real_time_tick(tmp_path):
             encoder, = [t for t in set(threading.enumerate()) - before
                         if t.name.startswith("ikaros-webui-images")]
             tid = encoder.native_id
-            assert (os.sched_getscheduler(tid), os.sched_getparam(tid).sched_priority) == \
+            assert (os.sched_getscheduler(tid) & ~os.SCHED_RESET_ON_FORK,
+                    os.sched_getparam(tid).sched_priority) == \
                 (os.SCHED_FIFO, 30 - priority.BELOW_TICK)
     finally:
         net.close()
         priority.reset()
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="granting SCHED_FIFO needs root here")
+def test_the_ikaros_command_serves_below_a_real_time_tick(tmp_path):
+    path = tmp_path / "t.ikg"
+    path.write_text(MODEL.replace('name="T"', 'name="T" priority="fifo:30" lock_memory="no"'))
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    proc = subprocess.Popen([sys.executable, "-m", "ikaros", "-w", str(port), str(path)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        status = None
+        end = time.monotonic() + 30
+        while time.monotonic() < end and proc.poll() is None and status is None:
+            try:
+                with urllib.request.urlopen(f"http://127.0.0.1:{port}/api/status",
+                                            timeout=2) as r:
+                    status = json.load(r)
+            except OSError:
+                time.sleep(0.1)
+        assert status is not None, proc.stderr.read() if proc.poll() is not None else ""
+        assert status["priority"]["tick_thread"] == "SCHED_FIFO 30"
+        # the server's thread (the encoder's starts with the first image asked for)
+        assert status["priority"]["background_threads"] == [
+            f"SCHED_FIFO {30 - priority.BELOW_TICK}"]
+    finally:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.communicate(timeout=15)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == 0
