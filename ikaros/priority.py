@@ -139,9 +139,7 @@ class _State:
     refused: list[str] = field(default_factory=list)
     devices: dict = field(default_factory=dict)       # thread -> what it was given
     background: dict = field(default_factory=dict)    # thread -> what it was given
-    pending_devices: list = field(default_factory=list)
-    pending_background: list = field(default_factory=list)
-    pending_below_tick: list = field(default_factory=list)
+    pending: list = field(default_factory=list)       # (thread, table, give) until a request
 
 
 _state = _State()
@@ -161,12 +159,8 @@ def configure(request: PriorityRequest | None) -> None:
         _state.refused.clear()
         if request.lock_memory and _state.memory_locked is None:
             _state.memory_locked = _lock_memory()
-        for thread in _state.pending_devices:
-            _state.devices[thread] = _apply_rt(thread.native_id, request, "device thread")
-        for thread in _state.pending_background:
-            _state.background[thread] = _lower(thread.native_id)
-        for thread in _state.pending_below_tick:
-            _state.background[thread] = _below_tick(thread.native_id, request)
+        for thread, table, give in _state.pending:
+            getattr(_state, table)[thread] = give(thread.native_id, request)
 
 
 def tick_thread() -> dict | None:
@@ -182,26 +176,13 @@ def tick_thread() -> dict | None:
 
 def device_thread() -> None:
     """Call first thing in a thread that talks to a device: it runs as the tick thread does."""
-    thread = threading.current_thread()
-    with _lock:
-        _forget_dead()
-        if _state.request is None:
-            _state.pending_devices.append(thread)
-        else:
-            _state.devices[thread] = _apply_rt(thread.native_id, _state.request,
-                                               "device thread")
+    _register("devices", _as_device)
 
 
 def background_thread() -> None:
     """Call first thing in a thread of ikaros that must not take the tick's time (the
     recorder's writer): when a priority is asked for, it runs below the tick."""
-    thread = threading.current_thread()
-    with _lock:
-        _forget_dead()
-        if _state.request is None:
-            _state.pending_background.append(thread)
-        else:
-            _state.background[thread] = _lower(thread.native_id)
+    _register("background", _as_background)
 
 
 def below_tick_thread() -> None:
@@ -211,13 +192,19 @@ def below_tick_thread() -> None:
     the tick preempts it and the other processes of the machine do not (preempted while it
     holds Python's lock, it would keep the tick waiting for the lock); under any other
     request it runs as a :func:`background_thread`. It is listed with those."""
+    _register("background", _below_tick)
+
+
+def _register(table: str, give) -> None:
+    """Give the calling thread ``give(native id, request)`` now, or when the request comes
+    (:func:`configure`), and keep what it runs at in ``_state.<table>``."""
     thread = threading.current_thread()
     with _lock:
         _forget_dead()
         if _state.request is None:
-            _state.pending_below_tick.append(thread)
+            _state.pending.append((thread, table, give))
         else:
-            _state.background[thread] = _below_tick(thread.native_id, _state.request)
+            getattr(_state, table)[thread] = give(thread.native_id, _state.request)
 
 
 def report() -> dict | None:
@@ -249,9 +236,7 @@ def _forget_dead() -> None:
     for table in (_state.devices, _state.background):
         for thread in [t for t in table if not t.is_alive()]:
             del table[thread]
-    for pending in (_state.pending_devices, _state.pending_background,
-                    _state.pending_below_tick):
-        pending[:] = [t for t in pending if t.is_alive()]
+    _state.pending[:] = [entry for entry in _state.pending if entry[0].is_alive()]
 
 
 def _refuse(message: str) -> None:
@@ -300,6 +285,14 @@ def _best_nice(tid: int, wanted: int, who: str) -> str:
     _refuse(f"nice {wanted} for the {who}: not permitted (it runs at nice "
             f"{min(best, current)}); " + _NICE_HELP)
     return f"nice {min(best, current)}"
+
+
+def _as_device(tid: int, request: PriorityRequest) -> str:
+    return _apply_rt(tid, request, "device thread")
+
+
+def _as_background(tid: int, request: PriorityRequest) -> str:
+    return _lower(tid)
 
 
 def _lower(tid: int) -> str:
