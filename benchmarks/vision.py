@@ -17,8 +17,9 @@ values, bit for bit, tick by tick. For each size it prints:
   the whole tick;
 * real time at 30 Hz (tick_duration 1/30 s), camera included, for each priority request
   of ``--priorities`` (default ``off,fifo``): the lag's mean, 99th percentile and maximum
-  over ``--seconds``, and whether every tick started within one frame (and none was
-  skipped);
+  over ``--seconds``, whether every tick started within one frame (and none was
+  skipped), and the longest tick on the wall clock and on the tick thread's CPU clock (a
+  tick that took a frame of CPU cannot keep up, whatever its priority);
 * with ``--web-ui``: also the lag of the same run with the web UI server up and a client
   subscribed to two images (the camera and the overlay, as JPEG) polling as fast as the
   server lets it, and the frames per second the client got.
@@ -193,24 +194,54 @@ def alternating(path: str, rows: int, cols: int, a) -> dict:
     return rounds
 
 
+class TickTimes:
+    """A tick hook (in the tick thread): each tick's wall time and the tick thread's CPU
+    time since the previous tick's hooks (the tick's work and the hooks after it)."""
+
+    def __init__(self, net):
+        self.timing = net.timing
+        self.wall: list[float] = []
+        self.cpu: list[float] = []
+        self._cpu = None
+
+    def __call__(self) -> None:
+        cpu = time.thread_time()
+        if self._cpu is not None:
+            self.cpu.append(cpu - self._cpu)
+        self._cpu = cpu
+        self.wall.append(self.timing.last_spent)
+
+    def mark(self) -> tuple[int, int]:
+        return len(self.wall), len(self.cpu)
+
+    def longest(self, since: tuple[int, int]) -> tuple[float, float]:
+        """The longest tick since ``mark()`` in ms: wall, CPU."""
+        return (max(self.wall[since[0]:], default=0.0) * 1e3,
+                max(self.cpu[since[1]:], default=0.0) * 1e3)
+
+
 def real_time(path: str, priority: str, seconds: float, web_ui: bool) -> dict:
     """Real time at 30 Hz (camera included) with the tick thread's ``priority`` request:
     the lag (mean, p99, max in ms) over ``seconds`` without the web UI, then, with
     ``web_ui``, over ``seconds`` with the web UI server up and a client polling two images
-    (JPEG) as fast as the server lets it, and the frames per second the client got."""
+    (JPEG) as fast as the server lets it, and the frames per second the client got; and the
+    longest tick of each phase (wall and CPU ms)."""
     from benchmarks.webui import lag_figures, serve_in_thread, start_client
     from ikaros.module import WARNING
 
     net = ikaros.load(path, priority=priority)
     net.log_level = WARNING
     ctrl = net.controller
+    ticks = TickTimes(net)
+    ctrl.tick_hooks.append(ticks)
     ctrl.start("realtime")
     server = proc = None
     try:
         time.sleep(1.0)                                       # warm up
-        resyncs = net.figures()["resyncs"]
-        out = {"alone": lag_figures(net, seconds), "resyncs": {}}
+        resyncs, since = net.figures()["resyncs"], ticks.mark()
+        out = {"alone": lag_figures(net, seconds), "resyncs": {}, "longest": {}}
         out["resyncs"]["alone"] = net.figures()["resyncs"] - resyncs
+        out["longest"]["alone"] = ticks.longest(since)
         if web_ui:
             server, thread, port = serve_in_thread(net)
             proc, go, stop, quit_, frames, connected = start_client(
@@ -220,9 +251,10 @@ def real_time(path: str, priority: str, seconds: float, web_ui: bool) -> dict:
                 raise RuntimeError("the web UI client did not connect")
             time.sleep(0.5)
             f0, t0 = frames.value, time.perf_counter()
-            resyncs = net.figures()["resyncs"]
+            resyncs, since = net.figures()["resyncs"], ticks.mark()
             out["shown"] = lag_figures(net, seconds)
             out["resyncs"]["shown"] = net.figures()["resyncs"] - resyncs
+            out["longest"]["shown"] = ticks.longest(since)
             out["fps"] = (frames.value - f0) / (time.perf_counter() - t0)
         out["priority"] = (net.figures().get("priority") or {}).get("tick_thread") or "normal"
     finally:
@@ -291,9 +323,11 @@ def report(results: dict, a) -> None:
                       f"{spread([b[name] for b, _ in pairs]):>20}")
     print(f"\nReal time at 30 Hz, camera included, {a.seconds:g} s per phase: lag in ms "
           f"(mean, p99, max); within a frame: every tick started less than "
-          f"{FRAME_MS:.1f} ms late and none was skipped (resynchronised)\n")
+          f"{FRAME_MS:.1f} ms late and none was skipped (resynchronised); the longest tick "
+          f"in ms on the wall clock and on the tick thread's CPU clock\n")
     table_header(f"{'size':>10} {'priority':>10} {'phase':>17} {'lag mean':>9} {'p99':>7} "
-                 f"{'max':>7} {'frames/s':>9} {'within a frame':>15}")
+                 f"{'max':>7} {'frames/s':>9} {'within a frame':>15} {'tick wall':>10} "
+                 f"{'tick CPU':>9}")
     for size, r in results.items():
         for asked, run in r["real"].items():
             phases = [("no web UI", "alone")]
@@ -303,8 +337,10 @@ def report(results: dict, a) -> None:
                 mean, p99, most = run[key]
                 fps = f"{run['fps']:.1f}" if key == "shown" else ""
                 kept = most < FRAME_MS and run["resyncs"][key] == 0
+                wall, cpu = run["longest"][key]
                 print(f"{size:>10} {asked:>10} {phase:>17} {mean:>9.2f} {p99:>7.2f} "
-                      f"{most:>7.2f} {fps:>9} {'yes' if kept else 'no':>15}")
+                      f"{most:>7.2f} {fps:>9} {'yes' if kept else 'no':>15} {wall:>10.1f} "
+                      f"{cpu:>9.1f}")
             print(f"{size:>10} {asked:>10} granted: {run['priority']}; resynchronised "
                   f"{sum(run['resyncs'].values())} times")
 

@@ -70,16 +70,25 @@ def client_process(url: str, paths: list[str], go, stop, quit_, frames, connecte
 
 
 def serve_in_thread(net, **options):
-    """Serve ``net``'s web UI on 127.0.0.1 (a free port) from a thread; returns
-    (server, thread, port). Stop it with ``server.should_exit = True; thread.join()``."""
+    """Serve ``net``'s web UI on 127.0.0.1 (a free port) from a thread, below the tick as
+    ``ikaros`` serves it; returns (server, thread, port). Stop it with
+    ``server.should_exit = True; thread.join()``."""
     import uvicorn
 
+    from ikaros import priority
     from ikaros.webui.server import create_app, listen
     sock = listen("127.0.0.1", 0)
-    server = uvicorn.Server(uvicorn.Config(create_app(net, **options), log_level="warning",
-                                           access_log=False, lifespan="off",
-                                           ws_per_message_deflate=False))
-    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
+    app = create_app(net, **options)
+    server = uvicorn.Server(uvicorn.Config(app, log_level="warning", access_log=False,
+                                           lifespan="off", ws_per_message_deflate=False))
+
+    def serve():
+        priority.below_tick_thread()
+        try:
+            server.run(sockets=[sock])
+        finally:
+            app.state.ui.hub.close()
+    thread = threading.Thread(target=serve, daemon=True)
     thread.start()
     while not server.started:
         time.sleep(0.05)

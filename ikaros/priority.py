@@ -4,13 +4,15 @@ A run may ask (top-group ``priority``, ``cpus`` and ``lock_memory``; ``ikaros --
 for its tick thread and the threads that talk to devices to run under a real-time scheduling
 policy (``SCHED_FIFO`` or ``SCHED_RR``), or failing that at the best ``nice`` value the
 process may take, pinned to chosen cores, with the process's memory locked. The other threads
-of ikaros (the web UI's server, the recorder's writer) then run below them. What was granted
+of ikaros (the recorder's writer) then run below them, and the threads that run Python code
+often while the ticks run (the web UI's server and image encoder) under the real-time policy
+just below them. What was granted
 and what was refused is kept in :func:`report`; nothing is changed for a run that does not ask.
 
 One request holds per process. The kernel calls :func:`configure` when a network is built and
 :func:`tick_thread` in the thread that runs the ticks; drivers call :func:`device_thread` in
-their I/O threads and the web UI and recorder call :func:`background_thread` in theirs, in
-any order: a thread registered before the request is given its priority when the request
+their I/O threads, the recorder calls :func:`background_thread` in its writer and the web UI
+:func:`below_tick_thread` in its server and image encoder, in any order: a thread registered before the request is given its priority when the request
 comes.
 """
 from __future__ import annotations
@@ -27,7 +29,8 @@ POLICIES = {"fifo": "SCHED_FIFO", "rr": "SCHED_RR"}
 # below the 50 that Linux gives its threaded interrupt handlers (serial ports, USB)
 DEFAULT_RT_PRIORITY = 40
 DEFAULT_NICE = -10
-BACKGROUND_NICE = 5             # the web UI and the recorder, below the tick when it asks
+BACKGROUND_NICE = 5             # background threads, below the tick when it asks
+BELOW_TICK = 10                 # real-time levels between the tick and a below_tick_thread
 OFF = ("", "no", "off", "none", "false", "0")
 
 _RTPRIO_HELP = ("run as root, give the interpreter the capability (sudo setcap "
@@ -136,8 +139,7 @@ class _State:
     refused: list[str] = field(default_factory=list)
     devices: dict = field(default_factory=dict)       # thread -> what it was given
     background: dict = field(default_factory=dict)    # thread -> what it was given
-    pending_devices: list = field(default_factory=list)
-    pending_background: list = field(default_factory=list)
+    pending: list = field(default_factory=list)       # (thread, table, give) until a request
 
 
 _state = _State()
@@ -157,10 +159,8 @@ def configure(request: PriorityRequest | None) -> None:
         _state.refused.clear()
         if request.lock_memory and _state.memory_locked is None:
             _state.memory_locked = _lock_memory()
-        for thread in _state.pending_devices:
-            _state.devices[thread] = _apply_rt(thread.native_id, request, "device thread")
-        for thread in _state.pending_background:
-            _state.background[thread] = _lower(thread.native_id)
+        for thread, table, give in _state.pending:
+            getattr(_state, table)[thread] = give(thread.native_id, request)
 
 
 def tick_thread() -> dict | None:
@@ -176,26 +176,35 @@ def tick_thread() -> dict | None:
 
 def device_thread() -> None:
     """Call first thing in a thread that talks to a device: it runs as the tick thread does."""
-    thread = threading.current_thread()
-    with _lock:
-        _forget_dead()
-        if _state.request is None:
-            _state.pending_devices.append(thread)
-        else:
-            _state.devices[thread] = _apply_rt(thread.native_id, _state.request,
-                                               "device thread")
+    _register("devices", _as_device)
 
 
 def background_thread() -> None:
-    """Call first thing in a thread of ikaros that must not take the tick's time (the web UI's
-    server, the recorder's writer): when a priority is asked for, it runs below the tick."""
+    """Call first thing in a thread of ikaros that must not take the tick's time (the
+    recorder's writer): when a priority is asked for, it runs below the tick."""
+    _register("background", _as_background)
+
+
+def below_tick_thread() -> None:
+    """Call first thing in a thread of ikaros that runs Python code often while the ticks
+    run and must not take their time (the web UI's server and image encoder): when the tick
+    asks for a real-time policy, it runs under that policy ``BELOW_TICK`` levels lower, so
+    the tick preempts it and the other processes of the machine do not (preempted while it
+    holds Python's lock, it would keep the tick waiting for the lock); under any other
+    request it runs as a :func:`background_thread`. It is listed with those."""
+    _register("background", _below_tick)
+
+
+def _register(table: str, give) -> None:
+    """Give the calling thread ``give(native id, request)`` now, or when the request comes
+    (:func:`configure`), and keep what it runs at in ``_state.<table>``."""
     thread = threading.current_thread()
     with _lock:
         _forget_dead()
         if _state.request is None:
-            _state.pending_background.append(thread)
+            _state.pending.append((thread, table, give))
         else:
-            _state.background[thread] = _lower(thread.native_id)
+            getattr(_state, table)[thread] = give(thread.native_id, _state.request)
 
 
 def report() -> dict | None:
@@ -227,8 +236,7 @@ def _forget_dead() -> None:
     for table in (_state.devices, _state.background):
         for thread in [t for t in table if not t.is_alive()]:
             del table[thread]
-    for pending in (_state.pending_devices, _state.pending_background):
-        pending[:] = [t for t in pending if t.is_alive()]
+    _state.pending[:] = [entry for entry in _state.pending if entry[0].is_alive()]
 
 
 def _refuse(message: str) -> None:
@@ -279,6 +287,14 @@ def _best_nice(tid: int, wanted: int, who: str) -> str:
     return f"nice {min(best, current)}"
 
 
+def _as_device(tid: int, request: PriorityRequest) -> str:
+    return _apply_rt(tid, request, "device thread")
+
+
+def _as_background(tid: int, request: PriorityRequest) -> str:
+    return _lower(tid)
+
+
 def _lower(tid: int) -> str:
     """Run thread ``tid`` under the normal policy at ``BACKGROUND_NICE`` (always allowed)."""
     try:
@@ -288,6 +304,25 @@ def _lower(tid: int) -> str:
         return f"nice {nice}"
     except OSError as error:        # the thread ended meanwhile
         return f"unchanged ({error.strerror})"
+
+
+def _below_tick(tid: int, request: PriorityRequest) -> str:
+    """Run thread ``tid`` under the request's real-time policy ``BELOW_TICK`` levels below
+    the tick (level 1 at least; the threads it starts do not inherit the policy); as
+    :func:`_lower` when the request is not real-time, the tick is at level 1 already, or the
+    policy is not permitted (the tick's own refusal says so)."""
+    if request.policy in POLICIES and request.level > 1:
+        name = POLICIES[request.policy]
+        level = max(1, request.level - BELOW_TICK)
+        try:
+            os.sched_setscheduler(tid, getattr(os, name) | os.SCHED_RESET_ON_FORK,
+                                  os.sched_param(level))
+            return f"{name} {level}"
+        except PermissionError:
+            pass
+        except OSError as error:        # the thread ended meanwhile
+            return f"unchanged ({error.strerror})"
+    return _lower(tid)
 
 
 MCL_CURRENT, MCL_FUTURE = 1, 2

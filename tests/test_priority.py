@@ -176,3 +176,75 @@ def test_device_and_background_threads_started_before_the_request_get_it_then():
     for t in threads:
         t.join(10)
     assert seen == {"device": nice, "background": max(nice, priority.BACKGROUND_NICE)}
+
+
+def _below_tick_thread_of(request: PriorityRequest, before: bool) -> tuple:
+    """(policy, level, nice) of a thread that calls ``below_tick_thread`` before or after
+    ``request`` is made, as Linux has it."""
+    registered, release, seen = threading.Event(), threading.Event(), []
+
+    def helper():
+        priority.below_tick_thread()
+        registered.set()
+        release.wait(10)
+        seen.append((os.sched_getscheduler(0) & ~os.SCHED_RESET_ON_FORK,
+                     os.sched_getparam(0).sched_priority,
+                     os.getpriority(os.PRIO_PROCESS, threading.get_native_id())))
+    if not before:
+        priority.configure(request)
+    thread = threading.Thread(target=helper)
+    thread.start()
+    registered.wait(10)
+    if before:
+        priority.configure(request)
+    release.set()
+    thread.join(10)
+    return seen[0]
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="granting SCHED_FIFO needs root here")
+@pytest.mark.parametrize("before", [True, False])
+def test_a_below_tick_thread_runs_under_the_real_time_policy_below_the_tick(before):
+    nice = os.getpriority(os.PRIO_PROCESS, threading.get_native_id())     # inherited
+    assert _below_tick_thread_of(PriorityRequest("fifo", 30), before) == \
+        (os.SCHED_FIFO, 30 - priority.BELOW_TICK, nice)
+    priority.reset()
+    assert _below_tick_thread_of(PriorityRequest("rr", 5), before) == (os.SCHED_RR, 1, nice)
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="granting SCHED_FIFO needs root here")
+def test_a_below_tick_thread_is_listed_with_the_background_threads_and_not_inherited():
+    priority.configure(PriorityRequest("fifo", 30))
+    registered, release, started = threading.Event(), threading.Event(), []
+
+    def child():
+        started.append(os.sched_getscheduler(0))
+
+    def helper():
+        priority.below_tick_thread()
+        thread = threading.Thread(target=child)
+        thread.start()
+        thread.join(10)
+        registered.set()
+        release.wait(10)
+    thread = threading.Thread(target=helper)
+    thread.start()
+    registered.wait(10)
+    try:
+        assert priority.report()["background_threads"] == \
+            [f"SCHED_FIFO {30 - priority.BELOW_TICK}"]
+        assert started == [os.SCHED_OTHER]     # a thread it starts runs at the normal policy
+    finally:
+        release.set()
+        thread.join(10)
+
+
+@pytest.mark.parametrize("request_", [PriorityRequest("fifo", 1), PriorityRequest("nice", 0),
+                                      PriorityRequest(None, 0, lock_memory=True)])
+def test_a_below_tick_thread_is_a_background_thread_when_the_tick_is_not_above_it(request_):
+    # fifo:1 has no level below it; nice and no policy: nothing real-time to run below
+    nice = max(os.getpriority(os.PRIO_PROCESS, threading.get_native_id()),
+               priority.BACKGROUND_NICE)
+    for before in (True, False):
+        priority.reset()
+        assert _below_tick_thread_of(request_, before) == (os.SCHED_OTHER, 0, nice)

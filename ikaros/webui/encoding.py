@@ -8,6 +8,7 @@ image files made from arrays of values 0..1, (rows, cols) gray or (3, rows, cols
 """
 from __future__ import annotations
 
+import functools
 import io
 import json
 import struct
@@ -32,27 +33,76 @@ def raw_bytes(array: np.ndarray) -> bytes:
     return np.ascontiguousarray(array, dtype="<f4").tobytes()
 
 
-def image_bytes(array: np.ndarray, fmt: str, quality: int = JPEG_QUALITY) -> bytes:
-    """A PNG or JPEG file (of this quality, 1-100) of an array of values 0..1: (rows, cols)
-    gray or (3, rows, cols) colour."""
-    from PIL import Image
-    a = np.nan_to_num(np.asarray(array, dtype=np.float32), nan=0.0, posinf=1.0, neginf=0.0)
-    pixels = (np.clip(a, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
-    if pixels.ndim == 3:
-        image = Image.fromarray(np.ascontiguousarray(pixels.transpose(1, 2, 0)), "RGB")
-    elif pixels.ndim == 2:
-        image = Image.fromarray(pixels, "L")
-    else:
+def image_pixels(array: np.ndarray) -> np.ndarray:
+    """The 8-bit pixels of an array of values 0..1, in its layout ((rows, cols) gray or
+    (3, rows, cols) colour): each value clipped to 0..1 and rounded (halves up) to 0..255;
+    NaN is 0."""
+    a = np.asarray(array, dtype=np.float32)
+    if not image_shape_ok(a.shape):
         raise ValueError(f"an image must be (rows, cols) or (3, rows, cols), not "
                          f"{tuple(a.shape)}")
+    with np.errstate(over="ignore", invalid="ignore"):
+        levels = np.multiply(a, np.float32(255.0), dtype=np.float32)
+        np.clip(levels, 0.0, 255.0, out=levels)
+    levels[np.isnan(levels)] = 0.0
+    levels += np.float32(0.5)
+    return levels.astype(np.uint8)
+
+
+def _opencv_file(pixels: np.ndarray, fmt: str, quality: int) -> bytes:
+    cv2 = _opencv()
+    if pixels.ndim == 3:
+        pixels = cv2.merge((pixels[2], pixels[1], pixels[0]))     # OpenCV's order: BGR
+    flags = [cv2.IMWRITE_PNG_COMPRESSION, PNG_COMPRESS_LEVEL] if fmt == "png" else \
+        [cv2.IMWRITE_JPEG_QUALITY, quality]
+    ok, file = cv2.imencode(f".{fmt}", pixels, flags)
+    if not ok:
+        raise ValueError(f"OpenCV could not encode a {fmt} image of {pixels.shape}")
+    return file.tobytes()
+
+
+def _pillow_file(pixels: np.ndarray, fmt: str, quality: int) -> bytes:
+    from PIL import Image
+    if pixels.ndim == 3:
+        image = Image.fromarray(np.ascontiguousarray(pixels.transpose(1, 2, 0)), "RGB")
+    else:
+        image = Image.fromarray(pixels, "L")
     out = io.BytesIO()
     if fmt == "png":
         image.save(out, "PNG", compress_level=PNG_COMPRESS_LEVEL)
-    elif fmt == "jpeg":
-        image.save(out, "JPEG", quality=quality)
     else:
-        raise ValueError(f'unknown image format "{fmt}"')
+        image.save(out, "JPEG", quality=quality)
     return out.getvalue()
+
+
+ENCODERS = {"opencv": _opencv_file, "pillow": _pillow_file}
+
+
+@functools.cache
+def _opencv():
+    """OpenCV when it is installed, else None."""
+    try:
+        import cv2
+    except ImportError:
+        return None
+    return cv2
+
+
+def image_encoder() -> str:
+    """The encoder of the web UI's images: OpenCV when it is installed (its encoders let
+    Python's other threads run while they work, so a real-time tick never waits for an
+    image), else Pillow."""
+    return "opencv" if _opencv() is not None else "pillow"
+
+
+def image_bytes(array: np.ndarray, fmt: str, quality: int = JPEG_QUALITY,
+                encoder: str | None = None) -> bytes:
+    """A PNG or JPEG file (of this quality, 1-100) of an array of values 0..1: (rows, cols)
+    gray or (3, rows, cols) colour; ``encoder``: ``opencv`` or ``pillow`` (default:
+    :func:`image_encoder`)."""
+    if fmt not in IMAGE_FORMATS:
+        raise ValueError(f'unknown image format "{fmt}"')
+    return ENCODERS[encoder or image_encoder()](image_pixels(array), fmt, quality)
 
 
 def encode_array(array: np.ndarray, fmt: str, quality: int = JPEG_QUALITY) -> bytes:

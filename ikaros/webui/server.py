@@ -961,9 +961,10 @@ def serve(net, host: str = "127.0.0.1", port: int = 8000, token: str | None = No
         if on_ready is not None:
             shown = f"[{host}]" if ":" in host else host
             on_ready(f"http://{shown}:{port}/")
-        priority.background_thread()        # this thread serves; the kernel's is started
+        priority.below_tick_thread()        # this thread serves; the kernel's is started
         server.run(sockets=[sock])
     finally:
+        app.state.ui.hub.close()
         current = app.state.ui.net          # the editor may have replaced the network
         current.controller.stop()
         current.controller.join(10)

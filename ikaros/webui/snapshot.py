@@ -6,12 +6,15 @@ the previous snapshot has been taken); then it copies the subscribed buffers int
 allocated when the subscriptions changed, stopping when its time budget is spent (the rest
 is copied after the next tick), and hands the finished snapshot to the asyncio loop with
 ``call_soon_threadsafe``. ``Hub`` (in the loop) encodes the snapshot for each ready client
-and sends it; a slow or stalled client simply gets fewer frames.
+and sends it; a slow or stalled client simply gets fewer frames. Images are encoded once per
+snapshot, whatever the number of clients, and only those a ready client asks for, in a
+thread of their own that runs just below a real-time tick (``priority.below_tick_thread``).
 """
 from __future__ import annotations
 
 import asyncio
 import collections
+import concurrent.futures
 import json
 import threading
 import time
@@ -19,6 +22,7 @@ from typing import Callable
 
 import numpy as np
 
+from .. import priority
 from ..module import LEVEL_NAMES
 from .encoding import IMAGE_FORMATS, JPEG_QUALITY, encode_array, encode_frame
 from .history import (DEFAULT_POINTS, HISTORY_FORMATS, Recorder, encode_events,
@@ -270,6 +274,8 @@ class Hub:
         self._requested_at = -1e9
         self._ticker: asyncio.Task | None = None
         self._hooked = False
+        self._encoder: concurrent.futures.ThreadPoolExecutor | None = None
+        self.images_encoded = 0             # (for tests and figures)
 
     # --- clients -------------------------------------------------------------------------
     def add(self, client: Client) -> None:
@@ -401,14 +407,29 @@ class Hub:
                     if fmt in IMAGE_FORMATS and (path, fmt) not in cache:
                         array = snap.plan.arrays[path]
                         quality = self.rgb_quality if array.ndim == 3 else self.gray_quality
-                        cache[(path, fmt)] = await asyncio.to_thread(
-                            encode_array, array, fmt, quality)
+                        cache[(path, fmt)] = await self.loop.run_in_executor(
+                            self._encoding_thread(), encode_array, array, fmt, quality)
+                        self.images_encoded += 1
             for c in targets:
                 if c in self.clients:
                     self._send_frame(c, snap, cache)
         finally:
             self.in_flight = False
         self.poke()
+
+    def _encoding_thread(self) -> concurrent.futures.ThreadPoolExecutor:
+        """The one thread that encodes images: below a real-time tick, so that the tick
+        never waits for it (its encoder may hold Python's lock) while other processes do."""
+        if self._encoder is None:
+            self._encoder = concurrent.futures.ThreadPoolExecutor(
+                1, "ikaros-webui-images", initializer=priority.below_tick_thread)
+        return self._encoder
+
+    def close(self) -> None:
+        """End the encoding thread (once the loop no longer runs)."""
+        if self._encoder is not None:
+            self._encoder.shutdown(wait=False)
+            self._encoder = None
 
     @staticmethod
     def _history_covers(c: Client, snap: Snapshot) -> bool:

@@ -93,7 +93,9 @@ def test_a_jpeg_image_is_encoded_at_the_quality_given():
     pixels = (np.clip(a, 0, 1) * 255 + 0.5).astype(np.uint8).transpose(1, 2, 0)
     expected = io.BytesIO()
     Image.fromarray(np.ascontiguousarray(pixels), "RGB").save(expected, "JPEG", quality=13)
-    assert low == expected.getvalue() and len(low) < len(default)
+    # the quantisation tables are what the quality sets (OpenCV or Pillow encodes)
+    assert Image.open(io.BytesIO(low)).quantization == Image.open(expected).quantization
+    assert len(low) < len(default)
 
 
 def test_the_frames_carry_jpeg_images_at_the_models_qualities(tmp_path):
