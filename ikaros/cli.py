@@ -47,6 +47,13 @@ def _positive_int(text: str) -> int:
     return int(text)
 
 
+def _seed(text: str) -> int:
+    if not text.lstrip("+").isdigit() or int(text) > 0xFFFFFFFF:
+        raise argparse.ArgumentTypeError(f'"{text}" is not a seed (a whole number from 0 '
+                                         f'to 4294967295)')
+    return int(text)
+
+
 def _port(text: str) -> int:
     if not text.lstrip("+").isdigit() or int(text) > 65535:
         raise argparse.ArgumentTypeError(f'"{text}" is not a port number (0-65535)')
@@ -131,6 +138,9 @@ def parser() -> argparse.ArgumentParser:
                    help="run in real time on the tick_duration time base")
     p.add_argument("-d", "--tick-duration", type=_seconds, metavar="SECONDS",
                    help="the real-time tick duration in seconds")
+    p.add_argument("-z", "--seed", type=_seed, metavar="N",
+                   help="seed the C rand() stream the Ikaros 2 random classes share, as "
+                        "the original's -z does (top-group random_seed)")
     p.add_argument("-t", "--threads", type=_positive_int, metavar="N",
                    help="size of the worker thread pool")
     p.add_argument("--priority", nargs="?", const="fifo", metavar="POLICY",
@@ -425,6 +435,8 @@ def _main(argv: list[str]) -> int:
             overrides["tick_duration"] = str(opts.tick_duration)
         if opts.threads is not None:
             overrides["threads"] = str(opts.threads)
+        if opts.seed is not None:
+            overrides["random_seed"] = str(opts.seed)
         if opts.python is not None:
             overrides["python_executable"] = opts.python
         for key in ("priority", "cpus", "blas_threads"):

@@ -124,6 +124,10 @@ class Network:
         self.stop_tick = self._whole_number("stop", minimum=-1)
         self.threads = self._whole_number("threads", minimum=1)
         self.webui_port = self._whole_number("webui_port", minimum=1, maximum=65535)
+        # Ikaros 2's -z: srand() of the C rand() stream the modules share, before any init
+        seed = self._whole_number("random_seed", minimum=0, maximum=0xFFFFFFFF)
+        if seed is not None:
+            builder.c_random.seed(seed)
         self.task_timeout = task_timeout(self.top.attrs.get("task_timeout"),
                                          lambda m: self._setting_error("task_timeout", m))
         self._watchdog: Watchdog | None = None

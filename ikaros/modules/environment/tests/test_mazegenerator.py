@@ -2,11 +2,13 @@
 fixes the maze, regeneration happens on schedule, and the L- and T-mazes are as drawn."""
 import collections
 import ctypes
+import subprocess
 import sys
 
 import numpy as np
 import pytest
 
+from ikaros import ModelError
 from ikaros.testing import load_body as load
 
 
@@ -163,3 +165,31 @@ def test_unseeded_mazes_share_the_networks_rand_stream(tmp_path):
         assert not np.array_equal(first, second)
     finally:
         net.close()
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="needs glibc's rand()")
+def test_the_top_groups_random_seed_is_srand_of_the_shared_stream(tmp_path):
+    # Ikaros 2's -z (KERNEL.md, the v2 options): the seed of the one rand() stream
+    expected = depth_first_maze(5, glibc_rand_stream(9))
+    assert not np.array_equal(expected, depth_first_maze(5, glibc_rand_stream(1)))
+    net = load(tmp_path, '<module class="MazeGenerator" name="M" size="5"/>', random_seed=9)
+    try:
+        assert np.array_equal(net.output("M.OUTPUT"), expected)
+    finally:
+        net.close()
+    model = tmp_path / "seeded.ikg"
+    model.write_text('<group name="T"><module class="MazeGenerator" name="M" size="5"/>'
+                     '<module class="Print" name="P"/>'
+                     '<connection source="M.OUTPUT" target="P.INPUT"/></group>')
+    done = subprocess.run([sys.executable, "-m", "ikaros", "-b", "-s", "1", "-z", "9",
+                           str(model)], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    printed = done.stdout.strip().splitlines()[-1].removeprefix("P: ")
+    rows = [[float(v) for v in row.split()] for row in printed.split(";")]
+    assert np.array_equal(np.array(rows), expected)
+
+
+@pytest.mark.parametrize("text", ["-3", "1.5", "seven", "4294967296"])
+def test_a_random_seed_that_is_not_a_whole_number_fails_the_build(tmp_path, text):
+    with pytest.raises(ModelError, match=f'random_seed="{text}" must be a whole number'):
+        load(tmp_path, '<module class="Constant" name="C" data="1"/>', random_seed=text)
