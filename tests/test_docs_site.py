@@ -19,6 +19,7 @@ pytestmark = pytest.mark.slow
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CHROMIUM = "/usr/bin/chromium"
+PLOTTED = ("FunctionGenerator", "GaussianFilter")     # a line plot and an image
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
          "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 
@@ -26,7 +27,10 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     folder = tmp_path_factory.mktemp("site")
-    env = dict(os.environ, NO_MKDOCS_2_WARNING="1", DISABLE_MKDOCS_2_WARNING="true")
+    # plots of two classes only: drawing all of them takes minutes (every example is run by
+    # tests/test_examples.py; the drawing is the same code for every class)
+    env = dict(os.environ, NO_MKDOCS_2_WARNING="1", DISABLE_MKDOCS_2_WARNING="true",
+               IKAROS_SITE_PLOTS=",".join(PLOTTED))
     done = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-q", "-d",
                            str(folder)], cwd=ROOT, env=env, capture_output=True, text=True,
                           timeout=600)
@@ -59,8 +63,9 @@ def test_every_standard_class_has_a_page_with_its_ports_and_parameters(site):
 def test_a_class_page_shows_its_example_and_a_plot_of_its_outputs(site):
     page = _page(site, "classes/FunctionGenerator.html")
     assert "examples/modules/FunctionGenerator_example.ikg" in page
-    assert 'src="images/FunctionGenerator.svg"' in page
-    ET.parse(os.path.join(site, "classes", "images", "FunctionGenerator.svg"))
+    for name in PLOTTED:
+        assert f'src="images/{name}.svg"' in _page(site, f"classes/{name}.html"), name
+        ET.parse(os.path.join(site, "classes", "images", f"{name}.svg"))
     # the dialect differences of docs/language.md's tables that name the class
     assert "Ikaros 2, Ikaros 3 and this project" in page
 
