@@ -2,7 +2,7 @@
 # Install what the tests need and run them all: a virtual environment of their own
 # (.venv-test: the README's demo step makes .venv, and a server running from it keeps its
 # files) with the package and its test extras, and Debian's Chromium for the browser tests
-# (installed when missing). Arguments go to pytest.
+# (installed when missing). Arguments go to pytest; the 25 slowest tests are listed at the end.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -x /usr/bin/chromium ]; then
@@ -14,4 +14,4 @@ fi
 python3 -m venv .venv-test
 . .venv-test/bin/activate
 pip install -q -e '.[test]'
-python -m pytest -q "$@"
+python -m pytest -q --durations=25 "$@"
