@@ -102,6 +102,7 @@ def example_and_plot(desc: ClassDescription, models: dict[str, str],
     """The example of the class and the file name of its plot under ``images`` (None when
     the example does not run here or its outputs cannot be drawn)."""
     example = find_example(desc.name, models)
+    plotted = ONLY_PLOTS is None or desc.name in ONLY_PLOTS
     if example is None:
         example = generated_example(desc)
         with tempfile.TemporaryDirectory() as folder:
@@ -111,11 +112,11 @@ def example_and_plot(desc: ClassDescription, models: dict[str, str],
             outputs = record_outputs(path, desc.name, PLOT_TICKS)
         if outputs is None:
             return None, None
-    elif ONLY_PLOTS is not None and desc.name not in ONLY_PLOTS:
-        return example, None
-    else:
+    elif plotted:
         outputs = record_outputs(os.path.join(ROOT, example.path), desc.name, PLOT_TICKS)
-    if not outputs or (ONLY_PLOTS is not None and desc.name not in ONLY_PLOTS):
+    else:
+        return example, None
+    if not outputs or not plotted:
         return example, None
     name = f"{desc.name}.svg"
     if not plot_outputs(outputs, os.path.join(images, name), desc.name):

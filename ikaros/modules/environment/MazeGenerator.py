@@ -25,8 +25,9 @@ class MazeGenerator(Module):
     going on from each unvisited neighbour it reaches, opening the wall to it, before it
     tries the next step. rand() is the C library's generator (glibc's), which Ikaros 2 seeds
     only with the command line's -z: the modules of a network share it, unseeded as there
-    unless the top group's random_seed (``ikaros -z N``) seeds it, so a model gives the original's maze (its golden file, the default 8 x 8 maze, is
-    reproduced wall for wall). ``seed`` gives the module a generator of its own, seeded as
+    unless the top group's random_seed (``ikaros -z N``) seeds it, so a model gives the
+    original's maze (its golden file, the default 8 x 8 maze, is reproduced wall for
+    wall). ``seed`` gives the module a generator of its own, seeded as
     srand does (a negative seed: a different maze every run). The golden maze fits as well
     a variant that draws k anew each time it comes back to a room instead of going on with
     the turn (it differs in about one maze of eight, and draws once less for each dead end);
